@@ -1,0 +1,66 @@
+// Cook-Torrance with GGX, Smith-GGX visibility and Schlick's Fresnel, and
+// glTF's punctual light falloff (KHR_lights_punctual, "Range Property").
+// Needs sampling.glsl and the light buffer.
+
+struct Surface {
+  vec3 albedo;
+  float metallic;
+  float roughness;
+  vec3 normal;  // world, unit
+  vec3 view;    // world, unit, toward the eye
+  float nDotV;
+  vec3 f0;      // reflectance at normal incidence
+};
+
+Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, vec3 view) {
+  Surface s;
+  s.albedo = albedo;
+  s.metallic = metallic;
+  // Below 0.03 GGX's peak outgrows half floats for point lights.
+  s.roughness = max(roughness, 0.03);
+  s.normal = normal;
+  s.view = view;
+  s.nDotV = max(dot(normal, view), 1e-4);
+  s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
+  return s;
+}
+
+vec3 cookTorrance(Surface s, vec3 toLight) {
+  const float nDotL = dot(s.normal, toLight);
+  if (nDotL <= 0.0) return vec3(0.0);
+  const vec3 halfVector = normalize(toLight + s.view);
+  const float nDotH = max(dot(s.normal, halfVector), 0.0);
+  const float vDotH = max(dot(s.view, halfVector), 0.0);
+  const float alpha = s.roughness * s.roughness;
+  const float a2 = alpha * alpha;
+  const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
+  const float distribution = a2 / (kPi * d * d);
+  const vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vDotH, 5.0);
+  const vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
+  const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi;
+  return (diffuse + specular) * nDotL;
+}
+
+// Falloff of `light` at `position` (inverse square, range window, spot
+// cone); sets `toLight` to the unit direction toward the light.
+float lightAttenuation(GpuLight light, vec3 position, out vec3 toLight) {
+  const int type = int(light.directionType.w);
+  if (type == kLightDirectional) {
+    toLight = -light.directionType.xyz;
+    return 1.0;
+  }
+  const vec3 offset = light.positionRange.xyz - position;
+  const float distanceSquared = max(dot(offset, offset), 1e-30);
+  const float distance = sqrt(distanceSquared);
+  toLight = offset / distance;
+  float attenuation = 1.0 / distanceSquared;
+  const float range = light.positionRange.w;
+  if (range > 0.0) attenuation *= clamp(1.0 - pow(distance / range, 4.0), 0.0, 1.0);
+  if (type == kLightSpot) {
+    const float cosOuter = light.spotShadow.x, cosInner = light.spotShadow.y;
+    const float scale = 1.0 / max(cosInner - cosOuter, 1e-3);
+    const float t = clamp((dot(light.directionType.xyz, -toLight) - cosOuter) * scale, 0.0, 1.0);
+    attenuation *= t * t;
+  }
+  return attenuation;
+}

@@ -1,0 +1,100 @@
+// Lighting pass (lib/passes/lighting.hpp). Reads every buffer with texelFetch
+// at this pixel: all targets share GL's bottom-up pixel order.
+#include "shared_layout.h"
+#include "sampling.glsl"
+#include "brdf.glsl"
+#include "shadows.glsl"
+
+layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
+layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
+layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
+layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+#ifdef HAS_EMISSIVE
+layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
+#endif
+#ifdef HAS_SSGI
+layout(binding = kUnitSsgi) uniform sampler2D ssgiTexture;
+#endif
+layout(binding = kUnitBrdfLut) uniform sampler2D brdfLut;
+layout(binding = kUnitSkyPrefiltered) uniform sampler2D skyPrefiltered;
+layout(binding = kUnitSkyIrradiance) uniform sampler2D skyIrradiance;
+
+layout(location = 0) out vec4 outRadiance;
+
+// Texture coordinate of value v in [low, high] for a table whose first and
+// last texel centres stand for low and high (see tableValue()).
+float tableCoordinate(float v, float low, float high, float size) {
+  return (clamp((v - low) / (high - low), 0.0, 1.0) * (size - 1.0) + 0.5) / size;
+}
+
+vec3 prefilteredSky(vec3 direction, float roughness) {
+  const vec2 size = vec2(textureSize(skyPrefiltered, 0));
+  return texture(skyPrefiltered, vec2(tableCoordinate(direction.y, -1.0, 1.0, size.x),
+                                      tableCoordinate(roughness, 0.0, 1.0, size.y))).rgb;
+}
+
+vec3 skyIrradianceOverPi(vec3 normal) {
+  const float width = float(textureSize(skyIrradiance, 0).x);
+  return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
+}
+
+// Direction from the surface toward the eye.
+vec3 viewDirection(vec3 worldPosition) {
+  // Orthographic: the same for every pixel, the camera's +Z axis in world.
+  if (frame.cameraPosition.w > 0.5) return normalize(vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]));
+  return normalize(frame.cameraPosition.xyz - worldPosition);
+}
+
+vec3 directLight(Surface surface, vec3 worldPosition, vec3 geometricNormal) {
+  vec3 sum = vec3(0.0);
+  const int lightCount = int(lighting.ambient.z);
+  for (int i = 0; i < lightCount; ++i) {
+    const GpuLight light = lights.lightList[i];
+    vec3 toLight;
+    const float attenuation = lightAttenuation(light, worldPosition, toLight);
+    if (attenuation <= 0.0) continue;
+    const float visibility = shadowVisibility(light, worldPosition, geometricNormal, toLight);
+    sum += cookTorrance(surface, toLight) * light.radiance.rgb * (attenuation * visibility);
+  }
+  return sum;
+}
+
+vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
+  const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, 64.0),
+                                               tableCoordinate(surface.roughness, 0.0, 1.0, 64.0))).rg;
+  const vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
+  const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
+  const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
+  const vec3 reflected = reflect(-surface.view, surface.normal);
+  const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
+  return (diffuseIbl + specularIbl) * lighting.ambient.x * materialOcclusion * ssgi.r + ssgi.gba;
+}
+
+void main() {
+  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
+  if (worldPosition.a == 0.0) {
+    // Background: the sky seen through this pixel (roughness-0 row = the
+    // sky itself), coverage 0.
+    const vec4 clip = vec4((gl_FragCoord.xy * frame.viewport.zw) * 2.0 - 1.0, 1.0, 1.0);
+    const vec4 viewFar = inverse(frame.projection) * clip;
+    const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
+    const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
+    outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.ambient.x, 0.0);
+    return;
+  }
+  const vec3 normal = texelFetch(gbufferNormal, pixel, 0).xyz;
+  const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
+  const Surface surface = makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y, normal,
+                                      viewDirection(worldPosition.xyz));
+#ifdef HAS_SSGI
+  const vec4 ssgi = texelFetch(ssgiTexture, pixel, 0);
+#else
+  const vec4 ssgi = vec4(1.0, 0.0, 0.0, 0.0);
+#endif
+  vec3 radiance = directLight(surface, worldPosition.xyz, normal) + ambientLight(surface, material.z, ssgi);
+#ifdef HAS_EMISSIVE
+  radiance += texelFetch(gbufferEmissive, pixel, 0).rgb;
+#endif
+  outRadiance = vec4(radiance, 1.0);
+}

@@ -1,0 +1,63 @@
+// PCF shadow lookups. The sample point is pushed along the geometric normal
+// by about a texel's footprint there (normal offset), which removes acne
+// without a depth bias that would detach shadows from their casters.
+
+#ifdef HAS_PLANAR_SHADOWS
+layout(binding = kUnitShadowMaps2D) uniform sampler2DArrayShadow shadowMaps2D;
+#endif
+#ifdef HAS_CUBE_SHADOWS
+layout(binding = kUnitShadowMapsCube) uniform samplerCubeArrayShadow shadowMapsCube;
+#endif
+
+// A fixed 12-tap Poisson disc: repeatable, and no noise for regression diffs.
+const vec2 kPoissonDisc[12] = vec2[](
+    vec2(-0.326, -0.406), vec2(-0.840, -0.074), vec2(-0.696, 0.457), vec2(-0.203, 0.621),
+    vec2(0.962, -0.195), vec2(0.473, -0.480), vec2(0.519, 0.767), vec2(0.185, -0.893),
+    vec2(0.507, 0.064), vec2(0.896, 0.412), vec2(-0.322, -0.933), vec2(-0.792, -0.598));
+
+float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight) {
+  const float layer = light.spotShadow.z;
+  if (light.radiance.w < 0.5 || layer < 0.0) return 1.0;
+  const float mapSize = lighting.shadow.z;
+  const float pcfRadius = lighting.ambient.w;
+  const int type = int(light.directionType.w);
+  // Surfaces facing away from the light are dark anyway; skip the lookups.
+  if (dot(normal, toLight) <= 0.0) return 0.0;
+#ifdef HAS_CUBE_SHADOWS
+  if (type == kLightPoint) {
+    const float far = light.spotShadow.w;
+    const float distance = length(light.positionRange.xyz - position);
+    const float texel = 2.0 * distance / mapSize;  // a 90 degree face
+    const vec3 shifted = position + normal * (lighting.shadow.x * texel);
+    const vec3 fromLight = shifted - light.positionRange.xyz;
+    const mat3 basis = basisAround(normalize(fromLight));
+    const float reference = length(fromLight) / far;
+    float lit = 0.0;
+    for (int i = 0; i < 12; ++i) {
+      const vec3 direction = fromLight + basis * vec3(kPoissonDisc[i] * pcfRadius * texel, 0.0);
+      lit += texture(shadowMapsCube, vec4(direction, layer), reference);
+    }
+    return lit / 12.0;
+  }
+#endif
+#ifdef HAS_PLANAR_SHADOWS
+  if (type != kLightPoint) {
+    // World size of one texel (spotShadow.w, lib/passes/shadow.cpp):
+    // constant for a directional light's orthographic map, growing with
+    // distance for a spot light's perspective one.
+    const float distance = type == kLightSpot ? length(light.positionRange.xyz - position) : 1.0;
+    const float texel = light.spotShadow.w * distance;
+    const vec4 clip = light.shadowViewProjection * vec4(position + normal * (lighting.shadow.x * texel), 1.0);
+    const vec3 ndc = clip.xyz / clip.w;
+    const vec3 coordinate = ndc * 0.5 + 0.5;
+    if (any(lessThan(coordinate, vec3(0.0))) || any(greaterThan(coordinate, vec3(1.0)))) return 1.0;
+    float lit = 0.0;
+    for (int i = 0; i < 12; ++i) {
+      const vec2 offset = kPoissonDisc[i] * pcfRadius / mapSize;
+      lit += texture(shadowMaps2D, vec4(coordinate.xy + offset, layer, coordinate.z));
+    }
+    return lit / 12.0;
+  }
+#endif
+  return 1.0;
+}

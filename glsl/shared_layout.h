@@ -1,0 +1,138 @@
+// Shared by C++ and GLSL: texture units, buffer bindings and the std140
+// uniform blocks. Each layout is written once here; C++ checks its offsets
+// with static_asserts (lib/gl/shared_layout.hpp) and GLSL declares the same
+// block with the same binding. Keep every member a vec4, ivec4 or mat4 so
+// std140 adds no hidden padding.
+#ifndef HEADLIGHT_SHARED_LAYOUT_H
+#define HEADLIGHT_SHARED_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace headlight::gpu {
+using vec4 = glm::vec4;
+using ivec4 = glm::ivec4;
+using mat4 = glm::mat4;
+#define HL_CONST(type, name, value) inline constexpr type name = value;
+#define HL_BLOCK_BEGIN(Name, binding) \
+  struct Name {                        \
+    static constexpr int kBinding = binding;
+#define HL_BLOCK_END(instance) \
+  }                            \
+  ;
+#define HL_STORAGE_BEGIN(Name, binding) HL_BLOCK_BEGIN(Name, binding)
+#define HL_STORAGE_END(instance) HL_BLOCK_END(instance)
+#else
+#define HL_CONST(type, name, value) const type name = value;
+#define HL_BLOCK_BEGIN(Name, b) layout(std140, binding = b) uniform Name {
+#define HL_BLOCK_END(instance) } instance;
+#define HL_STORAGE_BEGIN(Name, b) layout(std430, binding = b) readonly buffer Name {
+#define HL_STORAGE_END(instance) } instance;
+#endif
+
+// Texture units. Each pass binds only the units it reads.
+HL_CONST(int, kUnitGbufferPosition, 0)
+HL_CONST(int, kUnitGbufferNormal, 1)
+HL_CONST(int, kUnitGbufferAlbedo, 2)
+HL_CONST(int, kUnitGbufferMaterial, 3)
+HL_CONST(int, kUnitGbufferEmissive, 4)
+HL_CONST(int, kUnitSsgiNoise, 5)
+HL_CONST(int, kUnitSsgi, 6)
+HL_CONST(int, kUnitBrdfLut, 7)
+HL_CONST(int, kUnitSkyPrefiltered, 8)
+HL_CONST(int, kUnitSkyIrradiance, 9)
+HL_CONST(int, kUnitShadowMaps2D, 10)
+HL_CONST(int, kUnitShadowMapsCube, 11)
+HL_CONST(int, kUnitBaseColorTexture, 12)
+HL_CONST(int, kUnitMetallicRoughnessTexture, 13)
+HL_CONST(int, kUnitNormalTexture, 14)
+HL_CONST(int, kUnitOcclusionTexture, 15)
+HL_CONST(int, kUnitEmissiveTexture, 16)
+
+// The SSGI kernel never has more samples than this (the seed's count).
+HL_CONST(int, kMaxKernelSamples, 64)
+// Rows of the prefiltered sky table: roughness 0, 1/7, ..., 1.
+HL_CONST(int, kSkyRoughnessLevels, 8)
+
+// Light types as stored in GpuLight::directionType.w.
+HL_CONST(int, kLightDirectional, 0)
+HL_CONST(int, kLightPoint, 1)
+HL_CONST(int, kLightSpot, 2)
+
+// Per view: everything a pass needs to go between spaces.
+HL_BLOCK_BEGIN(FrameBlock, 0)
+  mat4 view;                // world -> view (camera looks down -Z)
+  mat4 projection;          // view -> clip
+  mat4 viewProjection;      // world -> clip
+  vec4 cameraPosition;      // xyz world; w = 1 for orthographic, 0 for perspective
+  vec4 viewport;            // width, height, 1/width, 1/height (pixels)
+  vec4 nearFar;             // near, far (view-space distances), 0, 0
+HL_BLOCK_END(frame)
+
+// Per draw in the G-buffer and shadow passes.
+HL_BLOCK_BEGIN(ObjectBlock, 1)
+  mat4 worldFromLocal;
+  mat4 normalFromLocal;     // inverse transpose of worldFromLocal (upper 3x3 used)
+HL_BLOCK_END(object)
+
+// Per material in the G-buffer pass.
+HL_BLOCK_BEGIN(MaterialBlock, 2)
+  vec4 baseColorFactor;     // linear RGBA
+  vec4 emissiveFactor;      // linear RGB, w unused
+  vec4 factors;             // metallic, roughness, normalScale, occlusionStrength
+HL_BLOCK_END(material)
+
+// SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).
+HL_BLOCK_BEGIN(SsgiBlock, 3)
+  vec4 kernel[kMaxKernelSamples];  // tangent space, z >= 0, |k| <= 1
+  vec4 params;              // radius (world), bias (world), intensity, indirect strength
+  ivec4 counts;             // sample count, 0, 0, 0
+HL_BLOCK_END(ssgi)
+
+// Lighting pass.
+HL_BLOCK_BEGIN(LightingBlock, 4)
+  vec4 ambient;             // sky intensity, ssgi enabled (0/1), light count, PCF radius (texels)
+  vec4 shadow;              // normal offset (world units per texel), depth bias, shadow-map size, 0
+HL_BLOCK_END(lighting)
+
+// Shadow pass: one light view per draw batch.
+HL_BLOCK_BEGIN(ShadowBlock, 5)
+  mat4 lightViewProjection;
+  vec4 lightPositionFar;    // point lights: world position and far distance; w = 0 otherwise
+HL_BLOCK_END(shadowView)
+
+// The procedural sky, for the passes that tabulate it once per scene.
+HL_BLOCK_BEGIN(SkyBlock, 6)
+  vec4 zenith;              // linear radiance straight up (rgb), w unused
+  vec4 horizon;             // at the horizon
+  vec4 ground;              // below the horizon
+HL_BLOCK_END(sky)
+
+// One light, in the lights storage buffer (std430, same layout as std140 here).
+#ifdef __cplusplus
+struct GpuLight {
+#else
+struct GpuLight {
+#endif
+  vec4 positionRange;       // world position, range (0 = infinite)
+  vec4 directionType;       // world direction the light travels, type
+  vec4 radiance;            // color * intensity, castsShadows (0/1)
+  vec4 spotShadow;          // cos(outer), cos(inner), shadow layer (-1 = none), w: point = shadow far,
+                            // directional = texel world size, spot = texel size per unit distance
+  mat4 shadowViewProjection;  // world -> light clip (directional and spot)
+};
+#ifdef __cplusplus
+HL_STORAGE_BEGIN(LightBuffer, 0)
+  // The C++ side uploads a std::vector<GpuLight>; this struct only names the binding.
+HL_STORAGE_END(lights)
+#else
+HL_STORAGE_BEGIN(LightBuffer, 0)
+  GpuLight lightList[];
+HL_STORAGE_END(lights)
+#endif
+
+#ifdef __cplusplus
+}  // namespace headlight::gpu
+#endif
+
+#endif  // HEADLIGHT_SHARED_LAYOUT_H

@@ -1,0 +1,52 @@
+// SSGI, the seed's hemisphere method (lib/passes/ssgi.hpp). Every buffer is
+// read with texelFetch at integer pixels: the position target is RGBA32F,
+// which is not filterable, and pixel-exact reads keep the method repeatable.
+// Both the G-buffer and this target are in GL's bottom-up pixel order, so no
+// y flip is needed anywhere here (the seed's uv.y = 1 - uv.y came from wgpu).
+#include "shared_layout.h"
+#include "ssgi_common.glsl"
+
+layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
+layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
+layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
+layout(binding = kUnitSsgiNoise) uniform sampler2D ssgiNoise;
+
+layout(location = 0) out vec4 outSsgi;
+
+void main() {
+  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
+  if (worldPosition.a == 0.0) discard;  // background: keeps the cleared (1, 0, 0, 0)
+
+  const vec3 viewPosition = (frame.view * vec4(worldPosition.xyz, 1.0)).xyz;
+  // Normals are stored as unit vectors (not remapped to 0..1): no * 2 - 1.
+  const vec3 viewNormal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
+  const vec2 rotation = texelFetch(ssgiNoise, pixel & 3, 0).xy;
+  const mat3 tangentToView = tangentFrame(viewNormal, vec3(rotation, 0.0));
+
+  const float radius = ssgi.params.x;
+  const float bias = ssgi.params.y;
+  const int sampleCount = ssgi.counts.x;
+  float occlusion = 0.0;
+  vec3 indirect = vec3(0.0);
+  for (int i = 0; i < sampleCount; ++i) {
+    const vec3 samplePosition = viewPosition + tangentToView * ssgi.kernel[i].xyz * radius;
+    ivec2 samplePixel;
+    // Off screen there is nothing to compare with: the sample counts as open.
+    if (!projectToPixel(samplePosition, samplePixel)) continue;
+    const vec4 occluderWorld = texelFetch(gbufferPosition, samplePixel, 0);
+    if (occluderWorld.a == 0.0) continue;  // background never occludes
+    const vec3 occluderView = (frame.view * vec4(occluderWorld.xyz, 1.0)).xyz;
+    const vec3 occluderNormal = mat3(frame.view) * texelFetch(gbufferNormal, samplePixel, 0).xyz;
+    const float sceneDepth =
+        surfaceDepthAlongRay(samplePosition, occluderView, occluderNormal, frame.cameraPosition.w > 0.5, radius);
+    const float rangeWeight = rangeCheck(radius, viewPosition.z, sceneDepth);
+    // View space looks down -Z: a surface in front of the sample has larger z.
+    if (sceneDepth >= samplePosition.z + bias) {
+      occlusion += rangeWeight;
+      indirect += texelFetch(gbufferAlbedo, samplePixel, 0).rgb * rangeWeight;
+    }
+  }
+  const float ambientOcclusion = clamp(1.0 - ssgi.params.z * occlusion / float(sampleCount), 0.0, 1.0);
+  outSsgi = vec4(ambientOcclusion, indirect * (ssgi.params.w / float(sampleCount)));
+}

@@ -1,0 +1,72 @@
+#include "headlight/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace headlight {
+
+Camera fitCamera(const Bounds& bounds, float aspectRatio) {
+  Camera camera;
+  camera.name = "fitted";
+  camera.yfov = 0.7f;  // about 40 degrees, a normal lens
+  const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-30f);
+  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+  // The sphere fits the narrower of the two fields of view.
+  const float halfFov = 0.5f * camera.yfov * std::min(1.0f, aspectRatio);
+  const float distance = radius / std::sin(halfFov);
+  const glm::vec3 direction = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+  camera.worldFromCamera = glm::inverse(glm::lookAt(center + direction * distance, center, glm::vec3(0, 1, 0)));
+  return camera;
+}
+
+void fitDepthRange(const Camera& camera, const Bounds& bounds, float& nearPlane, float& farPlane) {
+  const bool orthographic = camera.projection == Camera::Projection::Orthographic;
+  if (bounds.empty()) {
+    nearPlane = camera.znear > 0 ? camera.znear : 0.1f;
+    farPlane = camera.zfar > nearPlane ? camera.zfar : nearPlane * 1000.0f;
+    return;
+  }
+  const glm::mat4 view = glm::inverse(camera.worldFromCamera);
+  float closest = INFINITY, farthest = -INFINITY;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+                      (corner & 4) ? bounds.max.z : bounds.min.z);
+    const float depth = -(view * glm::vec4(p, 1.0f)).z;
+    closest = std::min(closest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  const float margin = 0.01f * std::max(bounds.radius(), 1e-30f);
+  if (orthographic) {
+    // An orthographic camera may sit inside the scene; its near plane may be
+    // behind it, which costs nothing in precision.
+    nearPlane = closest - margin;
+    farPlane = farthest + margin;
+  } else {
+    const float minimumNear = std::max(camera.znear, bounds.radius() * 1e-4f);
+    nearPlane = std::max(closest - margin, minimumNear);
+    farPlane = std::max(farthest + margin, nearPlane * 1.001f);
+  }
+  if (camera.zfar > 0) farPlane = std::min(farPlane, camera.zfar);
+  if (farPlane <= nearPlane) farPlane = nearPlane + std::max(margin, std::abs(nearPlane) * 1e-3f);
+}
+
+CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, int width, int height) {
+  CameraView result;
+  const float aspect = float(width) / float(height);
+  result.view = glm::inverse(camera.worldFromCamera);
+  result.position = glm::vec3(camera.worldFromCamera[3]);
+  result.orthographic = camera.projection == Camera::Projection::Orthographic;
+  fitDepthRange(camera, sceneBounds, result.nearPlane, result.farPlane);
+  if (result.orthographic) {
+    const float halfHeight = camera.ymag;
+    const float halfWidth = halfHeight * aspect;
+    result.projection = glm::ortho(-halfWidth, halfWidth, -halfHeight, halfHeight, result.nearPlane, result.farPlane);
+  } else {
+    result.projection = glm::perspective(camera.yfov, aspect, result.nearPlane, result.farPlane);
+  }
+  return result;
+}
+
+}  // namespace headlight

@@ -1,0 +1,148 @@
+#include "headlight/context.hpp"
+
+#include <glad/gl.h>
+
+#include <iostream>
+#include <mutex>
+
+#include "context/backend.hpp"
+#include "headlight/error.hpp"
+
+namespace headlight {
+
+std::string_view backendName(Backend backend) {
+  switch (backend) {
+    case Backend::Auto: return "auto";
+    case Backend::Egl: return "egl";
+    case Backend::OSMesa: return "osmesa";
+  }
+  return "?";
+}
+
+Backend parseBackend(std::string_view name) {
+  for (Backend backend : {Backend::Auto, Backend::Egl, Backend::OSMesa})
+    if (name == backendName(backend)) return backend;
+  throw SettingsError("backend: expected auto, egl or osmesa, got '" + std::string(name) + "'");
+}
+
+namespace {
+
+// glad keeps one table of GL entry points per process. On Mesa the entry
+// points EGL and OSMesa hand out are the same dispatch stubs (they share
+// libglapi), so reloading is harmless; the table is reloaded whenever a
+// context of another platform becomes current, under a lock.
+std::mutex gladMutex;
+const void* gladLoadedBy = nullptr;
+
+void loadGlEntryPoints(const detail::PlatformContext& platform, const void* key) {
+  std::lock_guard lock(gladMutex);
+  if (gladLoadedBy == key) return;
+  auto load = [](void* user, const char* name) -> GLADapiproc {
+    return static_cast<const detail::PlatformContext*>(user)->procAddress(name);
+  };
+  if (gladLoadGLUserPtr(load, const_cast<detail::PlatformContext*>(&platform)) == 0)
+    throw ContextError("gladLoadGL: could not load OpenGL entry points from " + platform.description());
+  gladLoadedBy = key;
+}
+
+std::string glString(GLenum name) {
+  const auto* text = reinterpret_cast<const char*>(glGetString(name));
+  return text != nullptr ? text : "";
+}
+
+std::string glErrorName(GLenum error) {
+  switch (error) {
+    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+    default: return "GL error 0x" + std::to_string(error);
+  }
+}
+
+}  // namespace
+
+struct Context::Impl {
+  std::unique_ptr<detail::PlatformContext> platform;
+  Backend backend = Backend::Auto;
+  GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
+  std::vector<std::string> attempts;
+  std::vector<std::string> errors;  // KHR_debug errors not yet reported
+
+  static void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
+                                        const GLchar* message, const void* user) {
+    // Only errors (and undefined behaviour) are failures; performance and
+    // portability notes from the driver are not.
+    if (type != GL_DEBUG_TYPE_ERROR && type != GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) return;
+    auto* impl = static_cast<Impl*>(const_cast<void*>(user));
+    impl->errors.push_back("KHR_debug error " + std::to_string(id) + " (severity 0x" + std::to_string(severity) +
+                           "): " + message);
+  }
+
+  void installDebugCallback() {
+    glEnable(GL_DEBUG_OUTPUT);
+    // Synchronous, so a message arrives inside the call that caused it, on
+    // this thread, and checkErrors() after a pass sees all of that pass's.
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback(&Impl::onDebugMessage, this);
+  }
+};
+
+Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->errorPolicy = options.errorPolicy;
+  auto& attempts = impl_->attempts;
+  if (options.backend == Backend::Auto || options.backend == Backend::Egl) {
+    impl_->platform = detail::createEglContext(options.eglDevice, attempts);
+    impl_->backend = Backend::Egl;
+  }
+  if (!impl_->platform && (options.backend == Backend::Auto || options.backend == Backend::OSMesa)) {
+    impl_->platform = detail::createOSMesaContext(attempts);
+    impl_->backend = Backend::OSMesa;
+  }
+  if (!impl_->platform) {
+    std::string message = "no OpenGL 4.5 core context (backend " + std::string(backendName(options.backend)) +
+                          "); tried:";
+    for (const auto& attempt : attempts) message += "\n  " + attempt;
+    throw ContextError(message);
+  }
+  loadGlEntryPoints(*impl_->platform, impl_.get());
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major * 10 + minor < 45)
+    throw ContextError(impl_->platform->description() + ": got OpenGL " + glString(GL_VERSION) + ", need 4.5 core");
+  impl_->installDebugCallback();
+}
+
+Context::~Context() = default;
+Context::Context(Context&&) noexcept = default;
+Context& Context::operator=(Context&&) noexcept = default;
+
+Backend Context::backend() const { return impl_->backend; }
+std::string Context::description() const { return impl_->platform->description(); }
+std::string Context::renderer() const { return glString(GL_RENDERER); }
+std::string Context::version() const { return glString(GL_VERSION); }
+const std::vector<std::string>& Context::attempts() const { return impl_->attempts; }
+
+void Context::makeCurrent() {
+  impl_->platform->makeCurrent();
+  loadGlEntryPoints(*impl_->platform, impl_.get());
+}
+
+std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }
+
+void Context::checkErrors(std::string_view operation) {
+  // glGetError catches what a driver reports without a debug message.
+  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError())
+    impl_->errors.push_back("glGetError: " + glErrorName(error));
+  if (impl_->errors.empty()) return;
+  std::string message = std::string(operation) + ": OpenGL reported " + std::to_string(impl_->errors.size()) +
+                        " error(s):";
+  for (const auto& error : impl_->errors) message += "\n  " + error;
+  impl_->errors.clear();
+  if (impl_->errorPolicy == GlErrorPolicy::Throw) throw GlError(message);
+  std::cerr << "headlight: warning: " << message << "\n";
+}
+
+}  // namespace headlight

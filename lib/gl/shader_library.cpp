@@ -1,0 +1,82 @@
+#include "gl/shader_library.hpp"
+
+#include <set>
+#include <sstream>
+
+#include "headlight/error.hpp"
+
+namespace headlight::detail {
+
+std::string_view shaderText(std::string_view name) {
+  for (const EmbeddedShader& shader : embeddedShaders())
+    if (name == shader.name) return shader.text;
+  throw GlError("shader library: no shader named '" + std::string(name) + "' in glsl/");
+}
+
+namespace {
+
+// Expands #include "file" lines, each file at most once.
+void appendExpanded(std::string_view fileName, std::set<std::string>& included, std::vector<std::string>& fileNames,
+                    std::string& out) {
+  if (!included.insert(std::string(fileName)).second) return;
+  fileNames.emplace_back(fileName);
+  const int fileNumber = int(fileNames.size()) - 1;
+  std::istringstream lines{std::string(shaderText(fileName))};
+  std::string line;
+  int lineNumber = 0;
+  out += "#line 1 " + std::to_string(fileNumber) + "\n";
+  while (std::getline(lines, line)) {
+    ++lineNumber;
+    const auto first = line.find_first_not_of(" \t");
+    // Only #include "file" is ours; #include <...> lines sit in the shared
+    // header's C++-only section, which the GLSL preprocessor skips.
+    if (first != std::string::npos && line.compare(first, 8, "#include") == 0 &&
+        line.find('<') == std::string::npos) {
+      const auto open = line.find('"'), close = line.rfind('"');
+      if (open == std::string::npos || close <= open)
+        throw GlError(std::string(fileName) + ":" + std::to_string(lineNumber) + ": malformed #include");
+      appendExpanded(line.substr(open + 1, close - open - 1), included, fileNames, out);
+      out += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(fileNumber) + "\n";
+      continue;
+    }
+    out += line;
+    out += '\n';
+  }
+}
+
+GLenum stageOf(std::string_view file) {
+  if (file.ends_with(".vert")) return GL_VERTEX_SHADER;
+  if (file.ends_with(".frag")) return GL_FRAGMENT_SHADER;
+  throw GlError("shader library: cannot tell the stage of '" + std::string(file) + "' (.vert or .frag)");
+}
+
+}  // namespace
+
+std::string buildShaderSource(std::string_view fileName, std::span<const std::string> defines) {
+  std::string source = "#version 450 core\n";
+  for (const auto& define : defines) source += "#define " + define + "\n";
+  std::set<std::string> included;
+  std::vector<std::string> fileNames;
+  std::string body;
+  appendExpanded(fileName, included, fileNames, body);
+  // Which number is which file, for reading compiler logs.
+  for (std::size_t i = 0; i < fileNames.size(); ++i)
+    source += "// file " + std::to_string(i) + ": " + fileNames[i] + "\n";
+  return source + body;
+}
+
+gl::Program buildProgram(std::span<const std::string_view> files, std::span<const std::string> defines) {
+  std::vector<gl::Program::Stage> stages;
+  for (std::string_view file : files) {
+    std::string name(file);
+    if (!defines.empty()) {
+      name += " [";
+      for (std::size_t i = 0; i < defines.size(); ++i) name += (i ? ", " : "") + defines[i];
+      name += "]";
+    }
+    stages.push_back({stageOf(file), name, buildShaderSource(file, defines)});
+  }
+  return gl::Program(stages);
+}
+
+}  // namespace headlight::detail

@@ -1,0 +1,57 @@
+#pragma once
+// What one render gives back: every target as floats in memory, the view it
+// was rendered from, the settings it used (auto values resolved) and where
+// the time went. Nothing here touches the GL, so a caller may keep frames
+// after the renderer is gone.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "headlight/camera.hpp"
+#include "headlight/settings.hpp"
+
+namespace headlight {
+
+// An interleaved float image, rows top first (image order, not GL's).
+struct ImageF {
+  int width = 0;
+  int height = 0;
+  std::vector<std::string> channels;  // e.g. {"normal.X", "normal.Y", "normal.Z"}
+  std::vector<float> pixels;          // width * height * channels.size()
+
+  bool empty() const { return pixels.empty(); }
+  int channelCount() const { return int(channels.size()); }
+  float at(int x, int y, int channel) const {
+    return pixels[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * channels.size() + std::size_t(channel)];
+  }
+};
+
+struct PassTime {
+  std::string pass;
+  double milliseconds = 0;  // bounded by glFinish before and after
+};
+
+struct Frame {
+  ImageF position;  // position.X/Y/Z world, A = 1 on geometry, 0 on background
+  ImageF normal;    // normal.X/Y/Z world, unit length; 0 on background
+  ImageF albedo;    // albedo.R/G/B linear base colour
+  ImageF material;  // metallic.Y, roughness.Y, occlusion.Y
+  ImageF depth;     // depth.Z: view-space depth (distance along -Z), far plane on background
+  ImageF emissive;  // emissive.R/G/B; empty when the scene has no emissive material
+  ImageF ssgi;      // ao.Y, indirect.R/G/B; empty with SSGI off
+  ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
+
+  CameraView view;
+  RenderSettings settings;  // as used: "auto" values resolved to numbers
+  std::vector<PassTime> timings;
+  std::string glRenderer;
+  std::string glVersion;
+  std::string backend;      // "egl" or "osmesa", and which device
+  std::string sceneSource;  // file path or builtin name
+  std::string sceneHash;
+
+  // Every non-empty target with its file stem ("position", ..., "lit").
+  std::vector<std::pair<std::string, const ImageF*>> targets() const;
+};
+
+}  // namespace headlight

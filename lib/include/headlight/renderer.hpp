@@ -1,0 +1,47 @@
+#pragma once
+// The deferred renderer. Make it once per context; give it a scene once;
+// render as many views and sizes as you like into memory. Shaders are built
+// when the renderer and the scene are set, never per frame.
+//
+//   headlight::Context context;                    // EGL or OSMesa, 4.5 core
+//   headlight::Renderer renderer(context);
+//   renderer.setScene(headlight::loadScene("builtin:cornell"));
+//   headlight::Frame frame = renderer.render(settings);   // float buffers
+//   headlight::writeFrame(frame, "out/");                  // optional
+#include <memory>
+
+#include "headlight/context.hpp"
+#include "headlight/frame.hpp"
+#include "headlight/scene.hpp"
+#include "headlight/settings.hpp"
+
+namespace headlight {
+
+class Renderer {
+ public:
+  // The context must outlive the renderer and be current on this thread.
+  explicit Renderer(Context& context);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Uploads the scene (a copy is kept for cameras, lights and bounds). A
+  // scene without lights gets a default key light (a directional "sun").
+  void setScene(Scene scene);
+  const Scene& scene() const;
+
+  // Renders one frame of the scene. `camera` overrides settings.camera.
+  // Throws SettingsError for bad settings (or a camera index the scene
+  // lacks) and GlError for GL errors under GlErrorPolicy::Throw.
+  Frame render(const RenderSettings& settings, const Camera* camera = nullptr);
+
+  // The settings render() would use: auto radius, bias and shadow-map size
+  // resolved from the scene and image size.
+  RenderSettings resolve(const RenderSettings& settings) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace headlight

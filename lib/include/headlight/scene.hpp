@@ -1,0 +1,153 @@
+#pragma once
+// The scene model: what the renderer needs from a glTF file, and nothing more.
+// Geometry is stored once per glTF primitive and drawn once per instance, so
+// a file with 102 nodes sharing one sphere keeps one sphere in memory.
+//
+// Conventions (see docs/PIPELINE.md): right-handed world space, +Y up, glTF
+// units (metres unless the file says otherwise); cameras look down their -Z.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace headlight {
+
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+  bool empty() const { return min.x > max.x; }
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Bounds& other) {
+    if (!other.empty()) {
+      extend(other.min);
+      extend(other.max);
+    }
+  }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  glm::vec3 size() const { return max - min; }
+  // Radius of the sphere around center() that holds the box.
+  float radius() const { return glm::length(size()) * 0.5f; }
+  // The box of this box's eight corners moved by `transform`.
+  Bounds transformed(const glm::mat4& transform) const;
+};
+
+// A decoded texture image: 8-bit RGBA, rows top first, as glTF's UV origin
+// (top-left) expects, so UVs need no flip when uploaded row by row.
+struct ImageData {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+
+// glTF's sampler codes are the GL enum values, so they are kept as is.
+struct TextureRef {
+  int image = -1;  // index into Scene::images; -1 = no texture
+  int texCoord = 0;
+  int wrapS = 0x2901;      // GL_REPEAT
+  int wrapT = 0x2901;      // GL_REPEAT
+  int minFilter = 0x2703;  // GL_LINEAR_MIPMAP_LINEAR
+  int magFilter = 0x2601;  // GL_LINEAR
+  bool present() const { return image >= 0; }
+};
+
+// glTF's metallic-roughness material.
+struct Material {
+  std::string name;
+  glm::vec4 baseColorFactor{1.0f};  // linear RGBA, 0..1
+  float metallicFactor = 1.0f;      // 0..1
+  float roughnessFactor = 1.0f;     // 0..1
+  glm::vec3 emissiveFactor{0.0f};   // linear RGB, >= 0
+  float normalScale = 1.0f;
+  float occlusionStrength = 1.0f;  // 0..1
+  bool doubleSided = false;
+  TextureRef baseColorTexture;          // sRGB
+  TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic
+  TextureRef normalTexture;             // tangent space
+  TextureRef occlusionTexture;          // R
+  TextureRef emissiveTexture;           // sRGB
+
+  bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
+};
+
+// One triangle list. After loading it is always indexed and always has
+// normals; texcoords and tangents are present only if the file had them (or
+// the material needs them), so the G-buffer shader is built for what exists.
+struct Primitive {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;    // same count as positions, unit length
+  std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
+  std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
+  std::vector<std::uint32_t> indices;
+  int material = -1;  // index into Scene::materials; -1 = glTF default material
+  Bounds bounds;      // in the primitive's own space
+};
+
+// A primitive placed in the world by the flattened node hierarchy.
+struct Instance {
+  int primitive = 0;
+  glm::mat4 worldFromLocal{1.0f};
+};
+
+struct Camera {
+  enum class Projection { Perspective, Orthographic };
+  std::string name;
+  Projection projection = Projection::Perspective;
+  float yfov = 0.8f;         // radians, perspective only
+  float aspectRatio = 0.0f;  // 0 = take the image's
+  float xmag = 1.0f;         // half width, orthographic only
+  float ymag = 1.0f;         // half height, orthographic only
+  float znear = 0.0f;        // 0 = fit to the scene bounds
+  float zfar = 0.0f;         // 0 = fit to the scene bounds (glTF: infinite)
+  glm::mat4 worldFromCamera{1.0f};
+};
+
+// KHR_lights_punctual, in its units: candela for point and spot lights, lux
+// for directional ones.
+struct Light {
+  enum class Type { Directional, Point, Spot };
+  std::string name;
+  Type type = Type::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0 = infinite
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853982f;  // pi/4, glTF's default
+  glm::vec3 position{0.0f};             // world; point and spot
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world, unit; directional and spot
+  bool castsShadows = true;
+};
+
+// The procedural sky that lights the scene from everywhere (image-based
+// ambient). It depends only on the direction's height, which lets the
+// prefiltered sky be a small 2D table (docs/PIPELINE.md).
+struct Sky {
+  glm::vec3 zenith{0.35f, 0.5f, 0.8f};   // linear radiance straight up
+  glm::vec3 horizon{0.8f, 0.85f, 0.9f};  // linear radiance at the horizon
+  glm::vec3 ground{0.25f, 0.22f, 0.2f};  // linear radiance below the horizon
+  float intensity = 1.0f;                // multiplies all three
+};
+
+struct Scene {
+  std::string source;  // file path, or "builtin:<name>"
+  std::string sourceHash;  // hex fingerprint of the file's bytes (or the builtin's name and version)
+  std::vector<Primitive> primitives;
+  std::vector<Material> materials;
+  std::vector<ImageData> images;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+  std::vector<Light> lights;
+  Sky sky;
+
+  Bounds worldBounds() const;
+  bool hasEmissive() const;
+  std::size_t triangleCount() const;  // as drawn: per instance
+};
+
+}  // namespace headlight

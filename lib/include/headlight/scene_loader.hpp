@@ -1,0 +1,37 @@
+#pragma once
+// Turning a scene name into a Scene: glTF 2.0 files (.gltf, .glb) through
+// tinygltf, and the built-in scenes by name ("builtin:cornell").
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "headlight/scene.hpp"
+
+namespace headlight {
+
+struct SceneLoadOptions {
+  // glTF URIs that resolve outside the asset's folder (../x.bin, /etc/x.png)
+  // are refused unless this is set.
+  bool allowExternalPaths = false;
+};
+
+// "builtin:<name>" makes a built-in scene; anything else is read as a glTF
+// file. Throws SceneError naming the file, the element and the problem.
+Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options = {});
+
+// Reads a .gltf or .glb file. Every accessor, bufferView, index and image is
+// validated before it is read. Throws SceneError.
+Scene loadGltf(const std::filesystem::path& path, const SceneLoadOptions& options = {});
+
+// The built-in scenes: "cornell" (the default) and "spheres". Throws
+// SceneError for an unknown name, listing the known ones.
+Scene makeBuiltinScene(std::string_view name);
+std::vector<std::string> builtinSceneNames();
+
+// Fills Primitive::normals with area-weighted vertex normals from the
+// triangles (used when a file has none). Degenerate triangles add nothing; a
+// vertex no triangle touches gets +Z.
+void generateNormals(Primitive& primitive);
+
+}  // namespace headlight

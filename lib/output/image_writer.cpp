@@ -1,0 +1,154 @@
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sstream>
+#include <unistd.h>
+
+#include "headlight/error.hpp"
+#include "headlight/output.hpp"
+
+namespace headlight {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A name in the same folder (so rename() is atomic) that no reader takes for
+// a result: hidden, and ending in .tmp.
+fs::path temporaryPathFor(const fs::path& path) {
+  static std::mt19937 rng(std::random_device{}());
+  return path.parent_path() /
+         ("." + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
+}
+
+// Writes through `write` to a temporary file, then renames it over `path`.
+template <class Write>
+void writeAtomically(const fs::path& path, Write&& write) {
+  const fs::path temporary = temporaryPathFor(path);
+  try {
+    write(temporary);
+    fs::rename(temporary, path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+OIIO::ImageBuf toImageBuf(const ImageF& image) {
+  OIIO::ImageSpec spec(image.width, image.height, image.channelCount(), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = image.channels;
+  spec.alpha_channel = -1;
+  for (int c = 0; c < image.channelCount(); ++c)
+    if (image.channels[std::size_t(c)] == "A") spec.alpha_channel = c;
+  OIIO::ImageBuf buffer(spec);
+  buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
+  return buffer;
+}
+
+void addMatrix(OIIO::ImageSpec& spec, const char* name, const glm::mat4& columnMajor) {
+  // glm stores column vectors column by column; OpenEXR's M44f multiplies
+  // row vectors (p * M), whose matrix is the transpose, stored row by row:
+  // the same sixteen floats in the same order.
+  spec.attribute(name, OIIO::TypeDesc::TypeMatrix44, &columnMajor[0][0]);
+}
+
+void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
+  addMatrix(spec, "worldToCamera", frame.view.view);
+  addMatrix(spec, "worldToNDC", frame.view.projection * frame.view.view);
+  spec.attribute("headlight:near", frame.view.nearPlane);
+  spec.attribute("headlight:far", frame.view.farPlane);
+  spec.attribute("headlight:projection", frame.view.orthographic ? "orthographic" : "perspective");
+  spec.attribute("headlight:renderer", frame.glRenderer);
+  spec.attribute("headlight:glVersion", frame.glVersion);
+  spec.attribute("headlight:backend", frame.backend);
+  spec.attribute("headlight:scene", frame.sceneSource);
+  spec.attribute("headlight:sceneHash", frame.sceneHash);
+  spec.attribute("headlight:conventions",
+                 "right-handed world, +Y up; camera looks down -Z; rows top first; depth.Z = view-space depth");
+  // As used: "auto" values appear as the numbers they resolved to.
+  for (const SettingOption& option : settingOptions())
+    spec.attribute("headlight:setting:" + std::string(option.name), option.format(frame.settings));
+}
+
+std::string summarize(const fs::path& path, const ImageF& image, const char* type) {
+  std::ostringstream line;
+  line << path.string() << ": " << image.width << "x" << image.height << " " << type << " ";
+  const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(toImageBuf(image));
+  for (int c = 0; c < image.channelCount(); ++c)
+    line << (c ? ", " : "") << image.channels[std::size_t(c)] << " [" << stats.min[std::size_t(c)] << ", "
+         << stats.max[std::size_t(c)] << "]";
+  return line.str();
+}
+
+void writeImage(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec, const char* format) {
+  auto output = OIIO::ImageOutput::create(format);
+  if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
+  if (!output->open(path.string(), spec) || !buffer.write(output.get()) || !output->close())
+    throw IoError(path.string() + ": writing failed: " + output->geterror());
+}
+
+}  // namespace
+
+float tonemapAces(float x) {
+  const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
+  return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0f, 1.0f);
+}
+
+float tonemapReinhard(float x) { return x / (1.0f + x); }
+
+WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat) {
+  OIIO::ImageBuf buffer = toImageBuf(image);
+  OIIO::ImageSpec spec = buffer.spec();
+  spec.set_format(halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  spec.attribute("compression", "zip");
+  addMetadata(spec, frame);
+  writeAtomically(path, [&](const fs::path& temporary) { writeImage(temporary, buffer, spec, "openexr"); });
+  return {path, summarize(path, image, halfFloat ? "half" : "float")};
+}
+
+WrittenFile writePreview(const Frame& frame, const fs::path& path) {
+  const ImageF& lit = frame.lit;
+  const float scale = std::exp2(frame.settings.exposure);
+  auto curve = frame.settings.tonemap == Tonemap::Aces ? tonemapAces : tonemapReinhard;
+  ImageF display;
+  display.width = lit.width;
+  display.height = lit.height;
+  display.channels = {"R", "G", "B"};
+  display.pixels.reserve(std::size_t(lit.width) * std::size_t(lit.height) * 3);
+  for (std::size_t p = 0; p < lit.pixels.size(); p += 4)
+    for (int c = 0; c < 3; ++c) display.pixels.push_back(curve(std::max(0.0f, lit.pixels[p + std::size_t(c)] * scale)));
+  // The sRGB transfer function, through OpenImageIO's colour management.
+  OIIO::ImageBuf linear = toImageBuf(display);
+  OIIO::ImageBuf encoded = OIIO::ImageBufAlgo::colorconvert(linear, "linear", "sRGB");
+  if (encoded.has_error()) throw IoError(path.string() + ": sRGB conversion failed: " + encoded.geterror());
+  OIIO::ImageSpec spec = encoded.spec();
+  spec.set_format(OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  writeAtomically(path, [&](const fs::path& temporary) { writeImage(temporary, encoded, spec, "png"); });
+  std::ostringstream line;
+  line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
+       << (frame.settings.tonemap == Tonemap::Aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure
+       << " EV)";
+  return {path, line.str()};
+}
+
+std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir) {
+  std::error_code error;
+  fs::create_directories(outDir, error);
+  if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
+  std::vector<WrittenFile> written;
+  for (const auto& [name, image] : frame.targets()) {
+    // Position and depth keep float32: half has 11 bits, too few for world
+    // coordinates far from the origin.
+    const bool halfFloat = name != "position" && name != "depth";
+    written.push_back(writeExr(frame, *image, outDir / (name + ".exr"), halfFloat));
+  }
+  written.push_back(writePreview(frame, outDir / "preview.png"));
+  return written;
+}
+
+}  // namespace headlight

@@ -1,0 +1,38 @@
+#pragma once
+// The tables image-based ambient light reads, computed on the GPU once:
+//  - the split-sum BRDF table (Karis 2013): 64 x 64 RG16F, (N.V, roughness)
+//    -> (scale, bias) of F0; once per renderer;
+//  - the prefiltered sky: 64 x kSkyRoughnessLevels RGBA16F, (direction.y,
+//    roughness) -> GGX-filtered radiance. The sky depends only on the
+//    direction's height, so a 2D table holds what a cube map would;
+//  - the sky's irradiance: 64 x 1 RGBA16F, normal.y -> E / pi (the radiance a
+//    white Lambertian surface reflects).
+// Both sky tables are recomputed only when the sky changes.
+#include "gl/objects.hpp"
+#include "headlight/scene.hpp"
+
+namespace headlight {
+
+struct EnvironmentTables {
+  gl::Texture brdfLut;
+  gl::Texture skyPrefiltered;
+  gl::Texture skyIrradiance;
+};
+
+class EnvironmentPass {
+ public:
+  EnvironmentPass();  // builds the programs and the BRDF table
+  void updateSky(const Sky& sky);
+  const EnvironmentTables& tables() const { return tables_; }
+
+ private:
+  void renderTable(const gl::Program& program, const gl::Texture& target);
+  gl::Program brdfProgram_;
+  gl::Program prefilterProgram_;
+  gl::Program irradianceProgram_;
+  gl::Buffer skyBlock_;
+  gl::VertexArray emptyVertexArray_;
+  EnvironmentTables tables_;
+};
+
+}  // namespace headlight

@@ -1,0 +1,158 @@
+#include "passes/shadow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gl/shader_library.hpp"
+
+namespace headlight {
+namespace {
+
+int shaderType(Light::Type type) {
+  switch (type) {
+    case Light::Type::Directional: return gpu::kLightDirectional;
+    case Light::Type::Point: return gpu::kLightPoint;
+    case Light::Type::Spot: return gpu::kLightSpot;
+  }
+  return gpu::kLightPoint;
+}
+
+// An up vector not parallel to `direction`.
+glm::vec3 upFor(const glm::vec3& direction) {
+  return std::abs(direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
+
+// Light view for a directional light: an orthographic box around the
+// scene's bounding sphere.
+glm::mat4 directionalViewProjection(const Light& light, const Bounds& bounds, int size, float& texelWorldSize) {
+  const float radius = std::max(bounds.radius(), 1e-30f);
+  texelWorldSize = 2.0f * radius / float(size);
+  const glm::vec3 center = bounds.center();
+  const glm::mat4 view = glm::lookAt(center - light.direction * (2.0f * radius), center, upFor(light.direction));
+  return glm::ortho(-radius, radius, -radius, radius, radius, 3.0f * radius) * view;
+}
+
+// Distance from `point` to the farthest corner of the bounds' sphere.
+float farDistance(const glm::vec3& point, const Bounds& bounds) {
+  return glm::length(bounds.center() - point) + bounds.radius();
+}
+
+// texelPerDistance: a texel's world size at unit distance from the light.
+glm::mat4 spotViewProjection(const Light& light, const Bounds& bounds, int size, float& texelPerDistance) {
+  const float far = std::max(farDistance(light.position, bounds), 1e-30f);
+  // The cone plus a margin for the PCF filter, and never wider than 170
+  // degrees, past which a perspective map has no resolution left.
+  const float fov = std::min(2.0f * light.outerConeAngle + 0.1f, glm::radians(170.0f));
+  texelPerDistance = 2.0f * std::tan(0.5f * fov) / float(size);
+  const glm::mat4 view = glm::lookAt(light.position, light.position + light.direction, upFor(light.direction));
+  return glm::perspective(fov, 1.0f, far * 1e-4f, far) * view;
+}
+
+// Cube faces in GL's order (+X, -X, +Y, -Y, +Z, -Z) with the up vectors that
+// match how samplerCube picks texels.
+glm::mat4 cubeFaceView(const glm::vec3& position, int face) {
+  static const glm::vec3 directions[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+  return glm::lookAt(position, position + directions[face], ups[face]);
+}
+
+}  // namespace
+
+std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights) {
+  std::vector<gpu::GpuLight> packed;
+  for (const Light& light : lights) {
+    gpu::GpuLight gpu{};
+    gpu.positionRange = glm::vec4(light.position, light.range);
+    gpu.directionType = glm::vec4(glm::normalize(light.direction), float(shaderType(light.type)));
+    gpu.radiance = glm::vec4(light.color * light.intensity, 0.0f);
+    gpu.spotShadow = glm::vec4(std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), -1.0f, 0.0f);
+    gpu.shadowViewProjection = glm::mat4(1.0f);
+    packed.push_back(gpu);
+  }
+  return packed;
+}
+
+ShadowPass::ShadowPass() : block_(sizeof(gpu::ShadowBlock), nullptr) {
+  const std::string_view files[] = {"shadow.vert", "shadow.frag"};
+  program_ = detail::buildProgram(files);
+  framebuffer_.setDrawBuffers({});
+}
+
+ShadowMaps ShadowPass::run(const GpuScene& scene, const std::vector<Light>& sceneLights,
+                           std::vector<gpu::GpuLight>& lights, int size) {
+  int planarCount = 0, cubeCount = 0;
+  for (const Light& light : sceneLights) {
+    if (!light.castsShadows) continue;
+    (light.type == Light::Type::Point ? cubeCount : planarCount)++;
+  }
+  ShadowMaps maps;
+  maps.size = size;
+  if (planarCount > 0) maps.planar = gl::Texture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, size, size, planarCount);
+  if (cubeCount > 0) maps.cube = gl::Texture(GL_TEXTURE_CUBE_MAP_ARRAY, GL_DEPTH_COMPONENT32F, size, size, 6 * cubeCount);
+  for (const gl::Texture* map : {&maps.planar, &maps.cube}) {
+    if (!*map) continue;
+    glTextureParameteri(map->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(map->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(map->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(map->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(map->id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(map->id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+  }
+
+  int planarLayer = 0, cubeLayer = 0;
+  for (std::size_t i = 0; i < sceneLights.size(); ++i) {
+    const Light& light = sceneLights[i];
+    if (!light.castsShadows) continue;
+    gpu::GpuLight& gpuLight = lights[i];
+    gpuLight.radiance.w = 1.0f;
+    if (light.type == Light::Type::Point) {
+      const float far = std::max(farDistance(light.position, scene.bounds), 1e-30f);
+      const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, far * 1e-4f, far);
+      for (int face = 0; face < 6; ++face)
+        renderView(scene, maps.cube, 6 * cubeLayer + face, projection * cubeFaceView(light.position, face),
+                   glm::vec4(light.position, far));
+      gpuLight.spotShadow.z = float(cubeLayer++);
+      gpuLight.spotShadow.w = far;
+    } else {
+      float texelSize = 0.0f;
+      const glm::mat4 viewProjection = light.type == Light::Type::Directional
+                                           ? directionalViewProjection(light, scene.bounds, size, texelSize)
+                                           : spotViewProjection(light, scene.bounds, size, texelSize);
+      renderView(scene, maps.planar, planarLayer, viewProjection, glm::vec4(0.0f));
+      gpuLight.shadowViewProjection = viewProjection;
+      gpuLight.spotShadow.z = float(planarLayer++);
+      gpuLight.spotShadow.w = texelSize;
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return maps;
+}
+
+void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, int layer,
+                            const glm::mat4& viewProjection, const glm::vec4& positionFar) {
+  gpu::ShadowBlock block{viewProjection, positionFar};
+  block_.update(block);
+  block_.bindUniform(gpu::ShadowBlock::kBinding);
+  framebuffer_.attach(GL_DEPTH_ATTACHMENT, target, layer);
+  framebuffer_.checkComplete("shadow map");
+  framebuffer_.bind();
+  glViewport(0, 0, target.width(), target.height());
+  const float farDepth = 1.0f;
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  // Both faces: single-sided walls must still block light from behind.
+  glDisable(GL_CULL_FACE);
+  program_.use();
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const GpuPrimitive& primitive = scene.primitives[std::size_t(scene.instances[i].primitive)];
+    glBindBufferRange(GL_UNIFORM_BUFFER, gpu::ObjectBlock::kBinding, scene.instanceBlocks.id(),
+                      GLintptr(i * scene.instanceStride), sizeof(gpu::ObjectBlock));
+    primitive.vertexArray.bind();
+    glDrawElements(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr);
+  }
+}
+
+}  // namespace headlight

@@ -1,0 +1,20 @@
+#pragma once
+// GPU targets to ImageF: rows flipped from GL's bottom-up order to image
+// order (top row first), and depth turned into view-space depth.
+#include <string>
+#include <vector>
+
+#include "gl/objects.hpp"
+#include "headlight/frame.hpp"
+
+namespace headlight {
+
+// Reads the first channels.size() components of a colour texture as floats.
+// sRGB textures come back decoded to linear.
+ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels);
+
+// Reads a depth texture and converts window depth to the distance along the
+// view direction (view-space -z), using view's projection and planes.
+ImageF readViewDepth(const gl::Texture& depth, const CameraView& view);
+
+}  // namespace headlight

@@ -1,0 +1,246 @@
+// The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
+// SSGI -> lighting -> read back. Each pass is timed between glFinish calls
+// and checked for GL errors.
+#include "headlight/renderer.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <optional>
+
+#include "gl/objects.hpp"
+#include "gpu_scene.hpp"
+#include "headlight/error.hpp"
+#include "passes/environment.hpp"
+#include "passes/gbuffer.hpp"
+#include "passes/lighting.hpp"
+#include "passes/shadow.hpp"
+#include "passes/ssgi.hpp"
+#include "readback.hpp"
+#include "shared_layout.h"
+
+namespace headlight {
+namespace {
+
+// Runs GL work between two glFinish calls, so the wall time is the GPU's
+// (timer queries would exclude the CPU side that llvmpipe also spends), and
+// reports the pass's GL errors by name.
+class PassTimer {
+ public:
+  explicit PassTimer(Context& context) : context_(context) {}
+  template <class Work>
+  void run(const char* pass, Work&& work) {
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    glFinish();
+    const auto end = std::chrono::steady_clock::now();
+    context_.checkErrors(pass);
+    times_.push_back({pass, std::chrono::duration<double, std::milli>(end - start).count()});
+  }
+  std::vector<PassTime> times() const { return times_; }
+
+ private:
+  Context& context_;
+  std::vector<PassTime> times_;
+};
+
+int autoShadowMapSize(int width, int height) {
+  return std::clamp(int(std::bit_ceil(unsigned(std::max(width, height)))), 512, 2048);
+}
+
+// A scene with no light of its own gets one sun from above, in front and to
+// the left of the fitted camera's side (+Z), of about pi lux, so a white
+// Lambertian surface facing it reflects a radiance near 1.
+Light defaultKeyLight() {
+  Light light;
+  light.name = "default key light";
+  light.type = Light::Type::Directional;
+  light.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.45f));
+  light.intensity = 3.0f;
+  light.castsShadows = true;
+  return light;
+}
+
+gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
+  gpu::FrameBlock block{};
+  block.view = view.view;
+  block.projection = view.projection;
+  block.viewProjection = view.projection * view.view;
+  block.cameraPosition = glm::vec4(view.position, view.orthographic ? 1.0f : 0.0f);
+  block.viewport = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
+  block.nearFar = glm::vec4(view.nearPlane, view.farPlane, 0.0f, 0.0f);
+  return block;
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  explicit Impl(Context& context) : context(context) { context.checkErrors("building the renderer"); }
+
+  Context& context;
+  EnvironmentPass environment;
+  SsgiPass ssgi;
+  ShadowPass shadow;
+  LightingPass lighting;
+  gl::Buffer frameBlock{sizeof(gpu::FrameBlock), nullptr};
+
+  // Per scene.
+  Scene scene;
+  std::optional<GpuScene> gpuScene;
+  std::optional<GBufferPass> gbufferPass;
+  std::vector<gpu::GpuLight> lights;
+  gl::Buffer lightBuffer;
+  ShadowMaps shadowMaps;  // kept across views: they do not depend on the camera
+  int shadowMapSize = 0;  // what shadowMaps were made with; 0 = none yet
+
+  // Per image size.
+  GBuffer gbuffer;
+  gl::Texture ssgiTarget;
+  gl::Texture litTarget;
+
+  void ensureTargets(int width, int height) {
+    if (gbuffer.width == width && gbuffer.height == height) return;
+    gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
+    ssgiTarget = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+    litTarget = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+  }
+
+  bool hasShadowCasters() const {
+    return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.castsShadows; });
+  }
+
+  // Shadow maps are (re)made when the size changes or shadows are turned
+  // on; with shadows off the lights read "no map" and nothing is allocated.
+  bool needsShadowPass(const LightingSettings& settings) const {
+    return settings.shadows && hasShadowCasters() && shadowMapSize != settings.shadowMapSize;
+  }
+
+  void renderShadows(const LightingSettings& settings) {
+    lights = packLights(scene.lights);
+    shadowMaps = shadow.run(*gpuScene, scene.lights, lights, settings.shadowMapSize);
+    shadowMapSize = settings.shadowMapSize;
+    lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+  }
+
+  void dropShadows() {
+    if (shadowMapSize == 0) return;
+    shadowMaps = ShadowMaps{};
+    shadowMapSize = 0;
+    lights = packLights(scene.lights);
+    lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+  }
+
+  const Camera& chooseCamera(const RenderSettings& settings, const Camera* override, Camera& fitted) const {
+    if (override) return *override;
+    if (settings.camera >= 0) {
+      if (std::size_t(settings.camera) >= scene.cameras.size())
+        throw SettingsError("--camera " + std::to_string(settings.camera) + ": " + scene.source + " has " +
+                            std::to_string(scene.cameras.size()) + " camera(s)");
+      return scene.cameras[std::size_t(settings.camera)];
+    }
+    if (!scene.cameras.empty()) return scene.cameras.front();
+    fitted = fitCamera(scene.worldBounds(), float(settings.width) / float(settings.height));
+    return fitted;
+  }
+
+  void readTargets(Frame& frame, bool withSsgi) const {
+    frame.position = readColor(gbuffer.position, {"position.X", "position.Y", "position.Z", "A"});
+    frame.normal = readColor(gbuffer.normal, {"normal.X", "normal.Y", "normal.Z"});
+    frame.albedo = readColor(gbuffer.albedo, {"albedo.R", "albedo.G", "albedo.B"});
+    frame.material = readColor(gbuffer.material, {"material.metallic", "material.roughness", "material.occlusion"});
+    frame.depth = readViewDepth(gbuffer.depth, frame.view);
+    if (gbuffer.emissive) frame.emissive = readColor(gbuffer.emissive, {"emissive.R", "emissive.G", "emissive.B"});
+    if (withSsgi) frame.ssgi = readColor(ssgiTarget, {"ao.Y", "indirect.R", "indirect.G", "indirect.B"});
+    frame.lit = readColor(litTarget, {"R", "G", "B", "A"});
+  }
+};
+
+Renderer::Renderer(Context& context) : impl_(std::make_unique<Impl>(context)) {}
+Renderer::~Renderer() = default;
+
+void Renderer::setScene(Scene scene) {
+  Impl& impl = *impl_;
+  impl.gbufferPass.reset();
+  impl.gpuScene.reset();
+  impl.gbuffer = GBuffer{};  // its emissive target depends on the scene
+  impl.scene = std::move(scene);
+  if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
+  impl.gpuScene.emplace(uploadScene(impl.scene));
+  impl.gbufferPass.emplace(*impl.gpuScene);
+  impl.environment.updateSky(impl.scene.sky);
+  impl.lights = packLights(impl.scene.lights);
+  // At least one element: a zero-sized buffer cannot be bound.
+  impl.lightBuffer = gl::Buffer(std::max<std::size_t>(1, impl.lights.size()) * sizeof(gpu::GpuLight), nullptr);
+  if (!impl.lights.empty()) impl.lightBuffer.update(impl.lights.data(), impl.lights.size() * sizeof(gpu::GpuLight));
+  impl.shadowMaps = ShadowMaps{};
+  impl.shadowMapSize = 0;
+  impl.context.checkErrors("uploading " + impl.scene.source);
+}
+
+const Scene& Renderer::scene() const { return impl_->scene; }
+
+RenderSettings Renderer::resolve(const RenderSettings& settings) const {
+  settings.validate();
+  RenderSettings used = settings;
+  const float diagonal = glm::length(impl_->scene.worldBounds().size());
+  if (used.ssgi.radius == 0.0f) used.ssgi.radius = std::max(SsgiSettings::kAutoRadiusFraction * diagonal, 1e-30f);
+  if (used.ssgi.bias == 0.0f) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * used.ssgi.radius;
+  if (used.lighting.shadowMapSize == 0) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
+  if (used.lighting.skyIntensity < 0.0f) used.lighting.skyIntensity = impl_->scene.sky.intensity;
+  return used;
+}
+
+Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
+  Impl& impl = *impl_;
+  if (!impl.gpuScene) throw SettingsError("Renderer::render: no scene (call setScene first)");
+  Frame frame;
+  frame.settings = resolve(settings);
+  const RenderSettings& used = frame.settings;
+  Camera fitted;
+  frame.view = makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width,
+                              used.height);
+
+  impl.ensureTargets(used.width, used.height);
+  impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
+  impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
+
+  PassTimer timer(impl.context);
+  if (!used.lighting.shadows) impl.dropShadows();
+  if (impl.needsShadowPass(used.lighting)) timer.run("shadows", [&] { impl.renderShadows(used.lighting); });
+  impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
+  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
+  if (used.ssgi.enabled) timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, impl.ssgiTarget, used.ssgi); });
+  timer.run("lighting", [&] {
+    const LightingInputs inputs{impl.gbuffer,
+                                used.ssgi.enabled ? &impl.ssgiTarget : nullptr,
+                                impl.shadowMaps,
+                                impl.environment.tables(),
+                                impl.lightBuffer,
+                                int(impl.lights.size()),
+                                used.lighting.skyIntensity};
+    impl.lighting.run(inputs, used.lighting, impl.litTarget);
+  });
+  timer.run("readback", [&] { impl.readTargets(frame, used.ssgi.enabled); });
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+
+  frame.timings = timer.times();
+  frame.glRenderer = impl.context.renderer();
+  frame.glVersion = impl.context.version();
+  frame.backend = std::string(backendName(impl.context.backend())) + ": " + impl.context.description();
+  frame.sceneSource = impl.scene.source;
+  frame.sceneHash = impl.scene.sourceHash;
+  return frame;
+}
+
+std::vector<std::pair<std::string, const ImageF*>> Frame::targets() const {
+  std::vector<std::pair<std::string, const ImageF*>> list;
+  const std::pair<const char*, const ImageF*> all[] = {
+      {"position", &position}, {"normal", &normal}, {"albedo", &albedo}, {"material", &material},
+      {"depth", &depth},       {"emissive", &emissive}, {"ssgi", &ssgi},   {"lit", &lit}};
+  for (const auto& [name, image] : all)
+    if (!image->empty()) list.emplace_back(name, image);
+  return list;
+}
+
+}  // namespace headlight

@@ -1,0 +1,271 @@
+// The built-in scenes, described as tables of surfaces and placements fed to
+// three small geometry generators (quad, box, UV sphere). They need no files,
+// so tests and first runs always have something to render.
+#include <OpenImageIO/hash.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+
+namespace headlight {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// Bumped whenever a built-in scene's content changes, so that anything keyed
+// on Scene::sourceHash (caches, EXR metadata) sees a different scene.
+constexpr const char* kBuiltinVersion = "v1";
+
+std::string fingerprintHex(const std::string& text) {
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx",
+                static_cast<unsigned long long>(OIIO::farmhash::Fingerprint64(text.data(), text.size())));
+  return hex;
+}
+
+// ---- Geometry generators ---------------------------------------------------
+
+void appendVertex(Primitive& primitive, const glm::vec3& position, const glm::vec3& normal, const glm::vec2& texcoord) {
+  primitive.positions.push_back(position);
+  primitive.normals.push_back(normal);
+  primitive.texcoords.push_back(texcoord);
+  primitive.bounds.extend(position);
+}
+
+// A parallelogram corner, corner+edgeU, corner+edgeU+edgeV, corner+edgeV. Its
+// front face (counter-clockwise, as glTF and GL expect) faces cross(edgeU, edgeV).
+void appendQuad(Primitive& primitive, const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV) {
+  const glm::vec3 normal = glm::normalize(glm::cross(edgeU, edgeV));
+  const auto first = static_cast<std::uint32_t>(primitive.positions.size());
+  appendVertex(primitive, corner, normal, {0.0f, 1.0f});
+  appendVertex(primitive, corner + edgeU, normal, {1.0f, 1.0f});
+  appendVertex(primitive, corner + edgeU + edgeV, normal, {1.0f, 0.0f});
+  appendVertex(primitive, corner + edgeV, normal, {0.0f, 0.0f});
+  for (std::uint32_t quadVertex : {0u, 1u, 2u, 0u, 2u, 3u}) {
+    primitive.indices.push_back(first + quadVertex);
+  }
+}
+
+Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV, int material) {
+  Primitive quad;
+  quad.material = material;
+  appendQuad(quad, corner, edgeU, edgeV);
+  return quad;
+}
+
+// An axis-aligned box centred on the origin with outward faces; each face has
+// its own four vertices so that the normals stay flat.
+Primitive makeBox(const glm::vec3& size, int material) {
+  Primitive box;
+  box.material = material;
+  const glm::vec3 half = size * 0.5f;
+  const glm::vec3 x{size.x, 0.0f, 0.0f}, y{0.0f, size.y, 0.0f}, z{0.0f, 0.0f, size.z};
+  appendQuad(box, {-half.x, -half.y, half.z}, x, y);   // +Z
+  appendQuad(box, {half.x, -half.y, -half.z}, -x, y);  // -Z
+  appendQuad(box, {half.x, -half.y, half.z}, -z, y);   // +X
+  appendQuad(box, {-half.x, -half.y, -half.z}, z, y);  // -X
+  appendQuad(box, {-half.x, half.y, half.z}, x, -z);   // +Y
+  appendQuad(box, {-half.x, -half.y, -half.z}, x, z);  // -Y
+  return box;
+}
+
+// A UV sphere centred on the origin. The seam column is duplicated so that
+// texcoords run 0..1 without wrapping; the poles are rings of coincident
+// vertices, whose zero-area triangles cost little and keep the code simple.
+Primitive makeUvSphere(float radius, int segments, int rings, int material) {
+  Primitive sphere;
+  sphere.material = material;
+  for (int ring = 0; ring <= rings; ++ring) {
+    const float v = static_cast<float>(ring) / static_cast<float>(rings);
+    const float polar = v * kPi;  // 0 at +Y
+    for (int segment = 0; segment <= segments; ++segment) {
+      const float u = static_cast<float>(segment) / static_cast<float>(segments);
+      const float azimuth = u * 2.0f * kPi;
+      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
+      appendVertex(sphere, normal * radius, normal, {u, v});
+    }
+  }
+  const auto rowLength = static_cast<std::uint32_t>(segments + 1);
+  for (std::uint32_t ring = 0; ring < static_cast<std::uint32_t>(rings); ++ring) {
+    for (std::uint32_t segment = 0; segment < static_cast<std::uint32_t>(segments); ++segment) {
+      const std::uint32_t topLeft = ring * rowLength + segment;
+      const std::uint32_t bottomLeft = topLeft + rowLength;
+      for (std::uint32_t index : {topLeft, bottomLeft, bottomLeft + 1, topLeft, bottomLeft + 1, topLeft + 1}) {
+        sphere.indices.push_back(index);
+      }
+    }
+  }
+  return sphere;
+}
+
+// ---- Scene assembly ----------------------------------------------------------
+
+Material makeMaterial(const std::string& name, const glm::vec3& baseColor, float roughness, float metallic = 0.0f) {
+  Material material;
+  material.name = name;
+  material.baseColorFactor = glm::vec4(baseColor, 1.0f);
+  material.roughnessFactor = roughness;
+  material.metallicFactor = metallic;
+  return material;
+}
+
+int addMaterial(Scene& scene, Material material) {
+  scene.materials.push_back(std::move(material));
+  return static_cast<int>(scene.materials.size()) - 1;
+}
+
+void addInstance(Scene& scene, Primitive primitive, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
+  scene.primitives.push_back(std::move(primitive));
+  scene.instances.push_back({static_cast<int>(scene.primitives.size()) - 1, worldFromLocal});
+}
+
+Camera makeLookAtCamera(const std::string& name, const glm::vec3& eye, const glm::vec3& target, float yfov) {
+  Camera camera;
+  camera.name = name;
+  camera.yfov = yfov;
+  camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
+  return camera;
+}
+
+glm::mat4 rotatedAboutYThenMoved(float degrees, const glm::vec3& center) {
+  return glm::rotate(glm::translate(glm::mat4(1.0f), center), glm::radians(degrees), glm::vec3(0.0f, 1.0f, 0.0f));
+}
+
+// The classic Cornell box, resized to x -1..1, y 0..2, z -1..1 and open at
+// +Z for the camera. Colours are the usual reflectances of the original.
+Scene makeCornell() {
+  Scene scene;
+  const int white = addMaterial(scene, makeMaterial("cornell white", glm::vec3(0.73f), 0.9f));
+  const int red = addMaterial(scene, makeMaterial("cornell red", {0.63f, 0.065f, 0.05f}, 0.9f));
+  const int green = addMaterial(scene, makeMaterial("cornell green", {0.14f, 0.45f, 0.091f}, 0.9f));
+  Material lampMaterial = makeMaterial("cornell lamp", glm::vec3(1.0f), 0.9f);
+  lampMaterial.emissiveFactor = glm::vec3(1.0f, 0.85f, 0.7f) * 4.0f;
+  const int lamp = addMaterial(scene, lampMaterial);
+
+  struct Wall {
+    glm::vec3 corner, edgeU, edgeV;  // front face = cross(edgeU, edgeV), inward
+    int material;
+  };
+  const std::array<Wall, 5> walls{{
+      {{-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white},  // floor, faces +Y
+      {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white},  // ceiling, faces -Y
+      {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white},  // back wall, faces +Z
+      {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, red},    // left wall, faces +X
+      {{1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green},   // right wall, faces -X
+  }};
+  for (const Wall& wall : walls) {
+    addInstance(scene, makeQuad(wall.corner, wall.edgeU, wall.edgeV, wall.material));
+  }
+
+  struct Block {
+    glm::vec3 size, center;
+    float yawDegrees;
+  };
+  const std::array<Block, 2> blocks{{
+      {{0.6f, 1.2f, 0.6f}, {-0.33f, 0.6f, -0.3f}, 17.0f},  // tall
+      {{0.6f, 0.6f, 0.6f}, {0.33f, 0.3f, 0.3f}, -17.0f},   // short
+  }};
+  for (const Block& block : blocks) {
+    addInstance(scene, makeBox(block.size, white), rotatedAboutYThenMoved(block.yawDegrees, block.center));
+  }
+
+  // 1.995: just below the ceiling, so the lamp never z-fights with it.
+  addInstance(scene, makeQuad({-0.25f, 1.995f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, lamp));
+
+  Light light;
+  light.name = "cornell lamp light";
+  light.type = Light::Type::Point;
+  light.color = {1.0f, 0.85f, 0.7f};
+  light.intensity = 6.0f;  // candela
+  light.position = {0.0f, 1.9f, 0.0f};
+  light.castsShadows = true;
+  scene.lights.push_back(light);
+
+  scene.cameras.push_back(makeLookAtCamera("cornell camera", {0.0f, 1.0f, 3.6f}, {0.0f, 1.0f, 0.0f}, 0.7f));
+  return scene;
+}
+
+// Five spheres on a floor, sweeping roughness 0.2..0.9 with one metal, lit by
+// a low sun: a quick look at the BRDF and the shadows.
+Scene makeSpheres() {
+  Scene scene;
+  const int floor = addMaterial(scene, makeMaterial("spheres floor", glm::vec3(0.8f), 0.9f));
+  addInstance(scene, makeQuad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}, floor));
+
+  struct Ball {
+    const char* name;
+    glm::vec3 baseColor;
+    float roughness, metallic, x;
+  };
+  const std::array<Ball, 5> balls{{
+      {"sphere red", {0.8f, 0.1f, 0.08f}, 0.2f, 0.0f, -2.4f},
+      {"sphere orange", {0.9f, 0.45f, 0.1f}, 0.375f, 0.0f, -1.2f},
+      {"sphere yellow metal", {0.95f, 0.8f, 0.3f}, 0.55f, 1.0f, 0.0f},
+      {"sphere green", {0.15f, 0.65f, 0.2f}, 0.725f, 0.0f, 1.2f},
+      {"sphere blue", {0.2f, 0.35f, 0.85f}, 0.9f, 0.0f, 2.4f},
+  }};
+  constexpr float kRadius = 0.5f;
+  // 64 x 32: smooth silhouettes at full-HD framing, ~4k triangles each.
+  const Primitive sphere = makeUvSphere(kRadius, 64, 32, -1);
+  for (const Ball& ball : balls) {
+    Primitive coloured = sphere;
+    coloured.material = addMaterial(scene, makeMaterial(ball.name, ball.baseColor, ball.roughness, ball.metallic));
+    addInstance(scene, std::move(coloured), glm::translate(glm::mat4(1.0f), glm::vec3(ball.x, kRadius, 0.0f)));
+  }
+
+  Light sun;
+  sun.name = "spheres sun";
+  sun.type = Light::Type::Directional;
+  sun.intensity = 3.0f;  // lux
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.3f));
+  sun.castsShadows = true;
+  scene.lights.push_back(sun);
+
+  scene.cameras.push_back(makeLookAtCamera("spheres camera", {0.0f, 2.2f, 5.5f}, {0.0f, 0.4f, 0.0f}, 0.6f));
+  return scene;
+}
+
+struct BuiltinScene {
+  const char* name;
+  Scene (*make)();
+};
+
+constexpr std::array<BuiltinScene, 2> kBuiltinScenes{{
+    {"cornell", &makeCornell},
+    {"spheres", &makeSpheres},
+}};
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() {
+  std::vector<std::string> names;
+  for (const BuiltinScene& builtin : kBuiltinScenes) {
+    names.emplace_back(builtin.name);
+  }
+  return names;
+}
+
+Scene makeBuiltinScene(std::string_view name) {
+  for (const BuiltinScene& builtin : kBuiltinScenes) {
+    if (name == builtin.name) {
+      Scene scene = builtin.make();
+      scene.source = "builtin:" + std::string(name);
+      scene.sourceHash = fingerprintHex(scene.source + ":" + kBuiltinVersion);
+      return scene;
+    }
+  }
+  std::string known;
+  for (const std::string& builtinName : builtinSceneNames()) {
+    known += (known.empty() ? "" : ", ") + builtinName;
+  }
+  throw SceneError("builtin:" + std::string(name) + ": no such built-in scene; known: " + known);
+}
+
+}  // namespace headlight

@@ -1,0 +1,95 @@
+// Scene queries and normal generation: the parts of the scene model that are
+// plain geometry, shared by the glTF loader and the built-in scenes.
+#include "headlight/scene.hpp"
+
+#include <cmath>
+#include <cstddef>
+
+#include "headlight/scene_loader.hpp"
+
+namespace headlight {
+
+namespace {
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Normalises `sum`, dividing by its largest component first so that sums
+// near float's range neither overflow nor underflow in the length. A vertex
+// no usable triangle touches (or whose faces cancel) gets +Z, the documented
+// fallback, rather than a NaN that the shader would spread.
+glm::vec3 unitOrPlusZ(const glm::vec3& sum) {
+  const float largest = glm::max(glm::abs(sum.x), glm::max(glm::abs(sum.y), glm::abs(sum.z)));
+  if (!(largest > 0.0f) || !std::isfinite(largest)) {
+    return {0.0f, 0.0f, 1.0f};
+  }
+  const glm::vec3 unit = glm::normalize(sum / largest);
+  return isFinite(unit) ? unit : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+}  // namespace
+
+Bounds Bounds::transformed(const glm::mat4& transform) const {
+  Bounds result;
+  if (empty()) {
+    return result;
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 local{(corner & 1) ? max.x : min.x, (corner & 2) ? max.y : min.y, (corner & 4) ? max.z : min.z};
+    result.extend(glm::vec3(transform * glm::vec4(local, 1.0f)));
+  }
+  return result;
+}
+
+Bounds Scene::worldBounds() const {
+  Bounds world;
+  for (const Instance& instance : instances) {
+    world.extend(primitives[instance.primitive].bounds.transformed(instance.worldFromLocal));
+  }
+  return world;
+}
+
+bool Scene::hasEmissive() const {
+  for (const Instance& instance : instances) {
+    const int material = primitives[instance.primitive].material;
+    if (material >= 0 && materials[material].emissive()) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::size_t Scene::triangleCount() const {
+  std::size_t triangles = 0;
+  for (const Instance& instance : instances) {
+    triangles += primitives[instance.primitive].indices.size() / 3;
+  }
+  return triangles;
+}
+
+void generateNormals(Primitive& primitive) {
+  const std::vector<glm::vec3>& positions = primitive.positions;
+  const std::vector<std::uint32_t>& indices = primitive.indices;
+  // The unnormalised cross product has length twice the triangle's area, so
+  // summing it weights each face by its area without a separate multiply.
+  std::vector<glm::vec3> weightedSum(positions.size(), glm::vec3(0.0f));
+  for (std::size_t first = 0; first + 2 < indices.size(); first += 3) {
+    const std::uint32_t a = indices[first], b = indices[first + 1], c = indices[first + 2];
+    if (a >= positions.size() || b >= positions.size() || c >= positions.size()) {
+      continue;  // the loader rejects these; a hand-built primitive may not
+    }
+    const glm::vec3 faceNormal = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+    // Degenerate and NaN/inf triangles would poison every vertex they touch.
+    if (!isFinite(faceNormal) || faceNormal == glm::vec3(0.0f)) {
+      continue;
+    }
+    weightedSum[a] += faceNormal;
+    weightedSum[b] += faceNormal;
+    weightedSum[c] += faceNormal;
+  }
+  primitive.normals.resize(positions.size());
+  for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
+    primitive.normals[vertex] = unitOrPlusZ(weightedSum[vertex]);
+  }
+}
+
+}  // namespace headlight

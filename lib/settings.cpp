@@ -1,0 +1,155 @@
+#include "headlight/settings.hpp"
+
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+#include "headlight/error.hpp"
+
+namespace headlight {
+namespace {
+
+std::string formatFloat(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+int parseInt(std::string_view name, std::string_view text, int low, int high) {
+  int value = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size())
+    throw SettingsError("--" + std::string(name) + ": expected an integer, got '" + std::string(text) + "'");
+  if (value < low || value > high)
+    throw SettingsError("--" + std::string(name) + ": must be in " + std::to_string(low) + ".." +
+                        std::to_string(high) + ", got " + std::to_string(value));
+  return value;
+}
+
+float parseFloat(std::string_view name, std::string_view text, float low, float high) {
+  // std::from_chars for float is in libstdc++ 11+, and takes no locale.
+  float value = 0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    throw SettingsError("--" + std::string(name) + ": expected a number, got '" + std::string(text) + "'");
+  if (value < low || value > high)
+    throw SettingsError("--" + std::string(name) + ": must be in " + formatFloat(low) + ".." + formatFloat(high) +
+                        ", got " + std::string(text));
+  return value;
+}
+
+// "auto" is stored as 0 for the settings whose 0 means auto.
+float parseAutoFloat(std::string_view name, std::string_view text, float low, float high) {
+  return text == "auto" ? 0.0f : parseFloat(name, text, low, high);
+}
+std::string formatAuto(float value) { return value == 0.0f ? "auto" : formatFloat(value); }
+
+std::string_view tonemapName(Tonemap tonemap) { return tonemap == Tonemap::Aces ? "aces" : "reinhard"; }
+
+const std::array<SettingOption, 15>& optionTable() {
+  static const std::array<SettingOption, 15> table{{
+      {"width", "N", "image width in pixels (1..16384)",
+       [](RenderSettings& s, std::string_view v) { s.width = parseInt("width", v, 1, 16384); },
+       [](const RenderSettings& s) { return std::to_string(s.width); }},
+      {"height", "N", "image height in pixels (1..16384)",
+       [](RenderSettings& s, std::string_view v) { s.height = parseInt("height", v, 1, 16384); },
+       [](const RenderSettings& s) { return std::to_string(s.height); }},
+      {"camera", "auto|N", "glTF camera index (default: the scene's first camera, else one fitted to the bounds)",
+       [](RenderSettings& s, std::string_view v) { s.camera = v == "auto" ? -1 : parseInt("camera", v, 0, 1 << 20); },
+       [](const RenderSettings& s) { return s.camera < 0 ? std::string("auto") : std::to_string(s.camera); }},
+      {"no-ssgi", "", "skip the SSGI pass (no ssgi.exr; ambient is unoccluded)",
+       [](RenderSettings& s, std::string_view) { s.ssgi.enabled = false; },
+       [](const RenderSettings& s) { return std::string(s.ssgi.enabled ? "false" : "true"); }},
+      {"ssgi-samples", "N", "SSGI kernel samples per pixel (1..64)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.sampleCount = parseInt("ssgi-samples", v, 1, 64); },
+       [](const RenderSettings& s) { return std::to_string(s.ssgi.sampleCount); }},
+      {"ssgi-radius", "auto|FLOAT", "SSGI radius in world units (auto: 15% of the scene's bounding-box diagonal)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.radius = parseAutoFloat("ssgi-radius", v, 1e-9f, 1e9f); },
+       [](const RenderSettings& s) { return formatAuto(s.ssgi.radius); }},
+      {"ssgi-bias", "auto|FLOAT", "SSGI depth bias in world units (auto: 5% of the radius)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.bias = parseAutoFloat("ssgi-bias", v, 0.0f, 1e9f); },
+       [](const RenderSettings& s) { return formatAuto(s.ssgi.bias); }},
+      {"ssgi-intensity", "FLOAT", "SSGI occlusion intensity (0..4)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.intensity = parseFloat("ssgi-intensity", v, 0, 4); },
+       [](const RenderSettings& s) { return formatFloat(s.ssgi.intensity); }},
+      {"ssgi-indirect", "FLOAT", "SSGI one-bounce indirect strength (0..4)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.indirectStrength = parseFloat("ssgi-indirect", v, 0, 4); },
+       [](const RenderSettings& s) { return formatFloat(s.ssgi.indirectStrength); }},
+      {"ssgi-seed", "N", "random seed of the SSGI kernel and noise",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.seed = unsigned(parseInt("ssgi-seed", v, 0, 1 << 30)); },
+       [](const RenderSettings& s) { return std::to_string(s.ssgi.seed); }},
+      {"no-shadows", "", "skip shadow maps",
+       [](RenderSettings& s, std::string_view) { s.lighting.shadows = false; },
+       [](const RenderSettings& s) { return std::string(s.lighting.shadows ? "false" : "true"); }},
+      {"shadow-map-size", "auto|N", "shadow map texels per side (64..8192; auto: from the image size, 512..2048)",
+       [](RenderSettings& s, std::string_view v) {
+         s.lighting.shadowMapSize = v == "auto" ? 0 : parseInt("shadow-map-size", v, 64, 8192);
+       },
+       [](const RenderSettings& s) {
+         return s.lighting.shadowMapSize == 0 ? std::string("auto") : std::to_string(s.lighting.shadowMapSize);
+       }},
+      {"sky-intensity", "auto|FLOAT", "sky (ambient) intensity (auto: the scene's; 0..1000)",
+       [](RenderSettings& s, std::string_view v) {
+         s.lighting.skyIntensity = v == "auto" ? -1.0f : parseFloat("sky-intensity", v, 0, 1000);
+       },
+       [](const RenderSettings& s) {
+         return s.lighting.skyIntensity < 0 ? std::string("auto") : formatFloat(s.lighting.skyIntensity);
+       }},
+      {"tonemap", "aces|reinhard", "tone curve for preview.png (lit.exr stays linear)",
+       [](RenderSettings& s, std::string_view v) {
+         if (v != "aces" && v != "reinhard")
+           throw SettingsError("--tonemap: expected aces or reinhard, got '" + std::string(v) + "'");
+         s.tonemap = v == "aces" ? Tonemap::Aces : Tonemap::Reinhard;
+       },
+       [](const RenderSettings& s) { return std::string(tonemapName(s.tonemap)); }},
+      {"exposure", "EV", "exposure for preview.png in stops (-20..20)",
+       [](RenderSettings& s, std::string_view v) { s.exposure = parseFloat("exposure", v, -20, 20); },
+       [](const RenderSettings& s) { return formatFloat(s.exposure); }},
+  }};
+  return table;
+}
+
+constexpr std::array<std::string_view, 4> kPresetNames{"fast", "default", "high", "seed"};
+
+}  // namespace
+
+std::span<const SettingOption> settingOptions() { return optionTable(); }
+std::span<const std::string_view> presetNames() { return kPresetNames; }
+
+void applyPreset(RenderSettings& settings, std::string_view preset) {
+  const RenderSettings defaults;
+  if (preset == "default") {
+    settings.ssgi = defaults.ssgi;
+    settings.lighting = defaults.lighting;
+  } else if (preset == "fast") {
+    settings.ssgi.sampleCount = 16;
+    settings.lighting.shadowMapSize = 1024;
+    settings.lighting.pcfRadius = 1.0f;
+  } else if (preset == "high") {
+    settings.ssgi.sampleCount = 64;
+    settings.lighting.shadowMapSize = 4096;
+    settings.lighting.pcfRadius = 2.0f;
+  } else if (preset == "seed") {
+    // The seed spec's numbers, for scenes of the size it was written for.
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.radius = 0.5f;
+    settings.ssgi.bias = 0.025f;
+  } else {
+    throw SettingsError("--preset: expected fast, default, high or seed, got '" + std::string(preset) + "'");
+  }
+}
+
+void RenderSettings::validate() const {
+  // Round-trip every value through the table's own parser, so the ranges live
+  // in one place.
+  RenderSettings scratch = *this;
+  for (const SettingOption& option : settingOptions())
+    if (!option.valueName.empty()) option.parse(scratch, option.format(*this));
+  if (ssgi.sampleCount < 1 || ssgi.sampleCount > 64)
+    throw SettingsError("ssgi.sampleCount: must be in 1..64, got " + std::to_string(ssgi.sampleCount));
+  if (lighting.pcfRadius < 0 || lighting.pcfRadius > 8)
+    throw SettingsError("lighting.pcfRadius: must be in 0..8, got " + formatFloat(lighting.pcfRadius));
+}
+
+}  // namespace headlight

@@ -1,0 +1,119 @@
+// What `render` writes reads back through OpenImageIO with the right
+// channel names, pixel types, size, orientation and metadata; writes are
+// atomic and failures leave nothing behind.
+#include <doctest/doctest.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include <filesystem>
+#include <random>
+
+#include "gl_test_support.hpp"
+#include "headlight/error.hpp"
+#include "headlight/output.hpp"
+#include "headlight/scene_loader.hpp"
+
+using namespace headlight;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path freshFolder(const char* name) {
+  const fs::path path = fs::temp_directory_path() / (std::string("headlight_exr_") + name + "_" +
+                                                     std::to_string(std::random_device{}()));
+  fs::remove_all(path);
+  return path;
+}
+
+const Frame& cornellFrame() {
+  static const Frame frame = [] {
+    Renderer renderer(test::sharedContext());
+    renderer.setScene(loadScene("builtin:cornell"));
+    return renderer.render(test::smallSettings(72, 56));
+  }();
+  return frame;
+}
+
+}  // namespace
+
+TEST_CASE("writeFrame: every target reads back with its channels, type, size and values") {
+  const Frame& frame = cornellFrame();
+  const fs::path folder = freshFolder("roundtrip");
+  const auto written = writeFrame(frame, folder);
+  CHECK(written.size() == frame.targets().size() + 1);  // + preview.png
+  for (const auto& [name, image] : frame.targets()) {
+    CAPTURE(name);
+    OIIO::ImageBuf file((folder / (name + ".exr")).string());
+    REQUIRE(file.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    const OIIO::ImageSpec& spec = file.spec();
+    CHECK(spec.width == image->width);
+    CHECK(spec.height == image->height);
+    CHECK(spec.nchannels == image->channelCount());
+    const bool isFloat = name == "position" || name == "depth";
+    CHECK(file.nativespec().format == (isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF));
+    // OpenEXR stores channels sorted by name; look each up by name.
+    for (int c = 0; c < image->channelCount(); ++c) {
+      const int index = spec.channelindex(image->channels[std::size_t(c)]);
+      REQUIRE(index >= 0);
+      // Top row first: pixel (x, y) of the file is pixel (x, y) of the frame.
+      for (int y : {0, image->height / 2, image->height - 1}) {
+        const float expected = image->at(image->width / 2, y, c);
+        const float actual = file.getchannel(image->width / 2, y, 0, index);
+        CHECK(actual == doctest::Approx(expected).epsilon(isFloat ? 1e-7 : 1e-3).scale(1.0));
+      }
+    }
+  }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("EXR orientation: the top row of position.exr is higher in the world than the bottom row") {
+  const fs::path folder = freshFolder("orientation");
+  writeFrame(cornellFrame(), folder);
+  OIIO::ImageBuf file((folder / "position.exr").string());
+  const int y = file.spec().channelindex("position.Y");
+  const int x = file.spec().width / 2;
+  CHECK(file.getchannel(x, 2, 0, y) > file.getchannel(x, file.spec().height - 3, 0, y) + 0.5f);
+  fs::remove_all(folder);
+}
+
+TEST_CASE("EXR metadata says what produced the image") {
+  const Frame& frame = cornellFrame();
+  const fs::path folder = freshFolder("metadata");
+  writeFrame(frame, folder);
+  OIIO::ImageBuf file((folder / "lit.exr").string());
+  const OIIO::ImageSpec& spec = file.spec();
+  const OIIO::ParamValue* worldToCamera = spec.find_attribute("worldToCamera", OIIO::TypeDesc::TypeMatrix44);
+  REQUIRE(worldToCamera != nullptr);
+  const float* m = static_cast<const float*>(worldToCamera->data());
+  // OpenEXR's row-vector matrix: translation in the last row.
+  CHECK(m[12] == doctest::Approx(frame.view.view[3][0]));
+  CHECK(m[14] == doctest::Approx(frame.view.view[3][2]));
+  CHECK(spec.find_attribute("worldToNDC", OIIO::TypeDesc::TypeMatrix44) != nullptr);
+  CHECK(spec.get_float_attribute("headlight:near") == doctest::Approx(frame.view.nearPlane));
+  CHECK(spec.get_float_attribute("headlight:far") == doctest::Approx(frame.view.farPlane));
+  CHECK(spec.get_string_attribute("headlight:renderer") == frame.glRenderer);
+  CHECK(spec.get_string_attribute("headlight:backend") == frame.backend);
+  CHECK(spec.get_string_attribute("headlight:scene") == "builtin:cornell");
+  CHECK(spec.get_string_attribute("headlight:sceneHash").size() == 16);
+  CHECK(spec.get_string_attribute("headlight:setting:width") == "72");
+  CHECK(spec.get_string_attribute("headlight:setting:ssgi-samples") == "64");
+  // "auto" is recorded as the number it resolved to.
+  CHECK(std::stof(spec.get_string_attribute("headlight:setting:ssgi-radius")) ==
+        doctest::Approx(frame.settings.ssgi.radius));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("writes are atomic: no temporary file stays, and a failed write leaves nothing") {
+  const Frame& frame = cornellFrame();
+  const fs::path folder = freshFolder("atomic");
+  writeFrame(frame, folder);
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    CAPTURE(entry.path());
+    CHECK(entry.path().filename().string().front() != '.');
+  }
+  // A folder that cannot be made (a file is in the way): IoError, no output.
+  const fs::path blocked = folder / "lit.exr" / "sub";
+  CHECK_THROWS_AS(writeFrame(frame, blocked), IoError);
+  CHECK_FALSE(fs::exists(blocked));
+  fs::remove_all(folder);
+}

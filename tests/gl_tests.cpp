@@ -1,0 +1,235 @@
+// GL tests: small renders on the backend under test (gl_main.cpp), checked
+// against analytic values with stated tolerances. Every render goes through
+// Context::checkErrors under GlErrorPolicy::Throw, so a GL error fails the
+// test that caused it.
+#include <doctest/doctest.h>
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gl_test_support.hpp"
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+
+using namespace headlight;
+using namespace headlight::test;
+
+namespace {
+
+Scene quadScene() {
+  Scene scene;
+  scene.source = "test:quad";
+  scene.materials.push_back(plainMaterial({0.5f, 0.25f, 0.125f}, 0.3f, 0.6f));
+  scene.primitives.push_back(quad({0, 0, 0}, {0, 0, 1}, 1.0f, 0));
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  // Orthographic from +Z, 3 units tall: the quad fills the middle 2/3.
+  scene.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}, 0.8f, 1.5f));
+  return scene;
+}
+
+Scene planeScene() {
+  Scene scene;
+  scene.source = "test:plane";
+  scene.materials.push_back(plainMaterial({0.8f, 0.8f, 0.8f}));
+  scene.primitives.push_back(quad({0, 0, 0}, {0, 1, 0}, 50.0f, 0));
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  scene.cameras.push_back(lookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f));
+  return scene;
+}
+
+Frame renderScene(Scene scene, const RenderSettings& settings) {
+  Renderer renderer(sharedContext());
+  renderer.setScene(std::move(scene));
+  return renderer.render(settings);
+}
+
+}  // namespace
+
+TEST_CASE("G-buffer of a known quad holds the analytic position, normal, albedo, material and depth") {
+  const int size = 64;
+  const Frame frame = renderScene(quadScene(), smallSettings(size, size));
+  int inside = 0, outside = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      // Pixel centre in world units: orthographic, 1.5 half height, square.
+      const float worldX = ((x + 0.5f) / size * 2.0f - 1.0f) * 1.5f;
+      const float worldY = (1.0f - (y + 0.5f) / size * 2.0f) * 1.5f;  // rows top first
+      if (std::max(std::abs(worldX), std::abs(worldY)) > 1.05f) {
+        CHECK(frame.position.at(x, y, 3) == 0.0f);  // background mark
+        ++outside;
+        continue;
+      }
+      if (std::max(std::abs(worldX), std::abs(worldY)) > 0.95f) continue;  // edge pixels may go either way
+      ++inside;
+      CHECK(frame.position.at(x, y, 3) == 1.0f);
+      // float32 interpolation at pixel centres: exact to rounding.
+      CHECK(std::abs(frame.position.at(x, y, 0) - worldX) < 1e-4f);
+      CHECK(std::abs(frame.position.at(x, y, 1) - worldY) < 1e-4f);
+      CHECK(std::abs(frame.position.at(x, y, 2)) < 1e-5f);
+      // RGBA16F normal: half precision, 1e-3.
+      CHECK(std::abs(frame.normal.at(x, y, 2) - 1.0f) < 1e-3f);
+      CHECK(std::abs(frame.normal.at(x, y, 0)) < 1e-3f);
+      // sRGB8 albedo: half a code step at 0.5 linear is 0.003.
+      CHECK(std::abs(frame.albedo.at(x, y, 0) - 0.5f) < 0.004f);
+      CHECK(std::abs(frame.albedo.at(x, y, 1) - 0.25f) < 0.004f);
+      CHECK(std::abs(frame.albedo.at(x, y, 2) - 0.125f) < 0.004f);
+      // RGBA8 material: half a code step is 0.002.
+      CHECK(std::abs(frame.material.at(x, y, 0) - 0.3f) < 0.003f);
+      CHECK(std::abs(frame.material.at(x, y, 1) - 0.6f) < 0.003f);
+      CHECK(std::abs(frame.material.at(x, y, 2) - 1.0f) < 0.003f);
+      // The camera is 2 units in front of the quad; float32 depth.
+      CHECK(std::abs(frame.depth.at(x, y, 0) - 2.0f) < 1e-4f);
+    }
+  CHECK(inside > 1000);
+  CHECK(outside > 500);
+}
+
+TEST_CASE("SSGI on a flat open plane finds no occlusion away from the edges") {
+  for (const std::string preset : {"default", "seed"}) {
+    CAPTURE(preset);
+    RenderSettings settings = smallSettings(96, 72);
+    applyPreset(settings, preset);
+    const Frame frame = renderScene(planeScene(), settings);
+    float minimum = 1.0f;
+    int count = 0;
+    for (int y = 4; y < frame.ssgi.height - 4; ++y)
+      for (int x = 4; x < frame.ssgi.width - 4; ++x) {
+        if (frame.position.at(x, y, 3) == 0.0f) continue;
+        minimum = std::min(minimum, frame.ssgi.at(x, y, 0));
+        ++count;
+      }
+    CHECK(count > 2000);
+    CHECK(minimum >= 0.95f);
+  }
+}
+
+TEST_CASE("Cornell box: a corner is darker than the middle of the back wall, and the red wall bleeds red") {
+  const Frame frame = renderScene(loadScene("builtin:cornell"), smallSettings(128, 128));
+  int cornerCount = 0, wallCount = 0, floorCount = 0;
+  // The back wall's top right corner, where it meets the ceiling and the green wall.
+  const double cornerAo = meanWhere(frame, frame.ssgi, 0, [](glm::vec3 p, glm::vec3 n) {
+    return n.z > 0.9f && p.x > 0.9f && p.y > 1.9f;
+  }, cornerCount);
+  // The back wall's middle, well away from both blocks and every edge.
+  const double wallAo = meanWhere(frame, frame.ssgi, 0, [](glm::vec3 p, glm::vec3 n) {
+    return n.z > 0.9f && std::abs(p.x) < 0.2f && p.y > 1.3f && p.y < 1.6f;
+  }, wallCount);
+  REQUIRE(cornerCount > 5);
+  REQUIRE(wallCount > 20);
+  CHECK(wallAo > 0.95);
+  CHECK(cornerAo < wallAo - 0.1);  // "clearly lower": at least 0.1 of AO
+
+  // Floor along the red (left) wall, in front of the tall block.
+  const auto nearRedWall = [](glm::vec3 p, glm::vec3 n) { return n.y > 0.9f && p.x < -0.85f && p.z > 0.1f; };
+  const double red = meanWhere(frame, frame.ssgi, 1, nearRedWall, floorCount);
+  const double green = meanWhere(frame, frame.ssgi, 2, nearRedWall, floorCount);
+  REQUIRE(floorCount > 5);
+  CHECK(red > 0.0);
+  CHECK(red > 2.0 * green);
+}
+
+TEST_CASE("background pixels are left as cleared by every pass") {
+  const Frame frame = renderScene(loadScene("builtin:spheres"), smallSettings(96, 72));
+  int background = 0;
+  for (int y = 0; y < frame.position.height; ++y)
+    for (int x = 0; x < frame.position.width; ++x) {
+      if (frame.position.at(x, y, 3) != 0.0f) continue;
+      ++background;
+      for (int c = 0; c < 3; ++c) {
+        CHECK(frame.normal.at(x, y, c) == 0.0f);
+        CHECK(frame.albedo.at(x, y, c) == 0.0f);
+        CHECK(frame.material.at(x, y, c) == 0.0f);
+      }
+      CHECK(frame.ssgi.at(x, y, 0) == 1.0f);
+      CHECK(frame.ssgi.at(x, y, 1) == 0.0f);
+      CHECK(frame.depth.at(x, y, 0) == doctest::Approx(frame.view.farPlane).epsilon(1e-4));
+      CHECK(frame.lit.at(x, y, 3) == 0.0f);
+      CHECK(frame.lit.at(x, y, 2) > 0.0f);  // the sky shows through
+    }
+  CHECK(background > 100);
+}
+
+TEST_CASE("one renderer renders many sizes and views; a repeated render is bit-identical") {
+  Renderer renderer(sharedContext());
+  renderer.setScene(loadScene("builtin:cornell"));
+  const Frame first = renderer.render(smallSettings(80, 60));
+  const Frame other = renderer.render(smallSettings(33, 17));
+  CHECK(other.lit.width == 33);
+  CHECK(other.lit.height == 17);
+  Camera side = lookAtCamera({1.5f, 1.0f, 3.0f}, {0, 1, 0}, 0.9f);
+  const Frame moved = renderer.render(smallSettings(80, 60), &side);
+  const Frame again = renderer.render(smallSettings(80, 60));
+  CHECK(moved.lit.pixels != first.lit.pixels);
+  for (const auto& [name, image] : first.targets()) {
+    CAPTURE(name);
+    const auto& againTargets = again.targets();
+    const auto match = std::find_if(againTargets.begin(), againTargets.end(),
+                                    [&](const auto& t) { return t.first == name; });
+    REQUIRE(match != againTargets.end());
+    CHECK(image->pixels == match->second->pixels);
+  }
+}
+
+TEST_CASE("a GL error is reported as GlError naming the operation") {
+  Context& context = sharedContext();
+  // Core profile: binding a name that glGen*/glCreate* never returned is
+  // GL_INVALID_OPERATION.
+  glBindTexture(GL_TEXTURE_2D, 987654);
+  CHECK(context.pendingErrorCount() >= 1);  // the KHR_debug callback saw it
+  try {
+    context.checkErrors("deliberate bad bind");
+    FAIL("checkErrors did not throw");
+  } catch (const GlError& error) {
+    CHECK(std::string(error.what()).find("deliberate bad bind") != std::string::npos);
+    CHECK(std::string(error.what()).find("GL_INVALID_OPERATION") != std::string::npos);
+  }
+  CHECK_NOTHROW(context.checkErrors("after the error was reported"));
+}
+
+TEST_CASE("SSGI off: no ssgi target, and ambient is unoccluded") {
+  RenderSettings settings = smallSettings(64, 64);
+  const Frame with = renderScene(loadScene("builtin:cornell"), settings);
+  settings.ssgi.enabled = false;
+  const Frame without = renderScene(loadScene("builtin:cornell"), settings);
+  CHECK(without.ssgi.empty());
+  CHECK(!with.ssgi.empty());
+  // With occlusion removed, the corner-heavy box is brighter on average.
+  double sumWith = 0, sumWithout = 0;
+  for (std::size_t i = 0; i < with.lit.pixels.size(); i += 4) {
+    sumWith += with.lit.pixels[i + 1];
+    sumWithout += without.lit.pixels[i + 1];
+  }
+  CHECK(sumWithout != sumWith);
+}
+
+TEST_CASE("EGL and OSMesa render the same images" * doctest::test_suite("backends")) {
+  RenderSettings settings = smallSettings(64, 48);
+  auto renderWith = [&](Backend backend) {
+    Context context(ContextOptions{backend, -1, GlErrorPolicy::Throw});
+    Renderer renderer(context);
+    renderer.setScene(loadScene("builtin:cornell"));
+    return renderer.render(settings);
+  };
+  const Frame egl = renderWith(Backend::Egl);
+  const Frame osmesa = renderWith(Backend::OSMesa);
+  sharedContext().makeCurrent();
+  CHECK(egl.backend.rfind("egl", 0) == 0);
+  CHECK(osmesa.backend.rfind("osmesa", 0) == 0);
+  // Both run the same rasteriser on llvmpipe; on other drivers a few ULPs of
+  // half-float difference are allowed: 1e-3 of the lit value, max.
+  for (const auto& [name, image] : egl.targets()) {
+    CAPTURE(name);
+    const auto other = osmesa.targets();
+    const auto match =
+        std::find_if(other.begin(), other.end(), [&](const auto& t) { return t.first == name; });
+    REQUIRE(match != other.end());
+    REQUIRE(image->pixels.size() == match->second->pixels.size());
+    float worst = 0;
+    for (std::size_t i = 0; i < image->pixels.size(); ++i)
+      worst = std::max(worst, std::abs(image->pixels[i] - match->second->pixels[i]) /
+                                  std::max(1.0f, std::abs(image->pixels[i])));
+    CHECK(worst <= 1e-3f);
+  }
+}

@@ -1,0 +1,625 @@
+// Scene model, built-in scenes and glTF loading. None of these need a GL
+// context. Malformed files are written by the tests themselves into a fresh
+// temporary folder, so each case is a few lines of JSON next to its check.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+
+// meson defines this; the fallback only makes the shared-asset test skip.
+#ifndef HEADLIGHT_SOURCE_DIR
+#define HEADLIGHT_SOURCE_DIR "."
+#endif
+
+namespace fs = std::filesystem;
+using namespace headlight;
+
+namespace {
+
+// ---- Helpers -------------------------------------------------------------
+
+bool isHex16(const std::string& text) {
+  return text.size() == 16 && text.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+bool near(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f) {
+  return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(tolerance)));
+}
+
+// A folder of its own under the system temp folder, removed afterwards.
+class TempFolder {
+ public:
+  TempFolder() {
+    static std::atomic<int> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("headlight_scene_tests_" + std::to_string(std::random_device{}()) + "_" + std::to_string(counter++));
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+
+  fs::path write(const std::string& name, const void* bytes, std::size_t size) const {
+    const fs::path file = path_ / name;
+    fs::create_directories(file.parent_path());
+    std::ofstream(file, std::ios::binary).write(static_cast<const char*>(bytes), static_cast<std::streamsize>(size));
+    return file;
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    return write(name, text.data(), text.size());
+  }
+  fs::path write(const std::string& name, const std::vector<unsigned char>& bytes) const {
+    return write(name, bytes.data(), bytes.size());
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// One triangle in the XY plane, counter-clockwise seen from +Z: 36 bytes of
+// positions, then 6 bytes of 16-bit indices and 2 bytes of padding.
+std::vector<unsigned char> triangleBuffer(std::array<std::uint16_t, 3> indices = {0, 1, 2}, float firstX = 0.0f) {
+  const float positions[9] = {firstX, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::vector<unsigned char> bytes(44, 0);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + 36, indices.data(), 6);
+  return bytes;
+}
+
+// The parts of a one-triangle glTF that tests swap out.
+struct GltfParts {
+  std::string bufferUri = "triangle.bin";  // empty: no uri (GLB's BIN chunk)
+  std::string positionCount = "3";
+  std::string primitive = R"({"attributes":{"POSITION":0},"indices":1})";
+  std::string nodes = R"([{"mesh":0}])";
+  std::string sceneNodes = "[0]";
+  std::string indexView = R"("byteOffset":36,"byteLength":6)";
+  std::string moreAccessors;  // appended to the accessors array, each starting with a comma
+  std::string extra;          // more top-level members, each starting with a comma
+};
+
+std::string gltfJson(const GltfParts& parts) {
+  const std::string uri = parts.bufferUri.empty() ? "" : R"("uri":")" + parts.bufferUri + R"(",)";
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":)" + parts.sceneNodes + R"(}],"nodes":)" +
+         parts.nodes + R"(,"meshes":[{"primitives":[)" + parts.primitive + R"(]}],"buffers":[{)" + uri +
+         R"("byteLength":44}],)" + R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,)" +
+         parts.indexView + "}]," + R"("accessors":[{"bufferView":0,"componentType":5126,"count":)" +
+         parts.positionCount + R"(,"type":"VEC3"},{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"})" +
+         parts.moreAccessors + "]" + parts.extra + "}";
+}
+
+// Writes triangle.bin and scene.gltf into `folder` and returns the glTF's path.
+fs::path writeTriangleGltf(const TempFolder& folder, const GltfParts& parts = {},
+                           const std::vector<unsigned char>& buffer = triangleBuffer()) {
+  folder.write("triangle.bin", buffer);
+  return folder.write("scene.gltf", gltfJson(parts));
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (std::size_t at = 0; at < bytes.size(); at += 3) {
+    const std::uint32_t group = (bytes[at] << 16) | ((at + 1 < bytes.size() ? bytes[at + 1] : 0) << 8) |
+                                (at + 2 < bytes.size() ? bytes[at + 2] : 0);
+    for (std::size_t sextet = 0; sextet < 4; ++sextet) {
+      text += at + sextet <= bytes.size() ? kAlphabet[(group >> (18 - 6 * sextet)) & 63] : '=';
+    }
+  }
+  return text;
+}
+
+void appendU32(std::vector<unsigned char>& bytes, std::uint32_t value) {
+  for (int shift = 0; shift < 32; shift += 8) {
+    bytes.push_back(static_cast<unsigned char>(value >> shift));
+  }
+}
+
+// A .glb: 12-byte header, a JSON chunk padded with spaces and a BIN chunk
+// padded with zeros, as the glTF spec lays them out.
+std::vector<unsigned char> makeGlb(std::string json, std::vector<unsigned char> bin) {
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  bin.resize((bin.size() + 3) / 4 * 4, 0);
+  std::vector<unsigned char> glb;
+  appendU32(glb, 0x46546C67);  // "glTF"
+  appendU32(glb, 2);
+  appendU32(glb, static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size()));
+  appendU32(glb, static_cast<std::uint32_t>(json.size()));
+  appendU32(glb, 0x4E4F534A);  // "JSON"
+  glb.insert(glb.end(), json.begin(), json.end());
+  appendU32(glb, static_cast<std::uint32_t>(bin.size()));
+  appendU32(glb, 0x004E4942);  // "BIN"
+  glb.insert(glb.end(), bin.begin(), bin.end());
+  return glb;
+}
+
+// Loads `path` expecting a SceneError; returns its message ("" if none).
+std::string loadError(const fs::path& path, const SceneLoadOptions& options = {}) {
+  try {
+    loadGltf(path, options);
+  } catch (const SceneError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// The checks every scene must pass whatever its source: what the renderer
+// relies on without checking again.
+void checkWellFormed(const Scene& scene) {
+  for (const Primitive& primitive : scene.primitives) {
+    REQUIRE(primitive.normals.size() == primitive.positions.size());
+    CHECK((primitive.texcoords.empty() || primitive.texcoords.size() == primitive.positions.size()));
+    CHECK((primitive.tangents.empty() || primitive.tangents.size() == primitive.positions.size()));
+    CHECK(primitive.indices.size() % 3 == 0);
+    CHECK(primitive.material < static_cast<int>(scene.materials.size()));
+    Bounds bounds;
+    for (const glm::vec3& position : primitive.positions) {
+      bounds.extend(position);
+    }
+    CHECK(near(bounds.min, primitive.bounds.min, 0.0f));
+    CHECK(near(bounds.max, primitive.bounds.max, 0.0f));
+    // Counted, not checked one by one: the shared asset has ~10^6 of each.
+    const auto nonUnitNormals =
+        std::count_if(primitive.normals.begin(), primitive.normals.end(),
+                      [](const glm::vec3& n) { return std::abs(glm::length(n) - 1.0f) > 1e-4f; });
+    CHECK(nonUnitNormals == 0);
+    const auto indicesOutOfRange =
+        std::count_if(primitive.indices.begin(), primitive.indices.end(),
+                      [&](std::uint32_t index) { return index >= primitive.positions.size(); });
+    CHECK(indicesOutOfRange == 0);
+  }
+  for (const Instance& instance : scene.instances) {
+    CHECK(instance.primitive >= 0);
+    CHECK(instance.primitive < static_cast<int>(scene.primitives.size()));
+  }
+}
+
+// Counter-clockwise triangles face where their vertex normals point (the
+// built-in scenes are single-sided, so a flipped one would vanish).
+void checkWindingMatchesNormals(const Primitive& primitive) {
+  for (std::size_t first = 0; first < primitive.indices.size(); first += 3) {
+    const glm::vec3 a = primitive.positions[primitive.indices[first]];
+    const glm::vec3 b = primitive.positions[primitive.indices[first + 1]];
+    const glm::vec3 c = primitive.positions[primitive.indices[first + 2]];
+    const glm::vec3 face = glm::cross(b - a, c - a);
+    if (glm::length(face) < 1e-9f) {
+      continue;  // sphere poles
+    }
+    CHECK(glm::dot(face, primitive.normals[primitive.indices[first]]) > 0.0f);
+  }
+}
+
+glm::vec3 cameraPosition(const Camera& camera) { return glm::vec3(camera.worldFromCamera[3]); }
+glm::vec3 cameraForward(const Camera& camera) { return -glm::vec3(camera.worldFromCamera[2]); }
+
+fs::path sharedFolder() {
+  if (const char* shared = std::getenv("HEADLIGHT_SHARED_DIR"); shared != nullptr && *shared != '\0') {
+    return shared;
+  }
+  return fs::path(HEADLIGHT_SOURCE_DIR) / ".." / "shared";
+}
+
+}  // namespace
+
+// ---- Scene model -------------------------------------------------------------
+
+TEST_CASE("Bounds::transformed moves all eight corners") {
+  Bounds unit;
+  unit.extend(glm::vec3(-1.0f));
+  unit.extend(glm::vec3(1.0f));
+  const glm::mat4 turned =
+      glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0)), glm::radians(45.0f), glm::vec3(0, 1, 0));
+  const Bounds moved = unit.transformed(turned);
+  const float halfDiagonal = std::sqrt(2.0f);
+  CHECK(near(moved.min, {10 - halfDiagonal, -1, -halfDiagonal}));
+  CHECK(near(moved.max, {10 + halfDiagonal, 1, halfDiagonal}));
+  CHECK(Bounds().transformed(turned).empty());
+}
+
+TEST_CASE("Scene queries count per instance") {
+  Scene scene;
+  Primitive triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.indices = {0, 1, 2};
+  triangle.bounds.extend(glm::vec3(0, 0, 0));
+  triangle.bounds.extend(glm::vec3(1, 1, 0));
+  triangle.material = 0;
+  scene.primitives.push_back(triangle);
+  scene.materials.resize(2);
+  scene.materials[1].emissiveFactor = glm::vec3(1.0f);  // emissive but unused
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  scene.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 5))});
+  CHECK(scene.triangleCount() == 2);
+  CHECK(near(scene.worldBounds().min, {0, 0, 0}));
+  CHECK(near(scene.worldBounds().max, {1, 1, 5}));
+  CHECK_FALSE(scene.hasEmissive());
+  scene.primitives[0].material = 1;
+  CHECK(scene.hasEmissive());
+}
+
+TEST_CASE("generateNormals weights by area and falls back to +Z") {
+  Primitive primitive;
+  // Vertex 0 is shared by a 2x2 triangle facing +Y and a 1x1 one facing +X.
+  primitive.positions = {{0, 0, 0},  {0, 0, 2}, {2, 0, 0},  // floor, area 2
+                         {0, 1, 0},  {0, 0, 1},             // wall, area 0.5
+                         {5, 5, 5},                         // untouched
+                         {7, 7, 7},  {8, 8, 8},             // degenerate (collinear)
+                         {NAN, 0, 0}};                      // poisoned
+  primitive.indices = {0, 1, 2, 0, 3, 4, 6, 7, 6, 0, 8, 1};
+  generateNormals(primitive);
+  REQUIRE(primitive.normals.size() == primitive.positions.size());
+  CHECK(near(primitive.normals[0], glm::normalize(glm::vec3(0.5f, 2.0f, 0.0f) * 2.0f)));
+  CHECK(near(primitive.normals[1], {0, 1, 0}));
+  CHECK(near(primitive.normals[3], {1, 0, 0}));
+  CHECK(near(primitive.normals[5], {0, 0, 1}));
+  CHECK(near(primitive.normals[6], {0, 0, 1}));
+  CHECK(near(primitive.normals[8], {0, 0, 1}));
+}
+
+// ---- Built-in scenes ---------------------------------------------------------
+
+TEST_CASE("built-in scenes are well formed") {
+  for (const std::string& name : builtinSceneNames()) {
+    CAPTURE(name);
+    const Scene scene = loadScene("builtin:" + name);
+    CHECK(scene.source == "builtin:" + name);
+    CHECK(isHex16(scene.sourceHash));
+    CHECK_FALSE(scene.instances.empty());
+    CHECK(scene.cameras.size() == 1);
+    CHECK(scene.lights.size() == 1);
+    checkWellFormed(scene);
+    for (const Primitive& primitive : scene.primitives) {
+      checkWindingMatchesNormals(primitive);
+      CHECK(primitive.texcoords.size() == primitive.positions.size());
+    }
+    for (const Material& material : scene.materials) {
+      CHECK_FALSE(material.name.empty());
+    }
+  }
+  CHECK(makeBuiltinScene("cornell").sourceHash != makeBuiltinScene("spheres").sourceHash);
+}
+
+TEST_CASE("cornell: box, blocks, lamp, camera") {
+  const Scene scene = makeBuiltinScene("cornell");
+  const Bounds bounds = scene.worldBounds();
+  CHECK(near(bounds.min, {-1, 0, -1}));
+  CHECK(near(bounds.max, {1, 2, 1}));
+  CHECK(scene.hasEmissive());
+  // 5 walls + 2 blocks + lamp: 5*2 + 2*12 + 2 triangles.
+  CHECK(scene.instances.size() == 8);
+  CHECK(scene.triangleCount() == 36);
+  const Light& light = scene.lights[0];
+  CHECK(light.type == Light::Type::Point);
+  CHECK(near(light.position, {0, 1.9f, 0}));
+  CHECK(light.intensity == 6.0f);
+  CHECK(light.castsShadows);
+  const Camera& camera = scene.cameras[0];
+  CHECK(near(cameraPosition(camera), {0, 1, 3.6f}));
+  CHECK(near(cameraForward(camera), {0, 0, -1}));
+  CHECK(camera.yfov == doctest::Approx(0.7f));
+  CHECK(camera.znear == 0.0f);
+  CHECK(camera.zfar == 0.0f);
+}
+
+TEST_CASE("spheres: floor, five spheres, sun, camera") {
+  const Scene scene = makeBuiltinScene("spheres");
+  const Bounds bounds = scene.worldBounds();
+  CHECK(near(bounds.min, {-4, 0, -4}));
+  CHECK(near(bounds.max, {4, 1, 4}));
+  CHECK(scene.instances.size() == 6);
+  int metals = 0;
+  for (const Material& material : scene.materials) {
+    metals += material.metallicFactor == 1.0f ? 1 : 0;
+  }
+  CHECK(metals == 1);
+  const Light& sun = scene.lights[0];
+  CHECK(sun.type == Light::Type::Directional);
+  CHECK(near(sun.direction, glm::normalize(glm::vec3(-0.4f, -1.0f, -0.3f))));
+  CHECK(near(cameraPosition(scene.cameras[0]), {0, 2.2f, 5.5f}));
+  CHECK(near(cameraForward(scene.cameras[0]), glm::normalize(glm::vec3(0, 0.4f - 2.2f, -5.5f))));
+}
+
+TEST_CASE("an unknown built-in scene names the known ones") {
+  try {
+    loadScene("builtin:teapot");
+    FAIL("expected a SceneError");
+  } catch (const SceneError& error) {
+    CHECK(std::string(error.what()) == "builtin:teapot: no such built-in scene; known: cornell, spheres");
+  }
+}
+
+// ---- Shared asset -------------------------------------------------------------
+
+TEST_CASE("MetalRoughSpheresNoTextures loads with shared geometry") {
+  const fs::path folder = sharedFolder() / "anchors-assets" / "MetalRoughSpheresNoTextures" / "glTF";
+  const fs::path path = folder / "MetalRoughSpheresNoTextures.gltf";
+  if (!fs::exists(path)) {
+    MESSAGE("skipped: " << path << " is absent (set HEADLIGHT_SHARED_DIR)");
+    return;
+  }
+  const Scene scene = loadGltf(path);
+  // 102 nodes carry meshes; four label meshes have several primitives, so
+  // there are 123 (node, primitive) instances.
+  CHECK(scene.instances.size() == 123);
+  CHECK(scene.primitives.size() == 123);
+  CHECK(scene.triangleCount() >= 1000000);
+  CHECK(scene.triangleCount() <= 1100000);
+  CHECK(scene.materials.size() == 98);
+  CHECK(scene.cameras.empty());
+  CHECK(scene.lights.empty());
+  CHECK(isHex16(scene.sourceHash));
+  CHECK(scene.source == path.string());
+  // About 7.4 x 7.5 x 3.7 millimetres: the file is in metres.
+  const glm::vec3 size = scene.worldBounds().size();
+  CHECK(size.x == doctest::Approx(0.0074).epsilon(0.01));
+  CHECK(size.y == doctest::Approx(0.0075).epsilon(0.01));
+  CHECK(size.z == doctest::Approx(0.0037).epsilon(0.01));
+  checkWellFormed(scene);
+
+  const fs::path anchor = folder / "anchor_metalrough.gltf";
+  if (fs::exists(anchor)) {
+    const Scene anchored = loadGltf(anchor);
+    REQUIRE(anchored.cameras.size() == 1);
+    REQUIRE(anchored.lights.size() == 1);
+    CHECK(anchored.lights[0].type == Light::Type::Directional);
+    CHECK(glm::length(anchored.lights[0].direction) == doctest::Approx(1.0f));
+    CHECK(anchored.cameras[0].zfar > anchored.cameras[0].znear);
+  }
+}
+
+// ---- glTF files written by the tests ------------------------------------------
+
+TEST_CASE("a minimal glTF triangle loads, with generated normals") {
+  TempFolder folder;
+  const Scene scene = loadGltf(writeTriangleGltf(folder));
+  REQUIRE(scene.primitives.size() == 1);
+  REQUIRE(scene.instances.size() == 1);
+  CHECK(scene.triangleCount() == 1);
+  CHECK(scene.primitives[0].material == -1);
+  CHECK(scene.primitives[0].texcoords.empty());
+  CHECK(scene.primitives[0].tangents.empty());
+  CHECK(near(scene.primitives[0].normals[0], {0, 0, 1}));
+  CHECK(isHex16(scene.sourceHash));
+  checkWellFormed(scene);
+}
+
+TEST_CASE("glTF: buffers as data URIs, non-indexed primitives") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.bufferUri = "data:application/octet-stream;base64," + base64(triangleBuffer());
+  parts.primitive = R"({"attributes":{"POSITION":0}})";
+  const Scene scene = loadGltf(folder.write("inline.gltf", gltfJson(parts)));
+  REQUIRE(scene.primitives.size() == 1);
+  CHECK(scene.primitives[0].indices == std::vector<std::uint32_t>{0, 1, 2});
+}
+
+TEST_CASE("glTF: a sparse accessor without a bufferView is zeros plus its substitutions") {
+  TempFolder folder;
+  std::string json = gltfJson({});
+  const std::string dense = R"({"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"})";
+  // Positions 0..2 are all substituted: the indices view doubles as the
+  // sparse indices (0, 1, 2) and the positions view as the values.
+  const std::string sparse = R"({"componentType":5126,"count":3,"type":"VEC3","sparse":{"count":3,)"
+                             R"("indices":{"bufferView":1,"componentType":5123},"values":{"bufferView":0}}})";
+  json.replace(json.find(dense), dense.size(), sparse);
+  folder.write("triangle.bin", triangleBuffer());
+  const Scene scene = loadGltf(folder.write("sparse.gltf", json));
+  REQUIRE(scene.primitives.size() == 1);
+  CHECK(near(scene.primitives[0].positions[1], {1, 0, 0}));
+  CHECK(near(scene.primitives[0].positions[2], {0, 1, 0}));
+
+  folder.write("triangle.bin", triangleBuffer({0, 1, 7}));
+  CHECK(loadError(folder.path() / "sparse.gltf").find("accessor 0 sparse index 2 is 7, expected < count 3") !=
+        std::string::npos);
+}
+
+TEST_CASE("glTF: nodes share a mesh, transforms accumulate, camera and light are placed") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.nodes = R"([{"translation":[1,0,0],"children":[1,2,3]},
+                    {"mesh":0,"scale":[2,2,2]},
+                    {"mesh":0,"matrix":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,3,0,1]},
+                    {"camera":0,"translation":[0,0,5],"scale":[3,3,3],
+                     "extensions":{"KHR_lights_punctual":{"light":0}}}])";
+  parts.extra = R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1}}],
+                   "extensionsUsed":["KHR_lights_punctual"],
+                   "extensions":{"KHR_lights_punctual":{"lights":[
+                     {"type":"spot","color":[1,0.5,0.25],"intensity":40,"spot":{"outerConeAngle":0.5}}]}})";
+  const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
+  CHECK(scene.primitives.size() == 1);
+  REQUIRE(scene.instances.size() == 2);
+  const Bounds bounds = scene.worldBounds();
+  CHECK(near(bounds.min, {1, 0, 0}));
+  CHECK(near(bounds.max, {3, 4, 0}));
+  REQUIRE(scene.cameras.size() == 1);
+  CHECK(near(cameraPosition(scene.cameras[0]), {1, 0, 5}));
+  CHECK(near(glm::vec3(scene.cameras[0].worldFromCamera[0]), {1, 0, 0}));  // scale removed
+  CHECK(scene.cameras[0].zfar == 0.0f);
+  REQUIRE(scene.lights.size() == 1);
+  CHECK(scene.lights[0].type == Light::Type::Spot);
+  CHECK(near(scene.lights[0].position, {1, 0, 5}));
+  CHECK(near(scene.lights[0].direction, {0, 0, -1}));
+  CHECK(near(scene.lights[0].color, {1, 0.5f, 0.25f}));
+  CHECK(scene.lights[0].outerConeAngle == doctest::Approx(0.5f));
+}
+
+TEST_CASE("glTF: an embedded PNG is decoded to RGBA, top row first") {
+  // 1x2 RGB PNG: red on top, blue below.
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAEAAAACCAIAAAAW4yFwAAAADUlEQVR4nGP4zwAC/wEIAAH/2ZC7NQAAAABJRU5ErkJggg==";
+  TempFolder folder;
+  GltfParts parts;
+  parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+  parts.extra = R"(,"materials":[{"name":"painted","pbrMetallicRoughness":{"baseColorTexture":{"index":0}},
+                     "emissiveFactor":[1,1,1],"extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":5}}}],
+                   "textures":[{"source":0,"sampler":0}],
+                   "samplers":[{"magFilter":9728,"wrapS":33071}],
+                   "images":[{"uri":"data:image/png;base64,)" +
+                png + R"("}])";
+  const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
+  REQUIRE(scene.images.size() == 1);
+  const ImageData& image = scene.images[0];
+  CHECK(image.width == 1);
+  CHECK(image.height == 2);
+  CHECK(image.rgba == std::vector<std::uint8_t>{255, 0, 0, 255, 0, 0, 255, 255});
+  REQUIRE(scene.materials.size() == 1);
+  const Material& material = scene.materials[0];
+  CHECK(material.name == "painted");
+  CHECK(material.baseColorTexture.image == 0);
+  CHECK(material.baseColorTexture.magFilter == 9728);
+  CHECK(material.baseColorTexture.wrapS == 33071);
+  CHECK(material.baseColorTexture.wrapT == 10497);
+  CHECK(near(material.emissiveFactor, glm::vec3(5.0f)));
+  CHECK(scene.hasEmissive());
+  // A textured material gets texcoords even where the file has none.
+  CHECK(scene.primitives[0].texcoords.size() == 3);
+}
+
+TEST_CASE("glTF: a .glb with its BIN chunk loads") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.bufferUri = "";
+  const Scene scene = loadGltf(folder.write("triangle.glb", makeGlb(gltfJson(parts), triangleBuffer())));
+  CHECK(scene.triangleCount() == 1);
+
+  parts.positionCount = "4";
+  const fs::path broken = folder.write("broken.glb", makeGlb(gltfJson(parts), triangleBuffer()));
+  CHECK(loadError(broken) == broken.string() + ": accessor 0 reads bytes 0..48 of bufferView 0, which has 36");
+}
+
+TEST_CASE("glTF errors name the file, the element and the problem") {
+  TempFolder folder;
+
+  SUBCASE("missing file") {
+    const fs::path missing = folder.path() / "absent.gltf";
+    CHECK(loadError(missing) == missing.string() + ": no such file");
+  }
+  SUBCASE("unknown extension") {
+    const std::string message = loadError(folder.write("scene.obj", "o triangle"));
+    CHECK(message.find("scene.obj: ") != std::string::npos);
+    CHECK(message.find(".gltf or .glb") != std::string::npos);
+  }
+  SUBCASE("invalid JSON") {
+    const fs::path path = folder.write("broken.gltf", R"({"asset": {"version": "2.0"}, "nodes": [)");
+    const std::string message = loadError(path);
+    CHECK(message.find(path.string() + ": ") == 0);
+    CHECK(message.find("tinygltf") != std::string::npos);
+  }
+  SUBCASE("accessor past its bufferView") {
+    GltfParts parts;
+    parts.positionCount = "4";
+    const fs::path path = writeTriangleGltf(folder, parts);
+    CHECK(loadError(path) == path.string() + ": accessor 0 reads bytes 0..48 of bufferView 0, which has 36");
+  }
+  SUBCASE("bufferView past its buffer") {
+    GltfParts parts;
+    parts.indexView = R"("byteOffset":40,"byteLength":6)";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("scene.gltf: bufferView 1 spans bytes 40..46 of buffer 0, which has 44") != std::string::npos);
+  }
+  SUBCASE("index beyond the vertices") {
+    const fs::path path = writeTriangleGltf(folder, {}, triangleBuffer({0, 1, 3}));
+    const std::string message = loadError(path);
+    CHECK(message.find(path.string() + ": mesh 0 primitive 0: index 2 of accessor 1 is 3") == 0);
+  }
+  SUBCASE("LINES primitive") {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"mode":1})";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("scene.gltf: mesh 0 primitive 0 has mode LINES (1)") != std::string::npos);
+  }
+  SUBCASE("no POSITION") {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"NORMAL":0},"indices":1})";
+    CHECK(loadError(writeTriangleGltf(folder, parts)).find("mesh 0 primitive 0 has no POSITION") != std::string::npos);
+  }
+  SUBCASE("wrong component type") {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"POSITION":0},"indices":0})";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("mesh 0 primitive 0 indices accessor 0 is FLOAT VEC3, expected UNSIGNED_BYTE SCALAR") !=
+          std::string::npos);
+  }
+  SUBCASE("attribute counts differ") {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"POSITION":0,"NORMAL":2},"indices":1})";
+    parts.moreAccessors = R"(,{"bufferView":0,"componentType":5126,"count":2,"type":"VEC3"})";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("NORMAL accessor 2 has 2 elements, but POSITION accessor 0 has 3") != std::string::npos);
+  }
+  SUBCASE("non-finite position") {
+    const fs::path path = writeTriangleGltf(folder, {}, triangleBuffer({0, 1, 2}, NAN));
+    CHECK(loadError(path).find("accessor 0 (POSITION of mesh 0 primitive 0) has a non-finite value at element 0") !=
+          std::string::npos);
+  }
+  SUBCASE("node cycle") {
+    GltfParts parts;
+    parts.nodes = R"([{"mesh":0,"children":[1]},{"children":[0]}])";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("scene.gltf: node 1 has child node 0") != std::string::npos);
+    CHECK(message.find("cycle") != std::string::npos);
+  }
+  SUBCASE("external image missing") {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+    parts.extra = R"(,"materials":[{"normalTexture":{"index":0,"texCoord":1}}],"textures":[{"source":0}],
+                     "images":[{"uri":"absent.png"}])";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("image 0 (uri 'absent.png') could not be loaded") != std::string::npos);
+  }
+  SUBCASE("unsupported required extension") {
+    GltfParts parts;
+    parts.extra =
+        R"(,"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"])";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("requires extension KHR_draco_mesh_compression") != std::string::npos);
+  }
+}
+
+TEST_CASE("glTF: a texCoord other than 0 is refused") {
+  TempFolder folder;
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAEAAAACCAIAAAAW4yFwAAAADUlEQVR4nGP4zwAC/wEIAAH/2ZC7NQAAAABJRU5ErkJggg==";
+  GltfParts parts;
+  parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+  parts.extra = R"(,"materials":[{"normalTexture":{"index":0,"texCoord":1}}],"textures":[{"source":0}],
+                   "images":[{"uri":"data:image/png;base64,)" +
+                png + R"("}])";
+  const std::string message = loadError(writeTriangleGltf(folder, parts));
+  CHECK(message.find("scene.gltf: material 0 normalTexture uses TEXCOORD_1") != std::string::npos);
+}
+
+TEST_CASE("glTF: URIs outside the asset folder are refused unless allowed") {
+  TempFolder folder;
+  folder.write("outside.bin", triangleBuffer());
+  GltfParts parts;
+  parts.bufferUri = "../outside.bin";
+  const fs::path path = folder.write("asset/scene.gltf", gltfJson(parts));
+
+  const std::string message = loadError(path);
+  CHECK(message.find(path.string() + ": ") == 0);
+  CHECK(message.find("URI '../outside.bin'") != std::string::npos);
+  CHECK(message.find("outside the asset folder") != std::string::npos);
+
+  SceneLoadOptions allowed;
+  allowed.allowExternalPaths = true;
+  CHECK(loadGltf(path, allowed).triangleCount() == 1);
+}

@@ -1,0 +1,106 @@
+// headlight: glTF (or a built-in scene) in, every G-buffer target, the SSGI
+// output and the lit image out as EXR. The whole data flow of `render`:
+//   parse flags -> Context -> loadScene -> Renderer::setScene ->
+//   Renderer::render -> writeFrame -> one summary line per file.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli_options.hpp"
+#include "headlight/context.hpp"
+#include "headlight/error.hpp"
+#include "headlight/output.hpp"
+#include "headlight/renderer.hpp"
+#include "headlight/scene_loader.hpp"
+#include "headlight/version.hpp"
+
+namespace {
+
+using namespace headlight;
+
+constexpr int kExitOk = 0;
+constexpr int kExitRuntimeError = 1;
+constexpr int kExitUsage = 2;
+
+const char* kUsage =
+    "usage: headlight <command> [options]\n\n"
+    "commands:\n"
+    "  render [SCENE]   render a glTF file or builtin:<name> to EXRs (see headlight render --help)\n\n"
+    "options:\n"
+    "  --help           this help\n"
+    "  --version        print the version\n";
+
+void printVerboseHeader(const Context& context, const Scene& scene) {
+  for (const auto& attempt : context.attempts()) std::cerr << "context: " << attempt << "\n";
+  std::cerr << "backend: " << backendName(context.backend()) << " (" << context.description() << ")\n"
+            << "GL_RENDERER: " << context.renderer() << "\nGL_VERSION: " << context.version() << "\n"
+            << "scene: " << scene.source << ": " << scene.instances.size() << " instances, "
+            << scene.triangleCount() << " triangles, " << scene.lights.size() << " lights, "
+            << scene.cameras.size() << " cameras\n";
+}
+
+void printTimings(const Frame& frame) {
+  double total = 0;
+  for (const PassTime& time : frame.timings) {
+    std::fprintf(stderr, "pass %-10s %9.2f ms\n", time.pass.c_str(), time.milliseconds);
+    total += time.milliseconds;
+  }
+  std::fprintf(stderr, "pass %-10s %9.2f ms\n", "total", total);
+}
+
+int runRender(const std::vector<std::string>& args) {
+  const cli::RenderCommand command = cli::parseRenderArgs(args);
+  if (command.help) {
+    std::cout << cli::renderHelp();
+    return kExitOk;
+  }
+  const bool verbose = command.verbosity == cli::Verbosity::Verbose;
+  Scene scene = loadScene(command.scene, {command.allowExternalPaths});
+  Context context(command.context);
+  if (verbose) printVerboseHeader(context, scene);
+  Renderer renderer(context);
+  renderer.setScene(std::move(scene));
+  const Frame frame = renderer.render(command.settings);
+  if (verbose) printTimings(frame);
+  for (const WrittenFile& file : writeFrame(frame, command.outDir))
+    if (command.verbosity != cli::Verbosity::Quiet) std::cout << file.summary << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::cout << kUsage;
+    return args.empty() ? kExitUsage : kExitOk;
+  }
+  if (args[0] == "--version") {
+    std::cout << "headlight " << kVersion << "\n";
+    return kExitOk;
+  }
+  try {
+    if (args[0] == "render") return runRender({args.begin() + 1, args.end()});
+    std::cerr << "headlight: unknown command '" << args[0] << "'\n" << kUsage;
+    return kExitUsage;
+  } catch (const SettingsError& error) {
+    std::cerr << "headlight: " << error.what() << "\n";
+    return kExitUsage;
+  } catch (const SceneError& error) {
+    std::cerr << "headlight: SceneError: " << error.what() << "\n";
+    return kExitRuntimeError;
+  } catch (const ContextError& error) {
+    std::cerr << "headlight: ContextError: " << error.what() << "\n";
+    return kExitRuntimeError;
+  } catch (const IoError& error) {
+    std::cerr << "headlight: IoError: " << error.what() << "\n";
+    return kExitRuntimeError;
+  } catch (const GlError& error) {
+    std::cerr << "headlight: GlError: " << error.what() << "\n";
+    return kExitRuntimeError;
+  } catch (const std::exception& error) {
+    std::cerr << "headlight: error: " << error.what() << "\n";
+    return kExitRuntimeError;
+  }
+}
