@@ -45,7 +45,7 @@ vec3 viewDirection(vec3 worldPosition) {
   return normalize(frame.cameraPosition.xyz - worldPosition);
 }
 
-vec3 directLight(Surface surface, vec3 worldPosition, vec3 geometricNormal) {
+vec3 directLight(Surface surface, vec3 worldPosition) {
   vec3 sum = vec3(0.0);
   const int lightCount = int(lighting.ambient.z);
   for (int i = 0; i < lightCount; ++i) {
@@ -53,7 +53,7 @@ vec3 directLight(Surface surface, vec3 worldPosition, vec3 geometricNormal) {
     vec3 toLight;
     const float attenuation = lightAttenuation(light, worldPosition, toLight);
     if (attenuation <= 0.0) continue;
-    const float visibility = shadowVisibility(light, worldPosition, geometricNormal, toLight);
+    const float visibility = shadowVisibility(light, worldPosition, surface.normal, toLight);
     sum += cookTorrance(surface, toLight) * light.radiance.rgb * (attenuation * visibility);
   }
   return sum;
@@ -92,7 +92,7 @@ void main() {
 #else
   const vec4 ssgi = vec4(1.0, 0.0, 0.0, 0.0);
 #endif
-  vec3 radiance = directLight(surface, worldPosition.xyz, normal) + ambientLight(surface, material.z, ssgi);
+  vec3 radiance = directLight(surface, worldPosition.xyz) + ambientLight(surface, material.z, ssgi);
 #ifdef HAS_EMISSIVE
   radiance += texelFetch(gbufferEmissive, pixel, 0).rgb;
 #endif

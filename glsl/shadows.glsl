@@ -1,4 +1,4 @@
-// PCF shadow lookups. The sample point is pushed along the geometric normal
+// PCF shadow lookups. The sample point is pushed along the shading normal
 // by about a texel's footprint there (normal offset), which removes acne
 // without a depth bias that would detach shadows from their casters.
 

@@ -1,6 +1,6 @@
 // Shared by C++ and GLSL: texture units, buffer bindings and the std140
 // uniform blocks. Each layout is written once here; C++ checks its offsets
-// with static_asserts (lib/gl/shared_layout.hpp) and GLSL declares the same
+// with static_asserts (lib/gl/shared_layout_checks.cpp) and GLSL declares the same
 // block with the same binding. Keep every member a vec4, ivec4 or mat4 so
 // std140 adds no hidden padding.
 #ifndef HEADLIGHT_SHARED_LAYOUT_H
@@ -88,6 +88,11 @@ HL_BLOCK_BEGIN(SsgiBlock, 3)
   vec4 params;              // radius (world), bias (world), intensity, indirect strength
   ivec4 counts;             // sample count, 0, 0, 0
 HL_BLOCK_END(ssgi)
+
+// SSGI blur pass.
+HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
+  vec4 params;              // SSGI radius (world units), 0, 0, 0
+HL_BLOCK_END(blur)
 
 // Lighting pass.
 HL_BLOCK_BEGIN(LightingBlock, 4)

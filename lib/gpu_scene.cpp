@@ -146,8 +146,7 @@ GpuScene uploadScene(const Scene& scene) {
   gpu.materials.push_back(uploadMaterial(Material{}, textures));  // glTF's default material
   const int defaultMaterial = int(gpu.materials.size()) - 1;
   for (const Instance& instance : scene.instances) {
-    const int material = scene.primitives[std::size_t(instance.primitive)].material;
-    gpu.instances.push_back({instance.primitive, material >= 0 ? material : defaultMaterial});
+    gpu.instances.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial});
   }
   gpu.instanceBlocks = uploadInstances(scene, gpu.instanceStride);
   gpu.bounds = scene.worldBounds();

@@ -16,6 +16,7 @@
 #include "passes/lighting.hpp"
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
+#include "passes/ssgi_blur.hpp"
 #include "readback.hpp"
 #include "shared_layout.h"
 
@@ -81,6 +82,7 @@ struct Renderer::Impl {
   Context& context;
   EnvironmentPass environment;
   SsgiPass ssgi;
+  SsgiBlurPass ssgiBlur;
   ShadowPass shadow;
   LightingPass lighting;
   gl::Buffer frameBlock{sizeof(gpu::FrameBlock), nullptr};
@@ -96,14 +98,24 @@ struct Renderer::Impl {
 
   // Per image size.
   GBuffer gbuffer;
-  gl::Texture ssgiTarget;
+  gl::Texture ssgiRaw;     // the SSGI pass's output, before the blur
+  gl::Texture ssgiTarget;  // what lighting reads and ssgi.exr holds
   gl::Texture litTarget;
 
-  void ensureTargets(int width, int height) {
-    if (gbuffer.width == width && gbuffer.height == height) return;
-    gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
-    ssgiTarget = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-    litTarget = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+  // Targets follow the image size; the SSGI ones exist only while SSGI (and
+  // its blur) is on.
+  void ensureTargets(int width, int height, const SsgiSettings& ssgi) {
+    auto ensure = [&](gl::Texture& texture, bool wanted) {
+      if (!wanted)
+        texture = gl::Texture();
+      else if (texture.width() != width || texture.height() != height)
+        texture = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+    };
+    if (gbuffer.width != width || gbuffer.height != height)
+      gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
+    ensure(ssgiRaw, ssgi.enabled && ssgi.blur);
+    ensure(ssgiTarget, ssgi.enabled);
+    ensure(litTarget, true);
   }
 
   bool hasShadowCasters() const {
@@ -175,6 +187,12 @@ void Renderer::setScene(Scene scene) {
   if (!impl.lights.empty()) impl.lightBuffer.update(impl.lights.data(), impl.lights.size() * sizeof(gpu::GpuLight));
   impl.shadowMaps = ShadowMaps{};
   impl.shadowMapSize = 0;
+  const auto casts = [&](bool point) {
+    return std::any_of(impl.scene.lights.begin(), impl.scene.lights.end(), [&](const Light& light) {
+      return light.castsShadows && (light.type == Light::Type::Point) == point;
+    });
+  };
+  impl.lighting.prepare({true, impl.gpuScene->hasEmissive, casts(false), casts(true)});  // the default settings' variant
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
@@ -201,7 +219,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   frame.view = makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width,
                               used.height);
 
-  impl.ensureTargets(used.width, used.height);
+  impl.ensureTargets(used.width, used.height, used.ssgi);
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
@@ -210,7 +228,12 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   if (impl.needsShadowPass(used.lighting)) timer.run("shadows", [&] { impl.renderShadows(used.lighting); });
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
-  if (used.ssgi.enabled) timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, impl.ssgiTarget, used.ssgi); });
+  if (used.ssgi.enabled) {
+    const gl::Texture& ssgiOutput = used.ssgi.blur ? impl.ssgiRaw : impl.ssgiTarget;
+    timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, ssgiOutput, used.ssgi); });
+    if (used.ssgi.blur)
+      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, used.ssgi.radius); });
+  }
   timer.run("lighting", [&] {
     const LightingInputs inputs{impl.gbuffer,
                                 used.ssgi.enabled ? &impl.ssgiTarget : nullptr,

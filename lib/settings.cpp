@@ -47,8 +47,8 @@ std::string formatAuto(float value) { return value == 0.0f ? "auto" : formatFloa
 
 std::string_view tonemapName(Tonemap tonemap) { return tonemap == Tonemap::Aces ? "aces" : "reinhard"; }
 
-const std::array<SettingOption, 15>& optionTable() {
-  static const std::array<SettingOption, 15> table{{
+const std::array<SettingOption, 17>& optionTable() {
+  static const std::array<SettingOption, 17> table{{
       {"width", "N", "image width in pixels (1..16384)",
        [](RenderSettings& s, std::string_view v) { s.width = parseInt("width", v, 1, 16384); },
        [](const RenderSettings& s) { return std::to_string(s.width); }},
@@ -79,6 +79,9 @@ const std::array<SettingOption, 15>& optionTable() {
       {"ssgi-seed", "N", "random seed of the SSGI kernel and noise",
        [](RenderSettings& s, std::string_view v) { s.ssgi.seed = unsigned(parseInt("ssgi-seed", v, 0, 1 << 30)); },
        [](const RenderSettings& s) { return std::to_string(s.ssgi.seed); }},
+      {"no-ssgi-blur", "", "keep the SSGI pass's 4x4 noise pattern (no denoise)",
+       [](RenderSettings& s, std::string_view) { s.ssgi.blur = false; },
+       [](const RenderSettings& s) { return std::string(s.ssgi.blur ? "false" : "true"); }},
       {"no-shadows", "", "skip shadow maps",
        [](RenderSettings& s, std::string_view) { s.lighting.shadows = false; },
        [](const RenderSettings& s) { return std::string(s.lighting.shadows ? "false" : "true"); }},
@@ -89,6 +92,9 @@ const std::array<SettingOption, 15>& optionTable() {
        [](const RenderSettings& s) {
          return s.lighting.shadowMapSize == 0 ? std::string("auto") : std::to_string(s.lighting.shadowMapSize);
        }},
+      {"shadow-pcf-radius", "FLOAT", "shadow filter radius in shadow-map texels (0..8)",
+       [](RenderSettings& s, std::string_view v) { s.lighting.pcfRadius = parseFloat("shadow-pcf-radius", v, 0, 8); },
+       [](const RenderSettings& s) { return formatFloat(s.lighting.pcfRadius); }},
       {"sky-intensity", "auto|FLOAT", "sky (ambient) intensity (auto: the scene's; 0..1000)",
        [](RenderSettings& s, std::string_view v) {
          s.lighting.skyIntensity = v == "auto" ? -1.0f : parseFloat("sky-intensity", v, 0, 1000);
@@ -146,10 +152,6 @@ void RenderSettings::validate() const {
   RenderSettings scratch = *this;
   for (const SettingOption& option : settingOptions())
     if (!option.valueName.empty()) option.parse(scratch, option.format(*this));
-  if (ssgi.sampleCount < 1 || ssgi.sampleCount > 64)
-    throw SettingsError("ssgi.sampleCount: must be in 1..64, got " + std::to_string(ssgi.sampleCount));
-  if (lighting.pcfRadius < 0 || lighting.pcfRadius > 8)
-    throw SettingsError("lighting.pcfRadius: must be in 0..8, got " + formatFloat(lighting.pcfRadius));
 }
 
 }  // namespace headlight

@@ -4,7 +4,7 @@
 
 namespace headlight::test {
 
-Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize, int material) {
+Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize) {
   // Two axes spanning the plane, ordered so the winding faces `normal`.
   const glm::vec3 helper = std::abs(normal.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   const glm::vec3 u = glm::normalize(glm::cross(helper, normal)) * halfSize;
@@ -13,7 +13,6 @@ Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize, int material)
   primitive.positions = {center - u - v, center + u - v, center + u + v, center - u + v};
   primitive.normals.assign(4, normal);
   primitive.indices = {0, 1, 2, 0, 2, 3};
-  primitive.material = material;
   for (const auto& p : primitive.positions) primitive.bounds.extend(p);
   return primitive;
 }

@@ -34,7 +34,7 @@ inline Material plainMaterial(glm::vec3 color, float metallic = 0.0f, float roug
 
 // An axis-aligned quad through `center`, facing `normal` (one of the six
 // axis directions), `halfSize` wide each way.
-Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize, int material);
+Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize);
 
 // A camera at `eye` looking at `target`, perspective with yfov radians or
 // orthographic with half height `orthoHalfHeight` if > 0.

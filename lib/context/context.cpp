@@ -29,8 +29,9 @@ namespace {
 
 // glad keeps one table of GL entry points per process. On Mesa the entry
 // points EGL and OSMesa hand out are the same dispatch stubs (they share
-// libglapi), so reloading is harmless; the table is reloaded whenever a
-// context of another platform becomes current, under a lock.
+// libglapi), so reloading is harmless; the table is reloaded, under a lock,
+// whenever a different Context is made or made current than the one that
+// loaded it last.
 std::mutex gladMutex;
 const void* gladLoadedBy = nullptr;
 
@@ -113,6 +114,9 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   if (major * 10 + minor < 45)
     throw ContextError(impl_->platform->description() + ": got OpenGL " + glString(GL_VERSION) + ", need 4.5 core");
   impl_->installDebugCallback();
+  // Filtered lookups near a cube face's edge read the neighbouring face too;
+  // without this, point-light shadows show the cube's seams as lines.
+  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
 Context::~Context() = default;

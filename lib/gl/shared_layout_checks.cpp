@@ -17,6 +17,7 @@ static_assert(sizeof(SsgiBlock) == kMaxKernelSamples * 16 + 32);
 static_assert(offsetof(SsgiBlock, params) == kMaxKernelSamples * 16);
 static_assert(offsetof(SsgiBlock, counts) == kMaxKernelSamples * 16 + 16);
 static_assert(sizeof(LightingBlock) == 32);
+static_assert(sizeof(SsgiBlurBlock) == 16);
 static_assert(sizeof(ShadowBlock) == 80);
 static_assert(sizeof(SkyBlock) == 48);
 // std430 array stride of GpuLight: four vec4 and a mat4, no padding.

@@ -36,6 +36,10 @@ EnvironmentPass::EnvironmentPass()
 void EnvironmentPass::updateSky(const Sky& sky) {
   // Intensity is applied in the lighting pass, so a changed intensity
   // needs no new table.
+  if (tabulatedSky_ && tabulatedSky_->zenith == sky.zenith && tabulatedSky_->horizon == sky.horizon &&
+      tabulatedSky_->ground == sky.ground)
+    return;
+  tabulatedSky_ = sky;
   gpu::SkyBlock block{glm::vec4(sky.zenith, 0.0f), glm::vec4(sky.horizon, 0.0f), glm::vec4(sky.ground, 0.0f)};
   skyBlock_.update(block);
   skyBlock_.bindUniform(gpu::SkyBlock::kBinding);

@@ -8,6 +8,8 @@
 //  - the sky's irradiance: 64 x 1 RGBA16F, normal.y -> E / pi (the radiance a
 //    white Lambertian surface reflects).
 // Both sky tables are recomputed only when the sky changes.
+#include <optional>
+
 #include "gl/objects.hpp"
 #include "headlight/scene.hpp"
 
@@ -22,7 +24,7 @@ struct EnvironmentTables {
 class EnvironmentPass {
  public:
   EnvironmentPass();  // builds the programs and the BRDF table
-  void updateSky(const Sky& sky);
+  void updateSky(const Sky& sky);  // recomputes the sky tables if the sky's colours changed
   const EnvironmentTables& tables() const { return tables_; }
 
  private:
@@ -33,6 +35,7 @@ class EnvironmentPass {
   gl::Buffer skyBlock_;
   gl::VertexArray emptyVertexArray_;
   EnvironmentTables tables_;
+  std::optional<Sky> tabulatedSky_;  // the colours the sky tables hold
 };
 
 }  // namespace headlight

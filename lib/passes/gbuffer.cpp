@@ -80,8 +80,9 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 }  // namespace
 
 GBufferPass::GBufferPass(const GpuScene& scene) : emissiveTarget_(scene.hasEmissive) {
-  for (const auto& primitive : scene.primitives)
-    for (const auto& material : scene.materials) programFor(usableFeatures(primitive, material));
+  for (const GpuInstance& instance : scene.instances)
+    programFor(usableFeatures(scene.primitives[std::size_t(instance.primitive)],
+                              scene.materials[std::size_t(instance.material)]));
 }
 
 const gl::Program& GBufferPass::programFor(std::uint32_t features) {

@@ -31,7 +31,7 @@ GBuffer makeGBuffer(int width, int height, bool withEmissive);
 
 class GBufferPass {
  public:
-  // Builds one shader variant per feature combination the scene uses.
+  // Builds one shader variant per feature combination the instances use.
   explicit GBufferPass(const GpuScene& scene);
   // Draws every instance; the frame block must be bound.
   void run(const GpuScene& scene, GBuffer& target);

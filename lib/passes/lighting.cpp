@@ -10,7 +10,13 @@ LightingPass::LightingPass() : block_(sizeof(gpu::LightingBlock), nullptr) {
   framebuffer_.setDrawBuffers(drawBuffers);
 }
 
-const gl::Program& LightingPass::programFor(const std::vector<std::string>& defines) {
+const gl::Program& LightingPass::programFor(const Inputs& inputs) {
+  // Only the inputs this frame has are declared in the shader.
+  std::vector<std::string> defines;
+  if (inputs.ssgi) defines.emplace_back("HAS_SSGI");
+  if (inputs.emissive) defines.emplace_back("HAS_EMISSIVE");
+  if (inputs.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
+  if (inputs.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
   auto found = programs_.find(defines);
   if (found != programs_.end()) return found->second;
   const std::string_view files[] = {"fullscreen.vert", "lighting.frag"};
@@ -18,13 +24,6 @@ const gl::Program& LightingPass::programFor(const std::vector<std::string>& defi
 }
 
 void LightingPass::run(const LightingInputs& in, const LightingSettings& settings, const gl::Texture& output) {
-  // Only the inputs this frame has are declared in the shader.
-  std::vector<std::string> defines;
-  if (in.ssgi) defines.emplace_back("HAS_SSGI");
-  if (in.gbuffer.emissive) defines.emplace_back("HAS_EMISSIVE");
-  if (in.shadows.planar) defines.emplace_back("HAS_PLANAR_SHADOWS");
-  if (in.shadows.cube) defines.emplace_back("HAS_CUBE_SHADOWS");
-
   gpu::LightingBlock block{};
   block.ambient = glm::vec4(in.skyIntensity, in.ssgi ? 1.0f : 0.0f, float(in.lightCount), settings.pcfRadius);
   block.shadow = glm::vec4(1.5f, 0.0f, float(in.shadows.size), 0.0f);
@@ -49,7 +48,7 @@ void LightingPass::run(const LightingInputs& in, const LightingSettings& setting
   framebuffer_.bind();
   glViewport(0, 0, output.width(), output.height());
   glDisable(GL_DEPTH_TEST);
-  programFor(defines).use();
+  programFor({in.ssgi != nullptr, bool(in.gbuffer.emissive), bool(in.shadows.planar), bool(in.shadows.cube)}).use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -28,11 +28,18 @@ struct LightingInputs {
 
 class LightingPass {
  public:
+  // Which optional inputs a frame has; each combination is one shader variant.
+  struct Inputs {
+    bool ssgi, emissive, planarShadows, cubeShadows;
+  };
   LightingPass();
+  // Builds the variant for `inputs` ahead of the first frame, so frames time
+  // shading, not compiling. Variants a frame needs later are built then.
+  void prepare(const Inputs& inputs) { programFor(inputs); }
   void run(const LightingInputs& inputs, const LightingSettings& settings, const gl::Texture& output);
 
  private:
-  const gl::Program& programFor(const std::vector<std::string>& defines);
+  const gl::Program& programFor(const Inputs& inputs);
   std::map<std::vector<std::string>, gl::Program> programs_;
   gl::Buffer block_;
   gl::Framebuffer framebuffer_;

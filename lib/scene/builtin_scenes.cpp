@@ -53,18 +53,16 @@ void appendQuad(Primitive& primitive, const glm::vec3& corner, const glm::vec3& 
   }
 }
 
-Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV, int material) {
+Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV) {
   Primitive quad;
-  quad.material = material;
   appendQuad(quad, corner, edgeU, edgeV);
   return quad;
 }
 
 // An axis-aligned box centred on the origin with outward faces; each face has
 // its own four vertices so that the normals stay flat.
-Primitive makeBox(const glm::vec3& size, int material) {
+Primitive makeBox(const glm::vec3& size) {
   Primitive box;
-  box.material = material;
   const glm::vec3 half = size * 0.5f;
   const glm::vec3 x{size.x, 0.0f, 0.0f}, y{0.0f, size.y, 0.0f}, z{0.0f, 0.0f, size.z};
   appendQuad(box, {-half.x, -half.y, half.z}, x, y);   // +Z
@@ -79,9 +77,8 @@ Primitive makeBox(const glm::vec3& size, int material) {
 // A UV sphere centred on the origin. The seam column is duplicated so that
 // texcoords run 0..1 without wrapping; the poles are rings of coincident
 // vertices, whose zero-area triangles cost little and keep the code simple.
-Primitive makeUvSphere(float radius, int segments, int rings, int material) {
+Primitive makeUvSphere(float radius, int segments, int rings) {
   Primitive sphere;
-  sphere.material = material;
   for (int ring = 0; ring <= rings; ++ring) {
     const float v = static_cast<float>(ring) / static_cast<float>(rings);
     const float polar = v * kPi;  // 0 at +Y
@@ -121,9 +118,18 @@ int addMaterial(Scene& scene, Material material) {
   return static_cast<int>(scene.materials.size()) - 1;
 }
 
-void addInstance(Scene& scene, Primitive primitive, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
+int addGeometry(Scene& scene, Primitive primitive) {
   scene.primitives.push_back(std::move(primitive));
-  scene.instances.push_back({static_cast<int>(scene.primitives.size()) - 1, worldFromLocal});
+  return static_cast<int>(scene.primitives.size()) - 1;
+}
+
+void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
+  scene.instances.push_back({geometry, worldFromLocal, material});
+}
+
+// Geometry used once: added and placed in one step.
+void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
+  addInstance(scene, addGeometry(scene, std::move(primitive)), material, worldFromLocal);
 }
 
 Camera makeLookAtCamera(const std::string& name, const glm::vec3& eye, const glm::vec3& target, float yfov) {
@@ -161,7 +167,7 @@ Scene makeCornell() {
       {{1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green},   // right wall, faces -X
   }};
   for (const Wall& wall : walls) {
-    addInstance(scene, makeQuad(wall.corner, wall.edgeU, wall.edgeV, wall.material));
+    addInstance(scene, makeQuad(wall.corner, wall.edgeU, wall.edgeV), wall.material);
   }
 
   struct Block {
@@ -173,22 +179,26 @@ Scene makeCornell() {
       {{0.6f, 0.6f, 0.6f}, {0.33f, 0.3f, 0.3f}, -17.0f},   // short
   }};
   for (const Block& block : blocks) {
-    addInstance(scene, makeBox(block.size, white), rotatedAboutYThenMoved(block.yawDegrees, block.center));
+    addInstance(scene, makeBox(block.size), white, rotatedAboutYThenMoved(block.yawDegrees, block.center));
   }
 
-  // 1.995: just below the ceiling, so the lamp never z-fights with it.
-  addInstance(scene, makeQuad({-0.25f, 1.995f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, lamp));
+  // 1.999: a millimetre below the ceiling, enough for 32-bit depth to keep
+  // them apart, and too little for the lamp to shadow the ceiling round it.
+  addInstance(scene, makeQuad({-0.25f, 1.999f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}), lamp);
 
   Light light;
   light.name = "cornell lamp light";
   light.type = Light::Type::Point;
   light.color = {1.0f, 0.85f, 0.7f};
-  light.intensity = 6.0f;  // candela
+  light.intensity = 10.0f;  // candela: about 2.8 lux on the floor below
   light.position = {0.0f, 1.9f, 0.0f};
   light.castsShadows = true;
   scene.lights.push_back(light);
 
   scene.cameras.push_back(makeLookAtCamera("cornell camera", {0.0f, 1.0f, 3.6f}, {0.0f, 1.0f, 0.0f}, 0.7f));
+  // The box is closed but for its front: the sky only fills the shadows a
+  // little, and the lamp is the key light.
+  scene.sky.intensity = 0.15f;
   return scene;
 }
 
@@ -197,7 +207,7 @@ Scene makeCornell() {
 Scene makeSpheres() {
   Scene scene;
   const int floor = addMaterial(scene, makeMaterial("spheres floor", glm::vec3(0.8f), 0.9f));
-  addInstance(scene, makeQuad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}, floor));
+  addInstance(scene, makeQuad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}), floor);
 
   struct Ball {
     const char* name;
@@ -213,11 +223,10 @@ Scene makeSpheres() {
   }};
   constexpr float kRadius = 0.5f;
   // 64 x 32: smooth silhouettes at full-HD framing, ~4k triangles each.
-  const Primitive sphere = makeUvSphere(kRadius, 64, 32, -1);
+  const int sphere = addGeometry(scene, makeUvSphere(kRadius, 64, 32));  // one sphere, five instances
   for (const Ball& ball : balls) {
-    Primitive coloured = sphere;
-    coloured.material = addMaterial(scene, makeMaterial(ball.name, ball.baseColor, ball.roughness, ball.metallic));
-    addInstance(scene, std::move(coloured), glm::translate(glm::mat4(1.0f), glm::vec3(ball.x, kRadius, 0.0f)));
+    const int material = addMaterial(scene, makeMaterial(ball.name, ball.baseColor, ball.roughness, ball.metallic));
+    addInstance(scene, sphere, material, glm::translate(glm::mat4(1.0f), glm::vec3(ball.x, kRadius, 0.0f)));
   }
 
   Light sun;
@@ -228,7 +237,7 @@ Scene makeSpheres() {
   sun.castsShadows = true;
   scene.lights.push_back(sun);
 
-  scene.cameras.push_back(makeLookAtCamera("spheres camera", {0.0f, 2.2f, 5.5f}, {0.0f, 0.4f, 0.0f}, 0.6f));
+  scene.cameras.push_back(makeLookAtCamera("spheres camera", {0.0f, 2.6f, 7.5f}, {0.0f, 0.4f, 0.0f}, 0.6f));
   return scene;
 }
 

@@ -664,7 +664,7 @@ class GltfReader {
       }
     }
     if (!allUsable) {
-      Primitive generated{primitive.positions, {}, {}, {}, primitive.indices, -1, {}};
+      Primitive generated{primitive.positions, {}, {}, {}, primitive.indices, {}};
       generateNormals(generated);
       for (std::size_t vertex = 0; vertex < primitive.normals.size(); ++vertex) {
         const float length = glm::length(primitive.normals[vertex]);
@@ -716,7 +716,14 @@ class GltfReader {
            m.occlusionTexture.present() || m.emissiveTexture.present();
   }
 
-  int addPrimitive(int meshIndex, int primitiveIndex) {
+  // The geometry of a glTF primitive (decoded once per distinct set of
+  // accessors) and the material it is drawn with.
+  struct PlacedPrimitive {
+    int geometry;
+    int material;
+  };
+
+  PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex) {
     const tinygltf::Primitive& source =
         model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
     const std::string primitiveName =
@@ -732,24 +739,22 @@ class GltfReader {
                           attributeAccessor(source, "TEXCOORD_0"), attributeAccessor(source, "TANGENT"),
                           source.indices};
     // Files often repeat one geometry under many materials (one mesh per
-    // material); decoding it once keeps load time flat in the repeat count.
-    const auto cached = geometryCache_.find(key);
-    Primitive primitive = cached != geometryCache_.end() ? scene_.primitives[static_cast<std::size_t>(cached->second)]
-                                                         : readGeometry(source, primitiveName);
-    primitive.material = source.material;
+    // material); it is decoded and stored once, and each use is an instance.
+    auto [cached, inserted] = geometryCache_.try_emplace(key, static_cast<int>(scene_.primitives.size()));
+    if (inserted) {
+      scene_.primitives.push_back(readGeometry(source, primitiveName));
+    }
+    Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
     // A textured material samples UVs; without TEXCOORD_0 it samples (0, 0),
     // which is glTF's answer too, so the shader always has texcoords to read.
     if (primitive.texcoords.empty() && materialHasTextures(source.material)) {
       primitive.texcoords.assign(primitive.positions.size(), glm::vec2(0.0f));
     }
-    scene_.primitives.push_back(std::move(primitive));
-    const int added = static_cast<int>(scene_.primitives.size()) - 1;
-    geometryCache_.try_emplace(key, added);
-    return added;
+    return {cached->second, source.material};
   }
 
   // A mesh's primitives are added once, however many nodes use the mesh.
-  const std::vector<int>& meshPrimitives(int meshIndex) {
+  const std::vector<PlacedPrimitive>& meshPrimitives(int meshIndex) {
     auto [entry, inserted] = meshCache_.try_emplace(meshIndex);
     if (inserted) {
       const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
@@ -1141,8 +1146,8 @@ class GltfReader {
     const std::string nodeName = "node " + std::to_string(nodeIndex);
     if (node.mesh >= 0) {
       checkIndex(node.mesh, model_.meshes, nodeName, "mesh");
-      for (int primitive : meshPrimitives(node.mesh)) {
-        scene_.instances.push_back({primitive, worldFromNode});
+      for (const PlacedPrimitive& placed : meshPrimitives(node.mesh)) {
+        scene_.instances.push_back({placed.geometry, worldFromNode, placed.material});
       }
     }
     if (node.camera >= 0) {
@@ -1193,7 +1198,7 @@ class GltfReader {
   Scene& scene_;
   std::vector<tinygltf::Light> lights_;
   std::vector<int> parentOf_;
-  std::map<int, std::vector<int>> meshCache_;
+  std::map<int, std::vector<PlacedPrimitive>> meshCache_;
   std::map<GeometryKey, int> geometryCache_;
 };
 

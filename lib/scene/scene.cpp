@@ -50,7 +50,7 @@ Bounds Scene::worldBounds() const {
 
 bool Scene::hasEmissive() const {
   for (const Instance& instance : instances) {
-    const int material = primitives[instance.primitive].material;
+    const int material = instance.material;
     if (material >= 0 && materials[material].emissive()) {
       return true;
     }

@@ -35,7 +35,7 @@ struct Frame {
   ImageF position;  // position.X/Y/Z world, A = 1 on geometry, 0 on background
   ImageF normal;    // normal.X/Y/Z world, unit length; 0 on background
   ImageF albedo;    // albedo.R/G/B linear base colour
-  ImageF material;  // metallic.Y, roughness.Y, occlusion.Y
+  ImageF material;  // material.metallic, material.roughness, material.occlusion
   ImageF depth;     // depth.Z: view-space depth (distance along -Z), far plane on background
   ImageF emissive;  // emissive.R/G/B; empty when the scene has no emissive material
   ImageF ssgi;      // ao.Y, indirect.R/G/B; empty with SSGI off

@@ -1,7 +1,8 @@
 #pragma once
 // The deferred renderer. Make it once per context; give it a scene once;
 // render as many views and sizes as you like into memory. Shaders are built
-// when the renderer and the scene are set, never per frame.
+// when the renderer and the scene are set (a settings change that needs
+// another variant, such as --no-ssgi, builds it once, on first use).
 //
 //   headlight::Context context;                    // EGL or OSMesa, 4.5 core
 //   headlight::Renderer renderer(context);

@@ -1,7 +1,8 @@
 #pragma once
 // The scene model: what the renderer needs from a glTF file, and nothing more.
-// Geometry is stored once per glTF primitive and drawn once per instance, so
-// a file with 102 nodes sharing one sphere keeps one sphere in memory.
+// Geometry is stored once per distinct set of glTF accessors and drawn once
+// per instance, each instance with its own material, so a file whose 98
+// sphere meshes differ only in material keeps one sphere in memory.
 //
 // Conventions (see docs/PIPELINE.md): right-handed world space, +Y up, glTF
 // units (metres unless the file says otherwise); cameras look down their -Z.
@@ -76,23 +77,25 @@ struct Material {
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
 };
 
-// One triangle list. After loading it is always indexed and always has
-// normals; texcoords and tangents are present only if the file had them (or
-// the material needs them), so the G-buffer shader is built for what exists.
+// One triangle list (geometry only; the material is the instance's). After
+// loading it is always indexed and always has normals; texcoords and
+// tangents are present only if the file had them (or a material drawn with
+// it needs them), so the G-buffer shader is built for what exists.
 struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // same count as positions, unit length
   std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
   std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
   std::vector<std::uint32_t> indices;
-  int material = -1;  // index into Scene::materials; -1 = glTF default material
   Bounds bounds;      // in the primitive's own space
 };
 
-// A primitive placed in the world by the flattened node hierarchy.
+// A primitive placed in the world by the flattened node hierarchy, with
+// the material its glTF primitive names.
 struct Instance {
   int primitive = 0;
   glm::mat4 worldFromLocal{1.0f};
+  int material = -1;  // index into Scene::materials; -1 = glTF's default material
 };
 
 struct Camera {

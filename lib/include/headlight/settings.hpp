@@ -17,6 +17,7 @@ struct SsgiSettings {
   float intensity = 1.0f;        // 0..~4: occlusion is multiplied by this before 1 - x
   float indirectStrength = 0.5;  // 0..~4: the one-bounce term is multiplied by this
   unsigned seed = 1;             // kernel and noise random seed (fixed: renders are repeatable)
+  bool blur = true;              // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
 
   // The seed's fixed 0.5 assumed a scene a few units across; a radius that
   // follows the scene works from millimetres to kilometres. 0.15 of the

@@ -1,0 +1,37 @@
+// SSGI denoise (lib/passes/ssgi_blur.hpp): the 4x4 noise tile averaged out,
+// neighbours weighted by normal and depth likeness.
+#include "shared_layout.h"
+
+layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
+layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
+layout(binding = kUnitSsgi) uniform sampler2D rawSsgi;
+
+layout(location = 0) out vec4 outSsgi;
+
+void main() {
+  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  const vec4 centerPosition = texelFetch(gbufferPosition, pixel, 0);
+  if (centerPosition.a == 0.0) discard;  // background keeps the cleared value
+  const vec3 centerNormal = texelFetch(gbufferNormal, pixel, 0).xyz;
+  const float centerDepth = (frame.view * vec4(centerPosition.xyz, 1.0)).z;
+  // A quarter of the SSGI radius: neighbours on the same surface differ by
+  // far less, across a silhouette by more.
+  const float depthScale = 0.25 * blur.params.x;
+  const ivec2 size = ivec2(frame.viewport.xy);
+  vec4 sum = vec4(0.0);
+  float weightSum = 0.0;
+  for (int dy = -2; dy < 2; ++dy)
+    for (int dx = -2; dx < 2; ++dx) {
+      const ivec2 neighbour = clamp(pixel + ivec2(dx, dy), ivec2(0), size - 1);
+      const vec4 position = texelFetch(gbufferPosition, neighbour, 0);
+      if (position.a == 0.0) continue;
+      const float depth = (frame.view * vec4(position.xyz, 1.0)).z;
+      const float normalWeight = pow(max(dot(centerNormal, texelFetch(gbufferNormal, neighbour, 0).xyz), 0.0), 8.0);
+      const float depthWeight = exp(-abs(depth - centerDepth) / depthScale);
+      const float weight = normalWeight * depthWeight;
+      sum += texelFetch(rawSsgi, neighbour, 0) * weight;
+      weightSum += weight;
+    }
+  // The centre always has weight 1, so weightSum > 0.
+  outSsgi = sum / weightSum;
+}
