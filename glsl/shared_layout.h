@@ -48,6 +48,8 @@ HL_CONST(int, kUnitMetallicRoughnessTexture, 13)
 HL_CONST(int, kUnitNormalTexture, 14)
 HL_CONST(int, kUnitOcclusionTexture, 15)
 HL_CONST(int, kUnitEmissiveTexture, 16)
+HL_CONST(int, kUnitDirect, 17)
+HL_CONST(int, kUnitDirectDiffuse, 18)
 
 // The SSGI kernel never has more samples than this (the seed's count).
 HL_CONST(int, kMaxKernelSamples, 64)
@@ -94,9 +96,9 @@ HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
   vec4 params;              // SSGI radius (world units), 0, 0, 0
 HL_BLOCK_END(blur)
 
-// Lighting pass.
+// Direct-light and composite passes.
 HL_BLOCK_BEGIN(LightingBlock, 4)
-  vec4 ambient;             // sky intensity, ssgi enabled (0/1), light count, PCF radius (texels)
+  vec4 ambient;             // sky intensity, 0, light count, PCF radius (texels)
   vec4 shadow;              // normal offset (world units per texel), depth bias, shadow-map size, 0
 HL_BLOCK_END(lighting)
 

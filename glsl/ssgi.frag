@@ -1,4 +1,5 @@
-// SSGI, the seed's hemisphere method (lib/passes/ssgi.hpp). Every buffer is
+// SSGI (lib/passes/ssgi.hpp): the seed's hemisphere method, or with
+// METHOD_RADIANCE the same occlusion test gathering direct light. Every buffer is
 // read with texelFetch at integer pixels: the position target is RGBA32F,
 // which is not filterable, and pixel-exact reads keep the method repeatable.
 // Both the G-buffer and this target are in GL's bottom-up pixel order, so no
@@ -10,6 +11,11 @@ layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
 layout(binding = kUnitSsgiNoise) uniform sampler2D ssgiNoise;
+#ifdef METHOD_RADIANCE
+// The `radiance` method gathers the light occluders send, not their albedo.
+layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
+layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+#endif
 
 layout(location = 0) out vec4 outSsgi;
 
@@ -44,9 +50,18 @@ void main() {
     // View space looks down -Z: a surface in front of the sample has larger z.
     if (sceneDepth >= samplePosition.z + bias) {
       occlusion += rangeWeight;
+#ifdef METHOD_RADIANCE
+      indirect += texelFetch(directDiffuse, samplePixel, 0).rgb * rangeWeight;
+#else
       indirect += texelFetch(gbufferAlbedo, samplePixel, 0).rgb * rangeWeight;
+#endif
     }
   }
   const float ambientOcclusion = clamp(1.0 - ssgi.params.z * occlusion / float(sampleCount), 0.0, 1.0);
+#ifdef METHOD_RADIANCE
+  // A Lambertian receiver reflects albedo / pi * integral(L cos); with
+  // cosine-distributed kernel directions that is albedo * mean(L).
+  indirect *= (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
+#endif
   outSsgi = vec4(ambientOcclusion, indirect * (ssgi.params.w / float(sampleCount)));
 }

@@ -1,5 +1,5 @@
 // The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
-// SSGI -> lighting -> read back. Each pass is timed between glFinish calls
+// direct light -> SSGI (-> blur) -> composite -> read back. Each pass is timed between glFinish calls
 // and checked for GL errors.
 #include "headlight/renderer.hpp"
 
@@ -13,7 +13,8 @@
 #include "headlight/error.hpp"
 #include "passes/environment.hpp"
 #include "passes/gbuffer.hpp"
-#include "passes/lighting.hpp"
+#include "passes/composite.hpp"
+#include "passes/direct_light.hpp"
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
 #include "passes/ssgi_blur.hpp"
@@ -84,8 +85,10 @@ struct Renderer::Impl {
   SsgiPass ssgi;
   SsgiBlurPass ssgiBlur;
   ShadowPass shadow;
-  LightingPass lighting;
+  DirectLightPass directLight;
+  CompositePass composite;
   gl::Buffer frameBlock{sizeof(gpu::FrameBlock), nullptr};
+  gl::Buffer lightingBlock{sizeof(gpu::LightingBlock), nullptr};
 
   // Per scene.
   Scene scene;
@@ -98,12 +101,13 @@ struct Renderer::Impl {
 
   // Per image size.
   GBuffer gbuffer;
+  DirectLightTargets direct;
   gl::Texture ssgiRaw;     // the SSGI pass's output, before the blur
-  gl::Texture ssgiTarget;  // what lighting reads and ssgi.exr holds
+  gl::Texture ssgiTarget;  // what composite reads and ssgi.exr holds
   gl::Texture litTarget;
 
   // Targets follow the image size; the SSGI ones exist only while SSGI (and
-  // its blur) is on.
+  // its blur, or its radiance method) is on.
   void ensureTargets(int width, int height, const SsgiSettings& ssgi) {
     auto ensure = [&](gl::Texture& texture, bool wanted) {
       if (!wanted)
@@ -113,6 +117,8 @@ struct Renderer::Impl {
     };
     if (gbuffer.width != width || gbuffer.height != height)
       gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
+    ensure(direct.towardEye, true);
+    ensure(direct.diffuse, ssgi.enabled && ssgi.method == SsgiMethod::Radiance);
     ensure(ssgiRaw, ssgi.enabled && ssgi.blur);
     ensure(ssgiTarget, ssgi.enabled);
     ensure(litTarget, true);
@@ -141,6 +147,18 @@ struct Renderer::Impl {
     shadowMapSize = 0;
     lights = packLights(scene.lights);
     lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+  }
+
+  // The block the direct-light and composite passes read, and the lights.
+  void bindLighting(const LightingSettings& settings) {
+    gpu::LightingBlock block{};
+    block.ambient = glm::vec4(settings.skyIntensity, 0.0f, float(lights.size()), settings.pcfRadius);
+    // 1.5 texels of normal offset: enough to clear acne at the PCF radius's
+    // default without visibly detaching shadows.
+    block.shadow = glm::vec4(1.5f, 0.0f, float(shadowMaps.size), 0.0f);
+    lightingBlock.update(block);
+    lightingBlock.bindUniform(gpu::LightingBlock::kBinding);
+    lightBuffer.bindStorage(gpu::LightBuffer::kBinding);
   }
 
   const Camera& chooseCamera(const RenderSettings& settings, const Camera* override, Camera& fitted) const {
@@ -192,7 +210,12 @@ void Renderer::setScene(Scene scene) {
       return light.castsShadows && (light.type == Light::Type::Point) == point;
     });
   };
-  impl.lighting.prepare({true, impl.gpuScene->hasEmissive, casts(false), casts(true)});  // the default settings' variant
+  // The default settings' variants, so the first frame times shading, not compiling.
+  const RenderSettings defaults;
+  impl.directLight.prepare({impl.gpuScene->hasEmissive, casts(false), casts(true),
+                            defaults.ssgi.method == SsgiMethod::Radiance});
+  impl.ssgi.prepare(defaults.ssgi.method);
+  impl.composite.prepare(true);
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
@@ -206,6 +229,8 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   if (used.ssgi.bias == 0.0f) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * used.ssgi.radius;
   if (used.lighting.shadowMapSize == 0) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
   if (used.lighting.skyIntensity < 0.0f) used.lighting.skyIntensity = impl_->scene.sky.intensity;
+  if (used.ssgi.indirectStrength < 0.0f)
+    used.ssgi.indirectStrength = used.ssgi.method == SsgiMethod::Hemisphere ? 0.5f : 1.0f;
   return used;
 }
 
@@ -227,22 +252,19 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   if (!used.lighting.shadows) impl.dropShadows();
   if (impl.needsShadowPass(used.lighting)) timer.run("shadows", [&] { impl.renderShadows(used.lighting); });
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
+  impl.bindLighting(used.lighting);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
+  timer.run("direct", [&] { impl.directLight.run(impl.gbuffer, impl.shadowMaps, impl.direct); });
   if (used.ssgi.enabled) {
     const gl::Texture& ssgiOutput = used.ssgi.blur ? impl.ssgiRaw : impl.ssgiTarget;
-    timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, ssgiOutput, used.ssgi); });
+    const gl::Texture* directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
+    timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, directDiffuse, ssgiOutput, used.ssgi); });
     if (used.ssgi.blur)
       timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, used.ssgi.radius); });
   }
-  timer.run("lighting", [&] {
-    const LightingInputs inputs{impl.gbuffer,
-                                used.ssgi.enabled ? &impl.ssgiTarget : nullptr,
-                                impl.shadowMaps,
-                                impl.environment.tables(),
-                                impl.lightBuffer,
-                                int(impl.lights.size()),
-                                used.lighting.skyIntensity};
-    impl.lighting.run(inputs, used.lighting, impl.litTarget);
+  timer.run("composite", [&] {
+    impl.composite.run(impl.gbuffer, impl.direct.towardEye, used.ssgi.enabled ? &impl.ssgiTarget : nullptr,
+                       impl.environment.tables(), impl.litTarget);
   });
   timer.run("readback", [&] { impl.readTargets(frame, used.ssgi.enabled); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

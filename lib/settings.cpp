@@ -47,8 +47,8 @@ std::string formatAuto(float value) { return value == 0.0f ? "auto" : formatFloa
 
 std::string_view tonemapName(Tonemap tonemap) { return tonemap == Tonemap::Aces ? "aces" : "reinhard"; }
 
-const std::array<SettingOption, 17>& optionTable() {
-  static const std::array<SettingOption, 17> table{{
+const std::array<SettingOption, 18>& optionTable() {
+  static const std::array<SettingOption, 18> table{{
       {"width", "N", "image width in pixels (1..16384)",
        [](RenderSettings& s, std::string_view v) { s.width = parseInt("width", v, 1, 16384); },
        [](const RenderSettings& s) { return std::to_string(s.width); }},
@@ -73,9 +73,17 @@ const std::array<SettingOption, 17>& optionTable() {
       {"ssgi-intensity", "FLOAT", "SSGI occlusion intensity (0..4)",
        [](RenderSettings& s, std::string_view v) { s.ssgi.intensity = parseFloat("ssgi-intensity", v, 0, 4); },
        [](const RenderSettings& s) { return formatFloat(s.ssgi.intensity); }},
-      {"ssgi-indirect", "FLOAT", "SSGI one-bounce indirect strength (0..4)",
-       [](RenderSettings& s, std::string_view v) { s.ssgi.indirectStrength = parseFloat("ssgi-indirect", v, 0, 4); },
-       [](const RenderSettings& s) { return formatFloat(s.ssgi.indirectStrength); }},
+      {"ssgi-method", "hemisphere|radiance",
+       "SSGI indirect term: the seed's occluder albedo (hemisphere) or occluders' direct light (radiance)",
+       [](RenderSettings& s, std::string_view v) { s.ssgi.method = parseSsgiMethod(v); },
+       [](const RenderSettings& s) { return std::string(ssgiMethodName(s.ssgi.method)); }},
+      {"ssgi-indirect", "auto|FLOAT", "SSGI one-bounce indirect strength (0..4; auto: 0.5 hemisphere, 1 radiance)",
+       [](RenderSettings& s, std::string_view v) {
+         s.ssgi.indirectStrength = v == "auto" ? -1.0f : parseFloat("ssgi-indirect", v, 0, 4);
+       },
+       [](const RenderSettings& s) {
+         return s.ssgi.indirectStrength < 0 ? std::string("auto") : formatFloat(s.ssgi.indirectStrength);
+       }},
       {"ssgi-seed", "N", "random seed of the SSGI kernel and noise",
        [](RenderSettings& s, std::string_view v) { s.ssgi.seed = unsigned(parseInt("ssgi-seed", v, 0, 1 << 30)); },
        [](const RenderSettings& s) { return std::to_string(s.ssgi.seed); }},
@@ -119,6 +127,16 @@ const std::array<SettingOption, 17>& optionTable() {
 constexpr std::array<std::string_view, 4> kPresetNames{"fast", "default", "high", "seed"};
 
 }  // namespace
+
+std::string_view ssgiMethodName(SsgiMethod method) {
+  return method == SsgiMethod::Hemisphere ? "hemisphere" : "radiance";
+}
+
+SsgiMethod parseSsgiMethod(std::string_view name) {
+  if (name == "hemisphere") return SsgiMethod::Hemisphere;
+  if (name == "radiance") return SsgiMethod::Radiance;
+  throw SettingsError("--ssgi-method: expected hemisphere or radiance, got '" + std::string(name) + "'");
+}
 
 std::span<const SettingOption> settingOptions() { return optionTable(); }
 std::span<const std::string_view> presetNames() { return kPresetNames; }

@@ -109,6 +109,17 @@ TEST_CASE("a bad --width is a usage error (exit 2) naming the flag, and no outpu
   fs::remove_all(folder);
 }
 
+TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no output") {
+  const fs::path folder = freshFolder("nocontext");
+  const Run run = runHeadlight("render --backend egl --device 99 --out " + quote((folder / "out").string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("ContextError") != std::string::npos);
+  CHECK(run.output.find("EGL device 99") != std::string::npos);
+  CHECK(folderEmpty(folder / "out"));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("--help, --version and unknown commands") {
   const Run help = runHeadlight("render --help");
   CHECK(help.exitCode == 0);

@@ -130,6 +130,33 @@ TEST_CASE("Cornell box: a corner is darker than the middle of the back wall, and
   CHECK(red > 2.0 * green);
 }
 
+TEST_CASE("SSGI radiance method gathers light, not albedo") {
+  Scene dark = loadScene("builtin:cornell");
+  for (Light& light : dark.lights) light.intensity = 0.0f;
+  for (Material& material : dark.materials) material.emissiveFactor = glm::vec3(0.0f);
+  RenderSettings settings = smallSettings(64, 64);
+  auto maxIndirect = [](const Frame& frame) {
+    float maximum = 0;
+    for (int y = 0; y < frame.ssgi.height; ++y)
+      for (int x = 0; x < frame.ssgi.width; ++x)
+        for (int c = 1; c < 4; ++c) maximum = std::max(maximum, frame.ssgi.at(x, y, c));
+    return maximum;
+  };
+  settings.ssgi.method = SsgiMethod::Hemisphere;
+  CHECK(maxIndirect(renderScene(dark, settings)) > 0.05f);  // albedo, whatever the light
+  settings.ssgi.method = SsgiMethod::Radiance;
+  CHECK(maxIndirect(renderScene(dark, settings)) == 0.0f);  // no direct light, nothing to bounce
+
+  // Lit, the red wall still bleeds red onto the floor beside it.
+  const Frame lit = renderScene(loadScene("builtin:cornell"), settings);
+  int count = 0;
+  const auto nearRedWall = [](glm::vec3 p, glm::vec3 n) { return n.y > 0.9f && p.x < -0.85f && p.z > 0.1f; };
+  const double red = meanWhere(lit, lit.ssgi, 1, nearRedWall, count);
+  const double green = meanWhere(lit, lit.ssgi, 2, nearRedWall, count);
+  REQUIRE(count > 5);
+  CHECK(red > 2.0 * green);
+}
+
 TEST_CASE("background pixels are left as cleared by every pass") {
   const Frame frame = renderScene(loadScene("builtin:spheres"), smallSettings(96, 72));
   int background = 0;

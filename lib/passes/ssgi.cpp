@@ -4,6 +4,7 @@
 #include <random>
 
 #include "gl/shader_library.hpp"
+#include "headlight/error.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -44,10 +45,17 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed) {
 
 SsgiPass::SsgiPass()
     : block_(sizeof(gpu::SsgiBlock), nullptr), noise_(GL_TEXTURE_2D, GL_RG16F, 4, 4) {
-  const std::string_view files[] = {"fullscreen.vert", "ssgi.frag"};
-  program_ = detail::buildProgram(files);
   const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0};
   framebuffer_.setDrawBuffers(drawBuffers);
+}
+
+const gl::Program& SsgiPass::programFor(SsgiMethod method) {
+  auto found = programs_.find(method);
+  if (found != programs_.end()) return found->second;
+  std::vector<std::string> defines;
+  if (method == SsgiMethod::Radiance) defines.emplace_back("METHOD_RADIANCE");
+  const std::string_view files[] = {"fullscreen.vert", "ssgi.frag"};
+  return programs_.emplace(method, detail::buildProgram(files, defines)).first->second;
 }
 
 void SsgiPass::updateKernel(const SsgiSettings& settings) {
@@ -62,7 +70,8 @@ void SsgiPass::updateKernel(const SsgiSettings& settings) {
   kernelSeed_ = settings.seed;
 }
 
-void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture& output, const SsgiSettings& settings) {
+void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
+                   const SsgiSettings& settings) {
   updateKernel(settings);
   const glm::vec4 params(settings.radius, settings.bias, settings.intensity, settings.indirectStrength);
   const glm::ivec4 counts(settings.sampleCount, 0, 0, 0);
@@ -83,8 +92,13 @@ void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture& output, const Ssgi
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   noise_.bind(gpu::kUnitSsgiNoise);
+  if (settings.method == SsgiMethod::Radiance) {
+    if (directDiffuse == nullptr) throw GlError("SSGI radiance method: no direct-light diffuse target");
+    gbuffer.material.bind(gpu::kUnitGbufferMaterial);
+    directDiffuse->bind(gpu::kUnitDirectDiffuse);
+  }
   block_.bindUniform(gpu::SsgiBlock::kBinding);
-  program_.use();
+  programFor(settings.method).use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -6,6 +6,7 @@
 // occluding sample darkens ambient occlusion and adds its albedo to the
 // indirect term. Output GL_RGBA16F: R = AO (1 = open), GBA = indirect colour.
 #include <array>
+#include <map>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -29,14 +30,19 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 class SsgiPass {
  public:
   SsgiPass();
-  // Reads gbuffer (position, normal, albedo) and the frame block bound at
-  // FrameBlock::kBinding; writes `output` (GL_RGBA16F, gbuffer's size).
-  // `settings` must have radius and bias resolved (> 0 and >= 0).
-  void run(const GBuffer& gbuffer, const gl::Texture& output, const SsgiSettings& settings);
+  void prepare(SsgiMethod method) { programFor(method); }
+  // Reads gbuffer (position, normal, albedo; material for the radiance
+  // method), `directDiffuse` (the direct-light pass's Lambertian target;
+  // required by the radiance method, ignored by hemisphere) and the frame
+  // block; writes `output` (GL_RGBA16F, gbuffer's size). `settings` must be
+  // resolved (radius > 0, bias >= 0, indirectStrength >= 0).
+  void run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
+           const SsgiSettings& settings);
 
  private:
   void updateKernel(const SsgiSettings& settings);
-  gl::Program program_;
+  const gl::Program& programFor(SsgiMethod method);
+  std::map<SsgiMethod, gl::Program> programs_;
   gl::Buffer block_;
   gl::Texture noise_;
   gl::Framebuffer framebuffer_;

@@ -9,13 +9,20 @@
 
 namespace headlight {
 
+enum class SsgiMethod {
+  Hemisphere,  // the seed's: indirect = occluders' albedo x range weight (not light)
+  Radiance,    // the same occlusion test, gathering the occluders' direct Lambertian radiance
+};
+
 struct SsgiSettings {
   bool enabled = true;
+  SsgiMethod method = SsgiMethod::Hemisphere;
   int sampleCount = 64;          // kernel samples per pixel, 1..64 (the seed's 64)
   float radius = 0.0f;           // world units, > 0; 0 = auto: kAutoRadiusFraction x scene diagonal
   float bias = 0.0f;             // world units, >= 0; 0 = auto: kAutoBiasFraction x radius
   float intensity = 1.0f;        // 0..~4: occlusion is multiplied by this before 1 - x
-  float indirectStrength = 0.5;  // 0..~4: the one-bounce term is multiplied by this
+  float indirectStrength = -1;   // 0..4: the one-bounce term is multiplied by this; -1 = auto:
+                                 // the seed's 0.5 for hemisphere, 1 (the estimator itself) for radiance
   unsigned seed = 1;             // kernel and noise random seed (fixed: renders are repeatable)
   bool blur = true;              // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
 
@@ -48,6 +55,9 @@ struct RenderSettings {
   // Throws SettingsError naming the setting, the allowed range and the value.
   void validate() const;
 };
+
+std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance"
+SsgiMethod parseSsgiMethod(std::string_view name);   // throws SettingsError
 
 // One user-settable setting. `parse` throws SettingsError for a bad value.
 struct SettingOption {

@@ -1,17 +1,13 @@
-// Lighting pass (lib/passes/lighting.hpp). Reads every buffer with texelFetch
-// at this pixel: all targets share GL's bottom-up pixel order.
+// Composite (lib/passes/composite.hpp): direct light + image-based ambient,
+// occluded by the material's and the SSGI's AO, + SSGI's indirect term:
+//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_ao + ssgi_indirect
+// Background pixels show the sky, alpha 0.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
-#include "shadows.glsl"
+#include "surface.glsl"
 
-layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
-layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
-layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
-layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
-#ifdef HAS_EMISSIVE
-layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
-#endif
+layout(binding = kUnitDirect) uniform sampler2D directTexture;
 #ifdef HAS_SSGI
 layout(binding = kUnitSsgi) uniform sampler2D ssgiTexture;
 #endif
@@ -38,27 +34,6 @@ vec3 skyIrradianceOverPi(vec3 normal) {
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }
 
-// Direction from the surface toward the eye.
-vec3 viewDirection(vec3 worldPosition) {
-  // Orthographic: the same for every pixel, the camera's +Z axis in world.
-  if (frame.cameraPosition.w > 0.5) return normalize(vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]));
-  return normalize(frame.cameraPosition.xyz - worldPosition);
-}
-
-vec3 directLight(Surface surface, vec3 worldPosition) {
-  vec3 sum = vec3(0.0);
-  const int lightCount = int(lighting.ambient.z);
-  for (int i = 0; i < lightCount; ++i) {
-    const GpuLight light = lights.lightList[i];
-    vec3 toLight;
-    const float attenuation = lightAttenuation(light, worldPosition, toLight);
-    if (attenuation <= 0.0) continue;
-    const float visibility = shadowVisibility(light, worldPosition, surface.normal, toLight);
-    sum += cookTorrance(surface, toLight) * light.radiance.rgb * (attenuation * visibility);
-  }
-  return sum;
-}
-
 vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, 64.0),
                                                tableCoordinate(surface.roughness, 0.0, 1.0, 64.0))).rg;
@@ -83,18 +58,13 @@ void main() {
     outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.ambient.x, 0.0);
     return;
   }
-  const vec3 normal = texelFetch(gbufferNormal, pixel, 0).xyz;
-  const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
-  const Surface surface = makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y, normal,
-                                      viewDirection(worldPosition.xyz));
+  const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_SSGI
   const vec4 ssgi = texelFetch(ssgiTexture, pixel, 0);
 #else
   const vec4 ssgi = vec4(1.0, 0.0, 0.0, 0.0);
 #endif
-  vec3 radiance = directLight(surface, worldPosition.xyz) + ambientLight(surface, material.z, ssgi);
-#ifdef HAS_EMISSIVE
-  radiance += texelFetch(gbufferEmissive, pixel, 0).rgb;
-#endif
+  const float materialOcclusion = texelFetch(gbufferMaterial, pixel, 0).z;
+  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, ssgi);
   outRadiance = vec4(radiance, 1.0);
 }

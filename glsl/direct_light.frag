@@ -1,0 +1,48 @@
+// Direct light (lib/passes/direct_light.hpp): every punctual light with its
+// shadow, plus emission. Target 0 is the radiance toward the eye
+// (Cook-Torrance); with WRITE_DIFFUSE_RADIANCE, target 1 is the Lambertian
+// radiance the surface sends in every direction, which the SSGI `radiance`
+// method gathers as one-bounce light (docs/ACCURACY.md).
+#include "shared_layout.h"
+#include "sampling.glsl"
+#include "brdf.glsl"
+#include "shadows.glsl"
+#include "surface.glsl"
+
+#ifdef HAS_EMISSIVE
+layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
+#endif
+
+layout(location = 0) out vec4 outDirect;
+#ifdef WRITE_DIFFUSE_RADIANCE
+layout(location = 1) out vec4 outDiffuse;
+#endif
+
+void main() {
+  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
+  if (worldPosition.a == 0.0) discard;  // background: stays cleared to 0
+  const Surface surface = surfaceAt(pixel, worldPosition.xyz);
+  vec3 towardEye = vec3(0.0);
+  vec3 irradiance = vec3(0.0);  // sum of light radiance * attenuation * visibility * N.L
+  const int lightCount = int(lighting.ambient.z);
+  for (int i = 0; i < lightCount; ++i) {
+    const GpuLight light = lights.lightList[i];
+    vec3 toLight;
+    const float attenuation = lightAttenuation(light, worldPosition.xyz, toLight);
+    if (attenuation <= 0.0) continue;
+    const float visibility = shadowVisibility(light, worldPosition.xyz, surface.normal, toLight);
+    const vec3 incoming = light.radiance.rgb * (attenuation * visibility);
+    towardEye += cookTorrance(surface, toLight) * incoming;
+    irradiance += incoming * max(dot(surface.normal, toLight), 0.0);
+  }
+#ifdef HAS_EMISSIVE
+  const vec3 emission = texelFetch(gbufferEmissive, pixel, 0).rgb;
+#else
+  const vec3 emission = vec3(0.0);
+#endif
+  outDirect = vec4(towardEye + emission, 1.0);
+#ifdef WRITE_DIFFUSE_RADIANCE
+  outDiffuse = vec4((1.0 - surface.metallic) * surface.albedo / kPi * irradiance + emission, 1.0);
+#endif
+}

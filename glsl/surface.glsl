@@ -1,0 +1,20 @@
+// Reading a shading point from the G-buffer, shared by the direct-light and
+// composite passes. Needs brdf.glsl and the G-buffer samplers below.
+
+layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
+layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
+layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
+layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+
+// Direction from the surface toward the eye.
+vec3 viewDirection(vec3 worldPosition) {
+  // Orthographic: the same for every pixel, the camera's +Z axis in world.
+  if (frame.cameraPosition.w > 0.5) return normalize(vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2]));
+  return normalize(frame.cameraPosition.xyz - worldPosition);
+}
+
+Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
+  const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
+  return makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
+                     texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+}

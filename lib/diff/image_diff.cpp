@@ -1,0 +1,1 @@
+// headlight diff: written by the diff work (issue 4).

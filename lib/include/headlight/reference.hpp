@@ -1,0 +1,46 @@
+#pragma once
+// Ray-traced ground truth (Embree 3) for what the SSGI pass approximates,
+// pixel-aligned with a rendered Frame: the shading points are the G-buffer's
+// positions and normals, so differences are the method's, not the
+// rasteriser's. docs/ACCURACY.md defines every quantity with formulas.
+#include <string>
+
+#include "headlight/frame.hpp"
+#include "headlight/scene.hpp"
+
+namespace headlight {
+
+struct ReferenceSettings {
+  int samplesPerPixel = 4096;  // cosine-weighted hemisphere rays per pixel, 1..1048576
+  float radius = 0.0f;         // world units, > 0: the R of "within R" (pass the SSGI radius the frame used)
+  unsigned seed = 1;           // per-pixel random streams derive from it: results do not depend on threads
+  int threads = 0;             // 0 = all hardware threads
+};
+
+struct ReferenceImages {
+  // ao.Y: cosine-weighted fraction of the hemisphere with no geometry within
+  // R (background counts as open); 1 on background pixels.
+  ImageF ao;
+  // indirectR.R/G/B: one-bounce indirect diffuse radiance gathered within R;
+  // indirect.R/G/B: the same, unlimited distance. 0 on background.
+  ImageF indirect;
+  // R/G/B/A: direct light with shadow rays + sky ambient with true visibility
+  // + one-bounce indirect (unlimited) + emission; A = coverage.
+  ImageF lit;
+  int samplesPerPixel = 0;
+  double aoMeanStandardError = 0;        // mean over geometry pixels of sqrt(p(1-p)/(n-1))
+  double aoMaxStandardError = 0;
+  double indirectMeanStandardError = 0;  // of indirect (unlimited), mean over pixels and channels
+  double seconds = 0;                    // wall time of the trace
+};
+
+// True when this build has Embree; traceReference throws otherwise.
+bool referenceAvailable();
+
+// Traces the reference for every geometry pixel of `frame`. `scene` must be
+// the scene the frame was rendered from as the renderer holds it
+// (Renderer::scene(), which includes the default key light if it added one).
+// Throws SettingsError for bad settings, Error if Embree is missing or fails.
+ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings);
+
+}  // namespace headlight

@@ -1,0 +1,1 @@
+// Embree reference: written by the ground-truth work (issue 3).

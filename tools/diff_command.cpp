@@ -1,0 +1,1 @@
+// headlight diff command: written by the diff work (issue 4).
