@@ -1,1 +1,484 @@
-// reference tests
+// The Embree reference against closed forms. No GL context: scenes are built
+// in code and frames synthesised by filling the G-buffer images by hand, so
+// each case knows its shading points exactly. Tolerances are a few reported
+// standard errors (Monte Carlo noise) plus a stated bound on the systematic
+// error (tessellation, the ray-origin offset). Without Embree every case
+// checks that traceReference refuses instead.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <glm/gtc/matrix_transform.hpp>
+#include <string>
+#include <vector>
+
+#include "headlight/error.hpp"
+#include "headlight/reference.hpp"
+#include "reference/shading.hpp"
+
+using namespace headlight;
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// ---- Scenes ------------------------------------------------------------------
+
+// An axis-aligned square through `center` facing `normal`, `halfSize` each way.
+Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize) {
+  const glm::vec3 helper = std::abs(normal.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 u = glm::normalize(glm::cross(helper, normal)) * halfSize;
+  const glm::vec3 v = glm::normalize(glm::cross(normal, u)) * halfSize;
+  Primitive primitive;
+  primitive.positions = {center - u - v, center + u - v, center + u + v, center - u + v};
+  primitive.normals.assign(4, normal);
+  primitive.indices = {0, 1, 2, 0, 2, 3};
+  for (const auto& p : primitive.positions) primitive.bounds.extend(p);
+  return primitive;
+}
+
+// A UV sphere (as the built-in scenes make it): vertices on the sphere, so
+// the polyhedron lies inside it.
+Primitive uvSphere(glm::vec3 center, float radius, int segments, int rings) {
+  Primitive sphere;
+  for (int ring = 0; ring <= rings; ++ring) {
+    const float polar = float(ring) / float(rings) * kPi;
+    for (int segment = 0; segment <= segments; ++segment) {
+      const float azimuth = float(segment) / float(segments) * 2.0f * kPi;
+      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
+      sphere.positions.push_back(center + normal * radius);
+      sphere.normals.push_back(normal);
+      sphere.bounds.extend(center + normal * radius);
+    }
+  }
+  const auto row = std::uint32_t(segments + 1);
+  for (std::uint32_t ring = 0; ring < std::uint32_t(rings); ++ring)
+    for (std::uint32_t segment = 0; segment < std::uint32_t(segments); ++segment) {
+      const std::uint32_t a = ring * row + segment, b = a + row;
+      for (std::uint32_t index : {a, b, b + 1, a, b + 1, a + 1}) sphere.indices.push_back(index);
+    }
+  return sphere;
+}
+
+Material lambert(glm::vec3 color, glm::vec3 emissive = glm::vec3(0.0f)) {
+  Material material;
+  material.baseColorFactor = glm::vec4(color, 1.0f);
+  material.metallicFactor = 0.0f;
+  material.roughnessFactor = 1.0f;
+  material.emissiveFactor = emissive;
+  return material;
+}
+
+void add(Scene& scene, Primitive primitive, Material material) {
+  scene.primitives.push_back(std::move(primitive));
+  scene.materials.push_back(std::move(material));
+  scene.instances.push_back({int(scene.primitives.size()) - 1, glm::mat4(1.0f), int(scene.materials.size()) - 1});
+}
+
+// Light only where a case asks for it: no sky unless set.
+Scene emptyScene() {
+  Scene scene;
+  scene.source = "test";
+  scene.sky.intensity = 0.0f;
+  return scene;
+}
+
+// The floor y = 0 (facing up) meeting the wall z = 0 (facing +Z), 100 each way.
+Scene cornerScene(Material wall = lambert(glm::vec3(0.5f))) {
+  Scene scene = emptyScene();
+  add(scene, quad({0, 0, 0}, {0, 1, 0}, 100.0f), lambert(glm::vec3(0.5f)));
+  add(scene, quad({0, 0, 0}, {0, 0, 1}, 100.0f), wall);
+  return scene;
+}
+
+// ---- Frames ----------------------------------------------------------------------
+
+struct ShadingPoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  glm::vec3 albedo{0.5f};
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  bool geometry = true;
+};
+
+ImageF image(int width, int height, std::vector<std::string> channels) {
+  ImageF result;
+  result.width = width;
+  result.height = height;
+  result.pixels.assign(std::size_t(width * height) * channels.size(), 0.0f);
+  result.channels = std::move(channels);
+  return result;
+}
+
+// A G-buffer whose pixel (x, y) holds point(x, y); sky intensity 0 unless
+// given. The view is the identity (camera at the origin looking down -Z).
+Frame syntheticFrame(int width, int height, const std::function<ShadingPoint(int x, int y)>& point,
+                     float skyIntensity = 0.0f) {
+  Frame frame;
+  frame.position = image(width, height, {"position.X", "position.Y", "position.Z", "A"});
+  frame.normal = image(width, height, {"normal.X", "normal.Y", "normal.Z"});
+  frame.albedo = image(width, height, {"albedo.R", "albedo.G", "albedo.B"});
+  frame.material = image(width, height, {"material.metallic", "material.roughness", "material.occlusion"});
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const ShadingPoint p = point(x, y);
+      const std::size_t i = std::size_t(y * width + x);
+      if (!p.geometry) continue;
+      for (int c = 0; c < 3; ++c) {
+        frame.position.pixels[i * 4 + std::size_t(c)] = p.position[c];
+        frame.normal.pixels[i * 3 + std::size_t(c)] = p.normal[c];
+        frame.albedo.pixels[i * 3 + std::size_t(c)] = p.albedo[c];
+      }
+      frame.position.pixels[i * 4 + 3] = 1.0f;
+      frame.material.pixels[i * 3 + 0] = p.metallic;
+      frame.material.pixels[i * 3 + 1] = p.roughness;
+      frame.material.pixels[i * 3 + 2] = 1.0f;
+    }
+  frame.view.projection = glm::perspective(0.8f, float(width) / float(height), 0.1f, 100.0f);
+  frame.settings.lighting.skyIntensity = skyIntensity;
+  return frame;
+}
+
+Frame uniformFrame(int width, int height, ShadingPoint point, float skyIntensity = 0.0f) {
+  return syntheticFrame(
+      width, height, [&](int, int) { return point; }, skyIntensity);
+}
+
+ReferenceSettings referenceSettings(int samples, float radius, unsigned seed = 1) {
+  ReferenceSettings settings;
+  settings.samplesPerPixel = samples;
+  settings.radius = radius;
+  settings.seed = seed;
+  return settings;
+}
+
+// Mean of a channel over all pixels.
+double mean(const ImageF& image, int channel) {
+  double sum = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) sum += image.at(x, y, channel);
+  return sum / double(image.width * image.height);
+}
+
+// The standard error of a mean over `pixels` independent pixels whose own
+// standard errors average `pixelStandardError`.
+double meanStandardError(double pixelStandardError, int pixels) {
+  return pixelStandardError / std::sqrt(double(pixels));
+}
+
+// Without Embree, the case checks the refusal and stops.
+bool skipWithoutEmbree(const Scene& scene, const Frame& frame, const ReferenceSettings& settings) {
+  if (referenceAvailable()) return false;
+  CHECK_THROWS_WITH_AS(traceReference(scene, frame, settings),
+                       "headlight was built without Embree (meson -Dembree=enabled)", Error);
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctest::test_suite("reference")) {
+  Scene scene = emptyScene();
+  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
+  const Frame frame = uniformFrame(4, 4, ShadingPoint{});
+  const ReferenceSettings settings = referenceSettings(256, 1e6f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  REQUIRE(result.ao.channels == std::vector<std::string>{"ao.Y"});
+  REQUIRE(result.indirect.channels == std::vector<std::string>{"indirectR.R", "indirectR.G", "indirectR.B",
+                                                               "indirect.R", "indirect.G", "indirect.B"});
+  REQUIRE(result.lit.channels == std::vector<std::string>{"R", "G", "B", "A"});
+  CHECK(result.samplesPerPixel == 256);
+  for (float value : result.ao.pixels) CHECK(value == 1.0f);
+  for (float value : result.indirect.pixels) CHECK(value == 0.0f);
+  CHECK(result.aoMeanStandardError == 0.0);
+  CHECK(result.aoMaxStandardError == 0.0);
+  CHECK(result.indirectMeanStandardError == 0.0);
+  CHECK(result.lit.at(0, 0, 3) == 1.0f);
+}
+
+TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("reference")) {
+  // A point on the floor 1 mm in front of the wall: the wall covers the half
+  // of the hemisphere with direction.z < 0, which is half of the cosine
+  // weight by symmetry. Systematic error: rays that pass the wall's edge
+  // (100 away) need |direction.z| < 1e-5, a 1e-5 fraction.
+  const Scene scene = cornerScene();
+  ShadingPoint point;
+  point.position = {0.0f, 0.0f, 1e-3f};
+  const Frame frame = uniformFrame(8, 8, point);
+  const ReferenceSettings settings = referenceSettings(4096, 1e6f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  const double ao = mean(result.ao, 0);
+  const double standardError = meanStandardError(result.aoMeanStandardError, 64);
+  CAPTURE(ao);
+  CAPTURE(standardError);
+  CHECK(std::abs(ao - 0.5) < 4.0 * standardError + 1e-4);
+  // sqrt(0.25 / 4095) per pixel, up to the spread of the estimates.
+  CHECK(result.aoMeanStandardError == doctest::Approx(std::sqrt(0.25 / 4095.0)).epsilon(0.01));
+  CHECK(result.aoMaxStandardError >= result.aoMeanStandardError);
+
+  // Within a radius shorter than the point's distance to the wall, nothing
+  // is in range.
+  const ReferenceImages near = traceReference(scene, frame, referenceSettings(256, 5e-4f));
+  for (float value : near.ao.pixels) CHECK(value == 1.0f);
+}
+
+TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * doctest::test_suite("reference")) {
+  // A sphere of radius r centred h above the point subtends a cone of
+  // half-angle asin(r / h) around the normal, whose cosine-weighted
+  // fraction of the hemisphere is sin^2 = (r / h)^2. The 128 x 64 UV sphere
+  // lies inside the true one, down to r cos^2(pi / 128) (the centre of its
+  // largest facets), which shrinks (r/h)^2 by at most 1.5e-4 here; the ray
+  // origin's offset (4e-4 up: 2e-5 x (diagonal 14.2 + coordinate 5)) grows
+  // it by 2e-4. Tolerance: 4 standard errors + 5e-4.
+  constexpr float kRadius = 0.5f, kHeight = 1.0f;
+  Scene scene = emptyScene();
+  add(scene, quad({0, 0, 0}, {0, 1, 0}, 5.0f), lambert(glm::vec3(0.5f)));
+  add(scene, uvSphere({0, kHeight, 0}, kRadius, 128, 64), lambert(glm::vec3(0.5f)));
+  const Frame frame = uniformFrame(8, 8, ShadingPoint{});
+  const ReferenceSettings settings = referenceSettings(4096, 1e6f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  const double expected = 1.0 - double(kRadius * kRadius) / double(kHeight * kHeight);
+  const double ao = mean(result.ao, 0);
+  const double standardError = meanStandardError(result.aoMeanStandardError, 64);
+  CAPTURE(ao);
+  CAPTURE(standardError);
+  CHECK(std::abs(ao - expected) < 4.0 * standardError + 5e-4);
+
+  // R shorter than the gap to the sphere (h - r = 0.5): nothing in range.
+  const ReferenceImages outOfRange = traceReference(scene, frame, referenceSettings(1024, 0.4f));
+  for (float value : outOfRange.ao.pixels) CHECK(value == 1.0f);
+}
+
+TEST_CASE("reference: error falls as one over the square root of the samples" * doctest::test_suite("reference")) {
+  // RMS of AO - 0.5 over 64 pixels x 2 seeds in the corner: 16 times the
+  // rays should divide it by sqrt(16) = 4. With 128 pixels the RMS itself is
+  // known to about 6%, so the ratio lands within 4 +- 1 nearly always.
+  const Scene scene = cornerScene();
+  ShadingPoint point;
+  point.position = {0.0f, 0.0f, 1e-3f};
+  const Frame frame = uniformFrame(8, 8, point);
+  if (skipWithoutEmbree(scene, frame, referenceSettings(256, 1e6f))) return;
+
+  auto rmsError = [&](int samples) {
+    double sum = 0;
+    int count = 0;
+    for (unsigned seed : {7u, 8u}) {
+      const ReferenceImages result = traceReference(scene, frame, referenceSettings(samples, 1e6f, seed));
+      for (float value : result.ao.pixels) {
+        sum += (value - 0.5) * (value - 0.5);
+        ++count;
+      }
+    }
+    return std::sqrt(sum / count);
+  };
+  const double coarse = rmsError(256), fine = rmsError(4096);
+  CAPTURE(coarse);
+  CAPTURE(fine);
+  CHECK(coarse / fine > 2.5);
+  CHECK(coarse / fine < 6.0);
+  // And the reported standard error predicts it: sqrt(0.25 / 255) = 0.0313.
+  CHECK(coarse == doctest::Approx(std::sqrt(0.25 / 255.0)).epsilon(0.25));
+}
+
+TEST_CASE("reference: one bounce from an emissive wall" * doctest::test_suite("reference")) {
+  // The corner's wall (black, emission 1) fills half of the cosine-weighted
+  // hemisphere, so the floor point receives irradiance / pi = 0.5 and
+  // reflects albedo x 0.5 (metallic 0). No lights, no sky.
+  const Scene scene = cornerScene(lambert(glm::vec3(0.0f), glm::vec3(1.0f)));
+  ShadingPoint point;
+  point.position = {0.0f, 0.0f, 1e-3f};
+  point.albedo = {0.5f, 0.25f, 1.0f};
+  const Frame frame = uniformFrame(8, 8, point);
+  const ReferenceSettings settings = referenceSettings(4096, 1e6f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  // The per-channel standard error scales with the albedo; the reported one
+  // is the mean over channels, so scale it by albedo / mean albedo.
+  const double meanAlbedo = (0.5 + 0.25 + 1.0) / 3.0;
+  for (int c = 0; c < 3; ++c) {
+    const double expected = 0.5 * point.albedo[c];
+    const double standardError = meanStandardError(result.indirectMeanStandardError, 64) * point.albedo[c] / meanAlbedo;
+    CAPTURE(c);
+    CHECK(std::abs(mean(result.indirect, 3 + c) - expected) < 4.0 * standardError + 1e-4);  // unlimited
+    CHECK(std::abs(mean(result.indirect, c) - expected) < 4.0 * standardError + 1e-4);      // within R = 1e6
+    // lit = direct (none) + sky (none) + indirect: the same numbers.
+    CHECK(mean(result.lit, c) == doctest::Approx(mean(result.indirect, 3 + c)).epsilon(1e-5));
+  }
+  // Bernoulli(0.5) x albedo: per-ray spread 0.5 x albedo, over sqrt(4096).
+  CHECK(result.indirectMeanStandardError == doctest::Approx(0.5 * meanAlbedo / 64.0).epsilon(0.02));
+
+  // Within R shorter than the 1 mm to the wall: indirectR is 0, the
+  // unlimited indirect is not.
+  const ReferenceImages near = traceReference(scene, frame, referenceSettings(256, 5e-4f));
+  CHECK(mean(near.indirect, 0) == 0.0);
+  CHECK(mean(near.indirect, 3) > 0.2);
+}
+
+TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::test_suite("reference")) {
+  // A sun straight down on a plane seen from straight above: N = V = L = H.
+  // With roughness 1 (alpha 1): D = 1 / pi, Vis = 0.5 / (1 + 1) = 0.25,
+  // F = f0 = 0.04, so L = ((1 - 0.04) albedo / pi + 0.25 x 0.04 / pi) E.
+  Scene scene = emptyScene();
+  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(0.5f)));
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = {0.0f, -1.0f, 0.0f};
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  Frame frame = uniformFrame(2, 2, ShadingPoint{});
+  frame.view.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
+  frame.view.position = {0.0f, 5.0f, 0.0f};
+  const ReferenceSettings settings = referenceSettings(64, 1.0f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const float expected = (0.96f * 0.5f + 0.25f * 0.04f) / kPi * 3.0f;
+  const ReferenceImages lit = traceReference(scene, frame, settings);
+  for (int c = 0; c < 3; ++c) CHECK(lit.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
+
+  // A square above the point shadows it; the square's lit top faces away,
+  // so nothing bounces either.
+  Scene shadowed = scene;
+  add(shadowed, quad({0, 1, 0}, {0, -1, 0}, 0.5f), lambert(glm::vec3(0.5f)));
+  const ReferenceImages dark = traceReference(shadowed, frame, settings);
+  for (int c = 0; c < 3; ++c) CHECK(dark.lit.at(1, 1, c) == 0.0f);
+  // ... unless the light casts no shadow, as in the renderer.
+  shadowed.lights[0].castsShadows = false;
+  const ReferenceImages unshadowed = traceReference(shadowed, frame, settings);
+  for (int c = 0; c < 3; ++c) CHECK(unshadowed.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
+}
+
+TEST_CASE("reference: a white surface under a uniform open sky reflects the sky" * doctest::test_suite("reference")) {
+  // The furnace test: albedo 1, metallic 0, nothing blocking, constant sky
+  // radiance c x intensity. Diffuse (1 - specular albedo) c plus specular
+  // (specular albedo) c is c, whatever the samples' estimate of the
+  // specular albedo, because both come from the same samples.
+  Scene scene = emptyScene();
+  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f)));
+  scene.sky.zenith = scene.sky.horizon = scene.sky.ground = glm::vec3(0.25f, 0.5f, 1.0f);
+  ShadingPoint point;
+  point.albedo = glm::vec3(1.0f);
+  point.roughness = 0.5f;
+  Frame frame = uniformFrame(2, 2, point, 2.0f);
+  frame.view.position = {0.0f, 1.0f, 2.0f};  // 27 degrees above the horizon
+  const ReferenceSettings settings = referenceSettings(256, 1.0f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  for (int c = 0; c < 3; ++c)
+    CHECK(result.lit.at(0, 0, c) == doctest::Approx(2.0f * scene.sky.zenith[c]).epsilon(1e-4));
+}
+
+TEST_CASE("reference: background pixels show the sky through the pixel" * doctest::test_suite("reference")) {
+  // Two rows, camera looking down -Z: the top row looks up, the bottom one
+  // down, by half the vertical half-angle (rows are top first, as in Frame).
+  Scene scene = emptyScene();
+  add(scene, quad({0, -10, 0}, {0, 1, 0}, 1.0f), lambert(glm::vec3(0.5f)));
+  const Frame frame = syntheticFrame(
+      1, 2, [](int, int) { return ShadingPoint{{}, {}, {}, 0, 1, false}; }, 1.5f);
+  const ReferenceSettings settings = referenceSettings(16, 1.0f);
+  if (skipWithoutEmbree(scene, frame, settings)) return;
+
+  const ReferenceImages result = traceReference(scene, frame, settings);
+  const float tangent = std::tan(0.4f) * 0.5f;  // yfov 0.8, pixel centres at +-half the half-height
+  for (int y = 0; y < 2; ++y) {
+    const glm::vec3 direction = glm::normalize(glm::vec3(0.0f, y == 0 ? tangent : -tangent, -1.0f));
+    const glm::vec3 expected = reference::skyRadiance(scene.sky, direction) * 1.5f;
+    CAPTURE(y);
+    for (int c = 0; c < 3; ++c) CHECK(result.lit.at(0, y, c) == doctest::Approx(expected[c]).epsilon(1e-5));
+    CHECK(result.lit.at(0, y, 3) == 0.0f);
+    CHECK(result.ao.at(0, y, 0) == 1.0f);
+    for (int c = 0; c < 6; ++c) CHECK(result.indirect.at(0, y, c) == 0.0f);
+  }
+  CHECK(result.lit.at(0, 0, 2) != result.lit.at(0, 1, 2));
+}
+
+TEST_CASE("reference: results do not depend on the thread count" * doctest::test_suite("reference")) {
+  Scene scene = cornerScene(lambert(glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(0.3f)));
+  Light lamp;
+  lamp.position = {0.3f, 0.8f, 0.5f};
+  lamp.intensity = 2.0f;
+  scene.lights.push_back(lamp);
+  scene.sky.intensity = 1.0f;
+  // A mix of floor points at varying distances from the wall, wall points,
+  // and background.
+  const Frame frame = syntheticFrame(
+      12, 7,
+      [](int x, int y) {
+        ShadingPoint p;
+        if ((x + y) % 5 == 0) p.geometry = false;
+        if (x % 2 == 0) {
+          p.position = {0.1f * float(x) - 0.6f, 0.0f, 0.02f * float(y) + 0.001f};
+        } else {
+          p.position = {0.1f * float(x) - 0.6f, 0.05f * float(y), 0.0f};
+          p.normal = {0.0f, 0.0f, 1.0f};
+          p.roughness = 0.3f;
+          p.metallic = 0.5f;
+        }
+        return p;
+      },
+      1.0f);
+  ReferenceSettings one = referenceSettings(128, 0.3f, 5);
+  one.threads = 1;
+  ReferenceSettings two = one;
+  two.threads = 2;
+  ReferenceSettings three = one;
+  three.threads = 3;
+  if (skipWithoutEmbree(scene, frame, one)) return;
+
+  const ReferenceImages a = traceReference(scene, frame, one);
+  for (const ReferenceSettings& settings : {two, three}) {
+    const ReferenceImages b = traceReference(scene, frame, settings);
+    CAPTURE(settings.threads);
+    CHECK(a.ao.pixels == b.ao.pixels);
+    CHECK(a.indirect.pixels == b.indirect.pixels);
+    CHECK(a.lit.pixels == b.lit.pixels);
+    CHECK(a.aoMeanStandardError == b.aoMeanStandardError);
+    CHECK(a.aoMaxStandardError == b.aoMaxStandardError);
+    CHECK(a.indirectMeanStandardError == b.indirectMeanStandardError);
+  }
+  // Another seed gives other numbers.
+  ReferenceSettings otherSeed = one;
+  otherSeed.seed = 6;
+  CHECK(traceReference(scene, frame, otherSeed).ao.pixels != a.ao.pixels);
+}
+
+TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite("reference")) {
+  const Scene scene = cornerScene();
+  const Frame frame = uniformFrame(2, 2, ShadingPoint{});
+  if (skipWithoutEmbree(scene, frame, referenceSettings(16, 1.0f))) return;
+
+  CHECK_THROWS_WITH_AS(traceReference(scene, frame, referenceSettings(0, 1.0f)),
+                       "traceReference: samplesPerPixel must be in 1..1048576, got 0", SettingsError);
+  CHECK_THROWS_AS(traceReference(scene, frame, referenceSettings(1048577, 1.0f)), SettingsError);
+  CHECK_THROWS_WITH_AS(traceReference(scene, frame, referenceSettings(16, 0.0f)),
+                       doctest::Contains("radius must be a finite number > 0"), SettingsError);
+  CHECK_THROWS_AS(traceReference(scene, frame, referenceSettings(16, -1.0f)), SettingsError);
+  CHECK_THROWS_AS(traceReference(scene, frame, referenceSettings(16, NAN)), SettingsError);
+  ReferenceSettings negativeThreads = referenceSettings(16, 1.0f);
+  negativeThreads.threads = -1;
+  CHECK_THROWS_AS(traceReference(scene, frame, negativeThreads), SettingsError);
+
+  CHECK_THROWS_WITH_AS(traceReference(scene, Frame{}, referenceSettings(16, 1.0f)),
+                       doctest::Contains("frame.position is empty"), SettingsError);
+  Frame mismatched = frame;
+  mismatched.normal = image(3, 2, {"normal.X", "normal.Y", "normal.Z"});
+  CHECK_THROWS_WITH_AS(traceReference(scene, mismatched, referenceSettings(16, 1.0f)),
+                       "traceReference: frame.normal is 3x2x3 with 18 floats; expected 2x2 with at least 3 channels",
+                       SettingsError);
+  Frame noAlbedo = frame;
+  noAlbedo.albedo = ImageF{};
+  CHECK_THROWS_AS(traceReference(scene, noAlbedo, referenceSettings(16, 1.0f)), SettingsError);
+
+  // One sample is allowed; its spread is unknown.
+  const ReferenceImages single = traceReference(scene, frame, referenceSettings(1, 1.0f));
+  CHECK(std::isnan(single.aoMeanStandardError));
+}

@@ -11,38 +11,42 @@ namespace headlight::cli {
 namespace {
 
 struct CliFlag {
+  bool referenceOnly;
   const char* name;
   const char* valueName;  // empty for a switch
   const char* help;
   std::function<void(RenderCommand&, const std::string&)> apply;
 };
 
-int parseDevice(const std::string& text) {
-  int value = -1;
+int parseCount(const char* name, const std::string& text, int low, int high) {
+  int value = 0;
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value < 0)
-    throw SettingsError("--device: expected a device index >= 0, got '" + text + "'");
+  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
+    throw SettingsError("--" + std::string(name) + ": expected an integer in " + std::to_string(low) + ".." +
+                        std::to_string(high) + ", got '" + text + "'");
   return value;
 }
 
 const std::vector<CliFlag>& cliFlags() {
   static const std::vector<CliFlag> flags{
-      {"out", "DIR", "folder for the EXRs and preview.png (default: out)",
+      {false, "out", "DIR", "folder for the EXRs and preview.png (default: out)",
        [](RenderCommand& c, const std::string& v) { c.outDir = v; }},
-      {"backend", "auto|egl|osmesa", "headless GL backend (default: auto = EGL, then OSMesa)",
+      {false, "backend", "auto|egl|osmesa", "headless GL backend (default: auto = EGL, then OSMesa)",
        [](RenderCommand& c, const std::string& v) { c.context.backend = parseBackend(v); }},
-      {"device", "N", "EGL device index (EGL_EXT_device_enumeration); default: the first that works",
-       [](RenderCommand& c, const std::string& v) { c.context.eglDevice = parseDevice(v); }},
-      {"preset", "fast|default|high|seed", "named settings; flags after it override it",
+      {false, "device", "N", "EGL device index (EGL_EXT_device_enumeration); default: the first that works",
+       [](RenderCommand& c, const std::string& v) { c.context.eglDevice = parseCount("device", v, 0, 1 << 16); }},
+      {false, "preset", "fast|default|high|seed", "named settings; flags after it override it",
        [](RenderCommand& c, const std::string& v) { applyPreset(c.settings, v); }},
-      {"allow-external-paths", "", "let glTF URIs point outside the scene file's folder",
+      {false, "allow-external-paths", "", "let glTF URIs point outside the scene file's folder",
        [](RenderCommand& c, const std::string&) { c.allowExternalPaths = true; }},
-      {"strict", "", "treat OpenGL errors as fatal (default: warn)",
+      {false, "strict", "", "treat OpenGL errors as fatal (default: warn)",
        [](RenderCommand& c, const std::string&) { c.context.errorPolicy = GlErrorPolicy::Throw; }},
-      {"quiet", "", "print nothing but errors", [](RenderCommand& c, const std::string&) { c.verbosity = Verbosity::Quiet; }},
-      {"verbose", "", "print the GL backend, renderer and each pass's time",
+      {false, "quiet", "", "print nothing but errors", [](RenderCommand& c, const std::string&) { c.verbosity = Verbosity::Quiet; }},
+      {false, "verbose", "", "print the GL backend, renderer and each pass's time",
        [](RenderCommand& c, const std::string&) { c.verbosity = Verbosity::Verbose; }},
-      {"help", "", "this help", [](RenderCommand& c, const std::string&) { c.help = true; }},
+      {true, "samples", "N", "reference rays per pixel (1..1048576; default 4096)",
+       [](RenderCommand& c, const std::string& v) { c.referenceSamples = parseCount("samples", v, 1, 1 << 20); }},
+      {false, "help", "", "this help", [](RenderCommand& c, const std::string&) { c.help = true; }},
   };
   return flags;
 }
@@ -58,7 +62,7 @@ bool splitFlag(const std::string& arg, std::string& name, std::optional<std::str
 
 }  // namespace
 
-RenderCommand parseRenderArgs(const std::vector<std::string>& args) {
+RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind) {
   RenderCommand command;
   command.context.errorPolicy = GlErrorPolicy::Warn;
   bool sceneGiven = false;
@@ -83,7 +87,7 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args) {
     };
     bool known = false;
     for (const CliFlag& flag : cliFlags()) {
-      if (name != flag.name) continue;
+      if (name != flag.name || (flag.referenceOnly && kind != CommandKind::Reference)) continue;
       flag.apply(command, takeValue(*flag.valueName != '\0'));
       known = true;
     }
@@ -97,20 +101,27 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args) {
   return command;
 }
 
-std::string renderHelp() {
+std::string renderHelp(CommandKind kind) {
   std::ostringstream out;
-  out << "usage: headlight render [SCENE] [options]\n\n"
-         "Renders SCENE (a .gltf/.glb file or builtin:cornell, builtin:spheres; default builtin:cornell)\n"
-         "and writes position, normal, albedo, material, depth, [emissive], ssgi and lit .exr plus\n"
-         "preview.png into the output folder, printing one line per file.\n\n"
-         "Exit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
+  if (kind == CommandKind::Render)
+    out << "usage: headlight render [SCENE] [options]\n\n"
+           "Renders SCENE (a .gltf/.glb file or builtin:cornell, builtin:spheres; default builtin:cornell)\n"
+           "and writes position, normal, albedo, material, depth, [emissive], ssgi and lit .exr plus\n"
+           "preview.png into the output folder, printing one line per file.\n\n";
+  else
+    out << "usage: headlight reference [SCENE] [options]\n\n"
+           "Ray-traces (Embree) the ground truth for SCENE at the pixels `render` would draw with the same\n"
+           "options, and writes ao_ref.exr, indirect_ref.exr and lit_ref.exr into the output folder\n"
+           "(docs/ACCURACY.md defines them).\n\n";
+  out << "Exit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
   auto line = [&](std::string_view name, std::string_view value, std::string_view help) {
     std::string left = "  --" + std::string(name) + (value.empty() ? "" : " " + std::string(value));
     if (left.size() < 34) left.resize(34, ' ');
     else left += "\n" + std::string(34, ' ');
     out << left << help << "\n";
   };
-  for (const CliFlag& flag : cliFlags()) line(flag.name, flag.valueName, flag.help);
+  for (const CliFlag& flag : cliFlags())
+    if (!flag.referenceOnly || kind == CommandKind::Reference) line(flag.name, flag.valueName, flag.help);
   out << "\nrender settings (also recorded in every EXR's metadata):\n";
   const RenderSettings defaults;
   for (const SettingOption& option : settingOptions())

@@ -12,6 +12,9 @@ namespace headlight::cli {
 
 enum class Verbosity { Quiet, Normal, Verbose };
 
+// Which command's flags are accepted: `reference` takes render's and its own.
+enum class CommandKind { Render, Reference };
+
 struct RenderCommand {
   std::string scene = "builtin:cornell";  // file path or builtin:<name>
   std::string outDir = "out";
@@ -20,13 +23,14 @@ struct RenderCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   RenderSettings settings;
+  int referenceSamples = 4096;  // reference only: rays per pixel (ReferenceSettings' default)
 };
 
 // Parses the arguments after "render". Throws SettingsError for a bad or
 // unknown flag or value (the CLI maps it to exit code 2).
-RenderCommand parseRenderArgs(const std::vector<std::string>& args);
+RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind = CommandKind::Render);
 
-// `headlight render --help`, generated from the same tables.
-std::string renderHelp();
+// `headlight render --help` (or reference's), generated from the same tables.
+std::string renderHelp(CommandKind kind = CommandKind::Render);
 
 }  // namespace headlight::cli

@@ -1,1 +1,450 @@
-// headlight diff command: written by the diff work (issue 4).
+// headlight diff: flags -> DiffOptions -> diffImages / diffDirectories ->
+// a table (or one JSON object) -> optional diff images -> exit code.
+#include "diff_command.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iostream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "headlight/diff.hpp"
+#include "headlight/error.hpp"
+
+namespace headlight::cli {
+namespace {
+
+namespace fs = std::filesystem;
+// ordered_json keeps keys in insertion order: status first, as a reader expects.
+using json = nlohmann::ordered_json;
+
+// A bad command line: exit kDiffExitUsage with the message.
+struct UsageError {
+  std::string message;
+};
+
+struct DiffCommand {
+  std::vector<std::string> paths;  // A, B
+  DiffOptions options;
+  std::string out;  // file mode: diff.exr; folder mode: a folder
+  bool json = false;
+  bool quiet = false;
+  bool help = false;
+};
+
+double parseNumber(const std::string& flag, const std::string& text, double highest) {
+  double value = 0;
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (!text.empty() && text[0] == '+') ++begin;  // from_chars takes no '+'
+  auto [stop, error] = std::from_chars(begin, end, value);
+  if (error != std::errc() || stop != end || std::isnan(value) || value < 0 || value > highest)
+    throw UsageError{"--" + flag + ": expected a number in 0.." + (std::isinf(highest) ? "inf" : std::to_string(int(highest))) +
+                     ", got '" + text + "'"};
+  return value;
+}
+
+std::vector<std::string> parseChannels(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream stream(text);
+  for (std::string name; std::getline(stream, name, ',');) {
+    if (name.empty()) throw UsageError{"--channels: empty channel name in '" + text + "' (expected c1,c2,...)"};
+    names.push_back(name);
+  }
+  if (names.empty()) throw UsageError{"--channels: expected c1,c2,..., got an empty list"};
+  return names;
+}
+
+struct DiffFlag {
+  const char* name;
+  const char* valueName;  // empty for a switch
+  const char* help;
+  std::function<void(DiffCommand&, const std::string& flag, const std::string& value)> apply;
+};
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+const std::vector<DiffFlag>& diffFlags() {
+  static const std::vector<DiffFlag> flags{
+      {"fail", "T", "a pixel fails when any channel's error > T",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.fail = parseNumber(f, v, kInf); }},
+      {"failpercent", "P", "FAIL when more than P % of the pixels fail (0..100)",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.failPercent = parseNumber(f, v, 100); }},
+      {"hardfail", "H", "FAIL when any error > H, however few pixels (inf = off)",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.hardFail = parseNumber(f, v, kInf); }},
+      {"warn", "T", "a pixel warns when any channel's error > T",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.warn = parseNumber(f, v, kInf); }},
+      {"warnpercent", "P", "WARN when more than P % of the pixels warn (0..100)",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.warnPercent = parseNumber(f, v, 100); }},
+      {"hardwarn", "H", "WARN when any error > H (inf = off)",
+       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.hardWarn = parseNumber(f, v, kInf); }},
+      {"channels", "c1,c2,...", "compare only these channels (file mode only)",
+       [](DiffCommand& c, const std::string&, const std::string& v) { c.options.channels = parseChannels(v); }},
+      {"target", "NAME", "use NAME's row of the default table (file mode only; default: A's file stem)",
+       [](DiffCommand& c, const std::string&, const std::string& v) {
+         // A typo would silently fall back to idiff's defaults: refuse it.
+         std::string names;
+         for (std::string_view name : diffTargetNames()) {
+           if (name == v) {
+             c.options.target = v;
+             return;
+           }
+           names += (names.empty() ? "" : ", ") + std::string(name);
+         }
+         throw UsageError{"--target: expected one of " + names + ", got '" + v + "'"};
+       }},
+      {"out", "PATH", "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH",
+       [](DiffCommand& c, const std::string&, const std::string& v) {
+         if (v.empty()) throw UsageError{"--out: expected a path"};
+         c.out = v;
+       }},
+      {"json", "", "print one JSON object instead of the table",
+       [](DiffCommand& c, const std::string&, const std::string&) { c.json = true; }},
+      {"quiet", "", "print nothing on stdout (the exit code tells); errors still go to stderr",
+       [](DiffCommand& c, const std::string&, const std::string&) { c.quiet = true; }},
+      {"help", "", "this help", [](DiffCommand& c, const std::string&, const std::string&) { c.help = true; }},
+  };
+  return flags;
+}
+
+DiffCommand parseDiffArgs(const std::vector<std::string>& args) {
+  DiffCommand command;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
+      if (arg.size() > 1 && arg[0] == '-') throw UsageError{"unknown option '" + arg + "'"};
+      command.paths.push_back(arg);
+      continue;
+    }
+    const auto equals = arg.find('=');
+    const std::string name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
+    const DiffFlag* flag = nullptr;
+    for (const DiffFlag& candidate : diffFlags())
+      if (name == candidate.name) flag = &candidate;
+    if (!flag) throw UsageError{"unknown option '--" + name + "'"};
+    std::string value;
+    if (*flag->valueName == '\0') {
+      if (equals != std::string::npos) throw UsageError{"--" + name + " takes no value"};
+    } else if (equals != std::string::npos) {
+      value = arg.substr(equals + 1);
+    } else {
+      if (i + 1 >= args.size()) throw UsageError{"--" + name + " needs a value (" + flag->valueName + ")"};
+      value = args[++i];
+    }
+    flag->apply(command, name, value);
+  }
+  if (command.help) return command;
+  if (command.paths.size() != 2)
+    throw UsageError{"expected two images or two folders (A B), got " + std::to_string(command.paths.size()) +
+                     " path" + (command.paths.size() == 1 ? "" : "s")};
+  return command;
+}
+
+// ---- printing ---------------------------------------------------------------
+
+std::string number(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+std::string upper(std::string_view text) {
+  std::string result(text);
+  for (char& c : result) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return result;
+}
+
+std::string unitSuffix(DiffMetric metric) { return metric == DiffMetric::AngleDegrees ? " deg" : ""; }
+
+std::string describeMetric(const DiffResult& r) {
+  switch (r.metric) {
+    case DiffMetric::Absolute: return "error = |a - b|";
+    case DiffMetric::RelativeToScene:
+      return "error = |a - b| / " + number(r.scale) + " (" + r.scaleSource + "); coverage channel absolute";
+    case DiffMetric::RelativeToValue: return "error = |a - b| / max(1, |a|)";
+    case DiffMetric::AngleDegrees: return "error = angle between the normals of A and B, in degrees";
+  }
+  return "";
+}
+
+std::string values(const std::vector<float>& v) {
+  if (v.size() == 1) return number(v[0]);
+  std::string text = "(";
+  for (std::size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + number(v[i]);
+  return text + ")";
+}
+
+std::string thresholdsLine(const DiffThresholds& t) {
+  return "warn " + number(t.warn) + " (allow " + number(t.warnPercent) + "%), fail " + number(t.fail) + " (allow " +
+         number(t.failPercent) + "%), hardwarn " + number(t.hardWarn) + ", hardfail " + number(t.hardFail);
+}
+
+void printFileResult(const DiffResult& r, std::ostream& out) {
+  out << "A: " << r.a.string() << "\nB: " << r.b.string() << "\n";
+  out << "target " << (r.target.empty() ? "(none)" : r.target) << ": " << metricName(r.metric) << ", "
+      << describeMetric(r) << "\n";
+  out << "thresholds: " << thresholdsLine(r.thresholds) << "\n";
+  if (!r.channels.empty()) {
+    char line[512];
+    std::snprintf(line, sizeof line, "%-16s %10s %10s %8s %10s %12s  %-24s %-24s %s\n", "channel", "mean", "rms", "PSNR",
+                  "max", "at (x, y)", "A there", "B there", "> fail");
+    out << line;
+    for (const ChannelDiff& c : r.channels) {
+      // Built with += : GCC 12 warns falsely (-Wrestrict) on "(" + std::to_string(...).
+      std::string at = "(";
+      at += std::to_string(c.maxX) + ", " + std::to_string(c.maxY) + ")";
+      std::string over = std::to_string(c.failingPixels) + " (" + number(c.failingPercent) + "%)";
+      if (c.nonFiniteA + c.nonFiniteB)
+        over += ", NaN/Inf " + std::to_string(c.nonFiniteA) + " in A, " + std::to_string(c.nonFiniteB) + " in B";
+      std::snprintf(line, sizeof line, "%-16s %10s %10s %8s %10s %12s  %-24s %-24s %s\n", c.name.c_str(),
+                    number(c.meanError).c_str(), number(c.rmsError).c_str(), number(c.psnr).c_str(),
+                    number(c.maxError).c_str(), at.c_str(), values(c.valuesA).c_str(), values(c.valuesB).c_str(),
+                    over.c_str());
+      out << line;
+    }
+  }
+  out << upper(statusName(r.status)) << (r.problem.empty() ? "" : ": " + r.problem) << "\n";
+}
+
+// One line per target in folder mode: name, status, the key numbers.
+std::string targetLine(const DiffResult& r) {
+  char head[64];
+  std::snprintf(head, sizeof head, "%-9s %-11s", r.target.c_str(), upper(statusName(r.status)).c_str());
+  std::string text = head;
+  const std::string overFail = number(r.failingPercent) + "% of pixels > fail " + number(r.thresholds.fail) +
+                               " (allowed " + number(r.thresholds.failPercent) + "%)";
+  // The problem already holds the numbers that decided; a warning adds the
+  // share over fail, which it stayed within.
+  if (!r.problem.empty()) return text + r.problem + (r.status == DiffStatus::Warn && r.failingPixels ? "; " + overFail : "");
+  if (r.maxError == 0) return text + "identical";
+  return text + "max " + number(r.maxError) + unitSuffix(r.metric) + " at (" + std::to_string(r.maxX) + ", " +
+         std::to_string(r.maxY) + ") " + r.maxChannel + ", " + overFail;
+}
+
+std::string verdictLine(const DirectoryDiff& d) {
+  if (d.targets.empty()) return "verdict: " + upper(statusName(d.status)) + ": " + d.problem;
+  int counts[5] = {};
+  for (const DiffResult& r : d.targets) ++counts[int(r.status)];
+  std::string text = "verdict: " + upper(statusName(d.status)) + " (" + std::to_string(d.targets.size()) + " targets:";
+  for (int s = 0; s < 5; ++s)
+    text += std::string(s ? "," : "") + " " + std::to_string(counts[s]) + " " + std::string(statusName(DiffStatus(s)));
+  return text + ")";
+}
+
+// JSON: numbers that are not finite (inf thresholds, PSNR of identical
+// images, max error at a NaN) become null, since JSON has no Inf or NaN.
+json num(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+json toJson(const DiffThresholds& t) {
+  return {{"fail", num(t.fail)},         {"fail_percent", num(t.failPercent)}, {"hard_fail", num(t.hardFail)},
+          {"warn", num(t.warn)},         {"warn_percent", num(t.warnPercent)}, {"hard_warn", num(t.hardWarn)}};
+}
+
+json toJson(const DiffResult& r) {
+  json j;
+  j["status"] = std::string(statusName(r.status));
+  j["exit_code"] = exitCode(r.status);
+  j["problem"] = r.problem;
+  j["a"] = r.a.string();
+  j["b"] = r.b.string();
+  j["target"] = r.target;
+  j["metric"] = std::string(metricName(r.metric));
+  if (r.metric == DiffMetric::RelativeToScene && !r.channels.empty()) {
+    j["scale"] = num(r.scale);
+    j["scale_source"] = r.scaleSource;
+  }
+  j["thresholds"] = toJson(r.thresholds);
+  j["width"] = r.width;
+  j["height"] = r.height;
+  j["pixels"] = r.pixelCount;
+  if (!r.channels.empty()) {
+    j["max_error"] = num(r.maxError);
+    j["max_x"] = r.maxX;
+    j["max_y"] = r.maxY;
+    j["max_channel"] = r.maxChannel;
+    j["failing_pixels"] = r.failingPixels;
+    j["failing_percent"] = r.failingPercent;
+    j["warning_pixels"] = r.warningPixels;
+    j["warning_percent"] = r.warningPercent;
+    j["nonfinite_values"] = r.nonFiniteValues;
+  }
+  json channels = json::array();
+  for (const ChannelDiff& c : r.channels) {
+    json values_a = json::array(), values_b = json::array();
+    for (float v : c.valuesA) values_a.push_back(num(v));
+    for (float v : c.valuesB) values_b.push_back(num(v));
+    channels.push_back({{"name", c.name},
+                        {"sources", c.sources},
+                        {"mean_error", num(c.meanError)},
+                        {"rms_error", num(c.rmsError)},
+                        {"psnr", num(c.psnr)},
+                        {"max_error", num(c.maxError)},
+                        {"max_x", c.maxX},
+                        {"max_y", c.maxY},
+                        {"value_a", values_a},
+                        {"value_b", values_b},
+                        {"failing_pixels", c.failingPixels},
+                        {"failing_percent", c.failingPercent},
+                        {"warning_pixels", c.warningPixels},
+                        {"nonfinite_a", c.nonFiniteA},
+                        {"nonfinite_b", c.nonFiniteB}});
+  }
+  j["channels"] = channels;
+  return j;
+}
+
+// ---- running ------------------------------------------------------------------
+
+// Writes the diff images; returns the paths, or adds a message to `errors`.
+std::vector<std::string> writeImages(const DiffResult& r, const fs::path& exrPath, std::vector<std::string>& errors) {
+  std::vector<std::string> written;
+  if (r.difference.empty()) return written;  // structural or file error: nothing to show
+  try {
+    for (const fs::path& path : writeDiffImages(r, exrPath)) written.push_back(path.string());
+  } catch (const Error& error) {
+    errors.push_back(error.what());
+  }
+  return written;
+}
+
+int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
+  if (!command.out.empty() && fs::path(command.out).extension() != ".exr")
+    throw UsageError{"--out: in file mode, expected a path ending in .exr (the heatmap goes beside it as .png), got '" +
+                     command.out + "'"};
+  const DiffResult result = diffImages(command.paths[0], command.paths[1], command.options);
+  std::vector<std::string> errors, written;
+  if (!command.out.empty()) written = writeImages(result, command.out, errors);
+  int code = exitCode(result.status);
+  if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
+  if (command.json) {
+    json j = toJson(result);
+    j["exit_code"] = code;
+    j["written"] = written;
+    j["write_errors"] = errors;
+    out << j.dump(2) << "\n";
+  } else if (!command.quiet) {
+    printFileResult(result, out);
+    for (const std::string& path : written) out << "wrote " << path << "\n";
+  }
+  for (const std::string& error : errors) err << "headlight diff: IoError: " << error << "\n";
+  return code;
+}
+
+int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err) {
+  if (!command.options.channels.empty() || !command.options.target.empty())
+    throw UsageError{"--channels and --target apply to one file; in folder mode each target uses its own row "
+                     "(compare the files one by one instead)"};
+  const DirectoryDiff result = diffDirectories(command.paths[0], command.paths[1], command.options);
+  std::vector<std::string> errors, written;
+  if (!command.out.empty() && !result.targets.empty()) {
+    std::error_code error;
+    fs::create_directories(command.out, error);
+    if (error) errors.push_back(command.out + ": cannot create the output folder: " + error.message());
+    else
+      for (const DiffResult& r : result.targets)
+        for (std::string& path : writeImages(r, fs::path(command.out) / (r.target + "_diff.exr"), errors))
+          written.push_back(std::move(path));
+  }
+  int code = exitCode(result.status);
+  if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
+  if (command.json) {
+    json targets = json::array();
+    for (const DiffResult& r : result.targets) targets.push_back(toJson(r));
+    const json j = {{"status", std::string(statusName(result.status))},
+                    {"exit_code", code},
+                    {"problem", result.problem},
+                    {"a", result.a.string()},
+                    {"b", result.b.string()},
+                    {"targets", targets},
+                    {"written", written},
+                    {"write_errors", errors}};
+    out << j.dump(2) << "\n";
+  } else if (!command.quiet) {
+    out << "A: " << result.a.string() << "\nB: " << result.b.string() << "\n";
+    for (const DiffResult& r : result.targets) out << targetLine(r) << "\n";
+    for (const std::string& path : written) out << "wrote " << path << "\n";
+    out << verdictLine(result) << "\n";
+  }
+  for (const std::string& error : errors) err << "headlight diff: IoError: " << error << "\n";
+  return code;
+}
+
+}  // namespace
+
+std::string diffHelp() {
+  std::ostringstream out;
+  out << "usage: headlight diff A B [options]\n\n"
+         "Compares image B against reference A (idiff's rules), or, when A and B are folders, every\n"
+         "headlight target (position, normal, albedo, material, depth, emissive, ssgi, lit .exr) in them.\n"
+         "A pixel fails when its error > fail; the result is FAIL when more than failpercent % of the\n"
+         "pixels fail or any error > hardfail, WARN likewise with warn, warnpercent and hardwarn, else\n"
+         "PASS. Any NaN or Inf in A or B is FAIL. Flags override the target's defaults (table below).\n\n"
+         "Exit codes (folder mode: the worst target):\n"
+         "  0 pass   1 warn   2 fail   3 structural mismatch (size, channel names, target in one folder only)\n"
+         "  4 file error (missing or unreadable file or folder, diff image not written)   5 usage error\n\n"
+         "options:\n";
+  for (const DiffFlag& flag : diffFlags()) {
+    std::string left = "  --";
+    left += flag.name;
+    if (*flag.valueName) (left += " ") += flag.valueName;
+    if (left.size() < 26) left.resize(26, ' ');
+    else left += "\n" + std::string(26, ' ');
+    out << left << flag.help << "\n";
+  }
+  out << "\ndefault thresholds by target (A's file stem; units are the metric's):\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s\n", "target", "metric", "warn", "fail", "failpct",
+                "hardfail");
+  out << line;
+  for (const TargetTolerance& row : targetTolerances()) {
+    const DiffThresholds& t = row.thresholds;
+    std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s\n", row.target.empty() ? "(other)" : row.target.data(),
+                  std::string(metricName(row.metric)).c_str(), number(t.warn).c_str(), number(t.fail).c_str(),
+                  number(t.failPercent).c_str(), number(t.hardFail).c_str());
+    out << line;
+  }
+  out << "  (warnpercent 0 and hardwarn inf everywhere; reasons in docs/DIFF.md)\n"
+         "relative-to-scene: error / A's headlight:far (coverage channel A absolute);\n"
+         "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors.\n"
+         "Background pixels are compared like any other (their values are deterministic).\n";
+  return out.str();
+}
+
+int runDiffCommand(const std::vector<std::string>& args) { return runDiffCommand(args, std::cout, std::cerr); }
+
+int runDiffCommand(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  try {
+    const DiffCommand command = parseDiffArgs(args);
+    if (command.help) {
+      out << diffHelp();
+      return exitCode(DiffStatus::Pass);
+    }
+    std::error_code error;
+    const bool folderA = fs::is_directory(command.paths[0], error), folderB = fs::is_directory(command.paths[1], error);
+    if (folderA || folderB) {
+      // A folder against a file that exists is a mistake in the command; a
+      // missing path is left to diffDirectories (a file error).
+      for (const std::string& path : command.paths)
+        if (fs::exists(path, error) && !fs::is_directory(path, error))
+          throw UsageError{"cannot compare a folder with a file ('" + path + "'); give two files or two folders"};
+      return runFolders(command, out, err);
+    }
+    return runFiles(command, out, err);
+  } catch (const UsageError& error) {
+    err << "headlight diff: " << error.message << " (see headlight diff --help)\n";
+    return kDiffExitUsage;
+  } catch (const std::exception& error) {
+    // Not expected (file problems are statuses); say so rather than crash.
+    err << "headlight diff: error: " << error.what() << "\n";
+    return exitCode(DiffStatus::FileError);
+  }
+}
+
+}  // namespace headlight::cli

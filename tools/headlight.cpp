@@ -7,10 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_command.hpp"
 #include "cli_options.hpp"
+#include "diff_command.hpp"
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
@@ -26,7 +29,10 @@ constexpr int kExitUsage = 2;
 const char* kUsage =
     "usage: headlight <command> [options]\n\n"
     "commands:\n"
-    "  render [SCENE]   render a glTF file or builtin:<name> to EXRs (see headlight render --help)\n\n"
+    "  render [SCENE]     render a glTF file or builtin:<name> to EXRs (headlight render --help)\n"
+    "  reference [SCENE]  ray-traced ground truth for the SSGI outputs (headlight reference --help)\n"
+    "  bench [SCENE...]   time every SSGI setting and chart it against the reference (headlight bench --help)\n"
+    "  diff A B           compare two EXRs or two render folders (headlight diff --help)\n\n"
     "options:\n"
     "  --help           this help\n"
     "  --version        print the version\n";
@@ -68,6 +74,48 @@ int runRender(const std::vector<std::string>& args) {
   return kExitOk;
 }
 
+// `reference`: the G-buffer as `render` would draw it, then Embree traces
+// the truth at those pixels.
+int runReference(const std::vector<std::string>& args) {
+  const cli::RenderCommand command = cli::parseRenderArgs(args, cli::CommandKind::Reference);
+  if (command.help) {
+    std::cout << cli::renderHelp(cli::CommandKind::Reference);
+    return kExitOk;
+  }
+  if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
+  Scene scene = loadScene(command.scene, {command.allowExternalPaths});
+  Context context(command.context);
+  if (command.verbosity == cli::Verbosity::Verbose) printVerboseHeader(context, scene);
+  Renderer renderer(context);
+  renderer.setScene(std::move(scene));
+  const Frame frame = renderer.render(command.settings);
+  ReferenceSettings settings;
+  settings.samplesPerPixel = command.referenceSamples;
+  settings.radius = frame.settings.ssgi.radius;
+  const ReferenceImages reference = traceReference(renderer.scene(), frame, settings);
+  const ExrAttributes metadata{
+      {"headlight:reference:samplesPerPixel", std::to_string(reference.samplesPerPixel)},
+      {"headlight:reference:radiusWorld", std::to_string(settings.radius)},
+      {"headlight:reference:aoMeanStandardError", std::to_string(reference.aoMeanStandardError)},
+      {"headlight:reference:aoMaxStandardError", std::to_string(reference.aoMaxStandardError)},
+      {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},
+      {"headlight:reference:seconds", std::to_string(reference.seconds)}};
+  const std::filesystem::path out(command.outDir);
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (error) throw IoError(out.string() + ": cannot create the output folder: " + error.message());
+  const WrittenFile files[] = {writeExr(frame, reference.ao, out / "ao_ref.exr", true, metadata),
+                               writeExr(frame, reference.indirect, out / "indirect_ref.exr", true, metadata),
+                               writeExr(frame, reference.lit, out / "lit_ref.exr", true, metadata)};
+  if (command.verbosity != cli::Verbosity::Quiet) {
+    for (const WrittenFile& file : files) std::cout << file.summary << "\n";
+    std::cout << "reference: " << reference.samplesPerPixel << " rays/pixel in " << reference.seconds
+              << " s; AO standard error mean " << reference.aoMeanStandardError << ", max "
+              << reference.aoMaxStandardError << "\n";
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,7 +129,11 @@ int main(int argc, char** argv) {
     return kExitOk;
   }
   try {
-    if (args[0] == "render") return runRender({args.begin() + 1, args.end()});
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (args[0] == "render") return runRender(rest);
+    if (args[0] == "reference") return runReference(rest);
+    if (args[0] == "bench") return cli::runBenchCommand(rest);
+    if (args[0] == "diff") return cli::runDiffCommand(rest);  // its own exit codes (docs/DIFF.md)
     std::cerr << "headlight: unknown command '" << args[0] << "'\n" << kUsage;
     return kExitUsage;
   } catch (const SettingsError& error) {

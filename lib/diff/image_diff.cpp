@@ -1,1 +1,600 @@
-// headlight diff: written by the diff work (issue 4).
+// headlight diff: OpenImageIO's compare() under idiff's rules, with an error
+// metric per target. Flow of diffImages:
+//   load A, B as float -> structure checks (size, channel names) ->
+//   select channels (B reordered to A's order) -> NaN/Inf counts ->
+//   metric images EA, EB with |EA - EB| = the error -> compare() over all
+//   channels (pixel counts, max) and per channel -> status -> difference image.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "headlight/diff.hpp"
+#include "headlight/error.hpp"
+
+namespace headlight {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The default table. Common to every row:
+//  - failPercent 0.5 (ssgi 1): a silhouette pixel can flip between geometry
+//    and background on another rasterizer (tie-breaking, interpolation), and
+//    a flipped pixel can take any error; 0.5 % is a few times the share of
+//    silhouette pixels in the builtin scenes at 64x48 and above.
+//  - hardFail / hardWarn off (inf) for the same reason; same-driver suites
+//    can pass --hardfail.
+//  - warnPercent 0 (idiff's): WARN means "something exceeds the noise floor
+//    somewhere; look at diff.png", which is what warn is for.
+constexpr DiffThresholds rowThresholds(double warn, double fail, double failPercent) {
+  DiffThresholds t;
+  t.warn = warn;
+  t.fail = fail;
+  t.failPercent = failPercent;
+  return t;
+}
+
+const std::array<TargetTolerance, 9> kTolerances{{
+    {"position", DiffMetric::RelativeToScene, rowThresholds(1e-5, 1e-3, 0.5),
+     "float32 world positions over the view's far distance: drivers interpolate a few float ulps apart "
+     "(< 1e-5); 1e-3 of the view depth is a real geometry or camera change. Coverage A compared absolutely."},
+    {"normal", DiffMetric::AngleDegrees, rowThresholds(0.1, 1.0, 0.5),
+     "angle in degrees: half storage quantizes unit vectors to ~0.03 deg; 1 deg moves a sharp highlight, "
+     "and normal-map or TBN bugs cost many degrees. Components would weigh the axes unequally."},
+    {"albedo", DiffMetric::Absolute, rowThresholds(2e-3, 1e-2, 0.5),
+     "linear 0..1 from 8-bit sRGB textures: one 8-bit step is 3e-4..9e-3 linear, so texture filtering on "
+     "another GPU moves values by up to ~1e-2; more is a material or texture change."},
+    {"material", DiffMetric::Absolute, rowThresholds(2e-3, 1e-2, 0.5),
+     "metallic/roughness/occlusion stored in 8 bits (step 1/255 = 3.9e-3): any step warns, more than two "
+     "steps fails."},
+    {"depth", DiffMetric::RelativeToScene, rowThresholds(1e-5, 1e-3, 0.5),
+     "view-space depth over the far distance, like position: depth precision scales with distance; "
+     "background holds the far plane in both images."},
+    {"emissive", DiffMetric::RelativeToValue, rowThresholds(2e-3, 2e-2, 0.5),
+     "HDR radiance (emissiveStrength can be large): absolute below 1, relative above; half storage rounds "
+     "at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
+    {"ssgi", DiffMetric::Absolute, rowThresholds(5e-3, 5e-2, 1.0),
+     "AO and indirect in 0..~1: seeded and repeatable on one driver, but one of 64 kernel samples landing "
+     "on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade. 1 % of pixels: "
+     "samples flip at every depth discontinuity."},
+    {"lit", DiffMetric::RelativeToValue, rowThresholds(2e-3, 2e-2, 0.5),
+     "linear HDR radiance: absolute below 1, relative above (a highlight of 50 may move by 1); half "
+     "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},
+    {"", DiffMetric::Absolute, DiffThresholds{},
+     "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."},
+}};
+
+constexpr std::array<std::string_view, 8> kTargetNames{"position", "normal", "albedo", "material",
+                                                       "depth",    "emissive", "ssgi", "lit"};
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+std::string percent(double value) { return number(value) + "%"; }
+
+bool isCoverageChannel(std::string_view name) {
+  return name == "A" || (name.size() > 2 && name.substr(name.size() - 2) == ".A");
+}
+
+// Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
+// shared ImageCache, which may hand back an older copy of a file that was
+// rewritten under the same name, as regression suites do).
+std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem) {
+  std::error_code error;
+  if (!fs::exists(path, error)) {
+    problem = path.string() + ": no such file";
+    return std::nullopt;
+  }
+  if (fs::is_directory(path, error)) {
+    problem = path.string() + ": is a folder, expected an image file";
+    return std::nullopt;
+  }
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    problem = path.string() + ": cannot read: " + OIIO::geterror();
+    return std::nullopt;
+  }
+  OIIO::ImageSpec spec = input->spec();
+  if (spec.deep || spec.depth > 1) {
+    problem = path.string() + ": deep and volume images are not supported";
+    return std::nullopt;
+  }
+  spec.set_format(OIIO::TypeDesc::FLOAT);
+  OIIO::ImageBuf buffer(spec);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels())) {
+    problem = path.string() + ": cannot read the pixels: " + input->geterror();
+    return std::nullopt;
+  }
+  return buffer;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+// Channel names of `image` that `other` lacks.
+std::vector<std::string> missingFrom(const OIIO::ImageSpec& image, const OIIO::ImageSpec& other) {
+  std::vector<std::string> missing;
+  for (const std::string& name : image.channelnames)
+    if (other.channelindex(name) < 0) missing.push_back(name);
+  return missing;
+}
+
+// Which channels to compare, or a problem (Structural).
+std::vector<std::string> selectChannels(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b, const DiffResult& result,
+                                        const DiffOptions& options, std::string& problem) {
+  if (!options.channels.empty()) {
+    for (const std::string& name : options.channels) {
+      if (a.channelindex(name) < 0) problem = result.a.string() + " has no channel '" + name + "' (it has " + joined(a.channelnames) + ")";
+      else if (b.channelindex(name) < 0) problem = result.b.string() + " has no channel '" + name + "' (it has " + joined(b.channelnames) + ")";
+      if (!problem.empty()) return {};
+    }
+    return options.channels;
+  }
+  const std::vector<std::string> onlyA = missingFrom(a, b), onlyB = missingFrom(b, a);
+  if (!onlyA.empty() || !onlyB.empty()) {
+    problem = "channel names differ: A has [" + joined(a.channelnames) + "], B has [" + joined(b.channelnames) + "]";
+    if (!onlyA.empty()) problem += "; only in A: " + joined(onlyA);
+    if (!onlyB.empty()) problem += "; only in B: " + joined(onlyB);
+    return {};
+  }
+  return a.channelnames;
+}
+
+OIIO::ImageBuf pickChannels(const OIIO::ImageBuf& image, const std::vector<std::string>& names) {
+  std::vector<int> order;
+  for (const std::string& name : names) order.push_back(image.spec().channelindex(name));
+  return OIIO::ImageBufAlgo::channels(image, int(names.size()), order, {}, names);
+}
+
+void checkOk(const OIIO::ImageBuf& image, const char* operation) {
+  if (image.has_error()) throw Error(std::string("diff: ImageBufAlgo::") + operation + " failed: " + image.geterror());
+}
+
+// The angle between A's and B's vectors per pixel, in degrees. A loop, not
+// ImageBufAlgo: OIIO has no acos/atan2 op, and acos of a float dot product
+// resolves no better than ~0.02 deg near 0 (1 - cos is below float's
+// epsilon there), while atan2(|a x b|, a.b) in double stays exact enough for
+// the 0.1-degree warn level. Length-independent, so unnormalized input is fine.
+OIIO::ImageBuf angleImage(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::string& name) {
+  const OIIO::ROI roi = a.roi();
+  const std::size_t count = roi.npixels();
+  std::vector<float> va(count * 3), vb(count * 3), angle(count);
+  a.get_pixels(roi, OIIO::TypeDesc::FLOAT, va.data());
+  b.get_pixels(roi, OIIO::TypeDesc::FLOAT, vb.data());
+  for (std::size_t i = 0; i < count; ++i) {
+    const double ax = va[3 * i], ay = va[3 * i + 1], az = va[3 * i + 2];
+    const double bx = vb[3 * i], by = vb[3 * i + 1], bz = vb[3 * i + 2];
+    const bool zeroA = ax == 0 && ay == 0 && az == 0, zeroB = bx == 0 && by == 0 && bz == 0;
+    double degrees;
+    if (zeroA && zeroB) degrees = 0;  // background in both (normal.exr holds 0 there)
+    else if (zeroA || zeroB) degrees = 180;  // geometry in one only: the largest possible angle
+    else {
+      const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+      degrees = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz) * (180.0 / std::numbers::pi);
+    }
+    angle[i] = float(degrees);  // NaN input stays NaN
+  }
+  OIIO::ImageSpec spec(roi.width(), roi.height(), 1, OIIO::TypeDesc::FLOAT);
+  spec.x = roi.xbegin;
+  spec.y = roi.ybegin;
+  spec.channelnames = {name};
+  OIIO::ImageBuf out(spec);
+  out.set_pixels(out.roi(), OIIO::TypeDesc::FLOAT, angle.data());
+  return out;
+}
+
+std::string prefixOf(const std::string& channel) {
+  const auto dot = channel.rfind('.');
+  return dot == std::string::npos ? std::string() : channel.substr(0, dot);
+}
+
+// The scene size RelativeToScene divides by: A's headlight:far (the view's
+// far plane, fitted 1 % beyond the farthest scene point, so the depth extent
+// of what the camera sees), else the largest finite |value| of A's
+// non-coverage channels (files from other tools), else 1.
+void chooseScale(const OIIO::ImageBuf& a, const std::vector<std::string>& channels, DiffResult& result) {
+  const float far = a.spec().get_float_attribute("headlight:far", 0.0f);
+  if (std::isfinite(far) && far > 0) {
+    result.scale = far;
+    result.scaleSource = "headlight:far of A";
+    return;
+  }
+  const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(a);
+  double largest = 0;
+  for (std::size_t c = 0; c < channels.size() && c < stats.min.size(); ++c) {
+    if (isCoverageChannel(channels[c])) continue;
+    for (double v : {double(stats.min[c]), double(stats.max[c])})
+      if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+  }
+  result.scale = largest > 0 ? largest : 1.0;
+  result.scaleSource = largest > 0 ? "largest |value| in A (no headlight:far)" : "1 (no headlight:far, A is all zero)";
+}
+
+struct MetricImages {
+  OIIO::ImageBuf a, b;  // |a - b| is the error, channel by channel
+  std::vector<std::vector<int>> sources;  // per metric channel: indices into the selected channels
+};
+
+MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::vector<std::string>& channels,
+                          DiffResult& result) {
+  namespace iba = OIIO::ImageBufAlgo;
+  MetricImages m;
+  const int n = int(channels.size());
+  for (int c = 0; c < n; ++c) m.sources.push_back({c});
+  switch (result.metric) {
+    case DiffMetric::Absolute:
+      m.a = a.copy(OIIO::TypeDesc::FLOAT);
+      m.b = b.copy(OIIO::TypeDesc::FLOAT);
+      break;
+    case DiffMetric::RelativeToScene: {
+      chooseScale(a, channels, result);
+      std::vector<float> factors;
+      for (const std::string& name : channels) factors.push_back(isCoverageChannel(name) ? 1.0f : float(1.0 / result.scale));
+      m.a = iba::mul(a, factors);
+      m.b = iba::mul(b, factors);
+      break;
+    }
+    case DiffMetric::RelativeToValue: {
+      // a/d - b/d = (a - b)/d with d = max(1, |a|) per pixel and channel.
+      const OIIO::ImageBuf denominator = iba::max(iba::abs(a), 1.0f);
+      checkOk(denominator, "max");
+      m.a = iba::div(a, denominator);
+      m.b = iba::div(b, denominator);
+      break;
+    }
+    case DiffMetric::AngleDegrees: {
+      const std::string prefix = prefixOf(channels[0]);
+      m.a = angleImage(a, b, prefix.empty() ? "angle" : prefix + ".angle");
+      m.b = iba::zero(m.a.roi());
+      m.sources = {{0, 1, 2}};
+      break;
+    }
+  }
+  checkOk(m.a, "metric (A)");
+  checkOk(m.b, "metric (B)");
+  return m;
+}
+
+std::vector<float> valuesAt(const OIIO::ImageBuf& image, int x, int y, const std::vector<int>& channels) {
+  std::vector<float> values;
+  for (int c : channels) values.push_back(image.getchannel(x, y, 0, c));
+  return values;
+}
+
+void buildDifference(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const MetricImages& m,
+                     const std::vector<std::string>& channels, DiffResult& result) {
+  namespace iba = OIIO::ImageBufAlgo;
+  const OIIO::ImageBuf raw = iba::absdiff(a, b);
+  const OIIO::ImageBuf metricError = iba::absdiff(m.a, m.b);
+  checkOk(raw, "absdiff");
+  checkOk(metricError, "absdiff");
+  const std::size_t count = a.roi().npixels();
+  const int rawChannels = int(channels.size()), errorChannels = metricError.nchannels();
+  std::vector<float> rawPixels(count * std::size_t(rawChannels)), errorPixels(count * std::size_t(errorChannels));
+  raw.get_pixels(raw.roi(), OIIO::TypeDesc::FLOAT, rawPixels.data());
+  metricError.get_pixels(metricError.roi(), OIIO::TypeDesc::FLOAT, errorPixels.data());
+  ImageF& out = result.difference;
+  out.width = result.width;
+  out.height = result.height;
+  out.channels = channels;
+  out.channels.push_back("error");
+  out.pixels.resize(count * out.channels.size());
+  // Max over channels by hand: ImageBufAlgo::maxchan leaves NaN handling to
+  // std::max's argument order, and a NaN must show as the worst error.
+  for (std::size_t p = 0; p < count; ++p) {
+    float* pixel = &out.pixels[p * out.channels.size()];
+    std::copy_n(&rawPixels[p * std::size_t(rawChannels)], rawChannels, pixel);
+    float worst = 0;
+    for (int c = 0; c < errorChannels; ++c) {
+      const float e = errorPixels[p * std::size_t(errorChannels) + std::size_t(c)];
+      worst = std::isfinite(e) ? std::max(worst, e) : std::numeric_limits<float>::infinity();
+    }
+    pixel[rawChannels] = worst;
+  }
+}
+
+// idiff's verdict, plus NaN/Inf (which compare() skips when both images
+// have one at the same place, and does not count as failing otherwise).
+void judge(DiffResult& r) {
+  const DiffThresholds& t = r.thresholds;
+  const double pixels = double(r.pixelCount);
+  auto where = [&] {
+    return " at (" + std::to_string(r.maxX) + ", " + std::to_string(r.maxY) + ") in " + r.maxChannel;
+  };
+  if (r.nonFiniteValues > 0) {
+    std::string detail;
+    for (const ChannelDiff& c : r.channels)
+      if (c.nonFiniteA + c.nonFiniteB > 0)
+        detail += (detail.empty() ? "" : ", ") + c.name + ": " + std::to_string(c.nonFiniteA) + " in A, " +
+                  std::to_string(c.nonFiniteB) + " in B";
+    r.status = DiffStatus::Fail;
+    r.problem = std::to_string(r.nonFiniteValues) + " NaN/Inf values (" + detail + ")";
+  } else if (double(r.failingPixels) > t.failPercent / 100.0 * pixels) {
+    r.status = DiffStatus::Fail;
+    r.problem = percent(r.failingPercent) + " of pixels (" + std::to_string(r.failingPixels) + ") have error > fail " +
+                number(t.fail) + ", allowed " + percent(t.failPercent) + "; max " + number(r.maxError) + where();
+  } else if (r.maxError > t.hardFail) {
+    r.status = DiffStatus::Fail;
+    r.problem = "max error " + number(r.maxError) + where() + " > hardfail " + number(t.hardFail);
+  } else if (double(r.warningPixels) > t.warnPercent / 100.0 * pixels) {
+    r.status = DiffStatus::Warn;
+    r.problem = percent(r.warningPercent) + " of pixels (" + std::to_string(r.warningPixels) + ") have error > warn " +
+                number(t.warn) + ", allowed " + percent(t.warnPercent) + "; max " + number(r.maxError) + where();
+  } else if (r.maxError > t.hardWarn) {
+    r.status = DiffStatus::Warn;
+    r.problem = "max error " + number(r.maxError) + where() + " > hardwarn " + number(t.hardWarn);
+  } else {
+    r.status = DiffStatus::Pass;
+  }
+}
+
+// The same approach as lib/output/image_writer.cpp (which keeps it private):
+// a hidden .tmp name in the same folder, so rename() is atomic and no reader
+// takes a half-written file for a result.
+fs::path temporaryPathFor(const fs::path& path) {
+  static std::mt19937 rng(std::random_device{}());
+  return path.parent_path() /
+         ("." + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
+}
+
+void writeAtomically(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec, const char* format) {
+  const fs::path temporary = temporaryPathFor(path);
+  try {
+    auto output = OIIO::ImageOutput::create(format);
+    if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
+    if (!output->open(temporary.string(), spec) || !buffer.write(output.get()) || !output->close())
+      throw IoError(path.string() + ": writing failed: " + output->geterror());
+    std::error_code error;
+    fs::rename(temporary, path, error);
+    if (error) throw IoError(path.string() + ": cannot rename the temporary file into place: " + error.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw;
+  }
+}
+
+}  // namespace
+
+std::string_view statusName(DiffStatus status) {
+  switch (status) {
+    case DiffStatus::Pass: return "pass";
+    case DiffStatus::Warn: return "warn";
+    case DiffStatus::Fail: return "fail";
+    case DiffStatus::Structural: return "structural";
+    case DiffStatus::FileError: return "file-error";
+  }
+  return "?";
+}
+
+std::string_view metricName(DiffMetric metric) {
+  switch (metric) {
+    case DiffMetric::Absolute: return "absolute";
+    case DiffMetric::RelativeToScene: return "relative-to-scene";
+    case DiffMetric::RelativeToValue: return "relative-to-value";
+    case DiffMetric::AngleDegrees: return "angle-degrees";
+  }
+  return "?";
+}
+
+std::span<const TargetTolerance> targetTolerances() { return kTolerances; }
+
+const TargetTolerance& targetTolerance(std::string_view target) {
+  for (const TargetTolerance& row : kTolerances)
+    if (row.target == target) return row;
+  return kTolerances.back();
+}
+
+DiffThresholds defaultThresholds(std::string_view target) { return targetTolerance(target).thresholds; }
+DiffMetric defaultMetric(std::string_view target) { return targetTolerance(target).metric; }
+std::span<const std::string_view> diffTargetNames() { return kTargetNames; }
+
+DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options) {
+  DiffThresholds t = defaultThresholds(target);
+  if (options.fail) t.fail = *options.fail;
+  if (options.failPercent) t.failPercent = *options.failPercent;
+  if (options.hardFail) t.hardFail = *options.hardFail;
+  if (options.warn) t.warn = *options.warn;
+  if (options.warnPercent) t.warnPercent = *options.warnPercent;
+  if (options.hardWarn) t.hardWarn = *options.hardWarn;
+  return t;
+}
+
+DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& options) {
+  namespace iba = OIIO::ImageBufAlgo;
+  DiffResult result;
+  result.a = a;
+  result.b = b;
+  result.target = options.target.empty() ? a.stem().string() : options.target;
+  const TargetTolerance& row = targetTolerance(result.target);
+  result.metric = row.metric;
+  result.thresholds = resolveThresholds(result.target, options);
+
+  std::string problemA, problemB;
+  const std::optional<OIIO::ImageBuf> imageA = loadImage(a, problemA);
+  const std::optional<OIIO::ImageBuf> imageB = loadImage(b, problemB);
+  if (!imageA || !imageB) {
+    result.status = DiffStatus::FileError;
+    result.problem = problemA + (problemA.empty() || problemB.empty() ? "" : "; ") + problemB;
+    return result;
+  }
+  const OIIO::ImageSpec &specA = imageA->spec(), &specB = imageB->spec();
+  result.width = specA.width;
+  result.height = specA.height;
+  result.pixelCount = std::uint64_t(specA.width) * std::uint64_t(specA.height);
+  if (specA.width != specB.width || specA.height != specB.height || specA.x != specB.x || specA.y != specB.y) {
+    result.status = DiffStatus::Structural;
+    auto window = [](const OIIO::ImageSpec& s) {
+      std::string text = std::to_string(s.width) + "x" + std::to_string(s.height);
+      if (s.x || s.y) text += " at (" + std::to_string(s.x) + ", " + std::to_string(s.y) + ")";
+      return text;
+    };
+    result.problem = "sizes differ: A is " + window(specA) + ", B is " + window(specB);
+    return result;
+  }
+  std::string problem;
+  const std::vector<std::string> channels = selectChannels(specA, specB, result, options, problem);
+  if (!problem.empty() || channels.empty()) {
+    result.status = DiffStatus::Structural;
+    result.problem = problem.empty() ? "no channels to compare" : problem;
+    return result;
+  }
+  const OIIO::ImageBuf selA = pickChannels(*imageA, channels), selB = pickChannels(*imageB, channels);
+  checkOk(selA, "channels");
+  checkOk(selB, "channels");
+  // The angle needs a 3-vector; a --channels subset of a normal target is
+  // compared per component instead (the metric in the result says so).
+  if (result.metric == DiffMetric::AngleDegrees && channels.size() != 3) result.metric = DiffMetric::Absolute;
+
+  const iba::PixelStats statsA = iba::computePixelStats(selA), statsB = iba::computePixelStats(selB);
+  auto nonFinite = [](const iba::PixelStats& s, std::size_t c) {
+    return c < s.nancount.size() ? std::uint64_t(s.nancount[c] + s.infcount[c]) : 0;
+  };
+
+  const MetricImages m = metricImages(selA, selB, channels, result);
+  const float fail = float(result.thresholds.fail), warn = float(result.thresholds.warn);
+  const iba::CompareResults all = iba::compare(m.a, m.b, fail, warn);
+  result.maxError = all.maxerror;
+  result.maxX = all.maxx;
+  result.maxY = all.maxy;
+  result.maxChannel = std::string(m.a.spec().channel_name(all.maxc));
+  result.failingPixels = all.nfail;
+  result.warningPixels = all.nwarn;
+  const double toPercent = result.pixelCount ? 100.0 / double(result.pixelCount) : 0.0;
+  result.failingPercent = double(all.nfail) * toPercent;
+  result.warningPercent = double(all.nwarn) * toPercent;
+
+  for (int c = 0; c < m.a.nchannels(); ++c) {
+    OIIO::ROI roi = m.a.roi();
+    roi.chbegin = c;
+    roi.chend = c + 1;
+    const iba::CompareResults one = iba::compare(m.a, m.b, fail, warn, roi);
+    ChannelDiff diff;
+    diff.name = std::string(m.a.spec().channel_name(c));
+    diff.meanError = one.meanerror;
+    diff.rmsError = one.rms_error;
+    diff.psnr = one.PSNR;
+    diff.maxError = one.maxerror;
+    diff.maxX = one.maxx;
+    diff.maxY = one.maxy;
+    diff.failingPixels = one.nfail;
+    diff.warningPixels = one.nwarn;
+    diff.failingPercent = double(one.nfail) * toPercent;
+    for (int s : m.sources[std::size_t(c)]) {
+      diff.sources.push_back(channels[std::size_t(s)]);
+      diff.nonFiniteA += nonFinite(statsA, std::size_t(s));
+      diff.nonFiniteB += nonFinite(statsB, std::size_t(s));
+    }
+    diff.valuesA = valuesAt(selA, one.maxx, one.maxy, m.sources[std::size_t(c)]);
+    diff.valuesB = valuesAt(selB, one.maxx, one.maxy, m.sources[std::size_t(c)]);
+    result.nonFiniteValues += diff.nonFiniteA + diff.nonFiniteB;
+    result.channels.push_back(std::move(diff));
+  }
+  judge(result);
+  buildDifference(selA, selB, m, channels, result);
+  return result;
+}
+
+DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOptions& options) {
+  if (!options.target.empty() || !options.channels.empty())
+    throw std::invalid_argument("diffDirectories: options.target and options.channels apply to one file, not a folder");
+  DirectoryDiff diff;
+  diff.a = a;
+  diff.b = b;
+  std::error_code error;
+  for (const fs::path& folder : {a, b}) {
+    if (!fs::is_directory(folder, error)) {
+      diff.status = DiffStatus::FileError;
+      diff.problem += (diff.problem.empty() ? "" : "; ") + folder.string() +
+                      (fs::exists(folder, error) ? ": not a folder" : ": no such folder");
+    }
+  }
+  if (diff.status == DiffStatus::FileError) return diff;
+  for (std::string_view target : kTargetNames) {
+    const std::string file = std::string(target) + ".exr";
+    const bool inA = fs::exists(a / file, error), inB = fs::exists(b / file, error);
+    if (!inA && !inB) continue;
+    if (inA && inB) {
+      diff.targets.push_back(diffImages(a / file, b / file, options));
+      continue;
+    }
+    DiffResult missing;
+    missing.a = a / file;
+    missing.b = b / file;
+    missing.target = std::string(target);
+    missing.metric = defaultMetric(target);
+    missing.thresholds = resolveThresholds(target, options);
+    missing.status = DiffStatus::Structural;
+    missing.problem = file + " is in " + (inA ? a : b).string() + " only";
+    diff.targets.push_back(std::move(missing));
+  }
+  if (diff.targets.empty()) {
+    diff.status = DiffStatus::FileError;
+    diff.problem = "no headlight targets (position.exr, normal.exr, ..., lit.exr) in " + a.string() + " or " + b.string();
+    return diff;
+  }
+  for (const DiffResult& target : diff.targets) diff.status = std::max(diff.status, target.status);
+  return diff;
+}
+
+std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& exrPath) {
+  namespace iba = OIIO::ImageBufAlgo;
+  const ImageF& diff = result.difference;
+  if (diff.empty())
+    throw Error("writeDiffImages: " + exrPath.string() + ": the comparison ended in '" +
+                std::string(statusName(result.status)) + "', so there is no difference image");
+  OIIO::ImageSpec spec(diff.width, diff.height, diff.channelCount(), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = diff.channels;
+  OIIO::ImageBuf buffer(spec);
+  buffer.set_pixels(buffer.roi(), OIIO::TypeDesc::FLOAT, diff.pixels.data());
+  OIIO::ImageSpec exrSpec = spec;
+  exrSpec.attribute("compression", "zip");
+  exrSpec.attribute("headlight:diff:a", result.a.string());
+  exrSpec.attribute("headlight:diff:b", result.b.string());
+  exrSpec.attribute("headlight:diff:target", result.target);
+  exrSpec.attribute("headlight:diff:metric", std::string(metricName(result.metric)));
+  exrSpec.attribute("headlight:diff:fail", float(result.thresholds.fail));
+  exrSpec.attribute("headlight:diff:status", std::string(statusName(result.status)));
+
+  // Heatmap: error * (0.5 / fail), so the fail threshold sits mid-ramp and
+  // twice it saturates; +inf (NaN/Inf inputs) saturates too.
+  const int errorChannel = diff.channelCount() - 1;
+  double fullScale = 2.0 * result.thresholds.fail;
+  if (!(fullScale > 0) || !std::isfinite(fullScale)) {
+    fullScale = 0;
+    for (std::size_t p = std::size_t(errorChannel); p < diff.pixels.size(); p += diff.channels.size())
+      if (std::isfinite(diff.pixels[p])) fullScale = std::max(fullScale, double(diff.pixels[p]));
+    if (fullScale == 0) fullScale = 1;
+  }
+  const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
+  const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / fullScale)), 0.0f, 1.0f);
+  OIIO::ImageBuf heat = iba::color_map(scaled, 0, "inferno");
+  if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
+  OIIO::ImageSpec pngSpec = heat.spec();
+  pngSpec.set_format(OIIO::TypeDesc::UINT8);
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");  // the colour map's values are display values
+
+  fs::path pngPath = exrPath;
+  pngPath.replace_extension(".png");
+  writeAtomically(exrPath, buffer, exrSpec, "openexr");
+  writeAtomically(pngPath, heat, pngSpec, "png");
+  return {exrPath, pngPath};
+}
+
+}  // namespace headlight

@@ -100,12 +100,14 @@ float tonemapAces(float x) {
 
 float tonemapReinhard(float x) { return x / (1.0f + x); }
 
-WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat) {
+WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
+                     const ExrAttributes& extra) {
   OIIO::ImageBuf buffer = toImageBuf(image);
   OIIO::ImageSpec spec = buffer.spec();
   spec.set_format(halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   spec.attribute("compression", "zip");
   addMetadata(spec, frame);
+  for (const auto& [name, value] : extra) spec.attribute(name, value);
   writeAtomically(path, [&](const fs::path& temporary) { writeImage(temporary, buffer, spec, "openexr"); });
   return {path, summarize(path, image, halfFloat ? "half" : "float")};
 }

@@ -1,4 +1,169 @@
 #pragma once
-// Image comparison for regression suites (headlight diff), following
-// OpenImageIO idiff's semantics: warn and fail levels, a percent-of-pixels
-// allowance and a hard per-pixel cap. Written by the diff work (issue 4).
+// Image comparison for regression suites (`headlight diff`), following
+// OpenImageIO idiff's semantics. A pixel *fails* when its error exceeds the
+// fail threshold; the comparison FAILS when more than failPercent % of the
+// pixels fail or any error exceeds hardFail; it WARNS likewise with warn,
+// warnPercent and hardWarn; otherwise it PASSES. A NaN or Inf in either image
+// always FAILS. The numbers come from OIIO::ImageBufAlgo::compare.
+//
+// What an "error" is depends on the target (the file stem: position, normal,
+// ..., lit), because data targets need different units: see DiffMetric and
+// targetTolerances(), which also holds each target's default thresholds and
+// why. docs/DIFF.md has the table and the exit codes.
+//
+// Roles: A is the reference (the golden), B the image under test. A's
+// metadata gives the scene scale and A's values the relative denominators.
+//
+// File problems (missing, unreadable) and structural mismatches (size,
+// channel names) are statuses in the result, not exceptions: a regression
+// suite wants one verdict per target. Only writeDiffImages throws (IoError).
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "headlight/frame.hpp"
+
+namespace headlight {
+
+// Ordered by severity: the worst of several results is the largest. The
+// values are the CLI's exit codes (5 is the CLI's usage error).
+enum class DiffStatus {
+  Pass = 0,
+  Warn = 1,
+  Fail = 2,
+  Structural = 3,  // different size, channel names, or a target in one folder only
+  FileError = 4,   // missing or unreadable file or folder
+};
+
+std::string_view statusName(DiffStatus status);  // "pass", "warn", "fail", "structural", "file-error"
+inline int exitCode(DiffStatus status) { return int(status); }
+inline constexpr int kDiffExitUsage = 5;
+
+// How a pixel's error is measured. Every metric is turned into images EA and
+// EB whose absolute difference is the error, so ImageBufAlgo::compare does
+// the counting for all of them.
+enum class DiffMetric {
+  Absolute,         // |a - b|
+  RelativeToScene,  // |a - b| / scale, scale = A's headlight:far (see DiffResult::scaleSource);
+                    // a coverage channel ("A") stays absolute
+  RelativeToValue,  // |a - b| / max(1, |a|): absolute below 1, relative above (HDR radiance)
+  AngleDegrees,     // angle between the 3-channel vectors of A and B, in degrees; one channel
+                    // "<prefix>.angle"; 0 when both are zero vectors, 180 when only one is
+};
+
+std::string_view metricName(DiffMetric metric);  // "absolute", "relative-to-scene", ...
+
+// idiff's options and idiff's defaults. Units are the metric's.
+struct DiffThresholds {
+  double fail = 1e-6;         // >= 0; a pixel fails when any channel's error > fail
+  double failPercent = 0;     // 0..100; FAIL when more than this % of pixels fail
+  double hardFail = std::numeric_limits<double>::infinity();  // >= 0; FAIL when any error > hardFail
+  double warn = 1e-6;         // >= 0
+  double warnPercent = 0;     // 0..100
+  double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
+};
+
+// One row of the per-target default table.
+struct TargetTolerance {
+  std::string_view target;  // file stem; "" for the row used for any other name
+  DiffMetric metric = DiffMetric::Absolute;
+  DiffThresholds thresholds;
+  std::string_view reason;  // why these numbers (printed by --help, copied in docs/DIFF.md)
+};
+
+// The table: position, normal, albedo, material, depth, emissive, ssgi, lit,
+// then the fallback row ("") with idiff's defaults.
+std::span<const TargetTolerance> targetTolerances();
+
+// The row for `target`, or the fallback row for a name not in the table.
+const TargetTolerance& targetTolerance(std::string_view target);
+DiffThresholds defaultThresholds(std::string_view target);
+DiffMetric defaultMetric(std::string_view target);
+
+// The target names directory mode looks for, as <name>.exr.
+std::span<const std::string_view> diffTargetNames();
+
+struct DiffOptions {
+  // Each set value replaces the target's default (the CLI's --fail, ...).
+  std::optional<double> fail, failPercent, hardFail, warn, warnPercent, hardWarn;
+  // Channels to compare, by name, in this order; empty = every channel. A
+  // name missing from either image is a Structural result.
+  std::vector<std::string> channels;
+  // Table row to use; empty = A's file stem.
+  std::string target;
+};
+
+// The target's defaults with the options' overrides applied.
+DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options);
+
+struct ChannelDiff {
+  std::string name;                  // compared channel: "R", "position.X", or "normal.angle"
+  std::vector<std::string> sources;  // the input channels it is computed from
+  double meanError = 0;              // mean error over all pixels, in the metric's units
+  double rmsError = 0;
+  double psnr = std::numeric_limits<double>::infinity();  // 20 log10(1 / rms), as OIIO computes it
+  double maxError = 0;               // +inf where only one image is NaN/Inf there (OIIO's rule)
+  int maxX = 0, maxY = 0;            // pixel of maxError
+  std::vector<float> valuesA, valuesB;  // `sources` of A and B at (maxX, maxY)
+  std::uint64_t failingPixels = 0;   // error > fail
+  std::uint64_t warningPixels = 0;   // error > warn (failing pixels included)
+  double failingPercent = 0;         // of all pixels
+  std::uint64_t nonFiniteA = 0, nonFiniteB = 0;  // NaN or Inf values in the sources
+};
+
+struct DiffResult {
+  DiffStatus status = DiffStatus::Pass;
+  std::string problem;  // one line saying why the status is not Pass; empty on Pass
+  std::filesystem::path a, b;
+  std::string target;   // table row used
+  DiffMetric metric = DiffMetric::Absolute;
+  DiffThresholds thresholds;  // as used
+  double scale = 1;           // RelativeToScene only: the divisor
+  std::string scaleSource;    // e.g. "headlight:far of A"
+  int width = 0, height = 0;
+  std::uint64_t pixelCount = 0;
+  std::vector<ChannelDiff> channels;  // empty for Structural and FileError
+  // Over all channels (a pixel counts once however many channels fail).
+  double maxError = 0;
+  int maxX = 0, maxY = 0;
+  std::string maxChannel;
+  std::uint64_t failingPixels = 0, warningPixels = 0;
+  double failingPercent = 0, warningPercent = 0;
+  std::uint64_t nonFiniteValues = 0;  // in A and B together
+  // Per compared input channel |a - b| under its own name, then "error": the
+  // per-pixel maximum of the metric's error over channels (+inf where an
+  // input is NaN/Inf). Empty for Structural and FileError.
+  ImageF difference;
+};
+
+// Compares image B against reference A. Never throws for file or structure
+// problems: they are the result's status and problem.
+DiffResult diffImages(const std::filesystem::path& a, const std::filesystem::path& b, const DiffOptions& options = {});
+
+struct DirectoryDiff {
+  DiffStatus status = DiffStatus::Pass;  // the worst of `targets`, or FileError (see problem)
+  std::string problem;                   // set when a folder is missing or holds no target
+  std::filesystem::path a, b;
+  std::vector<DiffResult> targets;  // in diffTargetNames() order; a target in one folder only is Structural
+};
+
+// Compares every <target>.exr of diffTargetNames() present in either folder.
+// options.target and options.channels must be empty (each file uses its own
+// row); throws std::invalid_argument otherwise.
+DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesystem::path& b,
+                              const DiffOptions& options = {});
+
+// Writes result.difference as a float EXR at `exrPath` and a heatmap PNG
+// beside it (same name, .png): the "error" channel through the inferno
+// colour map, scaled so the fail threshold is mid-scale (fail = 0: the
+// largest error is full scale). Both written atomically (temporary name in
+// the same folder, then rename). Returns the two paths. Throws IoError when
+// writing fails, Error when the result has no difference image.
+std::vector<std::filesystem::path> writeDiffImages(const DiffResult& result, const std::filesystem::path& exrPath);
+
+}  // namespace headlight

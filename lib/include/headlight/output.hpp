@@ -21,8 +21,13 @@ struct WrittenFile {
 // Creates outDir if needed. Throws IoError naming the file.
 std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::path& outDir);
 
-// One target as EXR with the frame's metadata; `halfFloat` selects half.
-WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat);
+// Extra string attributes for an EXR, e.g. {"headlight:reference:samples", "4096"}.
+using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
+
+// One target as EXR with the frame's metadata (and `extra`); `halfFloat`
+// selects half.
+WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat,
+                     const ExrAttributes& extra = {});
 
 // The lit image tonemapped (frame.settings.tonemap, .exposure) to 8-bit sRGB.
 WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);

@@ -1,0 +1,222 @@
+#include "headlight/bench.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "headlight/error.hpp"
+
+namespace headlight {
+namespace {
+
+bool covered(const ImageF& mask, std::size_t pixel) { return mask.pixels[pixel * mask.channels.size() + 3] != 0.0f; }
+
+void requireSameSize(const ImageF& a, const ImageF& b, const ImageF& mask) {
+  if (a.width != b.width || a.height != b.height || a.width != mask.width || a.height != mask.height ||
+      mask.channels.size() != 4)
+    throw SettingsError("bench metrics: images of different sizes (" + std::to_string(a.width) + "x" +
+                        std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) +
+                        ") or a mask without coverage");
+}
+
+float toneMappedLuminance(const ImageF& image, std::size_t pixel) {
+  const float* p = &image.pixels[pixel * image.channels.size()];
+  const float luminance = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+  return std::max(luminance, 0.0f) / (1.0f + std::max(luminance, 0.0f));
+}
+
+// Writes the file through a temporary name, as every output of the project.
+void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path temporary = path.string() + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out) throw IoError(path.string() + ": cannot write");
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+}  // namespace
+
+ErrorStats maskedError(const ImageF& a, int channelA, const ImageF& b, int channelB, const ImageF& mask) {
+  requireSameSize(a, b, mask);
+  ErrorStats stats;
+  double squared = 0, absolute = 0, reference = 0;
+  const std::size_t count = std::size_t(a.width) * std::size_t(a.height);
+  for (std::size_t p = 0; p < count; ++p) {
+    if (!covered(mask, p)) continue;
+    const double va = a.pixels[p * a.channels.size() + std::size_t(channelA)];
+    const double vb = b.pixels[p * b.channels.size() + std::size_t(channelB)];
+    squared += (va - vb) * (va - vb);
+    absolute += std::abs(va - vb);
+    reference += vb;
+    ++stats.pixels;
+  }
+  if (stats.pixels > 0) {
+    stats.rmse = std::sqrt(squared / double(stats.pixels));
+    stats.meanAbsolute = absolute / double(stats.pixels);
+    stats.referenceMean = reference / double(stats.pixels);
+  }
+  return stats;
+}
+
+ColorErrorStats maskedColorError(const ImageF& a, int firstA, const ImageF& b, int firstB, const ImageF& mask) {
+  double squared = 0, reference = 0;
+  long long pixels = 0;
+  for (int c = 0; c < 3; ++c) {
+    const ErrorStats channel = maskedError(a, firstA + c, b, firstB + c, mask);
+    squared += channel.rmse * channel.rmse;
+    reference += channel.referenceMean;
+    pixels = channel.pixels;
+  }
+  ColorErrorStats stats;
+  if (pixels == 0) return stats;
+  stats.rmse = std::sqrt(squared / 3.0);
+  const double referenceMean = reference / 3.0;
+  stats.relativeRmse = referenceMean > 0 ? stats.rmse / referenceMean : 0.0;
+  return stats;
+}
+
+double maskedSsim(const ImageF& a, const ImageF& b, const ImageF& mask) {
+  requireSameSize(a, b, mask);
+  const int width = a.width, height = a.height;
+  std::vector<float> la(std::size_t(width) * std::size_t(height)), lb(la.size());
+  for (std::size_t p = 0; p < la.size(); ++p) {
+    la[p] = toneMappedLuminance(a, p);
+    lb[p] = toneMappedLuminance(b, p);
+  }
+  constexpr int kHalf = 3;  // 7x7 windows
+  constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
+  double sum = 0;
+  long long windows = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (!covered(mask, std::size_t(y) * std::size_t(width) + std::size_t(x))) continue;
+      double meanA = 0, meanB = 0, varA = 0, varB = 0, cov = 0;
+      int n = 0;
+      for (int dy = -kHalf; dy <= kHalf; ++dy)
+        for (int dx = -kHalf; dx <= kHalf; ++dx) {
+          const int sx = std::clamp(x + dx, 0, width - 1), sy = std::clamp(y + dy, 0, height - 1);
+          const std::size_t q = std::size_t(sy) * std::size_t(width) + std::size_t(sx);
+          meanA += la[q];
+          meanB += lb[q];
+          varA += double(la[q]) * la[q];
+          varB += double(lb[q]) * lb[q];
+          cov += double(la[q]) * lb[q];
+          ++n;
+        }
+      meanA /= n;
+      meanB /= n;
+      varA = varA / n - meanA * meanA;
+      varB = varB / n - meanB * meanB;
+      cov = cov / n - meanA * meanB;
+      sum += ((2 * meanA * meanB + kC1) * (2 * cov + kC2)) /
+             ((meanA * meanA + meanB * meanB + kC1) * (varA + varB + kC2));
+      ++windows;
+    }
+  return windows > 0 ? sum / double(windows) : 1.0;
+}
+
+std::vector<bool> paretoFront(const std::vector<std::pair<double, double>>& points) {
+  std::vector<bool> front(points.size(), true);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (std::size_t j = 0; j < points.size() && front[i]; ++j) {
+      const bool noWorse = points[j].first <= points[i].first && points[j].second <= points[i].second;
+      const bool better = points[j].first < points[i].first || points[j].second < points[i].second;
+      if (j != i && noWorse && better) front[i] = false;
+    }
+  return front;
+}
+
+Summary summarize(std::vector<double> values) {
+  Summary summary;
+  if (values.empty()) return summary;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  summary.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+  summary.minimum = values.front();
+  summary.maximum = values.back();
+  return summary;
+}
+
+std::string machineDescription() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+}
+
+namespace {
+
+const char* kCsvHeader =
+    "scene,width,height,method,samples,radius,radius_scale,blur,seed_default,repetitions,"
+    "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
+    "ao_rmse,ao_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
+    "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::path& path) {
+  std::ostringstream out;
+  out << std::setprecision(6) << kCsvHeader << "\n";
+  for (const BenchRow& r : rows)
+    out << csvField(r.scene) << ',' << r.width << ',' << r.height << ',' << r.method << ',' << r.samples << ','
+        << r.radius << ',' << r.radiusScale << ',' << r.blur << ',' << r.seedDefault << ',' << r.repetitions << ','
+        << r.frameMs.median << ',' << r.frameMs.minimum << ',' << r.frameMs.maximum << ',' << r.ssgiMs.median << ','
+        << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ',' << r.ao.rmse << ',' << r.ao.meanAbsolute << ','
+        << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
+        << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
+        << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+  writeTextAtomically(path, out.str());
+}
+
+void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& command,
+                    const std::filesystem::path& path) {
+  nlohmann::json json;
+  json["command"] = command;
+  json["rows"] = nlohmann::json::array();
+  for (const BenchRow& r : rows) {
+    auto summary = [](const Summary& s) {
+      return nlohmann::json{{"median", s.median}, {"min", s.minimum}, {"max", s.maximum}};
+    };
+    json["rows"].push_back({{"scene", r.scene},
+                            {"width", r.width},
+                            {"height", r.height},
+                            {"method", r.method},
+                            {"samples", r.samples},
+                            {"radius", r.radius},
+                            {"radius_scale", r.radiusScale},
+                            {"blur", r.blur},
+                            {"seed_default", r.seedDefault},
+                            {"repetitions", r.repetitions},
+                            {"frame_ms", summary(r.frameMs)},
+                            {"ssgi_ms", summary(r.ssgiMs)},
+                            {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
+                            {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
+                            {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}}},
+                            {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},
+                            {"pareto_ao", r.paretoAo},
+                            {"renderer", r.renderer},
+                            {"backend", r.backend},
+                            {"machine", r.machine}});
+  }
+  writeTextAtomically(path, json.dump(2) + "\n");
+}
+
+}  // namespace headlight

@@ -1,0 +1,110 @@
+// The bench's own correctness: its metrics, its Pareto front and its files.
+// (Its speed is measured by `headlight bench`, never asserted.)
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "headlight/bench.hpp"
+
+using namespace headlight;
+
+namespace {
+
+ImageF image(int width, int height, std::vector<std::string> channels, float value) {
+  ImageF result;
+  result.width = width;
+  result.height = height;
+  result.channels = std::move(channels);
+  result.pixels.assign(std::size_t(width * height) * result.channels.size(), value);
+  return result;
+}
+
+}  // namespace
+
+TEST_CASE("maskedError counts only geometry pixels" * doctest::test_suite("bench")) {
+  ImageF mask = image(4, 1, {"position.X", "position.Y", "position.Z", "A"}, 0.0f);
+  ImageF a = image(4, 1, {"ao.Y"}, 0.0f), b = image(4, 1, {"ao.Y"}, 0.0f);
+  a.pixels = {1.0f, 0.5f, 0.0f, 100.0f};
+  b.pixels = {0.0f, 0.5f, 0.0f, 0.0f};
+  for (int x : {0, 1, 2}) mask.pixels[std::size_t(x) * 4 + 3] = 1.0f;  // pixel 3 is background
+  const ErrorStats stats = maskedError(a, 0, b, 0, mask);
+  CHECK(stats.pixels == 3);
+  CHECK(stats.rmse == doctest::Approx(std::sqrt(1.0 / 3.0)));
+  CHECK(stats.meanAbsolute == doctest::Approx(1.0 / 3.0));
+  CHECK(stats.referenceMean == doctest::Approx(0.5 / 3.0));
+}
+
+TEST_CASE("maskedSsim is 1 for identical images and lower for noise" * doctest::test_suite("bench")) {
+  ImageF mask = image(32, 32, {"position.X", "position.Y", "position.Z", "A"}, 1.0f);
+  ImageF a = image(32, 32, {"R", "G", "B", "A"}, 0.0f);
+  std::mt19937 rng(3);
+  for (float& v : a.pixels) v = float(rng() % 1000) / 500.0f;
+  CHECK(maskedSsim(a, a, mask) == doctest::Approx(1.0));
+  ImageF b = a;
+  for (float& v : b.pixels) v += float(rng() % 1000) / 1000.0f;
+  CHECK(maskedSsim(a, b, mask) < 0.95);
+}
+
+TEST_CASE("paretoFront keeps exactly the non-dominated points" * doctest::test_suite("bench")) {
+  const std::vector<std::pair<double, double>> points{{1, 5}, {2, 3}, {3, 3}, {4, 1}, {2, 4}, {5, 5}, {1, 5}};
+  const std::vector<bool> front = paretoFront(points);
+  CHECK(front == std::vector<bool>{true, true, false, true, false, false, true});
+  // The definition, checked directly on random sets: no front point is
+  // dominated, and every other point is.
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<std::pair<double, double>> random(30);
+    for (auto& p : random) p = {double(rng() % 50), double(rng() % 50)};
+    const auto onFront = paretoFront(random);
+    for (std::size_t i = 0; i < random.size(); ++i) {
+      bool dominated = false;
+      for (std::size_t j = 0; j < random.size(); ++j)
+        dominated |= random[j].first <= random[i].first && random[j].second <= random[i].second &&
+                     (random[j].first < random[i].first || random[j].second < random[i].second);
+      CHECK(onFront[i] == !dominated);
+    }
+  }
+}
+
+TEST_CASE("summarize gives median and spread" * doctest::test_suite("bench")) {
+  const Summary odd = summarize({5, 1, 3});
+  CHECK(odd.median == 3);
+  CHECK(odd.minimum == 1);
+  CHECK(odd.maximum == 5);
+  CHECK(summarize({4, 1, 3, 2}).median == 2.5);
+}
+
+TEST_CASE("bench.csv and bench.json hold every row with its time and error" * doctest::test_suite("bench")) {
+  std::vector<BenchRow> rows(2);
+  rows[0].scene = "builtin:cornell";
+  rows[0].method = "hemisphere";
+  rows[0].frameMs = {12.5, 12, 13};
+  rows[0].ao.rmse = 0.1;
+  rows[1].scene = "a, \"quoted\" scene";
+  rows[1].method = "radiance";
+  rows[1].frameMs = {7.25, 7, 8};
+  rows[1].ao.rmse = 0.2;
+  const auto folder = std::filesystem::temp_directory_path() / ("headlight_bench_" + std::to_string(std::random_device{}()));
+  std::filesystem::create_directories(folder);
+  writeBenchCsv(rows, folder / "bench.csv");
+  writeBenchJson(rows, "headlight bench test", folder / "bench.json");
+  std::ifstream csv(folder / "bench.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  CHECK(header.find("frame_ms_median") != std::string::npos);
+  CHECK(header.find("ao_rmse") != std::string::npos);
+  int lines = 0;
+  while (std::getline(csv, line)) ++lines;
+  CHECK(lines == 2);
+  std::ifstream jsonFile(folder / "bench.json");
+  const auto json = nlohmann::json::parse(jsonFile);
+  REQUIRE(json["rows"].size() == 2);
+  CHECK(json["rows"][1]["scene"] == "a, \"quoted\" scene");
+  CHECK(json["rows"][1]["frame_ms"]["median"] == 7.25);
+  CHECK(json["rows"][0]["ao"]["rmse"] == 0.1);
+  std::filesystem::remove_all(folder);
+}

@@ -1,0 +1,294 @@
+// The stability suite's scenes, built in code: each is the smallest setup
+// that provokes one known failure of screen-space GI (docs/STABILITY.md).
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "headlight/scene_loader.hpp"
+#include "stability/stability.hpp"
+
+namespace headlight::stability {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+void appendVertex(Primitive& primitive, glm::vec3 position, glm::vec3 normal) {
+  primitive.positions.push_back(position);
+  primitive.normals.push_back(normal);
+  primitive.bounds.extend(position);
+}
+
+void appendParallelogram(Primitive& primitive, glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV) {
+  const glm::vec3 normal = glm::normalize(glm::cross(edgeU, edgeV));
+  const auto first = static_cast<std::uint32_t>(primitive.positions.size());
+  appendVertex(primitive, corner, normal);
+  appendVertex(primitive, corner + edgeU, normal);
+  appendVertex(primitive, corner + edgeU + edgeV, normal);
+  appendVertex(primitive, corner + edgeV, normal);
+  for (std::uint32_t quadVertex : {0u, 1u, 2u, 0u, 2u, 3u}) primitive.indices.push_back(first + quadVertex);
+}
+
+// A square floor at y = 0 facing +Y, `halfSize` each way.
+Primitive floorQuad(float halfSize) {
+  return parallelogram({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
+}
+
+int addMaterial(Scene& scene, glm::vec3 color) {
+  scene.materials.push_back(matteMaterial(color));
+  return int(scene.materials.size()) - 1;
+}
+
+void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
+  scene.primitives.push_back(std::move(primitive));
+  scene.instances.push_back({int(scene.primitives.size()) - 1, worldFromLocal, material});
+}
+
+glm::mat4 moved(glm::vec3 offset) { return glm::translate(glm::mat4(1.0f), offset); }
+
+// Sets bounds from the positions; NaN coordinates are left out of them by
+// Bounds::extend's comparisons (NaN < x is false), as in the glTF loader.
+void recomputeBounds(Primitive& primitive) {
+  primitive.bounds = Bounds{};
+  for (const glm::vec3& p : primitive.positions) primitive.bounds.extend(p);
+}
+
+}  // namespace
+
+Primitive parallelogram(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV) {
+  Primitive primitive;
+  appendParallelogram(primitive, corner, edgeU, edgeV);
+  return primitive;
+}
+
+Primitive box(glm::vec3 size) {
+  Primitive result;
+  const glm::vec3 half = size * 0.5f;
+  const glm::vec3 x{size.x, 0, 0}, y{0, size.y, 0}, z{0, 0, size.z};
+  appendParallelogram(result, {-half.x, -half.y, half.z}, x, y);   // +Z
+  appendParallelogram(result, {half.x, -half.y, -half.z}, -x, y);  // -Z
+  appendParallelogram(result, {half.x, -half.y, half.z}, -z, y);   // +X
+  appendParallelogram(result, {-half.x, -half.y, -half.z}, z, y);  // -X
+  appendParallelogram(result, {-half.x, half.y, half.z}, x, -z);   // +Y
+  appendParallelogram(result, {-half.x, -half.y, -half.z}, x, z);  // -Y
+  return result;
+}
+
+Primitive uvSphere(float radius, int segments, int rings) {
+  Primitive sphere;
+  for (int ring = 0; ring <= rings; ++ring) {
+    const float polar = float(ring) / float(rings) * kPi;
+    for (int segment = 0; segment <= segments; ++segment) {
+      const float azimuth = float(segment) / float(segments) * 2 * kPi;
+      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
+      appendVertex(sphere, normal * radius, normal);
+    }
+  }
+  const auto rowLength = std::uint32_t(segments + 1);
+  for (std::uint32_t ring = 0; ring < std::uint32_t(rings); ++ring)
+    for (std::uint32_t segment = 0; segment < std::uint32_t(segments); ++segment) {
+      const std::uint32_t topLeft = ring * rowLength + segment, bottomLeft = topLeft + rowLength;
+      for (std::uint32_t index : {topLeft, bottomLeft, bottomLeft + 1, topLeft, bottomLeft + 1, topLeft + 1})
+        sphere.indices.push_back(index);
+    }
+  return sphere;
+}
+
+Material matteMaterial(glm::vec3 color) {
+  Material material;
+  material.baseColorFactor = glm::vec4(color, 1.0f);
+  material.metallicFactor = 0.0f;
+  material.roughnessFactor = 0.9f;
+  return material;
+}
+
+Camera lookAt(glm::vec3 eye, glm::vec3 target, float yfov) {
+  Camera camera;
+  camera.yfov = yfov;
+  camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
+  return camera;
+}
+
+Scene flatPlaneScene() {
+  Scene scene;
+  scene.source = "stability:flat-plane";
+  addInstance(scene, floorQuad(50.0f), addMaterial(scene, glm::vec3(0.8f)));
+  scene.cameras.push_back(lookAt({0, 2, 6}, {0, 0, -4}, 0.8f));
+  return scene;
+}
+
+Scene nearWallScene() {
+  Scene scene = makeBuiltinScene("cornell");
+  scene.source = "stability:near-wall";
+  // 0.1 from the back wall (z = -1), looking down-left into the corner of
+  // the back wall, the floor and the red wall; the radius is 0.52.
+  scene.cameras = {lookAt({-0.6f, 0.3f, -0.9f}, {-1.0f, 0.0f, -1.0f}, 1.2f)};
+  return scene;
+}
+
+Scene slatsScene() {
+  Scene scene;
+  scene.source = "stability:slats";
+  const int wall = addMaterial(scene, glm::vec3(0.8f));
+  const int wood = addMaterial(scene, {0.6f, 0.45f, 0.3f});
+  addInstance(scene, parallelogram({-1.2f, -1.2f, 0}, {2.4f, 0, 0}, {0, 2.4f, 0}), wall);  // faces +Z
+  using L = SlatLayout;
+  scene.primitives.push_back(box({L::kWidth, L::kHeight, L::kWidth}));
+  const int slat = int(scene.primitives.size()) - 1;
+  for (int i = 0; i < L::kCount; ++i)
+    scene.instances.push_back({slat, moved({L::kFirstX + float(i) * L::kSpacing, 0, L::kGap}), wood});
+  scene.cameras.push_back(lookAt({0.4f, 0.2f, 3.2f}, {0, 0, 0}, 0.8f));
+  return scene;
+}
+
+Scene offscreenBoxScene() {
+  Scene scene;
+  scene.source = "stability:offscreen-box";
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, floorQuad(3.0f), white);
+  // The camera sees x = -1.69..1.69 at the box's depth: the box (x -2.0..-1.4)
+  // is cut by the left border, its shadowed floor partly off screen.
+  addInstance(scene, box({0.6f, 1.5f, 0.6f}), white, moved({-1.7f, 0.75f, 0}));
+  addInstance(scene, box({0.6f, 0.6f, 0.6f}), white, moved({0.3f, 0.3f, -0.5f}));
+  scene.cameras.push_back(lookAt({0, 1.2f, 3}, {0, 0.4f, 0}, 0.8f));
+  return scene;
+}
+
+Scene depthStepScene() {
+  Scene scene;
+  scene.source = "stability:depth-step";
+  using L = DepthStepLayout;
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, parallelogram({-3, -3, L::kWallZ}, {6, 0, 0}, {0, 6, 0}), white);  // faces +Z
+  addInstance(scene, uvSphere(L::kSphereRadius, 32, 16), addMaterial(scene, {0.7f, 0.3f, 0.2f}));
+  scene.cameras.push_back(lookAt({0, 0, 5}, {0, 0, 0}, 0.6f));
+  return scene;
+}
+
+Scene grazingFloorScene() {
+  Scene scene;
+  scene.source = "stability:grazing-floor";
+  addInstance(scene, floorQuad(500.0f), addMaterial(scene, glm::vec3(0.8f)));
+  // Looking 3 degrees down: the floor runs from the bottom border to the
+  // horizon, most of it seen at a few degrees' grazing angle.
+  scene.cameras.push_back(lookAt({0, 0.5f, 0}, {0, 0.5f - 0.0524f, -1}, 0.7f));
+  return scene;
+}
+
+Scene scaledScene(Scene scene, float scale) {
+  const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+  for (Instance& instance : scene.instances) instance.worldFromLocal = scaling * instance.worldFromLocal;
+  for (Camera& camera : scene.cameras) {
+    camera.worldFromCamera[3] = glm::vec4(glm::vec3(camera.worldFromCamera[3]) * scale, 1.0f);
+    camera.znear *= scale;
+    camera.zfar *= scale;
+  }
+  for (Light& light : scene.lights) {
+    light.position *= scale;
+    light.range *= scale;
+    // Candela at scale^2 the distance: scale^2 the intensity keeps the lux.
+    if (light.type != Light::Type::Directional) light.intensity *= scale * scale;
+  }
+  return scene;
+}
+
+Camera cornellOrbitCamera(float degrees) {
+  const glm::vec3 target{0.0f, 1.0f, 0.0f};
+  const float angle = glm::radians(degrees);
+  const glm::vec3 eye = target + 3.6f * glm::vec3(std::sin(angle), 0.0f, std::cos(angle));
+  return lookAt(eye, target, 0.7f);
+}
+
+Scene nanVertexScene() {
+  Scene scene;
+  scene.source = "stability:nan-vertex";
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, floorQuad(2.0f), white);
+  Primitive broken = parallelogram({-0.5f, 0.2f, -0.5f}, {1, 0, 0}, {0, 1, 0});
+  broken.positions[2].y = std::numeric_limits<float>::quiet_NaN();
+  recomputeBounds(broken);
+  addInstance(scene, std::move(broken), white);
+  scene.cameras.push_back(lookAt({0, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  return scene;
+}
+
+Scene zeroAreaScene() {
+  Scene scene;
+  scene.source = "stability:zero-area";
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, floorQuad(2.0f), white);
+  Primitive wall = parallelogram({-1, 0, -1}, {2, 0, 0}, {0, 1.5f, 0});
+  // A triangle collapsed to a point, and one whose corners lie on a line;
+  // both add nothing to the area-weighted normals.
+  const auto first = std::uint32_t(wall.positions.size());
+  wall.positions.insert(wall.positions.end(), {{0, 0.5f, -1}, {0, 0.5f, -1}, {0, 0.5f, -1}});
+  wall.positions.insert(wall.positions.end(), {{-0.5f, 1, -1}, {0, 1, -1}, {0.5f, 1, -1}});
+  for (std::uint32_t i = 0; i < 6; ++i) wall.indices.push_back(first + i);
+  wall.normals.clear();
+  generateNormals(wall);
+  recomputeBounds(wall);
+  addInstance(scene, std::move(wall), white);
+  scene.cameras.push_back(lookAt({0, 1.2f, 3}, {0, 0.5f, 0}, 0.8f));
+  return scene;
+}
+
+Scene missingNormalsScene() {
+  Scene scene;
+  scene.source = "stability:missing-normals";
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, floorQuad(2.0f), white);
+  Primitive block = box({0.8f, 0.8f, 0.8f});
+  block.normals.clear();
+  generateNormals(block);
+  addInstance(scene, std::move(block), white, moved({0, 0.4f, 0}));
+  scene.cameras.push_back(lookAt({1, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  return scene;
+}
+
+Scene hugeCoordinateScene() {
+  Scene scene;
+  scene.source = "stability:huge-coordinates";
+  const int white = addMaterial(scene, glm::vec3(0.8f));
+  addInstance(scene, floorQuad(1e20f), white);
+  addInstance(scene, box({1, 1, 1}), white, moved({0, 0.5f, 0}));
+  scene.cameras.push_back(lookAt({2, 1.5f, 3}, {0, 0.5f, 0}, 0.8f));
+  return scene;
+}
+
+Scene emptyScene() {
+  Scene scene;
+  scene.source = "stability:empty";
+  return scene;
+}
+
+std::string quadGltfJson(bool nanPosition) {
+  // Two triangles, six vertices, no indices and no normals.
+  float positions[18] = {-1, 0, -1, -1, 0, 1, 1, 0, 1, -1, 0, -1, 1, 0, 1, 1, 0, -1};
+  if (nanPosition) positions[0] = std::numeric_limits<float>::quiet_NaN();
+  std::vector<unsigned char> bytes(sizeof positions);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string base64;
+  for (std::size_t at = 0; at < bytes.size(); at += 3) {
+    const std::uint32_t group = (std::uint32_t(bytes[at]) << 16) |
+                                (at + 1 < bytes.size() ? std::uint32_t(bytes[at + 1]) << 8 : 0u) |
+                                (at + 2 < bytes.size() ? std::uint32_t(bytes[at + 2]) : 0u);
+    for (std::size_t sextet = 0; sextet < 4; ++sextet)
+      base64 += at + sextet <= bytes.size() ? kAlphabet[(group >> (18 - 6 * sextet)) & 63] : '=';
+  }
+  // glTF requires min and max on POSITION accessors; NaN has no JSON
+  // spelling, so they stay those of the finite quad.
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("buffers":[{"uri":"data:application/octet-stream;base64,)" +
+         base64 + R"(","byteLength":72}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":72}],)"
+                  R"("accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3",)"
+                  R"("min":[-1,0,-1],"max":[1,0,1]}]})";
+}
+
+}  // namespace headlight::stability

@@ -1,0 +1,81 @@
+"""Draws headlight bench's chart from bench.csv: frame time (x, log) against
+error (y) per scene and resolution, every configuration a point, the Pareto
+front drawn, the seed spec's default marked. Writes bench.png and bench.svg.
+
+Run by `headlight bench` (embedded in the binary) as
+    /usr/bin/python3 - BENCH_CSV OUT_DIR
+or by hand the same way. Needs matplotlib (Debian: python3-matplotlib).
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
+           ("indirect_rmse", "indirect RMSE vs reference (within R)")]
+MARKERS = {"hemisphere": "o", "radiance": "s"}
+
+
+def pareto(points):
+    """Indices of points (time, error) that no other point dominates."""
+    front = []
+    for i, (ti, ei) in enumerate(points):
+        dominated = any((tj <= ti and ej <= ei) and (tj < ti or ej < ei)
+                        for j, (tj, ej) in enumerate(points) if j != i)
+        if not dominated:
+            front.append(i)
+    return sorted(front, key=lambda i: points[i][0])
+
+
+def main():
+    csv_path, out_dir = sys.argv[1], sys.argv[2]
+    with open(csv_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    groups = sorted({(r["scene"], r["width"], r["height"]) for r in rows})
+    fig, axes = plt.subplots(len(METRICS), len(groups), figsize=(5.2 * len(groups), 4.2 * len(METRICS)),
+                             squeeze=False)
+    for column, (scene, width, height) in enumerate(groups):
+        group = [r for r in rows if (r["scene"], r["width"], r["height"]) == (scene, width, height)]
+        for row_index, (metric, label) in enumerate(METRICS):
+            ax = axes[row_index][column]
+            points = [(float(r["frame_ms_median"]), float(r[metric])) for r in group]
+            for method, marker in MARKERS.items():
+                for blur, fill in (("1", "full"), ("0", "none")):
+                    chosen = [(p, r) for p, r in zip(points, group) if r["method"] == method and r["blur"] == blur]
+                    if not chosen:
+                        continue
+                    ax.scatter([p[0] for p, _ in chosen], [p[1] for p, _ in chosen], marker=marker,
+                               s=22,
+                               facecolors=None if fill == "full" else "none",
+                               edgecolors="C0" if method == "hemisphere" else "C1",
+                               c=None if fill == "none" else ("C0" if method == "hemisphere" else "C1"),
+                               label=f"{method}, blur {'on' if blur == '1' else 'off'}", alpha=0.8)
+            front = pareto(points)
+            ax.plot([points[i][0] for i in front], [points[i][1] for i in front], "k-", lw=1, label="Pareto front")
+            for p, r in zip(points, group):
+                if r["seed_default"] == "1":
+                    ax.scatter([p[0]], [p[1]], marker="*", s=220, c="red", zorder=5, label="seed default")
+            ax.set_xscale("log")
+            ax.set_xlabel("frame time, median (ms, log)")
+            ax.set_ylabel(label)
+            ax.set_title(f"{scene} {width}x{height}")
+            ax.grid(True, which="both", alpha=0.3)
+            if column == 0 and row_index == 0:
+                ax.legend(fontsize=7)
+    renderer = rows[0]["renderer"] if rows else ""
+    fig.suptitle(f"headlight bench: SSGI time against error ({renderer})", fontsize=10)
+    fig.tight_layout()
+    for extension in ("png", "svg"):
+        path = os.path.join(out_dir, "bench." + extension)
+        tmp = os.path.join(out_dir, ".bench.tmp." + extension)
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+        print(path)
+
+
+if __name__ == "__main__":
+    main()
