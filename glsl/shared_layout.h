@@ -88,12 +88,12 @@ HL_BLOCK_END(material)
 HL_BLOCK_BEGIN(SsgiBlock, 3)
   vec4 kernel[kMaxKernelSamples];  // tangent space, z >= 0, |k| <= 1
   vec4 params;              // radius (world), bias (world), intensity, indirect strength
-  ivec4 counts;             // sample count, 0, 0, 0
+  ivec4 counts;             // sample count, resolution divisor (1, 2, 4), 0, 0
 HL_BLOCK_END(ssgi)
 
 // SSGI blur pass.
 HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
-  vec4 params;              // SSGI radius (world units), 0, 0, 0
+  vec4 params;              // SSGI radius (world units), SSGI resolution divisor, 0, 0
 HL_BLOCK_END(blur)
 
 // Direct-light and composite passes.

@@ -20,14 +20,18 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 layout(location = 0) out vec4 outSsgi;
 
 void main() {
-  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  // Below full resolution each output pixel shades the G-buffer pixel at
+  // the centre of the block it stands for.
+  const int divisor = ssgi.counts.y;
+  const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
+  const ivec2 pixel = min(outputPixel * divisor + divisor / 2, ivec2(frame.viewport.xy) - 1);
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
   if (worldPosition.a == 0.0) discard;  // background: keeps the cleared (1, 0, 0, 0)
 
   const vec3 viewPosition = (frame.view * vec4(worldPosition.xyz, 1.0)).xyz;
   // Normals are stored as unit vectors (not remapped to 0..1): no * 2 - 1.
   const vec3 viewNormal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
-  const vec2 rotation = texelFetch(ssgiNoise, pixel & 3, 0).xy;
+  const vec2 rotation = texelFetch(ssgiNoise, outputPixel & 3, 0).xy;
   const mat3 tangentToView = tangentFrame(viewNormal, vec3(rotation, 0.0));
 
   const float radius = ssgi.params.x;

@@ -1,5 +1,8 @@
-// SSGI denoise (lib/passes/ssgi_blur.hpp): the 4x4 noise tile averaged out,
-// neighbours weighted by normal and depth likeness.
+// SSGI denoise and upsample (lib/passes/ssgi_blur.hpp): the 4x4 noise tile
+// of the raw SSGI averaged out, neighbours weighted by how alike their
+// G-buffer normal and depth are to this pixel's. The raw SSGI may be at
+// 1/2 or 1/4 of the resolution: then raw texel t stands for G-buffer pixel
+// t * divisor + divisor / 2, as the SSGI pass shaded it.
 #include "shared_layout.h"
 
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
@@ -18,20 +21,25 @@ void main() {
   // far less, across a silhouette by more.
   const float depthScale = 0.25 * blur.params.x;
   const ivec2 size = ivec2(frame.viewport.xy);
+  const int divisor = int(blur.params.y);
+  const ivec2 rawSize = textureSize(rawSsgi, 0);
+  const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);
   float weightSum = 0.0;
   for (int dy = -2; dy < 2; ++dy)
     for (int dx = -2; dx < 2; ++dx) {
-      const ivec2 neighbour = clamp(pixel + ivec2(dx, dy), ivec2(0), size - 1);
+      const ivec2 rawNeighbour = clamp(rawCenter + ivec2(dx, dy), ivec2(0), rawSize - 1);
+      const ivec2 neighbour = min(rawNeighbour * divisor + divisor / 2, size - 1);
       const vec4 position = texelFetch(gbufferPosition, neighbour, 0);
       if (position.a == 0.0) continue;
       const float depth = (frame.view * vec4(position.xyz, 1.0)).z;
       const float normalWeight = pow(max(dot(centerNormal, texelFetch(gbufferNormal, neighbour, 0).xyz), 0.0), 8.0);
       const float depthWeight = exp(-abs(depth - centerDepth) / depthScale);
       const float weight = normalWeight * depthWeight;
-      sum += texelFetch(rawSsgi, neighbour, 0) * weight;
+      sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
       weightSum += weight;
     }
-  // The centre always has weight 1, so weightSum > 0.
-  outSsgi = sum / weightSum;
+  // At full resolution the centre has weight 1. Below it, a pixel on a
+  // surface no raw texel nearby sampled (a thin strut) takes the nearest.
+  outSsgi = weightSum > 1e-4 ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
 }

@@ -109,17 +109,18 @@ struct Renderer::Impl {
   // Targets follow the image size; the SSGI ones exist only while SSGI (and
   // its blur, or its radiance method) is on.
   void ensureTargets(int width, int height, const SsgiSettings& ssgi) {
-    auto ensure = [&](gl::Texture& texture, bool wanted) {
+    auto ensure = [&](gl::Texture& texture, bool wanted, int divisor = 1) {
+      const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
       if (!wanted)
         texture = gl::Texture();
-      else if (texture.width() != width || texture.height() != height)
-        texture = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+      else if (texture.width() != w || texture.height() != h)
+        texture = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, w, h);
     };
     if (gbuffer.width != width || gbuffer.height != height)
       gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
     ensure(direct.towardEye, true);
     ensure(direct.diffuse, ssgi.enabled && ssgi.method == SsgiMethod::Radiance);
-    ensure(ssgiRaw, ssgi.enabled && ssgi.blur);
+    ensure(ssgiRaw, ssgi.enabled && ssgi.blur, ssgi.downsample);
     ensure(ssgiTarget, ssgi.enabled);
     ensure(litTarget, true);
   }
@@ -260,7 +261,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
     const gl::Texture* directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, directDiffuse, ssgiOutput, used.ssgi); });
     if (used.ssgi.blur)
-      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, used.ssgi.radius); });
+      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, used.ssgi.radius,
+                                                         used.ssgi.downsample); });
   }
   timer.run("composite", [&] {
     impl.composite.run(impl.gbuffer, impl.direct.towardEye, used.ssgi.enabled ? &impl.ssgiTarget : nullptr,

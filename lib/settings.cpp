@@ -47,8 +47,8 @@ std::string formatAuto(float value) { return value == 0.0f ? "auto" : formatFloa
 
 std::string_view tonemapName(Tonemap tonemap) { return tonemap == Tonemap::Aces ? "aces" : "reinhard"; }
 
-const std::array<SettingOption, 18>& optionTable() {
-  static const std::array<SettingOption, 18> table{{
+const std::array<SettingOption, 19>& optionTable() {
+  static const std::array<SettingOption, 19> table{{
       {"width", "N", "image width in pixels (1..16384)",
        [](RenderSettings& s, std::string_view v) { s.width = parseInt("width", v, 1, 16384); },
        [](const RenderSettings& s) { return std::to_string(s.width); }},
@@ -90,6 +90,16 @@ const std::array<SettingOption, 18>& optionTable() {
       {"no-ssgi-blur", "", "keep the SSGI pass's 4x4 noise pattern (no denoise)",
        [](RenderSettings& s, std::string_view) { s.ssgi.blur = false; },
        [](const RenderSettings& s) { return std::string(s.ssgi.blur ? "false" : "true"); }},
+      {"ssgi-resolution", "full|half|quarter", "resolution the SSGI pass runs at (the blur upsamples)",
+       [](RenderSettings& s, std::string_view v) {
+         if (v == "full") s.ssgi.downsample = 1;
+         else if (v == "half") s.ssgi.downsample = 2;
+         else if (v == "quarter") s.ssgi.downsample = 4;
+         else throw SettingsError("--ssgi-resolution: expected full, half or quarter, got '" + std::string(v) + "'");
+       },
+       [](const RenderSettings& s) {
+         return std::string(s.ssgi.downsample == 1 ? "full" : s.ssgi.downsample == 2 ? "half" : "quarter");
+       }},
       {"no-shadows", "", "skip shadow maps",
        [](RenderSettings& s, std::string_view) { s.lighting.shadows = false; },
        [](const RenderSettings& s) { return std::string(s.lighting.shadows ? "false" : "true"); }},
@@ -170,6 +180,10 @@ void RenderSettings::validate() const {
   RenderSettings scratch = *this;
   for (const SettingOption& option : settingOptions())
     if (!option.valueName.empty()) option.parse(scratch, option.format(*this));
+  if (ssgi.downsample != 1 && ssgi.downsample != 2 && ssgi.downsample != 4)
+    throw SettingsError("ssgi.downsample: must be 1, 2 or 4, got " + std::to_string(ssgi.downsample));
+  if (ssgi.downsample > 1 && !ssgi.blur)
+    throw SettingsError("--no-ssgi-blur needs --ssgi-resolution full: below full resolution the blur pass upsamples");
 }
 
 }  // namespace headlight

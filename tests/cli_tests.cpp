@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <algorithm>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -118,6 +120,63 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
   CHECK(run.output.find("EGL device 99") != std::string::npos);
   CHECK(folderEmpty(folder / "out"));
   fs::remove_all(folder);
+}
+
+TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error") {
+  const fs::path out = freshFolder("reference") / "out";
+  const Run run = runHeadlight("reference --width 32 --height 24 --samples 64 --out " + quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  const std::pair<const char*, const char*> files[] = {
+      {"ao_ref.exr", "ao.Y"}, {"indirect_ref.exr", "indirectR.R"}, {"lit_ref.exr", "R"}};
+  for (const auto& [name, channel] : files) {
+    CAPTURE(name);
+    OIIO::ImageBuf image((out / name).string());
+    REQUIRE(image.read());
+    CHECK(image.spec().width == 32);
+    CHECK(image.spec().channelindex(channel) >= 0);
+    CHECK(image.spec().get_string_attribute("headlight:reference:samplesPerPixel") == "64");
+    CHECK(std::stod(image.spec().get_string_attribute("headlight:reference:aoMeanStandardError")) > 0.0);
+  }
+  fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart") {
+  const fs::path out = freshFolder("bench") / "out";
+  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --samples 4,16 --radius-scales 1 "
+                               "--blur on --ssgi-resolutions full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
+                               quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  std::ifstream csv(out / "bench.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> columns;
+  std::stringstream headerStream(header);
+  for (std::string column; std::getline(headerStream, column, ',');) columns.push_back(column);
+  const auto column = [&](const char* name) {
+    return std::size_t(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  int rows = 0, onFront = 0, seedRows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> fields;
+    std::stringstream lineStream(line);
+    for (std::string field; std::getline(lineStream, field, ',');) fields.push_back(field);
+    REQUIRE(fields.size() >= columns.size());
+    CHECK(std::stod(fields[column("frame_ms_median")]) > 0.0);
+    CHECK(std::stod(fields[column("ao_rmse")]) >= 0.0);
+    CHECK(std::stod(fields[column("indirect_rmse")]) >= 0.0);
+    onFront += fields[column("pareto_ao")] == "1";
+    seedRows += fields[column("seed_default")] == "1";
+    ++rows;
+  }
+  CHECK(rows == 2 * 2 * 2 + 1);  // methods x sample counts x SSGI resolutions + the seed default
+  CHECK(onFront >= 1);
+  CHECK(seedRows == 1);
+  OIIO::ImageBuf chart((out / "bench.png").string());
+  CHECK(chart.read());
+  CHECK(fs::file_size(out / "bench.svg") > 1000);
+  fs::remove_all(out.parent_path());
 }
 
 TEST_CASE("--help, --version and unknown commands") {

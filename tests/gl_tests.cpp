@@ -157,6 +157,33 @@ TEST_CASE("SSGI radiance method gathers light, not albedo") {
   CHECK(red > 2.0 * green);
 }
 
+TEST_CASE("SSGI at half and quarter resolution, upsampled by the blur, stays close to full resolution") {
+  Renderer renderer(sharedContext());
+  renderer.setScene(loadScene("builtin:cornell"));
+  RenderSettings settings = smallSettings(96, 72);
+  const Frame full = renderer.render(settings);
+  for (int divisor : {2, 4}) {
+    CAPTURE(divisor);
+    settings.ssgi.downsample = divisor;
+    const Frame reduced = renderer.render(settings);
+    REQUIRE(reduced.ssgi.width == 96);  // upsampled to the image size
+    double difference = 0;
+    int count = 0;
+    for (int y = 0; y < 72; ++y)
+      for (int x = 0; x < 96; ++x)
+        if (full.position.at(x, y, 3) != 0.0f) {
+          difference += std::abs(full.ssgi.at(x, y, 0) - reduced.ssgi.at(x, y, 0));
+          ++count;
+        }
+    // Measured 0.012 (half) and 0.023 (quarter) mean AO difference on llvmpipe; the
+    // bound leaves room for other rasterisers.
+    MESSAGE("mean AO difference " << difference / count);
+    CHECK(difference / count < 0.04);
+  }
+  settings.ssgi.blur = false;
+  CHECK_THROWS_AS(renderer.render(settings), SettingsError);  // the blur is the upsample
+}
+
 TEST_CASE("background pixels are left as cleared by every pass") {
   const Frame frame = renderScene(loadScene("builtin:spheres"), smallSettings(96, 72));
   int background = 0;

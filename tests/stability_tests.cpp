@@ -35,7 +35,13 @@ void checkEveryMethod(CaseFunction run) {
       CAPTURE(check.quantity);
       CAPTURE(check.measured);
       CAPTURE(check.bound);
-      CHECK(check.holds());
+      if (check.knownBug.empty()) {
+        CHECK(check.holds());
+      } else {
+        // Expected to fail until the bug is fixed; then clear knownBug.
+        INFO("known bug " << check.knownBug << ": if this check now holds, clear knownBug");
+        CHECK_FALSE(check.holds());
+      }
     }
   }
   CHECK(test::sharedContext().pendingErrorCount() == 0);

@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
            ("indirect_rmse", "indirect RMSE vs reference (within R)")]
 MARKERS = {"hemisphere": "o", "radiance": "s"}
+SIZES = {"1": 26, "2": 12, "4": 6}  # SSGI resolution divisor: full-resolution points are the largest
 
 
 def pareto(points):
@@ -36,7 +37,7 @@ def main():
     with open(csv_path, newline="") as f:
         rows = list(csv.DictReader(f))
     groups = sorted({(r["scene"], r["width"], r["height"]) for r in rows})
-    fig, axes = plt.subplots(len(METRICS), len(groups), figsize=(5.2 * len(groups), 4.2 * len(METRICS)),
+    fig, axes = plt.subplots(len(METRICS), len(groups), figsize=(max(7.0, 5.2 * len(groups)), 4.2 * len(METRICS)),
                              squeeze=False)
     for column, (scene, width, height) in enumerate(groups):
         group = [r for r in rows if (r["scene"], r["width"], r["height"]) == (scene, width, height)]
@@ -49,7 +50,7 @@ def main():
                     if not chosen:
                         continue
                     ax.scatter([p[0] for p, _ in chosen], [p[1] for p, _ in chosen], marker=marker,
-                               s=22,
+                               s=[SIZES.get(r["ssgi_downsample"], 10) for _, r in chosen],
                                facecolors=None if fill == "full" else "none",
                                edgecolors="C0" if method == "hemisphere" else "C1",
                                c=None if fill == "none" else ("C0" if method == "hemisphere" else "C1"),
@@ -65,9 +66,9 @@ def main():
             ax.set_title(f"{scene} {width}x{height}")
             ax.grid(True, which="both", alpha=0.3)
             if column == 0 and row_index == 0:
-                ax.legend(fontsize=7)
+                ax.legend(fontsize=7, title="marker size: SSGI resolution", title_fontsize=7)
     renderer = rows[0]["renderer"] if rows else ""
-    fig.suptitle(f"headlight bench: SSGI time against error ({renderer})", fontsize=10)
+    fig.suptitle(f"headlight bench: SSGI time against error\n{renderer}", fontsize=9)
     fig.tight_layout()
     for extension in ("png", "svg"):
         path = os.path.join(out_dir, "bench." + extension)

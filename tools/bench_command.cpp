@@ -63,8 +63,12 @@ std::vector<Config> sweep(const BenchCommand& command, int width, int height, fl
   for (SsgiMethod method : command.methods)
     for (int samples : command.samples)
       for (float scale : command.radiusScales)
+        for (int downsample : command.downsamples)
         for (bool blur : command.blurs) {
+          // Below full resolution the blur is the upsample: it cannot be off.
+          if (downsample > 1 && !blur) continue;
           Config config;
+          config.settings.ssgi.downsample = downsample;
           config.settings.width = width;
           config.settings.height = height;
           config.settings.ssgi.method = method;
@@ -144,6 +148,7 @@ BenchRow measure(Renderer& renderer, const Config& config, const BenchCommand& c
   row.radius = frame.settings.ssgi.radius;
   row.radiusScale = config.radiusScale;
   row.blur = frame.settings.ssgi.blur;
+  row.downsample = frame.settings.ssgi.downsample;
   row.seedDefault = config.seedDefault;
   row.repetitions = command.repetitions;
   row.frameMs = summarize(frameTimes);
@@ -213,6 +218,13 @@ BenchCommand parseBenchArgs(const std::vector<std::string>& args) {
       command.radiusScales.clear();
       for (const auto& item : splitList(value()))
         command.radiusScales.push_back(parseNumber<float>("radius-scales", item, 1e-3f, 1e3f));
+    } else if (arg == "--ssgi-resolutions") {
+      command.downsamples.clear();
+      for (const auto& item : splitList(value())) {
+        if (item != "full" && item != "half" && item != "quarter")
+          throw SettingsError("--ssgi-resolutions: expected full, half and/or quarter, got '" + item + "'");
+        command.downsamples.push_back(item == "full" ? 1 : item == "half" ? 2 : 4);
+      }
     } else if (arg == "--blur") {
       command.blurs.clear();
       for (const auto& item : splitList(value())) {
@@ -245,7 +257,8 @@ std::string benchHelp() {
          "  --methods LIST            hemisphere,radiance (default both)\n"
          "  --samples LIST            SSGI kernel samples (default 4,8,16,32,64)\n"
          "  --radius-scales LIST      radius as a multiple of the scene's auto radius (default 0.5,1,2)\n"
-         "  --blur LIST               on,off (default both)\n"
+         "  --blur LIST               on,off (default both; below full SSGI resolution always on)\n"
+         "  --ssgi-resolutions LIST   full,half,quarter: SSGI resolution (default full,half)\n"
          "  --repetitions N           timed frames per configuration (default 5)\n"
          "  --warmup N                untimed frames first (default 2)\n"
          "  --reference-samples N     reference rays per pixel (default: the reference's own)\n"
@@ -267,8 +280,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   Context context(command.context);
   Renderer renderer(context);
   std::vector<BenchRow> rows;
-  const std::size_t configsPerGroup =
-      command.methods.size() * command.samples.size() * command.radiusScales.size() * command.blurs.size() + 1;
+  const std::size_t configsPerGroup = sweep(command, 1, 1, 1.0f).size();
   Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !command.quiet);
   std::size_t done = 0;
   for (const std::string& sceneName : command.scenes) {

@@ -19,6 +19,7 @@ struct BenchCommand {
   std::vector<int> samples{4, 8, 16, 32, 64};
   std::vector<float> radiusScales{0.5f, 1.0f, 2.0f};  // times the scene's auto radius
   std::vector<bool> blurs{true, false};
+  std::vector<int> downsamples{1, 2};  // SSGI resolution divisors (1 full, 2 half, 4 quarter); blur forced below full
   int repetitions = 5;  // timed frames per configuration (median and spread reported)
   int warmup = 2;       // untimed frames first (shader variants, caches)
   int referenceSamples = 0;  // rays per pixel; 0 = ReferenceSettings' default

@@ -158,7 +158,7 @@ std::string machineDescription() {
 namespace {
 
 const char* kCsvHeader =
-    "scene,width,height,method,samples,radius,radius_scale,blur,seed_default,repetitions,"
+    "scene,width,height,method,samples,radius,radius_scale,blur,ssgi_downsample,seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
     "ao_rmse,ao_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
     "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
@@ -177,7 +177,7 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
   out << std::setprecision(6) << kCsvHeader << "\n";
   for (const BenchRow& r : rows)
     out << csvField(r.scene) << ',' << r.width << ',' << r.height << ',' << r.method << ',' << r.samples << ','
-        << r.radius << ',' << r.radiusScale << ',' << r.blur << ',' << r.seedDefault << ',' << r.repetitions << ','
+        << r.radius << ',' << r.radiusScale << ',' << r.blur << ',' << r.downsample << ',' << r.seedDefault << ',' << r.repetitions << ','
         << r.frameMs.median << ',' << r.frameMs.minimum << ',' << r.frameMs.maximum << ',' << r.ssgiMs.median << ','
         << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ',' << r.ao.rmse << ',' << r.ao.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
@@ -203,6 +203,7 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
                             {"radius", r.radius},
                             {"radius_scale", r.radiusScale},
                             {"blur", r.blur},
+                            {"ssgi_downsample", r.downsample},
                             {"seed_default", r.seedDefault},
                             {"repetitions", r.repetitions},
                             {"frame_ms", summary(r.frameMs)},

@@ -12,8 +12,9 @@ SsgiBlurPass::SsgiBlurPass() : block_(sizeof(gpu::SsgiBlurBlock), nullptr) {
   framebuffer_.setDrawBuffers(drawBuffers);
 }
 
-void SsgiBlurPass::run(const GBuffer& gbuffer, const gl::Texture& input, const gl::Texture& output, float radius) {
-  const gpu::SsgiBlurBlock block{glm::vec4(radius, 0.0f, 0.0f, 0.0f)};
+void SsgiBlurPass::run(const GBuffer& gbuffer, const gl::Texture& input, const gl::Texture& output, float radius,
+                       int divisor) {
+  const gpu::SsgiBlurBlock block{glm::vec4(radius, float(divisor), 0.0f, 0.0f)};
   block_.update(block);
   block_.bindUniform(gpu::SsgiBlurBlock::kBinding);
   framebuffer_.attach(GL_COLOR_ATTACHMENT0, output);

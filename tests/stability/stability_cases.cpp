@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "headlight/bench.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_loader.hpp"
@@ -77,9 +78,11 @@ float& pixelOf(ImageF& image, int x, int y) { return image.pixels[std::size_t(y)
 struct AoError {
   double squared = 0, signedSum = 0;
   long long pixels = 0;
+  long long overDarkened = 0;  // SSGI below the reference by more than 0.1 (5 reference standard errors)
   void add(double ssgi, double reference) {
     squared += (ssgi - reference) * (ssgi - reference);
     signedSum += ssgi - reference;
+    overDarkened += ssgi < reference - 0.1;
     ++pixels;
   }
   double rmse() const { return pixels ? std::sqrt(squared / double(pixels)) : 0.0; }
@@ -94,10 +97,24 @@ ImageF aoSignedError(const Frame& frame, const ReferenceImages& truth) {
 }
 
 Check atMost(std::string quantity, double measured, double bound) {
-  return {std::move(quantity), measured, Relation::AtMost, bound};
+  return {std::move(quantity), measured, Relation::AtMost, bound, {}};
 }
 Check atLeast(std::string quantity, double measured, double bound) {
-  return {std::move(quantity), measured, Relation::AtLeast, bound};
+  return {std::move(quantity), measured, Relation::AtLeast, bound, {}};
+}
+Check knownToFail(Check check, std::string bug) {
+  check.knownBug = std::move(bug);
+  return check;
+}
+
+// Where the methods differ: the indirect term (the hemisphere method's is
+// occluder albedo, not light, so its error against the reference's radiance
+// is large by design) and the lit image. Relative RMSE over geometry pixels.
+void addShadingNotes(CaseResult& result, const Frame& frame, const ReferenceImages& truth) {
+  // Absolute: the reference's indirect within R is near 0 on open walls.
+  result.notes.push_back(
+      {"indirect RMSE vs reference (within R)", maskedColorError(frame.ssgi, 1, truth.indirect, 0, frame.position).rmse});
+  result.notes.push_back({"lit relative RMSE vs reference", maskedColorError(frame.lit, 0, truth.lit, 0, frame.position).relativeRmse});
 }
 
 CaseResult startCase(const char* id, const char* failureMode, SsgiMethod method) {
@@ -108,12 +125,16 @@ CaseResult startCase(const char* id, const char* failureMode, SsgiMethod method)
   return result;
 }
 
-Panel aoPanel(std::string label, const ImageF& image) { return {std::move(label), image, 0, Panel::Kind::Grey, 1}; }
+// AO is 1 on background too: the frame's coverage keeps open geometry and
+// sky apart in the picture.
+Panel aoPanel(std::string label, const ImageF& image, const Frame& frame) {
+  return {std::move(label), image, 0, Panel::Kind::Grey, 1, frame.position};
+}
 Panel litPanel(std::string label, const ImageF& image) {
-  return {std::move(label), image, 0, Panel::Kind::Tonemapped, 1};
+  return {std::move(label), image, 0, Panel::Kind::Tonemapped, 1, {}};
 }
 Panel errorPanel(std::string label, ImageF image, float fullScale) {
-  return {std::move(label), std::move(image), 0, Panel::Kind::Signed, fullScale};
+  return {std::move(label), std::move(image), 0, Panel::Kind::Signed, fullScale, {}};
 }
 
 struct AoStats {
@@ -173,8 +194,8 @@ CaseResult flatOpenPlane(Renderer& renderer, SsgiMethod method) {
   result.checks.push_back(atLeast("interior geometry pixels", double(autoStats.pixels), 2000));
   result.notes.push_back({"mean AO, interior, auto radius", autoStats.mean});
   result.notes.push_back({"mean AO, interior, radius 0.5", seedStats.mean});
-  result.panels.push_back(aoPanel("AO, auto radius", automatic.ssgi));
-  result.panels.push_back(aoPanel("AO, radius 0.5", seed.ssgi));
+  result.panels.push_back(aoPanel("AO, auto radius", automatic.ssgi, automatic));
+  result.panels.push_back(aoPanel("AO, radius 0.5", seed.ssgi, seed));
   return result;
 }
 
@@ -201,15 +222,16 @@ CaseResult cameraInsideRadius(Renderer& renderer, SsgiMethod method) {
   result.checks.push_back(atMost("non-finite values, all targets", double(nonFiniteCount(frame)), 0));
   result.checks.push_back(atMost("AO outside 0..1 (pixels)", double(aoOutOfRange), 0));
   result.checks.push_back(atMost("negative indirect (values)", double(negativeIndirect), 0));
-  // The whole view is geometry (~9200 pixels); measured: mean AO 0.82
-  // (hemisphere), 0.82 (radiance). 0.5 is "not blacked out".
-  result.checks.push_back(atLeast("geometry pixels", double(pixels), 0.9 * 96 * 96));
+  // The whole view is geometry (9216 pixels); measured mean AO 0.957, both
+  // methods (the reference says 0.445: most samples leave the view and count
+  // as open). 0.5 is "not blacked out".
+  result.checks.push_back(atLeast("geometry pixels", double(pixels), 8000));
   result.checks.push_back(atLeast("mean AO", meanAo, 0.5));
-  // Measured: mean lit luminance ~0.05 (the lamp is behind the camera's
-  // wall); 1e-3 is "not all zero".
+  // Measured mean lit luminance: 0.056 hemisphere, 0.043 radiance; 1e-3 is
+  // "not all zero".
   result.checks.push_back(atLeast("mean lit luminance", pixels ? litSum / double(pixels) : 0.0, 1e-3));
   result.notes.push_back({"SSGI radius / eye-to-wall distance", frame.settings.ssgi.radius / 0.1});
-  result.panels.push_back(aoPanel("AO", frame.ssgi));
+  result.panels.push_back(aoPanel("AO", frame.ssgi, frame));
   if (referenceAvailable()) {
     const ReferenceImages truth = traceTruth(renderer, frame);
     AoError error;
@@ -220,7 +242,7 @@ CaseResult cameraInsideRadius(Renderer& renderer, SsgiMethod method) {
     });
     result.notes.push_back({"mean AO, reference", pixels ? referenceSum / double(pixels) : 0.0});
     result.notes.push_back({"AO RMSE vs reference", error.rmse()});
-    result.panels.push_back(aoPanel("reference AO", truth.ao));
+    result.panels.push_back(aoPanel("reference AO", truth.ao, frame));
   }
   result.panels.push_back(litPanel("lit", frame.lit));
   return result;
@@ -228,10 +250,12 @@ CaseResult cameraInsideRadius(Renderer& renderer, SsgiMethod method) {
 
 // ---- 3. Thin geometry ------------------------------------------------------------------
 
-// A depth buffer has no thickness: a slat 0.04 wide is taken for a wall
-// reaching back to infinity, so the wall beside and behind it darkens more
-// than the slat's true solid angle allows (over-darkening), in a band as
-// wide as the kernel's footprint (haloing).
+// A depth buffer has no thickness and one layer: a slat is taken for a
+// solid reaching back to the wall (over-darkening where samples land on it),
+// and a slat 1-2 pixels wide is hit by few of the samples around a wall
+// pixel, most of which stay near the pixel (cosine-weighted towards the
+// camera), so most of the slats' occlusion is missed. The measurement says
+// which wins: here the missing occlusion, by far.
 CaseResult thinGeometry(Renderer& renderer, SsgiMethod method) {
   CaseResult result = startCase("thin-slats", "Thin geometry: slats 0.12 in front of a wall", method);
   renderer.setScene(slatsScene());
@@ -243,15 +267,18 @@ CaseResult thinGeometry(Renderer& renderer, SsgiMethod method) {
     // Wall pixels (z = 0, the slats start at 0.10) within the slat array.
     if (p.z < 0.01f && std::abs(p.x) < 0.9f && std::abs(p.y) < 0.9f) wall.add(ssgiAo(frame, x, y), truth.ao.at(x, y, 0));
   });
-  const bool hemisphere = method == SsgiMethod::Hemisphere;
   // Bounds are 1.5 x measured + 0.02 (reference noise ~0.02, driver drift).
-  // Measured RMSE: hemisphere 0.100, radiance 0.100 (the same occlusion test).
-  result.checks.push_back(atMost("AO RMSE, wall near slats", wall.rmse(), hemisphere ? 0.17 : 0.17));
-  // Measured mean signed error (SSGI - reference): -0.06 (over-darkening).
-  result.checks.push_back(atLeast("AO mean signed error, wall near slats", wall.meanSigned(), -0.11));
+  // Measured RMSE 0.250, both methods (AO comes from the same occlusion test).
+  result.checks.push_back(atMost("AO RMSE, wall near slats", wall.rmse(), 0.40));
+  // Measured mean signed error (SSGI - reference) +0.245: under-occlusion.
+  result.checks.push_back(atMost("AO mean signed error, wall near slats", wall.meanSigned(), 0.39));
+  // Over-darkening would show as a negative mean: none on balance.
+  result.checks.push_back(atLeast("AO mean signed error, same, lower bound", wall.meanSigned(), -0.10));
   result.checks.push_back(atLeast("wall pixels measured", double(wall.pixels), 2000));
-  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi));
-  result.panels.push_back(aoPanel("reference AO", truth.ao));
+  result.notes.push_back({"wall pixels over-darkened (SSGI < reference - 0.1)", double(wall.overDarkened)});
+  addShadingNotes(result, frame, truth);
+  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi, frame));
+  result.panels.push_back(aoPanel("reference AO", truth.ao, frame));
   result.panels.push_back(errorPanel("SSGI - reference (±0.3)", aoSignedError(frame, truth), 0.3f));
   return result;
 }
@@ -268,18 +295,26 @@ CaseResult screenEdge(Renderer& renderer, SsgiMethod method) {
   // 8 pixels: a quarter of the kernel's ~30-pixel footprint on the floor
   // near the box, where most of what it misses lies.
   const int band = 8;
-  AoError border, interior;
+  AoError border, interior, left, right;
   forGeometryPixels(frame, 0, [&](int x, int y) {
     const bool inBand = std::min({x, y, frame.position.width - 1 - x, frame.position.height - 1 - y}) < band;
     (inBand ? border : interior).add(ssgiAo(frame, x, y), truth.ao.at(x, y, 0));
+    // The left band holds the cut box; the right one only open floor.
+    if (x < band) left.add(ssgiAo(frame, x, y), truth.ao.at(x, y, 0));
+    if (x >= frame.position.width - band) right.add(ssgiAo(frame, x, y), truth.ao.at(x, y, 0));
   });
-  // Measured RMSE in the band: hemisphere 0.11, radiance 0.11; bound 1.5 x + 0.02.
+  // Bounds 1.5 x measured + 0.02. Measured RMSE, both methods: 0.112 in
+  // the whole band, 0.189 in its left side (the box cut by the border),
+  // against 0.006 in its right side (open floor).
   result.checks.push_back(atMost("AO RMSE, 8-pixel border band", border.rmse(), 0.19));
+  result.checks.push_back(atMost("AO RMSE, left band (box cut by the border)", left.rmse(), 0.30));
   result.notes.push_back({"AO RMSE, interior", interior.rmse()});
+  result.notes.push_back({"AO RMSE, right band (open floor)", right.rmse()});
   result.notes.push_back({"AO mean signed error, border band", border.meanSigned()});
   result.notes.push_back({"AO mean signed error, interior", interior.meanSigned()});
-  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi));
-  result.panels.push_back(aoPanel("reference AO", truth.ao));
+  addShadingNotes(result, frame, truth);
+  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi, frame));
+  result.panels.push_back(aoPanel("reference AO", truth.ao, frame));
   result.panels.push_back(errorPanel("SSGI - reference (±0.3)", aoSignedError(frame, truth), 0.3f));
   return result;
 }
@@ -307,9 +342,10 @@ std::vector<float> distanceToForeground(const Frame& frame, const std::vector<bo
 }  // namespace
 
 // A foreground object darkens the background beside its silhouette when
-// the range check lets it: a halo. The background is 2.5..3.5 units behind
-// the sphere, about 2 SSGI radii, where the range check still passes a third
-// to a half of each sample (smoothstep(0.4..0.55)).
+// the range check lets it: a halo. The wall is 1.4..2.6 units behind the
+// sphere, 1.05..1.95 SSGI radii (1.33): out of the reference's reach, while
+// the range check still passes 0.6..0.98 of each sample (smoothstep of
+// radius / depth gap).
 CaseResult depthDiscontinuity(Renderer& renderer, SsgiMethod method) {
   CaseResult result = startCase("depth-halo", "Foreground sphere before a distant wall: halo", method);
   renderer.setScene(depthStepScene());
@@ -346,13 +382,18 @@ CaseResult depthDiscontinuity(Renderer& renderer, SsgiMethod method) {
   // the wall's depth (8 units), plus the blur's 2 pixels.
   const float focalPixels = float(height) / (2.0f * std::tan(0.5f * 0.6f));
   const double kernelReach = frame.settings.ssgi.radius * focalPixels / 8.0f + 2.0;
-  // Measured halo width: hemisphere 4 px, radiance 4 px, well inside the reach.
-  result.checks.push_back(atMost("halo width (px)", haloWidth, kernelReach));
+  // Measured halo width: 1 px (both methods), far inside the reach: the
+  // kernel's cosine weighting keeps most samples near the pixel, and the
+  // blur's depth weight stops the halo spreading. 3 = measured + the blur's
+  // 2-pixel reach.
+  result.checks.push_back(atMost("halo width (px)", haloWidth, 3));
+  result.checks.push_back(atMost("halo width (px), hard limit: kernel reach", haloWidth, kernelReach));
   result.notes.push_back({"haloed wall pixels", double(haloPixels)});
   result.notes.push_back({"kernel reach on the wall (px)", kernelReach});
-  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi));
-  result.panels.push_back(aoPanel("reference AO", truth.ao));
-  result.panels.push_back(aoPanel("halo pixels", haloMask));
+  addShadingNotes(result, frame, truth);
+  result.panels.push_back(aoPanel("SSGI AO", frame.ssgi, frame));
+  result.panels.push_back(aoPanel("reference AO", truth.ao, frame));
+  result.panels.push_back(aoPanel("halo pixels", haloMask, frame));
   return result;
 }
 
@@ -368,14 +409,27 @@ CaseResult grazingFloor(Renderer& renderer, SsgiMethod method) {
   const Frame automatic = renderer.render(settings);
   const Frame seed = renderer.render(withSeedRadius(settings));
   const AoStats autoStats = aoStats(automatic, 0), seedStats = aoStats(seed, 0);
-  // Every floor pixel, the border included. Measured min: 1.000 both ways.
-  result.checks.push_back(atLeast("min AO, all floor pixels, auto radius", autoStats.minimum, 0.95));
+  // The floor's far edge, at the horizon: the row of floor pixels with sky
+  // above. There a sample above eye level (the auto radius is 212, the eye
+  // 0.5 up) lands on a floor pixel whose tangent plane its view ray never
+  // meets in front of the eye.
+  double belowEdgeMinimum = 1;
+  forGeometryPixels(automatic, 0, [&](int x, int y) {
+    if (y > 0 && isGeometry(automatic, x, y - 1)) belowEdgeMinimum = std::min<double>(belowEdgeMinimum, ssgiAo(automatic, x, y));
+  });
+  // Every floor pixel, the border included. Measured min: 1.000 with radius
+  // 0.5, and with the auto radius below the far-edge row; 0.906 (6 of 64
+  // samples occluded) on that row, both methods.
   result.checks.push_back(atLeast("min AO, all floor pixels, radius 0.5", seedStats.minimum, 0.95));
-  result.checks.push_back(atLeast("floor pixels", double(autoStats.pixels), 160 * 64 / 3));
+  result.checks.push_back(atLeast("min AO, floor below its far-edge row, auto radius", belowEdgeMinimum, 0.95));
+  result.checks.push_back(knownToFail(atLeast("min AO, all floor pixels, auto radius", autoStats.minimum, 0.95),
+                                      "B1: surfaceDepthAlongRay (glsl/ssgi_common.glsl) clamps a plane hit behind the "
+                                      "eye to radius in front of the occluder pixel"));
+  result.checks.push_back(atLeast("floor pixels", double(autoStats.pixels), 3000));
   result.notes.push_back({"mean AO, auto radius", autoStats.mean});
   result.notes.push_back({"mean AO, radius 0.5", seedStats.mean});
-  result.panels.push_back(aoPanel("AO, auto radius", automatic.ssgi));
-  result.panels.push_back(aoPanel("AO, radius 0.5", seed.ssgi));
+  result.panels.push_back(aoPanel("AO, auto radius", automatic.ssgi, automatic));
+  result.panels.push_back(aoPanel("AO, radius 0.5", seed.ssgi, seed));
   return result;
 }
 
@@ -419,10 +473,10 @@ CaseResult sceneScale(Renderer& renderer, SsgiMethod method) {
   result.notes.push_back({"mean AO at 1e3, radius 0.5", aoStats(large.seed, 0).mean});
   result.notes.push_back({"mean |AO(1e-3) - AO(1)|, radius 0.5", meanAoChange(small.seed, unit.seed)});
   result.notes.push_back({"mean |AO(1e3) - AO(1)|, radius 0.5", meanAoChange(large.seed, unit.seed)});
-  result.panels.push_back(aoPanel("1e-3, auto", small.automatic.ssgi));
-  result.panels.push_back(aoPanel("1e3, auto", large.automatic.ssgi));
-  result.panels.push_back(aoPanel("1e-3, radius 0.5", small.seed.ssgi));
-  result.panels.push_back(aoPanel("1e3, radius 0.5", large.seed.ssgi));
+  result.panels.push_back(aoPanel("1e-3, auto", small.automatic.ssgi, small.automatic));
+  result.panels.push_back(aoPanel("1e3, auto", large.automatic.ssgi, large.automatic));
+  result.panels.push_back(aoPanel("1e-3, radius 0.5", small.seed.ssgi, small.seed));
+  result.panels.push_back(aoPanel("1e3, radius 0.5", large.seed.ssgi, large.seed));
   return result;
 }
 
@@ -500,7 +554,11 @@ CaseResult degenerateInput(Renderer& renderer, SsgiMethod method) {
   }
   {
     const Frame frame = renderSmall(renderer, hugeCoordinateScene(), method);
-    result.checks.push_back(atMost("coordinates 1e20: non-finite values", double(nonFiniteCount(frame)), 0));
+    // Measured: every depth value is inf: the bounds' diagonal overflows
+    // float (|2e20|^2 > 3.4e38), so near, far, SSGI radius and bias are inf.
+    result.checks.push_back(knownToFail(atMost("coordinates 1e20: non-finite values", double(nonFiniteCount(frame)), 0),
+                                        "B2: glm::length of the bounds' size overflows (Bounds::radius, "
+                                        "Renderer::resolve, fitDepthRange): near plane and radius inf"));
     result.notes.push_back({"coordinates 1e20: geometry pixels", double(geometryPixelCount(frame))});
     result.notes.push_back({"coordinates 1e20: near plane", frame.view.nearPlane});
     result.panels.push_back(litPanel("coordinates 1e20", frame.lit));
@@ -530,7 +588,7 @@ CaseResult resolutionEdges(Renderer& renderer, SsgiMethod method) {
     result.checks.push_back(atMost(size + ": targets of the wrong size", double(wrongSizes), 0));
     result.checks.push_back(atMost(size + ": non-finite values", double(nonFiniteCount(frame)), 0));
     if (width == 67) {
-      result.panels.push_back(aoPanel("67x45 AO", frame.ssgi));
+      result.panels.push_back(aoPanel("67x45 AO", frame.ssgi, frame));
       result.panels.push_back(litPanel("67x45 lit", frame.lit));
     }
   }
@@ -602,7 +660,11 @@ TemporalChange measureOrbit(Renderer& renderer, SsgiMethod method, bool noisePer
     pairs += pointPairs;
     const glm::vec4 clip = frames.front().view.projection * frames.front().view.view * glm::vec4(point, 1.0f);
     const int x = int((clip.x / clip.w * 0.5f + 0.5f) * 96.0f), y = int((0.5f - clip.y / clip.w * 0.5f) * 96.0f);
-    if (x >= 0 && y >= 0 && x < 96 && y < 96) pixelOf(change.perPoint, x, y) = float(pointSum / pointPairs);
+    // A 3x3 block per point (points are 3 pixels apart): a dense map.
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if (x + dx >= 0 && y + dy >= 0 && x + dx < 96 && y + dy < 96)
+          pixelOf(change.perPoint, x + dx, y + dy) = float(pointSum / pointPairs);
   }
   change.mean = pairs ? total / double(pairs) : 0.0;
   return change;
@@ -618,10 +680,12 @@ CaseResult flicker(Renderer& renderer, SsgiMethod method) {
   renderer.setScene(makeBuiltinScene("cornell"));
   const TemporalChange fixedNoise = measureOrbit(renderer, method, false);
   const TemporalChange perFrameNoise = measureOrbit(renderer, method, true);
-  // Measured mean |dAO| per frame, fixed noise: 0.010 (hemisphere), 0.010
-  // (radiance); 1.5 x + 0.005.
-  result.checks.push_back(atMost("mean |dAO| per frame, fixed noise", fixedNoise.mean, 0.02));
-  result.checks.push_back(atMost("fixed / per-frame noise change ratio", fixedNoise.mean / std::max(perFrameNoise.mean, 1e-9), 1.0));
+  // Measured mean |dAO| per frame, fixed noise: 0.0027, both methods;
+  // bound 1.5 x + 0.005.
+  result.checks.push_back(atMost("mean |dAO| per frame, fixed noise", fixedNoise.mean, 0.01));
+  // Measured 0.33: a new kernel every frame triples the change, which only
+  // temporal accumulation (not in this renderer) would pay back.
+  result.checks.push_back(atMost("fixed / per-frame noise change ratio", fixedNoise.mean / std::max(perFrameNoise.mean, 1e-9), 0.6));
   result.notes.push_back({"mean |dAO| per frame, seed = frame index", perFrameNoise.mean});
   result.panels.push_back(errorPanel("mean |dAO|, fixed noise (0..0.1)", fixedNoise.perPoint, 0.1f));
   result.panels.push_back(errorPanel("mean |dAO|, per-frame seed (0..0.1)", perFrameNoise.perPoint, 0.1f));

@@ -49,6 +49,7 @@ float srgbEncode(float linear) {
 // The panel as display RGB (0..1): AO as is (a factor, shown linearly), lit
 // tonemapped and sRGB-encoded, signed errors blue-white-red.
 std::array<float, 3> displayColor(const Panel& panel, int x, int y) {
+  if (!panel.coverage.empty() && panel.coverage.at(x, y, 3) == 0.0f) return {0.45f, 0.6f, 0.8f};
   const float value = panel.image.at(x, y, panel.channel);
   switch (panel.kind) {
     case Panel::Kind::Grey: {
@@ -121,10 +122,17 @@ void writeCasePicture(const std::vector<CaseResult>& perMethod, const fs::path& 
 std::string formatNumber(double value) {
   char text[32];
   if (!std::isfinite(value)) return value != value ? "NaN" : (value > 0 ? "inf" : "-inf");
-  if (value == std::round(value) && std::abs(value) >= 1) std::snprintf(text, sizeof text, "%.0f", value);
+  if (value == std::round(value)) std::snprintf(text, sizeof text, "%.0f", value);
   else if (value != 0 && std::abs(value) < 1e-3) std::snprintf(text, sizeof text, "%.1e", value);
   else std::snprintf(text, sizeof text, std::abs(value) < 10 ? "%.3f" : "%.1f", value);
   return text;
+}
+
+// A table cell: '|' would end it.
+std::string markdownCell(const std::string& text) {
+  std::string cell;
+  for (char c : text) cell += c == '|' ? std::string("\\|") : std::string(1, c);
+  return cell;
 }
 
 std::string formatBound(const Check& check) {
@@ -137,7 +145,7 @@ void appendCaseRows(std::ostringstream& table, const std::vector<CaseResult>& pe
   const CaseResult& first = perMethod.front();
   bool firstRow = true;
   auto row = [&](const std::string& quantity, const std::vector<double>& values, const std::string& asserted) {
-    table << "| " << (firstRow ? first.failureMode : "") << " | " << quantity;
+    table << "| " << (firstRow ? first.failureMode : "") << " | " << markdownCell(quantity);
     for (double value : values) table << " | " << formatNumber(value);
     table << " | " << asserted << " | "
           << (firstRow && !first.panels.empty() ? "[png](stability/" + first.id + ".png)" : "") << " |\n";
@@ -148,7 +156,8 @@ void appendCaseRows(std::ostringstream& table, const std::vector<CaseResult>& pe
     std::string asserted;
     for (const CaseResult& result : perMethod) {
       values.push_back(result.checks[i].measured);
-      const std::string bound = formatBound(result.checks[i]);
+      std::string bound = formatBound(result.checks[i]);
+      if (!result.checks[i].knownBug.empty()) bound += " (fails: bug " + result.checks[i].knownBug.substr(0, 2) + ")";
       if (asserted.find(bound) == std::string::npos) asserted += (asserted.empty() ? "" : " / ") + bound;
     }
     row(first.checks[i].quantity, values, asserted);

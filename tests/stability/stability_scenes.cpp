@@ -165,7 +165,8 @@ Scene depthStepScene() {
   using L = DepthStepLayout;
   const int white = addMaterial(scene, glm::vec3(0.8f));
   addInstance(scene, parallelogram({-3, -3, L::kWallZ}, {6, 0, 0}, {0, 6, 0}), white);  // faces +Z
-  addInstance(scene, uvSphere(L::kSphereRadius, 32, 16), addMaterial(scene, {0.7f, 0.3f, 0.2f}));
+  addInstance(scene, uvSphere(L::kSphereRadius, 32, 16), addMaterial(scene, {0.7f, 0.3f, 0.2f}),
+              moved({0, 0, L::kSphereZ}));
   scene.cameras.push_back(lookAt({0, 0, 5}, {0, 0, 0}, 0.6f));
   return scene;
 }

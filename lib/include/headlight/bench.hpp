@@ -55,6 +55,7 @@ struct BenchRow {
   double radius = 0;        // world units, as used
   double radiusScale = 0;   // radius / the scene's auto radius
   bool blur = false;
+  int downsample = 1;       // SSGI resolution divisor: 1 full, 2 half, 4 quarter
   bool seedDefault = false;  // the seed spec's settings (hemisphere, 64, radius 0.5, bias 0.025, no blur)
   int repetitions = 0;
   Summary frameMs;          // passes of one frame (G-buffer to composite), shadows cached, readback excluded

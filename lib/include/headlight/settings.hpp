@@ -25,6 +25,8 @@ struct SsgiSettings {
                                  // the seed's 0.5 for hemisphere, 1 (the estimator itself) for radiance
   unsigned seed = 1;             // kernel and noise random seed (fixed: renders are repeatable)
   bool blur = true;              // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
+  int downsample = 1;            // SSGI resolution divisor per side: 1 full, 2 half, 4 quarter; below
+                                 // full resolution the blur pass is also the (depth-aware) upsample
 
   // The seed's fixed 0.5 assumed a scene a few units across; a radius that
   // follows the scene works from millimetres to kilometres. 0.15 of the
