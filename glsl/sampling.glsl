@@ -1,5 +1,5 @@
 // Low-discrepancy sampling and the GGX distribution, shared by the table
-// passes and the lighting pass.
+// passes and the direct-light and composite passes.
 const float kPi = 3.14159265358979;
 
 // The i-th of n points of the Hammersley set in [0,1)^2.

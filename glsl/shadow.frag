@@ -1,4 +1,4 @@
-// Point lights store linear distance / far, which the lighting pass compares
+// Point lights store linear distance / far, which the direct-light pass compares
 // directly; directional and spot lights keep the rasterised depth.
 #include "shared_layout.h"
 

@@ -47,5 +47,8 @@ float surfaceDepthAlongRay(vec3 sampleView, vec3 surfaceView, vec3 surfaceNormal
   if (abs(facing) < 1e-4) return surfaceView.z;
   const vec3 rayOrigin = orthographic ? vec3(sampleView.xy, 0.0) : vec3(0.0);
   const float t = dot(surfaceNormalView, surfaceView - rayOrigin) / facing;
+  // The ray meets the plane only behind the eye (a sample above the horizon
+  // of a grazing floor): the surface is not in front of the sample.
+  if (t <= 0.0) return surfaceView.z - limit;
   return clamp(rayOrigin.z + t * rayDirection.z, surfaceView.z - limit, surfaceView.z + limit);
 }

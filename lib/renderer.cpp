@@ -225,7 +225,7 @@ const Scene& Renderer::scene() const { return impl_->scene; }
 RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   settings.validate();
   RenderSettings used = settings;
-  const float diagonal = glm::length(impl_->scene.worldBounds().size());
+  const float diagonal = 2.0f * impl_->scene.worldBounds().radius();
   if (used.ssgi.radius == 0.0f) used.ssgi.radius = std::max(SsgiSettings::kAutoRadiusFraction * diagonal, 1e-30f);
   if (used.ssgi.bias == 0.0f) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * used.ssgi.radius;
   if (used.lighting.shadowMapSize == 0) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);

@@ -6,10 +6,7 @@
 // same numbers as the doc's table.
 #include <doctest/doctest.h>
 
-#include <algorithm>
-
 #include "gl_test_support.hpp"
-#include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "stability/stability.hpp"
 
@@ -91,7 +88,7 @@ TEST_CASE("degenerate input: rejected with SceneError or rendered without NaN or
   checkEveryMethod(degenerateInput);
 }
 
-TEST_CASE("image sizes 1x1, 67x45, 1024x8: right sizes, finite values") {
+TEST_CASE("image sizes 1x1, 67x45, 1024x8, SSGI at full and quarter size: right sizes, finite values") {
   checkEveryMethod(resolutionEdges);
 }
 

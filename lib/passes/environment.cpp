@@ -34,7 +34,7 @@ EnvironmentPass::EnvironmentPass()
 }
 
 void EnvironmentPass::updateSky(const Sky& sky) {
-  // Intensity is applied in the lighting pass, so a changed intensity
+  // Intensity is applied in the composite pass, so a changed intensity
   // needs no new table.
   if (tabulatedSky_ && tabulatedSky_->zenith == sky.zenith && tabulatedSky_->horizon == sky.horizon &&
       tabulatedSky_->ground == sky.ground)

@@ -489,14 +489,14 @@ class Tracer {
     return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
   }
 
-  // lighting.frag viewDirection.
+  // surface.glsl viewDirection.
   glm::vec3 viewDirection(const glm::vec3& worldPosition) const {
     const CameraView& view = in_.frame.view;
     if (view.orthographic) return glm::normalize(glm::vec3(view.view[0][2], view.view[1][2], view.view[2][2]));
     return glm::normalize(view.position - worldPosition);
   }
 
-  // lighting.frag's background ray, for this top-first pixel.
+  // composite.frag's background ray, for this top-first pixel.
   glm::vec3 backgroundRay(int x, int y) const {
     const CameraView& view = in_.frame.view;
     const float width = float(in_.frame.position.width), height = float(in_.frame.position.height);
@@ -517,7 +517,7 @@ class Tracer {
     return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
   }
 
-  // lighting.frag directLight with shadow rays from `origin` for the maps.
+  // direct_light.frag with shadow rays from `origin` for the maps.
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin) {
     glm::vec3 sum(0.0f);
     for (const Light& light : in_.scene.lights) {
@@ -667,7 +667,7 @@ float rayEpsilon(const Scene& scene) {
   const Bounds bounds = scene.worldBounds();
   if (bounds.empty()) return 1e-6f;
   const glm::vec3 largest = glm::max(glm::abs(bounds.min), glm::abs(bounds.max));
-  const float epsilon = 2e-5f * (glm::length(bounds.size()) + std::max({largest.x, largest.y, largest.z}));
+  const float epsilon = 2e-5f * (2.0f * bounds.radius() + std::max({largest.x, largest.y, largest.z}));
   return std::max(epsilon, std::numeric_limits<float>::min());
 }
 

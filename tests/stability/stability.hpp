@@ -112,9 +112,9 @@ struct CaseResult {
   std::string describe() const;
 };
 
-// Reference traces in this suite: 256 rays per pixel keeps a trace of a 96 x 96
-// frame near a second on 2 cores; the AO standard error at that count is
-// about 0.02 per pixel, far below the errors measured.
+// Reference traces in this suite: 256 rays per pixel keeps a trace of a
+// 128 x 96 frame well under a second on 2 cores; the AO standard error at
+// that count is about 0.02 per pixel, well below the errors measured.
 constexpr int kReferenceSamples = 256;
 
 // One function per failure mode; each sets the renderer's scene.

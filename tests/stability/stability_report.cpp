@@ -58,7 +58,8 @@ std::array<float, 3> displayColor(const Panel& panel, int x, int y) {
     }
     case Panel::Kind::Tonemapped: {
       std::array<float, 3> rgb{};
-      for (int c = 0; c < 3; ++c) rgb[std::size_t(c)] = srgbEncode(tonemapAces(panel.image.at(x, y, panel.channel + c)));
+      for (int c = 0; c < 3; ++c)
+        rgb[std::size_t(c)] = srgbEncode(tonemapAces(panel.image.at(x, y, panel.channel + c)));
       return rgb;
     }
     case Panel::Kind::Signed: {

@@ -52,7 +52,7 @@ void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat
 glm::mat4 moved(glm::vec3 offset) { return glm::translate(glm::mat4(1.0f), offset); }
 
 // Sets bounds from the positions; NaN coordinates are left out of them by
-// Bounds::extend's comparisons (NaN < x is false), as in the glTF loader.
+// Bounds::extend's comparisons (NaN < x is false).
 void recomputeBounds(Primitive& primitive) {
   primitive.bounds = Bounds{};
   for (const glm::vec3& p : primitive.positions) primitive.bounds.extend(p);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 namespace headlight {
 
@@ -32,8 +33,9 @@ struct Bounds {
   }
   glm::vec3 center() const { return (min + max) * 0.5f; }
   glm::vec3 size() const { return max - min; }
-  // Radius of the sphere around center() that holds the box.
-  float radius() const { return glm::length(size()) * 0.5f; }
+  // Radius of the sphere around center() that holds the box. In double: the
+  // squared diagonal of a 1e20-unit scene overflows float.
+  float radius() const { return float(glm::length(glm::dvec3(size())) * 0.5); }
   // The box of this box's eight corners moved by `transform`.
   Bounds transformed(const glm::mat4& transform) const;
 };
