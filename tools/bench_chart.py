@@ -1,6 +1,8 @@
 """Draws headlight bench's chart from bench.csv: frame time (x, log) against
 error (y) per scene and resolution, every configuration a point, the Pareto
-front drawn, the seed spec's default marked. Writes bench.png and bench.svg.
+front drawn, the seed spec's default marked. Writes bench.png and bench.svg,
+and bench_summary.md: per scene and resolution, the (time, AO RMSE) front
+and how far the seed default is from it.
 
 Run by `headlight bench` (embedded in the binary) as
     /usr/bin/python3 - BENCH_CSV OUT_DIR
@@ -16,7 +18,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
-           ("indirect_rmse", "indirect RMSE vs reference (within R)")]
+           ("indirect_rmse", "indirect RMSE vs reference (within R)"),
+           ("lit_rel_rmse", "lit relative RMSE vs lit_ref (no R)")]
 MARKERS = {"hemisphere": "o", "radiance": "s"}
 SIZES = {"1": 26, "2": 12, "4": 6}  # SSGI resolution divisor: full-resolution points are the largest
 
@@ -30,6 +33,52 @@ def pareto(points):
         if not dominated:
             front.append(i)
     return sorted(front, key=lambda i: points[i][0])
+
+
+def describe(r):
+    resolution = {"1": "full", "2": "half", "4": "quarter"}.get(r["ssgi_downsample"], r["ssgi_downsample"])
+    return (f"{r['method']}, {r['samples']} samples, radius x{float(r['radius_scale']):.3g} "
+            f"({float(r['radius']):.3g}), {resolution} res, blur {'on' if r['blur'] == '1' else 'off'}")
+
+
+def summary(rows, groups):
+    """Markdown: the AO front per group and the seed default against it."""
+    lines = []
+    for scene, width, height in groups:
+        group = [r for r in rows if (r["scene"], r["width"], r["height"]) == (scene, width, height)]
+        points = [(float(r["frame_ms_median"]), float(r["ao_rmse"])) for r in group]
+        front = pareto(points)
+        lines += [f"### {scene} {width}x{height}", "",
+                  "| on the front (fastest first) | frame ms (median) | AO RMSE | indirect RMSE |", "|---|---|---|---|"]
+        for i in front:
+            r = group[i]
+            lines.append(f"| {describe(r)} | {float(r['frame_ms_median']):.2f} | {float(r['ao_rmse']):.4f} | "
+                         f"{float(r['indirect_rmse']):.4f} |")
+        seeds = [r for r in group if r["seed_default"] == "1"]
+        if seeds:
+            seed = seeds[0]
+            seed_time, seed_error = float(seed["frame_ms_median"]), float(seed["ao_rmse"])
+            faster = [group[i] for i in front if float(group[i]["ao_rmse"]) <= seed_error]
+            better = [group[i] for i in front if float(group[i]["frame_ms_median"]) <= seed_time]
+            lines += ["", f"Seed default ({describe(seed)}): {seed_time:.2f} ms, AO RMSE {seed_error:.4f}"
+                      f"{' (on the front)' if seed['pareto_ao'] == '1' else ''}."]
+            if faster:
+                quickest = min(faster, key=lambda r: float(r["frame_ms_median"]))
+                lines.append(f"Fastest front point at least as accurate: {describe(quickest)}, "
+                             f"{float(quickest['frame_ms_median']):.2f} ms "
+                             f"({seed_time / float(quickest['frame_ms_median']):.2f}x faster).")
+            if better:
+                best = min(better, key=lambda r: float(r["ao_rmse"]))
+                lines.append(f"Most accurate front point no slower: {describe(best)}, AO RMSE "
+                             f"{float(best['ao_rmse']):.4f} ({float(best['ao_rmse']) - seed_error:+.4f}).")
+        lines += ["", "Lowest lit error (lit_ref does not depend on R, so radii compare fairly here):", "",
+                  "| configuration | frame ms (median) | lit relative RMSE | lit SSIM |", "|---|---|---|---|"]
+        for r in sorted(group, key=lambda r: float(r["lit_rel_rmse"]))[:3] + seeds[:1]:
+            lines.append(f"| {describe(r)}{' (seed default)' if r['seed_default'] == '1' else ''} | "
+                         f"{float(r['frame_ms_median']):.2f} | {float(r['lit_rel_rmse']):.4f} | "
+                         f"{float(r['lit_ssim']):.3f} |")
+        lines.append("")
+    return "\n".join(lines)
 
 
 def main():
@@ -67,6 +116,11 @@ def main():
             ax.grid(True, which="both", alpha=0.3)
             if column == 0 and row_index == 0:
                 ax.legend(fontsize=7, title="marker size: SSGI resolution", title_fontsize=7)
+    summary_path = os.path.join(out_dir, "bench_summary.md")
+    with open(summary_path + ".tmp", "w") as f:
+        f.write(summary(rows, groups))
+    os.replace(summary_path + ".tmp", summary_path)
+    print(summary_path)
     renderer = rows[0]["renderer"] if rows else ""
     fig.suptitle(f"headlight bench: SSGI time against error\n{renderer}", fontsize=9)
     fig.tight_layout()

@@ -71,8 +71,9 @@ struct SettingOption {
 };
 std::span<const SettingOption> settingOptions();
 
-// Named presets: "fast", "default", "high", "seed" (the seed spec's fixed
-// radius 0.5 and bias 0.025). Throws SettingsError for an unknown name.
+// Named presets: "fast" (radiance, 16 samples, SSGI at half resolution),
+// "default", "high" (radiance, 64 samples, larger shadow maps), "seed" (the
+// seed spec's fixed radius 0.5 and bias 0.025). Throws SettingsError for an unknown name.
 void applyPreset(RenderSettings& settings, std::string_view preset);
 std::span<const std::string_view> presetNames();
 
