@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -22,7 +23,7 @@ int parseCount(const char* name, const std::string& text, int low, int high) {
   int value = 0;
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
-    throw SettingsError("--" + std::string(name) + ": expected an integer in " + std::to_string(low) + ".." +
+    throw SettingsError(std::string("--") + name + ": expected an integer in " + std::to_string(low) + ".." +
                         std::to_string(high) + ", got '" + text + "'");
   return value;
 }
@@ -78,11 +79,11 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
     }
     auto takeValue = [&](bool needsValue) -> std::string {
       if (!needsValue) {
-        if (inlineValue) throw SettingsError("--" + name + " takes no value");
+        if (inlineValue) throw SettingsError(std::string("--") + name + " takes no value");
         return {};
       }
       if (inlineValue) return *inlineValue;
-      if (i + 1 >= args.size()) throw SettingsError("--" + name + " needs a value");
+      if (i + 1 >= args.size()) throw SettingsError(std::string("--") + name + " needs a value");
       return args[++i];
     };
     bool known = false;
@@ -105,17 +106,21 @@ std::string renderHelp(CommandKind kind) {
   std::ostringstream out;
   if (kind == CommandKind::Render)
     out << "usage: headlight render [SCENE] [options]\n\n"
-           "Renders SCENE (a .gltf/.glb file or builtin:cornell, builtin:spheres; default builtin:cornell)\n"
-           "and writes position, normal, albedo, material, depth, [emissive], ssgi and lit .exr plus\n"
-           "preview.png into the output folder, printing one line per file.\n\n";
+           "Renders SCENE (a .gltf/.glb file or builtin:NAME; default builtin:cornell) and writes\n"
+           "position, normal, albedo, material, depth, [emissive], ssgi and lit .exr plus preview.png\n"
+           "into the output folder, printing one line per file.\n\n";
   else
     out << "usage: headlight reference [SCENE] [options]\n\n"
            "Ray-traces (Embree) the ground truth for SCENE at the pixels `render` would draw with the same\n"
            "options, and writes ao_ref.exr, indirect_ref.exr and lit_ref.exr into the output folder\n"
            "(docs/ACCURACY.md defines them).\n\n";
-  out << "Exit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
+  out << "Built-in scenes:";
+  for (const std::string& name : builtinSceneNames()) out << " builtin:" << name;
+  out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
   auto line = [&](std::string_view name, std::string_view value, std::string_view help) {
-    std::string left = "  --" + std::string(name) + (value.empty() ? "" : " " + std::string(value));
+    std::string left = "  --";
+    left += name;
+    if (!value.empty()) (left += " ") += value;
     if (left.size() < 34) left.resize(34, ' ');
     else left += "\n" + std::string(34, ' ');
     out << left << help << "\n";

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 fs::path temporaryPathFor(const fs::path& path) {
   static std::mt19937 rng(std::random_device{}());
   return path.parent_path() /
-         ("." + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
+         (std::string(".") + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
 }
 
 // Writes through `write` to a temporary file, then renames it over `path`.

@@ -12,6 +12,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "scene/builtin_layouts.hpp"
 
 namespace headlight {
 
@@ -241,14 +242,84 @@ Scene makeSpheres() {
   return scene;
 }
 
+// ---- Failure cases of screen-space GI (docs/STABILITY.md) ------------------
+// No lights: each gets the renderer's default key light.
+
+glm::mat4 moved(const glm::vec3& offset) { return glm::translate(glm::mat4(1.0f), offset); }
+
+Primitive floorQuad(float halfSize) {
+  return makeQuad({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
+}
+
+// A 100 x 100 plane: nothing can occlude it.
+Scene makePlane() {
+  Scene scene;
+  addInstance(scene, floorQuad(50.0f), addMaterial(scene, makeMaterial("plane", glm::vec3(0.8f), 0.9f)));
+  scene.cameras.push_back(makeLookAtCamera("plane camera", {0, 2, 6}, {0, 0, -4}, 0.8f));
+  return scene;
+}
+
+// Slats one or two pixels wide in front of a wall.
+Scene makeSlats() {
+  using L = builtin::SlatLayout;
+  Scene scene;
+  const int wall = addMaterial(scene, makeMaterial("slats wall", glm::vec3(0.8f), 0.9f));
+  const int wood = addMaterial(scene, makeMaterial("slats wood", {0.6f, 0.45f, 0.3f}, 0.9f));
+  addInstance(scene, makeQuad({-1.2f, -1.2f, 0}, {2.4f, 0, 0}, {0, 2.4f, 0}), wall);  // faces +Z
+  const int slat = addGeometry(scene, makeBox({L::kWidth, L::kHeight, L::kWidth}));
+  for (int i = 0; i < L::kCount; ++i)
+    addInstance(scene, slat, wood, moved({L::kFirstX + float(i) * L::kSpacing, 0, L::kGap}));
+  scene.cameras.push_back(makeLookAtCamera("slats camera", {0.4f, 0.2f, 3.2f}, {0, 0, 0}, 0.8f));
+  return scene;
+}
+
+// A tall box cut by the left image border, its shadowed floor partly off
+// screen (the camera sees x = -1.69..1.69 at the box's depth).
+Scene makeOffscreen() {
+  Scene scene;
+  const int white = addMaterial(scene, makeMaterial("offscreen white", glm::vec3(0.8f), 0.9f));
+  addInstance(scene, floorQuad(3.0f), white);
+  addInstance(scene, makeBox({0.6f, 1.5f, 0.6f}), white, moved({-1.7f, 0.75f, 0}));
+  addInstance(scene, makeBox({0.6f, 0.6f, 0.6f}), white, moved({0.3f, 0.3f, -0.5f}));
+  scene.cameras.push_back(makeLookAtCamera("offscreen camera", {0, 1.2f, 3}, {0, 0.4f, 0}, 0.8f));
+  return scene;
+}
+
+// A sphere 1.4..2.6 units in front of a wall: the depth-discontinuity halo.
+Scene makeDepthStep() {
+  using L = builtin::DepthStepLayout;
+  Scene scene;
+  const int white = addMaterial(scene, makeMaterial("depth-step wall", glm::vec3(0.8f), 0.9f));
+  addInstance(scene, makeQuad({-3, -3, L::kWallZ}, {6, 0, 0}, {0, 6, 0}), white);  // faces +Z
+  addInstance(scene, makeUvSphere(L::kSphereRadius, 32, 16),
+              addMaterial(scene, makeMaterial("depth-step sphere", {0.7f, 0.3f, 0.2f}, 0.9f)),
+              moved({0, 0, L::kSphereZ}));
+  scene.cameras.push_back(makeLookAtCamera("depth-step camera", {0, 0, 5}, {0, 0, 0}, 0.6f));
+  return scene;
+}
+
+// A 1000 x 1000 floor seen from half a unit up, 3 degrees down: grazing
+// angles all the way to the horizon.
+Scene makeGrazing() {
+  Scene scene;
+  addInstance(scene, floorQuad(500.0f), addMaterial(scene, makeMaterial("grazing floor", glm::vec3(0.8f), 0.9f)));
+  scene.cameras.push_back(makeLookAtCamera("grazing camera", {0, 0.5f, 0}, {0, 0.5f - 0.0524f, -1}, 0.7f));
+  return scene;
+}
+
 struct BuiltinScene {
   const char* name;
   Scene (*make)();
 };
 
-constexpr std::array<BuiltinScene, 2> kBuiltinScenes{{
+constexpr std::array<BuiltinScene, 7> kBuiltinScenes{{
     {"cornell", &makeCornell},
     {"spheres", &makeSpheres},
+    {"plane", &makePlane},
+    {"slats", &makeSlats},
+    {"offscreen", &makeOffscreen},
+    {"depth-step", &makeDepthStep},
+    {"grazing", &makeGrazing},
 }};
 
 }  // namespace

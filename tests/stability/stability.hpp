@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/builtin_layouts.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene.hpp"
@@ -36,18 +37,12 @@ Scene flatPlaneScene();
 Scene nearWallScene();
 // Case 3: nine slats 0.04 wide, 0.12 in front of a wall.
 Scene slatsScene();
-struct SlatLayout {
-  static constexpr int kCount = 9;
-  static constexpr float kFirstX = -0.8f, kSpacing = 0.2f;  // slat centres
-  static constexpr float kWidth = 0.04f, kHeight = 2.0f, kGap = 0.12f;  // gap: wall to slat centre
-};
+using SlatLayout = builtin::SlatLayout;
 // Case 4: a floor and a tall box cut by the left image border.
 Scene offscreenBoxScene();
 // Case 5: a sphere 1.4..2.6 units in front of a wall (1.05..1.9 SSGI radii).
 Scene depthStepScene();
-struct DepthStepLayout {
-  static constexpr float kWallZ = -3.0f, kSphereRadius = 0.6f, kSphereZ = -1.0f;
-};
+using DepthStepLayout = builtin::DepthStepLayout;
 // Case 6: a 1000 x 1000 floor, camera half a unit up, looking at the horizon.
 Scene grazingFloorScene();
 // Case 6: `scene` with every instance, camera and light scaled about the

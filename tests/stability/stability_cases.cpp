@@ -105,7 +105,8 @@ Check atMost(std::string quantity, double measured, double bound) {
 Check atLeast(std::string quantity, double measured, double bound) {
   return {std::move(quantity), measured, Relation::AtLeast, bound, {}};
 }
-Check knownToFail(Check check, std::string bug) {
+// Kept for the next bug found: marks a check that must fail until it is fixed.
+[[maybe_unused]] Check knownToFail(Check check, std::string bug) {
   check.knownBug = std::move(bug);
   return check;
 }

@@ -114,13 +114,10 @@ Camera lookAt(glm::vec3 eye, glm::vec3 target, float yfov) {
   return camera;
 }
 
-Scene flatPlaneScene() {
-  Scene scene;
-  scene.source = "stability:flat-plane";
-  addInstance(scene, floorQuad(50.0f), addMaterial(scene, glm::vec3(0.8f)));
-  scene.cameras.push_back(lookAt({0, 2, 6}, {0, 0, -4}, 0.8f));
-  return scene;
-}
+// The failure cases a user can render too are built-in scenes
+// (lib/scene/builtin_scenes.cpp), so the goldens and this suite share them.
+Scene flatPlaneScene() { return makeBuiltinScene("plane"); }
+Scene slatsScene() { return makeBuiltinScene("slats"); }
 
 Scene nearWallScene() {
   Scene scene = makeBuiltinScene("cornell");
@@ -130,56 +127,9 @@ Scene nearWallScene() {
   scene.cameras = {lookAt({-0.6f, 0.3f, -0.9f}, {-1.0f, 0.0f, -1.0f}, 1.2f)};
   return scene;
 }
-
-Scene slatsScene() {
-  Scene scene;
-  scene.source = "stability:slats";
-  const int wall = addMaterial(scene, glm::vec3(0.8f));
-  const int wood = addMaterial(scene, {0.6f, 0.45f, 0.3f});
-  addInstance(scene, parallelogram({-1.2f, -1.2f, 0}, {2.4f, 0, 0}, {0, 2.4f, 0}), wall);  // faces +Z
-  using L = SlatLayout;
-  scene.primitives.push_back(box({L::kWidth, L::kHeight, L::kWidth}));
-  const int slat = int(scene.primitives.size()) - 1;
-  for (int i = 0; i < L::kCount; ++i)
-    scene.instances.push_back({slat, moved({L::kFirstX + float(i) * L::kSpacing, 0, L::kGap}), wood});
-  scene.cameras.push_back(lookAt({0.4f, 0.2f, 3.2f}, {0, 0, 0}, 0.8f));
-  return scene;
-}
-
-Scene offscreenBoxScene() {
-  Scene scene;
-  scene.source = "stability:offscreen-box";
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, floorQuad(3.0f), white);
-  // The camera sees x = -1.69..1.69 at the box's depth: the box (x -2.0..-1.4)
-  // is cut by the left border, its shadowed floor partly off screen.
-  addInstance(scene, box({0.6f, 1.5f, 0.6f}), white, moved({-1.7f, 0.75f, 0}));
-  addInstance(scene, box({0.6f, 0.6f, 0.6f}), white, moved({0.3f, 0.3f, -0.5f}));
-  scene.cameras.push_back(lookAt({0, 1.2f, 3}, {0, 0.4f, 0}, 0.8f));
-  return scene;
-}
-
-Scene depthStepScene() {
-  Scene scene;
-  scene.source = "stability:depth-step";
-  using L = DepthStepLayout;
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, parallelogram({-3, -3, L::kWallZ}, {6, 0, 0}, {0, 6, 0}), white);  // faces +Z
-  addInstance(scene, uvSphere(L::kSphereRadius, 32, 16), addMaterial(scene, {0.7f, 0.3f, 0.2f}),
-              moved({0, 0, L::kSphereZ}));
-  scene.cameras.push_back(lookAt({0, 0, 5}, {0, 0, 0}, 0.6f));
-  return scene;
-}
-
-Scene grazingFloorScene() {
-  Scene scene;
-  scene.source = "stability:grazing-floor";
-  addInstance(scene, floorQuad(500.0f), addMaterial(scene, glm::vec3(0.8f)));
-  // Looking 3 degrees down: the floor runs from the bottom border to the
-  // horizon, most of it seen at a few degrees' grazing angle.
-  scene.cameras.push_back(lookAt({0, 0.5f, 0}, {0, 0.5f - 0.0524f, -1}, 0.7f));
-  return scene;
-}
+Scene offscreenBoxScene() { return makeBuiltinScene("offscreen"); }
+Scene depthStepScene() { return makeBuiltinScene("depth-step"); }
+Scene grazingFloorScene() { return makeBuiltinScene("grazing"); }
 
 Scene scaledScene(Scene scene, float scale) {
   const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
