@@ -56,6 +56,13 @@ TEST_CASE("every golden in reference_images renders the same, target by target")
     const fs::path expected = fs::path(HEADLIGHT_SOURCE_DIR) / "reference_images" / golden.name;
     const fs::path actual = work / golden.name / "actual";
     fs::remove_all(work / golden.name);
+    // The shared Khronos asset lives beside the project (../shared), in CI
+    // too; a checkout without it cannot render that golden.
+    const bool isFile = golden.scene.rfind("builtin:", 0) != 0;
+    if (isFile && !fs::exists(fs::path(HEADLIGHT_SOURCE_DIR) / golden.scene)) {
+      MESSAGE("skipped golden " << golden.name << ": " << golden.scene << " is absent");
+      continue;
+    }
     // The golden's own command; scene paths are relative to the source root.
     const std::string command = "cd '" HEADLIGHT_SOURCE_DIR "' && '" HEADLIGHT_EXE "' render " + golden.scene + " " +
                                 golden.flags + " --quiet --out '" + actual.string() + "'";
