@@ -77,7 +77,7 @@ TEST_CASE("every golden in reference_images renders the same, target by target")
       const fs::path page = test::writeRegressionReport(diff, golden.name, work / golden.name);
       std::cerr << "regression " << golden.name << ": " << statusName(diff.status) << "; look at " << page.string()
                 << "\n";
-      FAIL("golden " << golden.name << " differs: see " << page.string());
+      FAIL_CHECK("golden " << golden.name << " differs: see " << page.string());
     }
   }
 }
