@@ -4,18 +4,6 @@
 
 namespace headlight::test {
 
-Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize) {
-  // Two axes spanning the plane, ordered so the winding faces `normal`.
-  const glm::vec3 helper = std::abs(normal.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  const glm::vec3 u = glm::normalize(glm::cross(helper, normal)) * halfSize;
-  const glm::vec3 v = glm::normalize(glm::cross(normal, u)) * halfSize;
-  Primitive primitive;
-  primitive.positions = {center - u - v, center + u - v, center + u + v, center - u + v};
-  primitive.normals.assign(4, normal);
-  primitive.indices = {0, 1, 2, 0, 2, 3};
-  for (const auto& p : primitive.positions) primitive.bounds.extend(p);
-  return primitive;
-}
 
 Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfov, float orthoHalfHeight) {
   Camera camera;

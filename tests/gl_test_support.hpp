@@ -9,6 +9,7 @@
 #include "headlight/frame.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene.hpp"
+#include "headlight/shapes.hpp"
 
 namespace headlight::test {
 
@@ -32,9 +33,6 @@ inline Material plainMaterial(glm::vec3 color, float metallic = 0.0f, float roug
   return material;
 }
 
-// An axis-aligned quad through `center`, facing `normal` (one of the six
-// axis directions), `halfSize` wide each way.
-Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize);
 
 // A camera at `eye` looking at `target`, perspective with yfov radians or
 // orthographic with half height `orthoHalfHeight` if > 0.

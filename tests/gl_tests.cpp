@@ -22,7 +22,7 @@ Scene quadScene() {
   Scene scene;
   scene.source = "test:quad";
   scene.materials.push_back(plainMaterial({0.5f, 0.25f, 0.125f}, 0.3f, 0.6f));
-  scene.primitives.push_back(quad({0, 0, 0}, {0, 0, 1}, 1.0f));
+  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 0, 1}, 1.0f));
   scene.instances.push_back({0, glm::mat4(1.0f), 0});
   // Orthographic from +Z, 3 units tall: the quad fills the middle 2/3.
   scene.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}, 0.8f, 1.5f));
@@ -33,7 +33,7 @@ Scene planeScene() {
   Scene scene;
   scene.source = "test:plane";
   scene.materials.push_back(plainMaterial({0.8f, 0.8f, 0.8f}));
-  scene.primitives.push_back(quad({0, 0, 0}, {0, 1, 0}, 50.0f));
+  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 1, 0}, 50.0f));
   scene.instances.push_back({0, glm::mat4(1.0f), 0});
   scene.cameras.push_back(lookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f));
   return scene;

@@ -16,6 +16,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
 
 using namespace headlight;
@@ -26,41 +27,6 @@ constexpr float kPi = 3.14159265358979f;
 
 // ---- Scenes ------------------------------------------------------------------
 
-// An axis-aligned square through `center` facing `normal`, `halfSize` each way.
-Primitive quad(glm::vec3 center, glm::vec3 normal, float halfSize) {
-  const glm::vec3 helper = std::abs(normal.y) > 0.5f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  const glm::vec3 u = glm::normalize(glm::cross(helper, normal)) * halfSize;
-  const glm::vec3 v = glm::normalize(glm::cross(normal, u)) * halfSize;
-  Primitive primitive;
-  primitive.positions = {center - u - v, center + u - v, center + u + v, center - u + v};
-  primitive.normals.assign(4, normal);
-  primitive.indices = {0, 1, 2, 0, 2, 3};
-  for (const auto& p : primitive.positions) primitive.bounds.extend(p);
-  return primitive;
-}
-
-// A UV sphere (as the built-in scenes make it): vertices on the sphere, so
-// the polyhedron lies inside it.
-Primitive uvSphere(glm::vec3 center, float radius, int segments, int rings) {
-  Primitive sphere;
-  for (int ring = 0; ring <= rings; ++ring) {
-    const float polar = float(ring) / float(rings) * kPi;
-    for (int segment = 0; segment <= segments; ++segment) {
-      const float azimuth = float(segment) / float(segments) * 2.0f * kPi;
-      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
-      sphere.positions.push_back(center + normal * radius);
-      sphere.normals.push_back(normal);
-      sphere.bounds.extend(center + normal * radius);
-    }
-  }
-  const auto row = std::uint32_t(segments + 1);
-  for (std::uint32_t ring = 0; ring < std::uint32_t(rings); ++ring)
-    for (std::uint32_t segment = 0; segment < std::uint32_t(segments); ++segment) {
-      const std::uint32_t a = ring * row + segment, b = a + row;
-      for (std::uint32_t index : {a, b, b + 1, a, b + 1, a + 1}) sphere.indices.push_back(index);
-    }
-  return sphere;
-}
 
 Material lambert(glm::vec3 color, glm::vec3 emissive = glm::vec3(0.0f)) {
   Material material;
@@ -88,8 +54,8 @@ Scene emptyScene() {
 // The floor y = 0 (facing up) meeting the wall z = 0 (facing +Z), 100 each way.
 Scene cornerScene(Material wall = lambert(glm::vec3(0.5f))) {
   Scene scene = emptyScene();
-  add(scene, quad({0, 0, 0}, {0, 1, 0}, 100.0f), lambert(glm::vec3(0.5f)));
-  add(scene, quad({0, 0, 0}, {0, 0, 1}, 100.0f), wall);
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 100.0f), lambert(glm::vec3(0.5f)));
+  add(scene, makeSquare({0, 0, 0}, {0, 0, 1}, 100.0f), wall);
   return scene;
 }
 
@@ -181,7 +147,7 @@ bool skipWithoutEmbree(const Scene& scene, const Frame& frame, const ReferenceSe
 
 TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctest::test_suite("reference")) {
   Scene scene = emptyScene();
-  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
   const Frame frame = uniformFrame(4, 4, ShadingPoint{});
   const ReferenceSettings settings = referenceSettings(256, 1e6f);
   if (skipWithoutEmbree(scene, frame, settings)) return;
@@ -238,8 +204,8 @@ TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * d
   // it by 2e-4. Tolerance: 4 standard errors + 5e-4.
   constexpr float kRadius = 0.5f, kHeight = 1.0f;
   Scene scene = emptyScene();
-  add(scene, quad({0, 0, 0}, {0, 1, 0}, 5.0f), lambert(glm::vec3(0.5f)));
-  add(scene, uvSphere({0, kHeight, 0}, kRadius, 128, 64), lambert(glm::vec3(0.5f)));
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 5.0f), lambert(glm::vec3(0.5f)));
+  add(scene, makeUvSphere(kRadius, 128, 64, {0, kHeight, 0}), lambert(glm::vec3(0.5f)));
   const Frame frame = uniformFrame(8, 8, ShadingPoint{});
   const ReferenceSettings settings = referenceSettings(4096, 1e6f);
   if (skipWithoutEmbree(scene, frame, settings)) return;
@@ -328,7 +294,7 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   // With roughness 1 (alpha 1): D = 1 / pi, Vis = 0.5 / (1 + 1) = 0.25,
   // F = f0 = 0.04, so L = ((1 - 0.04) albedo / pi + 0.25 x 0.04 / pi) E.
   Scene scene = emptyScene();
-  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(0.5f)));
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(0.5f)));
   Light sun;
   sun.type = Light::Type::Directional;
   sun.direction = {0.0f, -1.0f, 0.0f};
@@ -347,7 +313,7 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   // A square above the point shadows it; the square's lit top faces away,
   // so nothing bounces either.
   Scene shadowed = scene;
-  add(shadowed, quad({0, 1, 0}, {0, -1, 0}, 0.5f), lambert(glm::vec3(0.5f)));
+  add(shadowed, makeSquare({0, 1, 0}, {0, -1, 0}, 0.5f), lambert(glm::vec3(0.5f)));
   const ReferenceImages dark = traceReference(shadowed, frame, settings);
   for (int c = 0; c < 3; ++c) CHECK(dark.lit.at(1, 1, c) == 0.0f);
   // ... unless the light casts no shadow, as in the renderer.
@@ -362,7 +328,7 @@ TEST_CASE("reference: a white surface under a uniform open sky reflects the sky"
   // (specular albedo) c is c, whatever the samples' estimate of the
   // specular albedo, because both come from the same samples.
   Scene scene = emptyScene();
-  add(scene, quad({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f)));
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f)));
   scene.sky.zenith = scene.sky.horizon = scene.sky.ground = glm::vec3(0.25f, 0.5f, 1.0f);
   ShadingPoint point;
   point.albedo = glm::vec3(1.0f);
@@ -381,7 +347,7 @@ TEST_CASE("reference: background pixels show the sky through the pixel" * doctes
   // Two rows, camera looking down -Z: the top row looks up, the bottom one
   // down, by half the vertical half-angle (rows are top first, as in Frame).
   Scene scene = emptyScene();
-  add(scene, quad({0, -10, 0}, {0, 1, 0}, 1.0f), lambert(glm::vec3(0.5f)));
+  add(scene, makeSquare({0, -10, 0}, {0, 1, 0}, 1.0f), lambert(glm::vec3(0.5f)));
   const Frame frame = syntheticFrame(
       1, 2, [](int, int) { return ShadingPoint{{}, {}, {}, 0, 1, false}; }, 1.5f);
   const ReferenceSettings settings = referenceSettings(16, 1.0f);

@@ -37,6 +37,16 @@ const char* kUsage =
     "  --help           this help\n"
     "  --version        print the version\n";
 
+// The error's type, for the message: a user (and a script) can tell a bad
+// scene from a missing GL driver at a glance.
+const char* errorKind(const std::exception& error) {
+  if (dynamic_cast<const SceneError*>(&error)) return "SceneError";
+  if (dynamic_cast<const ContextError*>(&error)) return "ContextError";
+  if (dynamic_cast<const IoError*>(&error)) return "IoError";
+  if (dynamic_cast<const GlError*>(&error)) return "GlError";
+  return "error";
+}
+
 void printVerboseHeader(const Context& context, const Scene& scene) {
   for (const auto& attempt : context.attempts()) std::cerr << "context: " << attempt << "\n";
   std::cerr << "backend: " << backendName(context.backend()) << " (" << context.description() << ")\n"
@@ -139,20 +149,8 @@ int main(int argc, char** argv) {
   } catch (const SettingsError& error) {
     std::cerr << "headlight: " << error.what() << "\n";
     return kExitUsage;
-  } catch (const SceneError& error) {
-    std::cerr << "headlight: SceneError: " << error.what() << "\n";
-    return kExitRuntimeError;
-  } catch (const ContextError& error) {
-    std::cerr << "headlight: ContextError: " << error.what() << "\n";
-    return kExitRuntimeError;
-  } catch (const IoError& error) {
-    std::cerr << "headlight: IoError: " << error.what() << "\n";
-    return kExitRuntimeError;
-  } catch (const GlError& error) {
-    std::cerr << "headlight: GlError: " << error.what() << "\n";
-    return kExitRuntimeError;
   } catch (const std::exception& error) {
-    std::cerr << "headlight: error: " << error.what() << "\n";
+    std::cerr << "headlight: " << errorKind(error) << ": " << error.what() << "\n";
     return kExitRuntimeError;
   }
 }

@@ -12,13 +12,12 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/shapes.hpp"
 #include "scene/builtin_layouts.hpp"
 
 namespace headlight {
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 // Bumped whenever a built-in scene's content changes, so that anything keyed
 // on Scene::sourceHash (caches, EXR metadata) sees a different scene.
@@ -29,78 +28,6 @@ std::string fingerprintHex(const std::string& text) {
   std::snprintf(hex, sizeof hex, "%016llx",
                 static_cast<unsigned long long>(OIIO::farmhash::Fingerprint64(text.data(), text.size())));
   return hex;
-}
-
-// ---- Geometry generators ---------------------------------------------------
-
-void appendVertex(Primitive& primitive, const glm::vec3& position, const glm::vec3& normal, const glm::vec2& texcoord) {
-  primitive.positions.push_back(position);
-  primitive.normals.push_back(normal);
-  primitive.texcoords.push_back(texcoord);
-  primitive.bounds.extend(position);
-}
-
-// A parallelogram corner, corner+edgeU, corner+edgeU+edgeV, corner+edgeV. Its
-// front face (counter-clockwise, as glTF and GL expect) faces cross(edgeU, edgeV).
-void appendQuad(Primitive& primitive, const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV) {
-  const glm::vec3 normal = glm::normalize(glm::cross(edgeU, edgeV));
-  const auto first = static_cast<std::uint32_t>(primitive.positions.size());
-  appendVertex(primitive, corner, normal, {0.0f, 1.0f});
-  appendVertex(primitive, corner + edgeU, normal, {1.0f, 1.0f});
-  appendVertex(primitive, corner + edgeU + edgeV, normal, {1.0f, 0.0f});
-  appendVertex(primitive, corner + edgeV, normal, {0.0f, 0.0f});
-  for (std::uint32_t quadVertex : {0u, 1u, 2u, 0u, 2u, 3u}) {
-    primitive.indices.push_back(first + quadVertex);
-  }
-}
-
-Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::vec3& edgeV) {
-  Primitive quad;
-  appendQuad(quad, corner, edgeU, edgeV);
-  return quad;
-}
-
-// An axis-aligned box centred on the origin with outward faces; each face has
-// its own four vertices so that the normals stay flat.
-Primitive makeBox(const glm::vec3& size) {
-  Primitive box;
-  const glm::vec3 half = size * 0.5f;
-  const glm::vec3 x{size.x, 0.0f, 0.0f}, y{0.0f, size.y, 0.0f}, z{0.0f, 0.0f, size.z};
-  appendQuad(box, {-half.x, -half.y, half.z}, x, y);   // +Z
-  appendQuad(box, {half.x, -half.y, -half.z}, -x, y);  // -Z
-  appendQuad(box, {half.x, -half.y, half.z}, -z, y);   // +X
-  appendQuad(box, {-half.x, -half.y, -half.z}, z, y);  // -X
-  appendQuad(box, {-half.x, half.y, half.z}, x, -z);   // +Y
-  appendQuad(box, {-half.x, -half.y, -half.z}, x, z);  // -Y
-  return box;
-}
-
-// A UV sphere centred on the origin. The seam column is duplicated so that
-// texcoords run 0..1 without wrapping; the poles are rings of coincident
-// vertices, whose zero-area triangles cost little and keep the code simple.
-Primitive makeUvSphere(float radius, int segments, int rings) {
-  Primitive sphere;
-  for (int ring = 0; ring <= rings; ++ring) {
-    const float v = static_cast<float>(ring) / static_cast<float>(rings);
-    const float polar = v * kPi;  // 0 at +Y
-    for (int segment = 0; segment <= segments; ++segment) {
-      const float u = static_cast<float>(segment) / static_cast<float>(segments);
-      const float azimuth = u * 2.0f * kPi;
-      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
-      appendVertex(sphere, normal * radius, normal, {u, v});
-    }
-  }
-  const auto rowLength = static_cast<std::uint32_t>(segments + 1);
-  for (std::uint32_t ring = 0; ring < static_cast<std::uint32_t>(rings); ++ring) {
-    for (std::uint32_t segment = 0; segment < static_cast<std::uint32_t>(segments); ++segment) {
-      const std::uint32_t topLeft = ring * rowLength + segment;
-      const std::uint32_t bottomLeft = topLeft + rowLength;
-      for (std::uint32_t index : {topLeft, bottomLeft, bottomLeft + 1, topLeft, bottomLeft + 1, topLeft + 1}) {
-        sphere.indices.push_back(index);
-      }
-    }
-  }
-  return sphere;
 }
 
 // ---- Scene assembly ----------------------------------------------------------

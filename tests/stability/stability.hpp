@@ -21,12 +21,7 @@ namespace headlight::stability {
 
 // ---- Scenes (stability_scenes.cpp) --------------------------------------------
 
-// Generators in the style of lib/scene/builtin_scenes.cpp (not exported there).
-// A parallelogram corner, +edgeU, +edgeU+edgeV, +edgeV; its front face faces
-// cross(edgeU, edgeV).
-Primitive parallelogram(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV);
-Primitive box(glm::vec3 size);  // centred on the origin, outward faces, flat normals
-Primitive uvSphere(float radius, int segments, int rings);
+// Geometry comes from headlight/shapes.hpp.
 Material matteMaterial(glm::vec3 color);
 Camera lookAt(glm::vec3 eye, glm::vec3 target, float yfov);
 

@@ -10,33 +10,16 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "headlight/scene_loader.hpp"
+#include "headlight/shapes.hpp"
 #include "stability/stability.hpp"
 
 namespace headlight::stability {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-
-void appendVertex(Primitive& primitive, glm::vec3 position, glm::vec3 normal) {
-  primitive.positions.push_back(position);
-  primitive.normals.push_back(normal);
-  primitive.bounds.extend(position);
-}
-
-void appendParallelogram(Primitive& primitive, glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV) {
-  const glm::vec3 normal = glm::normalize(glm::cross(edgeU, edgeV));
-  const auto first = static_cast<std::uint32_t>(primitive.positions.size());
-  appendVertex(primitive, corner, normal);
-  appendVertex(primitive, corner + edgeU, normal);
-  appendVertex(primitive, corner + edgeU + edgeV, normal);
-  appendVertex(primitive, corner + edgeV, normal);
-  for (std::uint32_t quadVertex : {0u, 1u, 2u, 0u, 2u, 3u}) primitive.indices.push_back(first + quadVertex);
-}
-
 // A square floor at y = 0 facing +Y, `halfSize` each way.
 Primitive floorQuad(float halfSize) {
-  return parallelogram({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
+  return makeQuad({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
 }
 
 int addMaterial(Scene& scene, glm::vec3 color) {
@@ -59,45 +42,6 @@ void recomputeBounds(Primitive& primitive) {
 }
 
 }  // namespace
-
-Primitive parallelogram(glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV) {
-  Primitive primitive;
-  appendParallelogram(primitive, corner, edgeU, edgeV);
-  return primitive;
-}
-
-Primitive box(glm::vec3 size) {
-  Primitive result;
-  const glm::vec3 half = size * 0.5f;
-  const glm::vec3 x{size.x, 0, 0}, y{0, size.y, 0}, z{0, 0, size.z};
-  appendParallelogram(result, {-half.x, -half.y, half.z}, x, y);   // +Z
-  appendParallelogram(result, {half.x, -half.y, -half.z}, -x, y);  // -Z
-  appendParallelogram(result, {half.x, -half.y, half.z}, -z, y);   // +X
-  appendParallelogram(result, {-half.x, -half.y, -half.z}, z, y);  // -X
-  appendParallelogram(result, {-half.x, half.y, half.z}, x, -z);   // +Y
-  appendParallelogram(result, {-half.x, -half.y, -half.z}, x, z);  // -Y
-  return result;
-}
-
-Primitive uvSphere(float radius, int segments, int rings) {
-  Primitive sphere;
-  for (int ring = 0; ring <= rings; ++ring) {
-    const float polar = float(ring) / float(rings) * kPi;
-    for (int segment = 0; segment <= segments; ++segment) {
-      const float azimuth = float(segment) / float(segments) * 2 * kPi;
-      const glm::vec3 normal{std::sin(polar) * std::sin(azimuth), std::cos(polar), std::sin(polar) * std::cos(azimuth)};
-      appendVertex(sphere, normal * radius, normal);
-    }
-  }
-  const auto rowLength = std::uint32_t(segments + 1);
-  for (std::uint32_t ring = 0; ring < std::uint32_t(rings); ++ring)
-    for (std::uint32_t segment = 0; segment < std::uint32_t(segments); ++segment) {
-      const std::uint32_t topLeft = ring * rowLength + segment, bottomLeft = topLeft + rowLength;
-      for (std::uint32_t index : {topLeft, bottomLeft, bottomLeft + 1, topLeft, bottomLeft + 1, topLeft + 1})
-        sphere.indices.push_back(index);
-    }
-  return sphere;
-}
 
 Material matteMaterial(glm::vec3 color) {
   Material material;
@@ -160,7 +104,7 @@ Scene nanVertexScene() {
   scene.source = "stability:nan-vertex";
   const int white = addMaterial(scene, glm::vec3(0.8f));
   addInstance(scene, floorQuad(2.0f), white);
-  Primitive broken = parallelogram({-0.5f, 0.2f, -0.5f}, {1, 0, 0}, {0, 1, 0});
+  Primitive broken = makeQuad({-0.5f, 0.2f, -0.5f}, {1, 0, 0}, {0, 1, 0});
   broken.positions[2].y = std::numeric_limits<float>::quiet_NaN();
   recomputeBounds(broken);
   addInstance(scene, std::move(broken), white);
@@ -173,7 +117,7 @@ Scene zeroAreaScene() {
   scene.source = "stability:zero-area";
   const int white = addMaterial(scene, glm::vec3(0.8f));
   addInstance(scene, floorQuad(2.0f), white);
-  Primitive wall = parallelogram({-1, 0, -1}, {2, 0, 0}, {0, 1.5f, 0});
+  Primitive wall = makeQuad({-1, 0, -1}, {2, 0, 0}, {0, 1.5f, 0});
   // A triangle collapsed to a point, and one whose corners lie on a line;
   // both add nothing to the area-weighted normals.
   const auto first = std::uint32_t(wall.positions.size());
@@ -193,7 +137,7 @@ Scene missingNormalsScene() {
   scene.source = "stability:missing-normals";
   const int white = addMaterial(scene, glm::vec3(0.8f));
   addInstance(scene, floorQuad(2.0f), white);
-  Primitive block = box({0.8f, 0.8f, 0.8f});
+  Primitive block = makeBox({0.8f, 0.8f, 0.8f});
   block.normals.clear();
   generateNormals(block);
   addInstance(scene, std::move(block), white, moved({0, 0.4f, 0}));
@@ -206,7 +150,7 @@ Scene hugeCoordinateScene() {
   scene.source = "stability:huge-coordinates";
   const int white = addMaterial(scene, glm::vec3(0.8f));
   addInstance(scene, floorQuad(1e20f), white);
-  addInstance(scene, box({1, 1, 1}), white, moved({0, 0.5f, 0}));
+  addInstance(scene, makeBox({1, 1, 1}), white, moved({0, 0.5f, 0}));
   scene.cameras.push_back(lookAt({2, 1.5f, 3}, {0, 0.5f, 0}, 0.8f));
   return scene;
 }
