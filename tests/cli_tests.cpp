@@ -122,7 +122,8 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
   fs::remove_all(folder);
 }
 
-TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error") {
+TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("reference") / "out";
   const Run run = runHeadlight("reference --width 32 --height 24 --samples 64 --out " + quote(out.string()));
   INFO(run.output);
@@ -141,7 +142,8 @@ TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels
   fs::remove_all(out.parent_path());
 }
 
-TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart") {
+TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("bench") / "out";
   const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --samples 4,16 --radius-scales 1 "
                                "--blur on --ssgi-resolutions full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
@@ -177,6 +179,12 @@ TEST_CASE("bench writes a CSV whose every row has a time and an error, and a cha
   CHECK(chart.read());
   CHECK(fs::file_size(out / "bench.svg") > 1000);
   fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("without Embree, reference says it is not built" * doctest::skip(HEADLIGHT_HAS_EMBREE)) {
+  const Run run = runHeadlight("reference --width 8 --height 8 --out /nonexistent");
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("built without Embree") != std::string::npos);
 }
 
 TEST_CASE("--help, --version and unknown commands") {
