@@ -130,7 +130,7 @@ gl::Buffer uploadInstances(const Scene& scene, std::size_t& stride) {
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     gpu::ObjectBlock block{};
     block.worldFromLocal = scene.instances[i].worldFromLocal;
-    block.normalFromLocal = glm::transpose(glm::inverse(block.worldFromLocal));
+    block.normalFromLocal = glm::mat4(normalMatrix(block.worldFromLocal));
     std::memcpy(bytes.data() + i * stride, &block, sizeof(block));
   }
   return gl::Buffer(bytes.size(), bytes.data());
@@ -146,7 +146,8 @@ GpuScene uploadScene(const Scene& scene) {
   gpu.materials.push_back(uploadMaterial(Material{}, textures));  // glTF's default material
   const int defaultMaterial = int(gpu.materials.size()) - 1;
   for (const Instance& instance : scene.instances) {
-    gpu.instances.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial});
+    gpu.instances.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial,
+                             mirrors(instance.worldFromLocal)});
   }
   gpu.instanceBlocks = uploadInstances(scene, gpu.instanceStride);
   gpu.bounds = scene.worldBounds();

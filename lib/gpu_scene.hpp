@@ -46,6 +46,7 @@ struct GpuTexture {
 struct GpuInstance {
   int primitive = 0;  // index into GpuScene::primitives
   int material = 0;   // index into GpuScene::materials
+  bool mirrored = false;  // negative determinant: clockwise triangles face front (glTF)
 };
 
 struct GpuScene {

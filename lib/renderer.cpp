@@ -79,6 +79,7 @@ gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
 
 struct Renderer::Impl {
   explicit Impl(Context& context) : context(context) { context.checkErrors("building the renderer"); }
+  void loadScene(Scene newScene);  // Renderer::setScene's work
 
   Context& context;
   EnvironmentPass environment;
@@ -195,7 +196,19 @@ void Renderer::setScene(Scene scene) {
   impl.gbufferPass.reset();
   impl.gpuScene.reset();
   impl.gbuffer = GBuffer{};  // its emissive target depends on the scene
-  impl.scene = std::move(scene);
+  try {
+    impl.loadScene(std::move(scene));
+  } catch (...) {
+    // No half-set scene: render() refuses until a setScene succeeds.
+    impl.gbufferPass.reset();
+    impl.gpuScene.reset();
+    throw;
+  }
+}
+
+void Renderer::Impl::loadScene(Scene newScene) {
+  Impl& impl = *this;
+  impl.scene = std::move(newScene);
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
   impl.gbufferPass.emplace(*impl.gpuScene);
@@ -225,7 +238,9 @@ const Scene& Renderer::scene() const { return impl_->scene; }
 RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   settings.validate();
   RenderSettings used = settings;
-  const float diagonal = 2.0f * impl_->scene.worldBounds().radius();
+  // An empty scene has no size; 1 keeps every derived value finite.
+  const float sceneRadius = impl_->scene.worldBounds().radius();
+  const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
   if (used.ssgi.radius == 0.0f) used.ssgi.radius = std::max(SsgiSettings::kAutoRadiusFraction * diagonal, 1e-30f);
   if (used.ssgi.bias == 0.0f) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * used.ssgi.radius;
   if (used.lighting.shadowMapSize == 0) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
@@ -237,7 +252,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
 
 Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   Impl& impl = *impl_;
-  if (!impl.gpuScene) throw SettingsError("Renderer::render: no scene (call setScene first)");
+  if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
   Frame frame;
   frame.settings = resolve(settings);
   const RenderSettings& used = frame.settings;
@@ -252,7 +267,6 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   PassTimer timer(impl.context);
   if (!used.lighting.shadows) impl.dropShadows();
   if (impl.needsShadowPass(used.lighting)) timer.run("shadows", [&] { impl.renderShadows(used.lighting); });
-  impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
   impl.bindLighting(used.lighting);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
   timer.run("direct", [&] { impl.directLight.run(impl.gbuffer, impl.shadowMaps, impl.direct); });
@@ -280,13 +294,18 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   return frame;
 }
 
+std::span<const std::string_view> frameTargetNames() {
+  static constexpr std::string_view names[] = {"position", "normal", "albedo", "material",
+                                               "depth",    "emissive", "ssgi", "lit"};
+  return names;
+}
+
 std::vector<std::pair<std::string, const ImageF*>> Frame::targets() const {
+  const ImageF* images[] = {&position, &normal, &albedo, &material, &depth, &emissive, &ssgi, &lit};
+  static_assert(std::size(images) == 8, "one image per frameTargetNames() entry");
   std::vector<std::pair<std::string, const ImageF*>> list;
-  const std::pair<const char*, const ImageF*> all[] = {
-      {"position", &position}, {"normal", &normal}, {"albedo", &albedo}, {"material", &material},
-      {"depth", &depth},       {"emissive", &emissive}, {"ssgi", &ssgi},   {"lit", &lit}};
-  for (const auto& [name, image] : all)
-    if (!image->empty()) list.emplace_back(name, image);
+  for (std::size_t i = 0; i < std::size(images); ++i)
+    if (!images[i]->empty()) list.emplace_back(frameTargetNames()[i], images[i]);
   return list;
 }
 

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "headlight/error.hpp"
@@ -188,6 +189,11 @@ void RenderSettings::validate() const {
   RenderSettings scratch = *this;
   for (const SettingOption& option : settingOptions())
     if (!option.valueName.empty()) option.parse(scratch, option.format(*this));
+  // Readback sizes are GLsizei (32-bit) byte counts: 2^26 RGBA float pixels
+  // is the most one texture read can hold (an 8192 x 8192 image).
+  if (std::int64_t(width) * height > (std::int64_t(1) << 26))
+    throw SettingsError("--width " + std::to_string(width) + " x --height " + std::to_string(height) +
+                        ": at most 67108864 pixels (8192 x 8192)");
   if (ssgi.downsample != 1 && ssgi.downsample != 2 && ssgi.downsample != 4)
     throw SettingsError("ssgi.downsample: must be 1, 2 or 4, got " + std::to_string(ssgi.downsample));
   if (ssgi.downsample > 1 && !ssgi.blur)

@@ -51,7 +51,7 @@ bool folderEmpty(const fs::path& folder) { return !fs::exists(folder) || fs::is_
 
 TEST_CASE("render of the default scene writes every target with real content") {
   const fs::path out = freshFolder("default") / "out";
-  const Run run = runHeadlight("render --width 64 --height 48 --out " + quote(out.string()));
+  const Run run = runHeadlight("render --width 64 --height 48 --strict --out " + quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   for (const char* name : {"position", "normal", "albedo", "material", "depth", "emissive", "ssgi", "lit"}) {
@@ -125,7 +125,7 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
 TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("reference") / "out";
-  const Run run = runHeadlight("reference --width 32 --height 24 --samples 64 --out " + quote(out.string()));
+  const Run run = runHeadlight("reference --width 32 --height 24 --samples 64 --strict --out " + quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const std::pair<const char*, const char*> files[] = {

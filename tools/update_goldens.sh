@@ -15,7 +15,7 @@ sed 's/#.*//' reference_images/goldens.txt | while read -r name scene flags; do
   fresh="reference_images/.$name.new"
   rm -rf "$fresh"
   # shellcheck disable=SC2086  # flags are words on purpose
-  build/headlight render "$scene" $flags --out "$fresh" --quiet
+  build/headlight render "$scene" $flags --out "$fresh" --quiet --strict
   rm -f "$fresh/preview.png"
   if [ -d "reference_images/$name" ]; then
     echo "== $name: changes against the current golden"

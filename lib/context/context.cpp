@@ -3,10 +3,13 @@
 #include <glad/gl.h>
 
 #include <iostream>
+#include <atomic>
+#include <cstdint>
 #include <mutex>
 
 #include "context/backend.hpp"
 #include "headlight/error.hpp"
+#include "hex_code.hpp"
 
 namespace headlight {
 
@@ -33,9 +36,10 @@ namespace {
 // whenever a different Context is made or made current than the one that
 // loaded it last.
 std::mutex gladMutex;
-const void* gladLoadedBy = nullptr;
+std::uint64_t gladLoadedBy = 0;           // id of the Context whose entry points glad holds; 0 = none
+std::atomic<std::uint64_t> nextContextId{1};  // ids are never reused, unlike addresses
 
-void loadGlEntryPoints(const detail::PlatformContext& platform, const void* key) {
+void loadGlEntryPoints(const detail::PlatformContext& platform, std::uint64_t key) {
   std::lock_guard lock(gladMutex);
   if (gladLoadedBy == key) return;
   auto load = [](void* user, const char* name) -> GLADapiproc {
@@ -58,13 +62,14 @@ std::string glErrorName(GLenum error) {
     case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
     case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
     case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    default: return "GL error 0x" + std::to_string(error);
+    default: return "GL error " + detail::hexCode(error);
   }
 }
 
 }  // namespace
 
 struct Context::Impl {
+  std::uint64_t id = nextContextId++;
   std::unique_ptr<detail::PlatformContext> platform;
   Backend backend = Backend::Auto;
   GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
@@ -77,7 +82,7 @@ struct Context::Impl {
     // portability notes from the driver are not.
     if (type != GL_DEBUG_TYPE_ERROR && type != GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) return;
     auto* impl = static_cast<Impl*>(const_cast<void*>(user));
-    impl->errors.push_back("KHR_debug error " + std::to_string(id) + " (severity 0x" + std::to_string(severity) +
+    impl->errors.push_back("KHR_debug error " + std::to_string(id) + " (severity " + detail::hexCode(severity) +
                            "): " + message);
   }
 
@@ -107,7 +112,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
-  loadGlEntryPoints(*impl_->platform, impl_.get());
+  loadGlEntryPoints(*impl_->platform, impl_->id);
   GLint major = 0, minor = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &major);
   glGetIntegerv(GL_MINOR_VERSION, &minor);
@@ -131,7 +136,7 @@ const std::vector<std::string>& Context::attempts() const { return impl_->attemp
 
 void Context::makeCurrent() {
   impl_->platform->makeCurrent();
-  loadGlEntryPoints(*impl_->platform, impl_.get());
+  loadGlEntryPoints(*impl_->platform, impl_->id);
 }
 
 std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "context/backend.hpp"
+#include "hex_code.hpp"
 
 namespace headlight::detail {
 namespace {
@@ -33,7 +34,7 @@ std::string eglErrorName(EGLint error) {
     case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
     case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
     case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error 0x" + std::to_string(error);
+    default: return "EGL error " + detail::hexCode(unsigned(error));
   }
 }
 

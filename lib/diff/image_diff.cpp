@@ -74,9 +74,6 @@ const std::array<TargetTolerance, 9> kTolerances{{
      "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."},
 }};
 
-constexpr std::array<std::string_view, 8> kTargetNames{"position", "normal", "albedo", "material",
-                                                       "depth",    "emissive", "ssgi", "lit"};
-
 std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
@@ -403,7 +400,7 @@ const TargetTolerance& targetTolerance(std::string_view target) {
 
 DiffThresholds defaultThresholds(std::string_view target) { return targetTolerance(target).thresholds; }
 DiffMetric defaultMetric(std::string_view target) { return targetTolerance(target).metric; }
-std::span<const std::string_view> diffTargetNames() { return kTargetNames; }
+std::span<const std::string_view> diffTargetNames() { return frameTargetNames(); }
 
 DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options) {
   DiffThresholds t = defaultThresholds(target);
@@ -526,7 +523,7 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
     }
   }
   if (diff.status == DiffStatus::FileError) return diff;
-  for (std::string_view target : kTargetNames) {
+  for (std::string_view target : frameTargetNames()) {
     const std::string file = std::string(target) + ".exr";
     const bool inA = fs::exists(a / file, error), inB = fs::exists(b / file, error);
     if (!inA && !inB) continue;

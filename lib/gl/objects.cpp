@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "hex_code.hpp"
 
 namespace headlight::gl {
 
@@ -60,7 +61,7 @@ void Framebuffer::checkComplete(std::string_view what) const {
   GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
     throw GlError("glCheckNamedFramebufferStatus: " + std::string(what) +
-                  " framebuffer is incomplete (status 0x" + std::to_string(status) + ")");
+                  " framebuffer is incomplete (status " + detail::hexCode(status) + ")");
 }
 
 VertexArray::VertexArray() {

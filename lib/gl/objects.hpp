@@ -98,6 +98,10 @@ class Framebuffer {
   Framebuffer();  // creates an empty framebuffer object
   // Attaches `texture` (level 0); layer >= 0 attaches one layer of an array.
   void attach(GLenum attachment, const Texture& texture, int layer = -1);
+  // Passes that keep a framebuffer across frames detach their targets when
+  // done: an attached texture's storage outlives its deletion (GL 4.5,
+  // 5.1.3), so a dropped target would stay resident.
+  void detach(GLenum attachment) { glNamedFramebufferTexture(id(), attachment, 0, 0); }
   // Declares which colour attachments fragment outputs 0..n-1 write.
   void setDrawBuffers(std::span<const GLenum> buffers);
   // Throws GlError naming `what` if the framebuffer is incomplete.

@@ -2,6 +2,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -150,6 +151,15 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir) 
     written.push_back(writeExr(frame, *image, outDir / (name + ".exr"), halfFloat));
   }
   written.push_back(writePreview(frame, outDir / "preview.png"));
+  // A target this frame lacks (ssgi with SSGI off, emissive for a scene
+  // without glow) must not survive from an earlier render into the folder,
+  // where a diff would take it for this one's.
+  const auto made = frame.targets();
+  for (std::string_view name : frameTargetNames()) {
+    const bool present = std::any_of(made.begin(), made.end(), [&](const auto& t) { return t.first == name; });
+    std::error_code ignored;
+    if (!present) fs::remove(outDir / (std::string(name) + ".exr"), ignored);
+  }
   return written;
 }
 

@@ -39,6 +39,7 @@ void CompositePass::run(const GBuffer& gbuffer, const gl::Texture& direct, const
   programFor(ssgi != nullptr).use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
 }
 
 }  // namespace headlight

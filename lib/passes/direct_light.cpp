@@ -21,7 +21,6 @@ void DirectLightPass::run(const GBuffer& gbuffer, const ShadowMaps& shadows, Dir
   const bool diffuse = bool(targets.diffuse);
   framebuffer_.attach(GL_COLOR_ATTACHMENT0, targets.towardEye);
   if (diffuse) framebuffer_.attach(GL_COLOR_ATTACHMENT1, targets.diffuse);
-  else glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT1, 0, 0);
   const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
   framebuffer_.setDrawBuffers(std::span(drawBuffers, diffuse ? 2 : 1));
   framebuffer_.checkComplete("direct light");
@@ -42,6 +41,8 @@ void DirectLightPass::run(const GBuffer& gbuffer, const ShadowMaps& shadows, Dir
   programFor({bool(gbuffer.emissive), bool(shadows.planar), bool(shadows.cube), diffuse}).use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT1);
 }
 
 }  // namespace headlight

@@ -117,6 +117,9 @@ void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
       glDisable(GL_CULL_FACE);
     else
       glEnable(GL_CULL_FACE);
+    // Also decides gl_FrontFacing, so a mirrored double-sided mesh keeps
+    // its normals pointing the right way.
+    glFrontFace(scene.instances[i].mirrored ? GL_CW : GL_CCW);
     material.block.bindUniform(gpu::MaterialBlock::kBinding);
     bindMaterialTextures(scene, material, features);
     glBindBufferRange(GL_UNIFORM_BUFFER, gpu::ObjectBlock::kBinding, scene.instanceBlocks.id(),
@@ -126,6 +129,7 @@ void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
   }
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
 }
 
 }  // namespace headlight

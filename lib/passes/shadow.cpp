@@ -127,6 +127,7 @@ ShadowMaps ShadowPass::run(const GpuScene& scene, const std::vector<Light>& scen
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  framebuffer_.detach(GL_DEPTH_ATTACHMENT);
   return maps;
 }
 

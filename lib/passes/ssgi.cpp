@@ -101,6 +101,7 @@ void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, con
   programFor(settings.method).use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
 }
 
 }  // namespace headlight

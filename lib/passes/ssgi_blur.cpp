@@ -30,6 +30,7 @@ void SsgiBlurPass::run(const GBuffer& gbuffer, const gl::Texture& input, const g
   program_.use();
   emptyVertexArray_.bind();
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
 }
 
 }  // namespace headlight

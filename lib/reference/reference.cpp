@@ -269,7 +269,7 @@ const Material& defaultMaterial() {
 struct InstanceShading {
   const Primitive* primitive = nullptr;
   const Material* material = nullptr;
-  glm::mat3 normalFromLocal{1.0f};        // inverse transpose, as gpu_scene.cpp's
+  glm::mat3 normalFromLocal{1.0f};        // headlight::normalMatrix, as gpu_scene.cpp uses
   const float* worldPositions = nullptr;  // Embree's vertex buffer, xyz per vertex
   float frontSign = 1.0f;                 // glTF: a transform with negative determinant flips the winding
 };
@@ -342,10 +342,9 @@ TracedScene buildScene(const Scene& scene, int threads) {
     InstanceShading& shading = traced.instances[id];
     shading.primitive = &primitive;
     shading.material = &material;
-    const glm::mat3 linear(instance.worldFromLocal);
-    shading.normalFromLocal = glm::transpose(glm::inverse(linear));
+    shading.normalFromLocal = normalMatrix(instance.worldFromLocal);
     shading.worldPositions = positions;
-    shading.frontSign = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+    shading.frontSign = mirrors(instance.worldFromLocal) ? -1.0f : 1.0f;
   }
   rtcCommitScene(traced.scene.get());
   traced.device.check("building the BVH of " + scene.source);

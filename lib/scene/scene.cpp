@@ -92,4 +92,15 @@ void generateNormals(Primitive& primitive) {
   }
 }
 
+glm::mat3 normalMatrix(const glm::mat4& worldFromLocal) {
+  const glm::mat3 linear(worldFromLocal);
+  const glm::mat3 cofactor(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]),
+                           glm::cross(linear[0], linear[1]));
+  // cofactor = det * inverse transpose: flip a mirror's sign back so normals
+  // keep pointing out of the surface.
+  return glm::determinant(linear) < 0.0f ? -cofactor : cofactor;
+}
+
+bool mirrors(const glm::mat4& worldFromLocal) { return glm::determinant(glm::mat3(worldFromLocal)) < 0.0f; }
+
 }  // namespace headlight

@@ -3,7 +3,9 @@
 // was rendered from, the settings it used (auto values resolved) and where
 // the time went. Nothing here touches the GL, so a caller may keep frames
 // after the renderer is gone.
+#include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -53,5 +55,9 @@ struct Frame {
   // Every non-empty target with its file stem ("position", ..., "lit").
   std::vector<std::pair<std::string, const ImageF*>> targets() const;
 };
+
+// Every target a frame can have, in Frame's order: the file stems of
+// `render`'s EXRs, and the names headlight diff's directory mode looks for.
+std::span<const std::string_view> frameTargetNames();
 
 }  // namespace headlight

@@ -33,9 +33,9 @@ struct Bounds {
   }
   glm::vec3 center() const { return (min + max) * 0.5f; }
   glm::vec3 size() const { return max - min; }
-  // Radius of the sphere around center() that holds the box. In double: the
-  // squared diagonal of a 1e20-unit scene overflows float.
-  float radius() const { return float(glm::length(glm::dvec3(size())) * 0.5); }
+  // Radius of the sphere around center() that holds the box; 0 for an empty
+  // box. In double: the squared diagonal of a 1e20-unit scene overflows float.
+  float radius() const { return empty() ? 0.0f : float(glm::length(glm::dvec3(size())) * 0.5); }
   // The box of this box's eight corners moved by `transform`.
   Bounds transformed(const glm::mat4& transform) const;
 };
@@ -99,6 +99,16 @@ struct Instance {
   glm::mat4 worldFromLocal{1.0f};
   int material = -1;  // index into Scene::materials; -1 = glTF's default material
 };
+
+// The matrix that carries normals from local to world space: the cofactor
+// matrix of the upper 3x3 (the inverse transpose times the determinant, up
+// to sign), which unlike the inverse is defined for a singular transform (a
+// node scaled to zero along one axis); callers normalise.
+glm::mat3 normalMatrix(const glm::mat4& worldFromLocal);
+
+// True when the transform mirrors (negative determinant): glTF then swaps
+// which winding is the front face.
+bool mirrors(const glm::mat4& worldFromLocal);
 
 struct Camera {
   enum class Projection { Perspective, Orthographic };

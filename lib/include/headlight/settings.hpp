@@ -46,7 +46,7 @@ struct LightingSettings {
 enum class Tonemap { Aces, Reinhard };
 
 struct RenderSettings {
-  int width = 640;    // pixels, 1..16384
+  int width = 640;    // pixels, 1..16384, width x height at most 2^26
   int height = 480;   // pixels, 1..16384
   int camera = -1;    // glTF camera index; -1 = the scene's first camera, or one fitted to the bounds
   SsgiSettings ssgi;
