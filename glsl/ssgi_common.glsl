@@ -42,13 +42,21 @@ float rangeCheck(float radius, float shadedDepth, float occluderDepth) {
 // the range check fades the sample out anyway).
 float surfaceDepthAlongRay(vec3 sampleView, vec3 surfaceView, vec3 surfaceNormalView, bool orthographic,
                            float limit) {
-  const vec3 rayDirection = orthographic ? vec3(0.0, 0.0, -1.0) : normalize(sampleView);
+  if (orthographic) {
+    // The view ray is the line through the sample along z: solve the plane
+    // for z at the sample's x and y (an orthographic near plane may lie
+    // behind the camera, so there is no "behind the eye" here).
+    if (abs(surfaceNormalView.z) < 1e-4) return surfaceView.z;
+    const vec2 offset = sampleView.xy - surfaceView.xy;
+    const float z = surfaceView.z - dot(surfaceNormalView.xy, offset) / surfaceNormalView.z;
+    return clamp(z, surfaceView.z - limit, surfaceView.z + limit);
+  }
+  const vec3 rayDirection = normalize(sampleView);
   const float facing = dot(surfaceNormalView, rayDirection);
   if (abs(facing) < 1e-4) return surfaceView.z;
-  const vec3 rayOrigin = orthographic ? vec3(sampleView.xy, 0.0) : vec3(0.0);
-  const float t = dot(surfaceNormalView, surfaceView - rayOrigin) / facing;
+  const float t = dot(surfaceNormalView, surfaceView) / facing;
   // The ray meets the plane only behind the eye (a sample above the horizon
   // of a grazing floor): the surface is not in front of the sample.
   if (t <= 0.0) return surfaceView.z - limit;
-  return clamp(rayOrigin.z + t * rayDirection.z, surfaceView.z - limit, surfaceView.z + limit);
+  return clamp(t * rayDirection.z, surfaceView.z - limit, surfaceView.z + limit);
 }

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "headlight/error.hpp"
+#include "output/atomic_file.hpp"
 
 namespace headlight {
 namespace {
@@ -19,7 +20,7 @@ bool covered(const ImageF& mask, std::size_t pixel) { return mask.pixels[pixel *
 void requireSameSize(const ImageF& a, const ImageF& b, const ImageF& mask) {
   if (a.width != b.width || a.height != b.height || a.width != mask.width || a.height != mask.height ||
       mask.channels.size() != 4)
-    throw SettingsError("bench metrics: images of different sizes (" + std::to_string(a.width) + "x" +
+    throw Error("bench metrics: images of different sizes (" + std::to_string(a.width) + "x" +
                         std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) +
                         ") or a mask without coverage");
 }
@@ -30,16 +31,6 @@ float toneMappedLuminance(const ImageF& image, std::size_t pixel) {
   return std::max(luminance, 0.0f) / (1.0f + std::max(luminance, 0.0f));
 }
 
-// Writes the file through a temporary name, as every output of the project.
-void writeTextAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out) throw IoError(path.string() + ": cannot write");
-  }
-  std::filesystem::rename(temporary, path);
-}
 
 }  // namespace
 
@@ -183,7 +174,7 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
         << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
         << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
-  writeTextAtomically(path, out.str());
+  detail::writeTextAtomically(path, out.str());
 }
 
 void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& command,
@@ -217,7 +208,7 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
                             {"backend", r.backend},
                             {"machine", r.machine}});
   }
-  writeTextAtomically(path, json.dump(2) + "\n");
+  detail::writeTextAtomically(path, json.dump(2) + "\n");
 }
 
 }  // namespace headlight

@@ -13,12 +13,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <random>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "headlight/diff.hpp"
+#include "output/atomic_file.hpp"
 #include "headlight/error.hpp"
 
 namespace headlight {
@@ -341,32 +340,6 @@ void judge(DiffResult& r) {
   }
 }
 
-// The same approach as lib/output/image_writer.cpp (which keeps it private):
-// a hidden .tmp name in the same folder, so rename() is atomic and no reader
-// takes a half-written file for a result.
-fs::path temporaryPathFor(const fs::path& path) {
-  static std::mt19937 rng(std::random_device{}());
-  return path.parent_path() /
-         ("." + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
-}
-
-void writeAtomically(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec, const char* format) {
-  const fs::path temporary = temporaryPathFor(path);
-  try {
-    auto output = OIIO::ImageOutput::create(format);
-    if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-    if (!output->open(temporary.string(), spec) || !buffer.write(output.get()) || !output->close())
-      throw IoError(path.string() + ": writing failed: " + output->geterror());
-    std::error_code error;
-    fs::rename(temporary, path, error);
-    if (error) throw IoError(path.string() + ": cannot rename the temporary file into place: " + error.message());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
-}
-
 }  // namespace
 
 std::string_view statusName(DiffStatus status) {
@@ -589,8 +562,8 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
 
   fs::path pngPath = exrPath;
   pngPath.replace_extension(".png");
-  writeAtomically(exrPath, buffer, exrSpec, "openexr");
-  writeAtomically(pngPath, heat, pngSpec, "png");
+  detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
+  detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
   return {exrPath, pngPath};
 }
 

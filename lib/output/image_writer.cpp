@@ -5,39 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <sstream>
-#include <unistd.h>
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "output/atomic_file.hpp"
 
 namespace headlight {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A name in the same folder (so rename() is atomic) that no reader takes for
-// a result: hidden, and ending in .tmp.
-fs::path temporaryPathFor(const fs::path& path) {
-  static std::mt19937 rng(std::random_device{}());
-  return path.parent_path() /
-         (std::string(".") + path.filename().string() + "." + std::to_string(::getpid()) + "-" + std::to_string(rng()) + ".tmp");
-}
-
-// Writes through `write` to a temporary file, then renames it over `path`.
-template <class Write>
-void writeAtomically(const fs::path& path, Write&& write) {
-  const fs::path temporary = temporaryPathFor(path);
-  try {
-    write(temporary);
-    fs::rename(temporary, path);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw;
-  }
-}
 
 OIIO::ImageBuf toImageBuf(const ImageF& image) {
   OIIO::ImageSpec spec(image.width, image.height, image.channelCount(), OIIO::TypeDesc::FLOAT);
@@ -85,12 +62,6 @@ std::string summarize(const fs::path& path, const ImageF& image, const char* typ
   return line.str();
 }
 
-void writeImage(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec, const char* format) {
-  auto output = OIIO::ImageOutput::create(format);
-  if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-  if (!output->open(path.string(), spec) || !buffer.write(output.get()) || !output->close())
-    throw IoError(path.string() + ": writing failed: " + output->geterror());
-}
 
 }  // namespace
 
@@ -109,7 +80,7 @@ WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& pa
   spec.attribute("compression", "zip");
   addMetadata(spec, frame);
   for (const auto& [name, value] : extra) spec.attribute(name, value);
-  writeAtomically(path, [&](const fs::path& temporary) { writeImage(temporary, buffer, spec, "openexr"); });
+  detail::writeImageAtomically(path, buffer, spec, "openexr");
   return {path, summarize(path, image, halfFloat ? "half" : "float")};
 }
 
@@ -131,7 +102,7 @@ WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   OIIO::ImageSpec spec = encoded.spec();
   spec.set_format(OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
-  writeAtomically(path, [&](const fs::path& temporary) { writeImage(temporary, encoded, spec, "png"); });
+  detail::writeImageAtomically(path, encoded, spec, "png");
   std::ostringstream line;
   line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
        << (frame.settings.tonemap == Tonemap::Aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure
