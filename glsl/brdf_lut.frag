@@ -1,5 +1,6 @@
 // Split-sum BRDF table (Karis 2013): for (N.V, roughness) the scale and bias
 // that turn F0 into the directional albedo of GGX specular.
+#include "shared_layout.h"
 #include "sampling.glsl"
 
 layout(location = 0) out vec2 outScaleBias;
@@ -7,8 +8,8 @@ layout(location = 0) out vec2 outScaleBias;
 const uint kSampleCount = 512u;  // half-float output; 512 keeps the noise below its precision
 
 void main() {
-  const float nDotV = max(tableValue(gl_FragCoord.x, 64.0, 0.0, 1.0), 1e-4);
-  const float roughness = tableValue(gl_FragCoord.y, 64.0, 0.0, 1.0);
+  const float nDotV = max(tableValue(gl_FragCoord.x, float(kBrdfLutSize), 0.0, 1.0), 1e-4);
+  const float roughness = tableValue(gl_FragCoord.y, float(kBrdfLutSize), 0.0, 1.0);
   const float alpha = roughness * roughness;
   const vec3 view = vec3(sqrt(1.0 - nDotV * nDotV), 0.0, nDotV);
   vec2 scaleBias = vec2(0.0);

@@ -55,6 +55,11 @@ HL_CONST(int, kUnitDirectDiffuse, 18)
 HL_CONST(int, kMaxKernelSamples, 64)
 // Rows of the prefiltered sky table: roughness 0, 1/7, ..., 1.
 HL_CONST(int, kSkyRoughnessLevels, 8)
+// The split-sum BRDF table is kBrdfLutSize^2 over (N.V, roughness); the sky
+// tables are kSkyTableWidth texels over direction.y in -1..1. Both are
+// smooth: 64 texels resolve them within half precision.
+HL_CONST(int, kBrdfLutSize, 64)
+HL_CONST(int, kSkyTableWidth, 64)
 
 // Light types as stored in GpuLight::directionType.w.
 HL_CONST(int, kLightDirectional, 0)
@@ -116,11 +121,7 @@ HL_BLOCK_BEGIN(SkyBlock, 6)
 HL_BLOCK_END(sky)
 
 // One light, in the lights storage buffer (std430, same layout as std140 here).
-#ifdef __cplusplus
 struct GpuLight {
-#else
-struct GpuLight {
-#endif
   vec4 positionRange;       // world position, range (0 = infinite)
   vec4 directionType;       // world direction the light travels, type
   vec4 radiance;            // color * intensity, castsShadows (0/1)

@@ -9,7 +9,7 @@ layout(location = 0) out vec4 outIrradianceOverPi;
 const uint kSampleCount = 1024u;
 
 void main() {
-  const vec3 normal = directionAtHeight(tableValue(gl_FragCoord.x, 64.0, -1.0, 1.0));
+  const vec3 normal = directionAtHeight(tableValue(gl_FragCoord.x, float(kSkyTableWidth), -1.0, 1.0));
   const mat3 basis = basisAround(normal);
   vec3 sum = vec3(0.0);
   for (uint i = 0u; i < kSampleCount; ++i)

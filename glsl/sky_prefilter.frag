@@ -9,7 +9,7 @@ layout(location = 0) out vec4 outRadiance;
 const uint kSampleCount = 512u;
 
 void main() {
-  const vec3 reflected = directionAtHeight(tableValue(gl_FragCoord.x, 64.0, -1.0, 1.0));
+  const vec3 reflected = directionAtHeight(tableValue(gl_FragCoord.x, float(kSkyTableWidth), -1.0, 1.0));
   const float roughness = tableValue(gl_FragCoord.y, float(kSkyRoughnessLevels), 0.0, 1.0);
   const float alpha = roughness * roughness;
   const mat3 basis = basisAround(reflected);

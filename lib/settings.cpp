@@ -179,7 +179,9 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi.radius = 0.5f;
     settings.ssgi.bias = 0.025f;
   } else {
-    throw SettingsError("--preset: expected fast, default, high or seed, got '" + std::string(preset) + "'");
+    std::string known;
+    for (std::string_view name : presetNames()) (known += known.empty() ? "" : ", ") += name;
+    throw SettingsError("--preset: expected one of " + known + ", got '" + std::string(preset) + "'");
   }
 }
 

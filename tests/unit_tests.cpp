@@ -90,24 +90,6 @@ TEST_CASE("depth range honours the file's znear/zfar and survives a camera insid
   CHECK(farPlane == doctest::Approx(8.0f));
 }
 
-TEST_CASE("std140 blocks: C++ offsets match what the GLSL declarations imply") {
-  // The static_asserts in lib/gl/shared_layout_checks.cpp already fail the
-  // build; these repeat the key ones so a test report shows them too.
-  CHECK(sizeof(gpu::FrameBlock) == 240);
-  CHECK(offsetof(gpu::SsgiBlock, params) == 64 * 16);
-  CHECK(sizeof(gpu::GpuLight) == 128);
-  CHECK(gpu::SsgiBlock::kBinding != gpu::FrameBlock::kBinding);
-  // Units must be distinct, or two passes' inputs would alias.
-  const int units[] = {gpu::kUnitGbufferPosition, gpu::kUnitGbufferNormal, gpu::kUnitGbufferAlbedo,
-                       gpu::kUnitGbufferMaterial, gpu::kUnitGbufferEmissive, gpu::kUnitSsgiNoise, gpu::kUnitSsgi,
-                       gpu::kUnitBrdfLut, gpu::kUnitSkyPrefiltered, gpu::kUnitSkyIrradiance, gpu::kUnitShadowMaps2D,
-                       gpu::kUnitShadowMapsCube, gpu::kUnitBaseColorTexture, gpu::kUnitMetallicRoughnessTexture,
-                       gpu::kUnitNormalTexture, gpu::kUnitOcclusionTexture, gpu::kUnitEmissiveTexture};
-  std::vector<int> sorted(std::begin(units), std::end(units));
-  std::sort(sorted.begin(), sorted.end());
-  CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
-}
-
 TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   using cli::parseRenderArgs;
   const auto command = parseRenderArgs({"scene.glb", "--width", "320", "--height=200", "--ssgi-samples", "16",

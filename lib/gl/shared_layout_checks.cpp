@@ -1,6 +1,7 @@
 // std140 offsets the GLSL side assumes, checked where C++ compiles them:
 // a member added to glsl/shared_layout.h with a hidden padding fails here.
 #include <cstddef>
+#include <initializer_list>
 
 #include "shared_layout.h"
 
@@ -23,5 +24,21 @@ static_assert(sizeof(SkyBlock) == 48);
 // std430 array stride of GpuLight: four vec4 and a mat4, no padding.
 static_assert(sizeof(GpuLight) == 4 * 16 + 64);
 static_assert(offsetof(GpuLight, shadowViewProjection) == 64);
+
+// Two passes' inputs must never share a unit, nor two blocks a binding.
+constexpr bool allDistinct(std::initializer_list<int> values) {
+  for (const int* a = values.begin(); a != values.end(); ++a)
+    for (const int* b = a + 1; b != values.end(); ++b)
+      if (*a == *b) return false;
+  return true;
+}
+static_assert(allDistinct({kUnitGbufferPosition, kUnitGbufferNormal, kUnitGbufferAlbedo, kUnitGbufferMaterial,
+                           kUnitGbufferEmissive, kUnitSsgiNoise, kUnitSsgi, kUnitBrdfLut, kUnitSkyPrefiltered,
+                           kUnitSkyIrradiance, kUnitShadowMaps2D, kUnitShadowMapsCube, kUnitBaseColorTexture,
+                           kUnitMetallicRoughnessTexture, kUnitNormalTexture, kUnitOcclusionTexture,
+                           kUnitEmissiveTexture, kUnitDirect, kUnitDirectDiffuse}));
+static_assert(allDistinct({FrameBlock::kBinding, ObjectBlock::kBinding, MaterialBlock::kBinding, SsgiBlock::kBinding,
+                           LightingBlock::kBinding, ShadowBlock::kBinding, SkyBlock::kBinding,
+                           SsgiBlurBlock::kBinding}));
 
 }  // namespace headlight::gpu

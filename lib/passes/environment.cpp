@@ -6,9 +6,6 @@
 namespace headlight {
 namespace {
 
-constexpr int kBrdfLutSize = 64;       // the table is smooth; 64 texels resolve it within half precision
-constexpr int kSkyTableWidth = 64;     // direction.y from -1 to 1
-
 gl::Program buildTableProgram(const char* fragment) {
   const std::string_view files[] = {"fullscreen.vert", fragment};
   return detail::buildProgram(files);
@@ -21,9 +18,9 @@ EnvironmentPass::EnvironmentPass()
       prefilterProgram_(buildTableProgram("sky_prefilter.frag")),
       irradianceProgram_(buildTableProgram("sky_irradiance.frag")),
       skyBlock_(sizeof(gpu::SkyBlock), nullptr) {
-  tables_.brdfLut = gl::Texture(GL_TEXTURE_2D, GL_RG16F, kBrdfLutSize, kBrdfLutSize);
-  tables_.skyPrefiltered = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, kSkyTableWidth, gpu::kSkyRoughnessLevels);
-  tables_.skyIrradiance = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, kSkyTableWidth, 1);
+  tables_.brdfLut = gl::Texture(GL_TEXTURE_2D, GL_RG16F, gpu::kBrdfLutSize, gpu::kBrdfLutSize);
+  tables_.skyPrefiltered = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, gpu::kSkyTableWidth, gpu::kSkyRoughnessLevels);
+  tables_.skyIrradiance = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, gpu::kSkyTableWidth, 1);
   for (const gl::Texture* table : {&tables_.brdfLut, &tables_.skyPrefiltered, &tables_.skyIrradiance}) {
     glTextureParameteri(table->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(table->id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);

@@ -1,10 +1,11 @@
 #pragma once
-// Screen-space global illumination, the seed's hemisphere method: per pixel,
-// a cosine-weighted hemisphere kernel around the view-space normal, rotated
-// by a 4x4 tiled noise; each sample is projected, compared with the
-// G-buffer's depth there (with a bias) and weighted by a range check; an
-// occluding sample darkens ambient occlusion and adds its albedo to the
-// indirect term. Output GL_RGBA16F: R = AO (1 = open), GBA = indirect colour.
+// Screen-space global illumination. Per pixel, a cosine-weighted hemisphere
+// kernel around the view-space normal, rotated by a 4x4 tiled noise; each
+// sample is projected, compared with the G-buffer's surface there (with a
+// bias) and weighted by a range check; an occluding sample darkens ambient
+// occlusion and adds to the indirect term: its albedo (the seed's
+// `hemisphere` method) or its direct Lambertian radiance (`radiance`,
+// docs/ACCURACY.md). Output GL_RGBA16F: R = AO (1 = open), GBA = indirect.
 #include <array>
 #include <map>
 #include <vector>
@@ -34,7 +35,8 @@ class SsgiPass {
   // Reads gbuffer (position, normal, albedo; material for the radiance
   // method), `directDiffuse` (the direct-light pass's Lambertian target;
   // required by the radiance method, ignored by hemisphere) and the frame
-  // block; writes `output` (GL_RGBA16F, gbuffer's size). `settings` must be
+  // block; writes `output` (GL_RGBA16F, the G-buffer's size divided by
+  // settings.downsample, rounded up). `settings` must be
   // resolved (radius > 0, bias >= 0, indirectStrength >= 0).
   void run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
            const SsgiSettings& settings);
