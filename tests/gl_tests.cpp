@@ -387,3 +387,67 @@ TEST_CASE("one renderer across setting and scene changes renders what a fresh on
   CHECK(!cornell.emissive.empty());
   CHECK(cornell.lit.pixels == freshRender("builtin:cornell", defaults).lit.pixels);
 }
+
+TEST_CASE("textured material: every texture variant builds, and UV (0,0) is the image's top-left") {
+  Scene scene = quadScene();
+  // A 2x2 image: top row red, green; bottom row blue, white (rows top first,
+  // as glTF's UV origin is the top-left corner).
+  ImageData image;
+  image.name = "quadrants";
+  image.width = 2;
+  image.height = 2;
+  image.rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+  scene.images.push_back(image);
+  Material& material = scene.materials[0];
+  material.baseColorFactor = glm::vec4(1.0f);
+  for (TextureRef* texture : {&material.baseColorTexture, &material.metallicRoughnessTexture, &material.normalTexture,
+                              &material.occlusionTexture, &material.emissiveTexture}) {
+    texture->image = 0;
+    texture->minFilter = texture->magFilter = 0x2600;  // GL_NEAREST: one texel per quadrant
+  }
+  material.emissiveFactor = glm::vec3(1.0f);
+  const Frame frame = renderScene(scene, smallSettings(64, 64));
+  // makeSquare puts UV (0,0) at the quad's top-left in world (-1, +1).
+  auto albedoAt = [&](float worldX, float worldY) {
+    const int x = int((worldX / 1.5f * 0.5f + 0.5f) * 64), y = int((0.5f - worldY / 1.5f * 0.5f) * 64);
+    return glm::vec3(frame.albedo.at(x, y, 0), frame.albedo.at(x, y, 1), frame.albedo.at(x, y, 2));
+  };
+  CHECK(albedoAt(-0.5f, 0.5f).r > 0.9f);   // top-left: red
+  CHECK(albedoAt(0.5f, 0.5f).g > 0.9f);    // top-right: green
+  CHECK(albedoAt(-0.5f, -0.5f).b > 0.9f);  // bottom-left: blue
+  CHECK(albedoAt(0.5f, -0.5f).r > 0.9f);   // bottom-right: white
+  CHECK(albedoAt(0.5f, -0.5f).g > 0.9f);
+  CHECK(!frame.emissive.empty());
+}
+
+TEST_CASE("a spot light lights its cone and not beyond, with inverse-square falloff") {
+  Scene scene;
+  scene.source = "test:spot";
+  scene.materials.push_back(plainMaterial({0.8f, 0.8f, 0.8f}, 0.0f, 1.0f));
+  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 1, 0}, 5.0f));
+  scene.instances.push_back({0, glm::mat4(1.0f), 0});
+  scene.cameras.push_back(lookAtCamera({0, 6, 0.01f}, {0, 0, 0}, 0.0f, 4.0f));  // orthographic, from above
+  Light spot;
+  spot.type = Light::Type::Spot;
+  spot.position = {0, 2, 0};
+  spot.direction = {0, -1, 0};
+  spot.intensity = 10.0f;
+  spot.innerConeAngle = 0.3f;
+  spot.outerConeAngle = 0.4f;  // a disc of radius 2 tan(0.4) = 0.85 on the floor
+  scene.lights.push_back(spot);
+  scene.sky.intensity = 0.0f;
+  RenderSettings settings = smallSettings(64, 64);
+  settings.ssgi.enabled = false;
+  const Frame frame = renderScene(scene, settings);
+  auto litAt = [&](float worldX) {  // along the image's middle row
+    const int x = int((worldX / 4.0f * 0.5f + 0.5f) * 64);
+    return frame.lit.at(x, 32, 0);
+  };
+  const float centre = litAt(0.0f), inside = litAt(0.5f), outside = litAt(1.5f);
+  CHECK(centre > 0.1f);
+  CHECK(outside == 0.0f);  // beyond the outer cone: no light, no sky
+  // Inside the inner cone only distance and angle differ: the centre gets
+  // E = I / d^2 at normal incidence, x = 0.5 gets I cos / (d^2 + x^2).
+  const float expectedRatio = (2.0f / std::pow(4.25f, 1.5f)) / (1.0f / 4.0f);
+  CHECK(inside / centre == doctest::Approx(expectedRatio).epsilon(0.1));
+}
