@@ -12,6 +12,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/scene_builder.hpp"
 #include "headlight/shapes.hpp"
 #include "scene/builtin_layouts.hpp"
 
@@ -30,56 +31,14 @@ std::string fingerprintHex(const std::string& text) {
   return hex;
 }
 
-// ---- Scene assembly ----------------------------------------------------------
-
-Material makeMaterial(const std::string& name, const glm::vec3& baseColor, float roughness, float metallic = 0.0f) {
-  Material material;
-  material.name = name;
-  material.baseColorFactor = glm::vec4(baseColor, 1.0f);
-  material.roughnessFactor = roughness;
-  material.metallicFactor = metallic;
-  return material;
-}
-
-int addMaterial(Scene& scene, Material material) {
-  scene.materials.push_back(std::move(material));
-  return static_cast<int>(scene.materials.size()) - 1;
-}
-
-int addGeometry(Scene& scene, Primitive primitive) {
-  scene.primitives.push_back(std::move(primitive));
-  return static_cast<int>(scene.primitives.size()) - 1;
-}
-
-void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
-  scene.instances.push_back({geometry, worldFromLocal, material});
-}
-
-// Geometry used once: added and placed in one step.
-void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
-  addInstance(scene, addGeometry(scene, std::move(primitive)), material, worldFromLocal);
-}
-
-Camera makeLookAtCamera(const std::string& name, const glm::vec3& eye, const glm::vec3& target, float yfov) {
-  Camera camera;
-  camera.name = name;
-  camera.yfov = yfov;
-  camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
-  return camera;
-}
-
-glm::mat4 rotatedAboutYThenMoved(float degrees, const glm::vec3& center) {
-  return glm::rotate(glm::translate(glm::mat4(1.0f), center), glm::radians(degrees), glm::vec3(0.0f, 1.0f, 0.0f));
-}
-
 // The classic Cornell box, resized to x -1..1, y 0..2, z -1..1 and open at
 // +Z for the camera. Colours are the usual reflectances of the original.
 Scene makeCornell() {
   Scene scene;
-  const int white = addMaterial(scene, makeMaterial("cornell white", glm::vec3(0.73f), 0.9f));
-  const int red = addMaterial(scene, makeMaterial("cornell red", {0.63f, 0.065f, 0.05f}, 0.9f));
-  const int green = addMaterial(scene, makeMaterial("cornell green", {0.14f, 0.45f, 0.091f}, 0.9f));
-  Material lampMaterial = makeMaterial("cornell lamp", glm::vec3(1.0f), 0.9f);
+  const int white = addMaterial(scene, makeMaterial(glm::vec3(0.73f), 0.9f, 0.0f, "cornell white"));
+  const int red = addMaterial(scene, makeMaterial({0.63f, 0.065f, 0.05f}, 0.9f, 0.0f, "cornell red"));
+  const int green = addMaterial(scene, makeMaterial({0.14f, 0.45f, 0.091f}, 0.9f, 0.0f, "cornell green"));
+  Material lampMaterial = makeMaterial(glm::vec3(1.0f), 0.9f, 0.0f, "cornell lamp");
   lampMaterial.emissiveFactor = glm::vec3(1.0f, 0.85f, 0.7f) * 4.0f;
   const int lamp = addMaterial(scene, lampMaterial);
 
@@ -123,7 +82,7 @@ Scene makeCornell() {
   light.castsShadows = true;
   scene.lights.push_back(light);
 
-  scene.cameras.push_back(makeLookAtCamera("cornell camera", {0.0f, 1.0f, 3.6f}, {0.0f, 1.0f, 0.0f}, 0.7f));
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 1.0f, 3.6f}, {0.0f, 1.0f, 0.0f}, 0.7f, "cornell camera"));
   // The box is closed but for its front: the sky only fills the shadows a
   // little, and the lamp is the key light.
   scene.sky.intensity = 0.15f;
@@ -134,7 +93,7 @@ Scene makeCornell() {
 // a low sun: a quick look at the BRDF and the shadows.
 Scene makeSpheres() {
   Scene scene;
-  const int floor = addMaterial(scene, makeMaterial("spheres floor", glm::vec3(0.8f), 0.9f));
+  const int floor = addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "spheres floor"));
   addInstance(scene, makeQuad({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}), floor);
 
   struct Ball {
@@ -153,7 +112,7 @@ Scene makeSpheres() {
   // 64 x 32: smooth silhouettes at full-HD framing, ~4k triangles each.
   const int sphere = addGeometry(scene, makeUvSphere(kRadius, 64, 32));  // one sphere, five instances
   for (const Ball& ball : balls) {
-    const int material = addMaterial(scene, makeMaterial(ball.name, ball.baseColor, ball.roughness, ball.metallic));
+    const int material = addMaterial(scene, makeMaterial(ball.baseColor, ball.roughness, ball.metallic, ball.name));
     addInstance(scene, sphere, material, glm::translate(glm::mat4(1.0f), glm::vec3(ball.x, kRadius, 0.0f)));
   }
 
@@ -165,24 +124,18 @@ Scene makeSpheres() {
   sun.castsShadows = true;
   scene.lights.push_back(sun);
 
-  scene.cameras.push_back(makeLookAtCamera("spheres camera", {0.0f, 2.6f, 7.5f}, {0.0f, 0.4f, 0.0f}, 0.6f));
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 2.6f, 7.5f}, {0.0f, 0.4f, 0.0f}, 0.6f, "spheres camera"));
   return scene;
 }
 
 // ---- Failure cases of screen-space GI (docs/STABILITY.md) ------------------
 // No lights: each gets the renderer's default key light.
 
-glm::mat4 moved(const glm::vec3& offset) { return glm::translate(glm::mat4(1.0f), offset); }
-
-Primitive floorQuad(float halfSize) {
-  return makeQuad({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
-}
-
 // A 100 x 100 plane: nothing can occlude it.
 Scene makePlane() {
   Scene scene;
-  addInstance(scene, floorQuad(50.0f), addMaterial(scene, makeMaterial("plane", glm::vec3(0.8f), 0.9f)));
-  scene.cameras.push_back(makeLookAtCamera("plane camera", {0, 2, 6}, {0, 0, -4}, 0.8f));
+  addInstance(scene, makeFloor(50.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "plane")));
+  scene.cameras.push_back(makeLookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f, "plane camera"));
   return scene;
 }
 
@@ -190,13 +143,13 @@ Scene makePlane() {
 Scene makeSlats() {
   using L = builtin::SlatLayout;
   Scene scene;
-  const int wall = addMaterial(scene, makeMaterial("slats wall", glm::vec3(0.8f), 0.9f));
-  const int wood = addMaterial(scene, makeMaterial("slats wood", {0.6f, 0.45f, 0.3f}, 0.9f));
+  const int wall = addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "slats wall"));
+  const int wood = addMaterial(scene, makeMaterial({0.6f, 0.45f, 0.3f}, 0.9f, 0.0f, "slats wood"));
   addInstance(scene, makeQuad({-1.2f, -1.2f, 0}, {2.4f, 0, 0}, {0, 2.4f, 0}), wall);  // faces +Z
   const int slat = addGeometry(scene, makeBox({L::kWidth, L::kHeight, L::kWidth}));
   for (int i = 0; i < L::kCount; ++i)
     addInstance(scene, slat, wood, moved({L::kFirstX + float(i) * L::kSpacing, 0, L::kGap}));
-  scene.cameras.push_back(makeLookAtCamera("slats camera", {0.4f, 0.2f, 3.2f}, {0, 0, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({0.4f, 0.2f, 3.2f}, {0, 0, 0}, 0.8f, "slats camera"));
   return scene;
 }
 
@@ -204,11 +157,11 @@ Scene makeSlats() {
 // screen (the camera sees x = -1.69..1.69 at the box's depth).
 Scene makeOffscreen() {
   Scene scene;
-  const int white = addMaterial(scene, makeMaterial("offscreen white", glm::vec3(0.8f), 0.9f));
-  addInstance(scene, floorQuad(3.0f), white);
+  const int white = addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "offscreen white"));
+  addInstance(scene, makeFloor(3.0f), white);
   addInstance(scene, makeBox({0.6f, 1.5f, 0.6f}), white, moved({-1.7f, 0.75f, 0}));
   addInstance(scene, makeBox({0.6f, 0.6f, 0.6f}), white, moved({0.3f, 0.3f, -0.5f}));
-  scene.cameras.push_back(makeLookAtCamera("offscreen camera", {0, 1.2f, 3}, {0, 0.4f, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({0, 1.2f, 3}, {0, 0.4f, 0}, 0.8f, "offscreen camera"));
   return scene;
 }
 
@@ -216,12 +169,12 @@ Scene makeOffscreen() {
 Scene makeDepthStep() {
   using L = builtin::DepthStepLayout;
   Scene scene;
-  const int white = addMaterial(scene, makeMaterial("depth-step wall", glm::vec3(0.8f), 0.9f));
+  const int white = addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "depth-step wall"));
   addInstance(scene, makeQuad({-3, -3, L::kWallZ}, {6, 0, 0}, {0, 6, 0}), white);  // faces +Z
   addInstance(scene, makeUvSphere(L::kSphereRadius, 32, 16),
-              addMaterial(scene, makeMaterial("depth-step sphere", {0.7f, 0.3f, 0.2f}, 0.9f)),
+              addMaterial(scene, makeMaterial({0.7f, 0.3f, 0.2f}, 0.9f, 0.0f, "depth-step sphere")),
               moved({0, 0, L::kSphereZ}));
-  scene.cameras.push_back(makeLookAtCamera("depth-step camera", {0, 0, 5}, {0, 0, 0}, 0.6f));
+  scene.cameras.push_back(makeLookAtCamera({0, 0, 5}, {0, 0, 0}, 0.6f, "depth-step camera"));
   return scene;
 }
 
@@ -229,8 +182,8 @@ Scene makeDepthStep() {
 // angles all the way to the horizon.
 Scene makeGrazing() {
   Scene scene;
-  addInstance(scene, floorQuad(500.0f), addMaterial(scene, makeMaterial("grazing floor", glm::vec3(0.8f), 0.9f)));
-  scene.cameras.push_back(makeLookAtCamera("grazing camera", {0, 0.5f, 0}, {0, 0.5f - 0.0524f, -1}, 0.7f));
+  addInstance(scene, makeFloor(500.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f, 0.0f, "grazing floor")));
+  scene.cameras.push_back(makeLookAtCamera({0, 0.5f, 0}, {0, 0.5f - 0.0524f, -1}, 0.7f, "grazing camera"));
   return scene;
 }
 

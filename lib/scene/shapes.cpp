@@ -35,6 +35,10 @@ Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::v
   return quad;
 }
 
+Primitive makeFloor(float halfSize) {
+  return makeQuad({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
+}
+
 Primitive makeBox(const glm::vec3& size) {
   Primitive box;
   const glm::vec3 half = size * 0.5f;

@@ -16,6 +16,9 @@ Primitive makeQuad(const glm::vec3& corner, const glm::vec3& edgeU, const glm::v
 // A square through `center` facing `normal` (unit), `halfSize` each way.
 Primitive makeSquare(const glm::vec3& center, const glm::vec3& normal, float halfSize);
 
+// A square floor at y = 0 facing +Y, `halfSize` each way from the origin.
+Primitive makeFloor(float halfSize);
+
 // An axis-aligned box centred on the origin with outward faces; each face
 // has its own four vertices so that the normals stay flat.
 Primitive makeBox(const glm::vec3& size);
