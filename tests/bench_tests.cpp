@@ -9,25 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include "headlight/bench.hpp"
+#include "support/images.hpp"
+#include "support/temp_folder.hpp"
 
 using namespace headlight;
 
-namespace {
-
-ImageF image(int width, int height, std::vector<std::string> channels, float value) {
-  ImageF result;
-  result.width = width;
-  result.height = height;
-  result.channels = std::move(channels);
-  result.pixels.assign(std::size_t(width * height) * result.channels.size(), value);
-  return result;
-}
-
-}  // namespace
+using test::makeImage;
 
 TEST_CASE("maskedError counts only geometry pixels" * doctest::test_suite("bench")) {
-  ImageF mask = image(4, 1, {"position.X", "position.Y", "position.Z", "A"}, 0.0f);
-  ImageF a = image(4, 1, {"ao.Y"}, 0.0f), b = image(4, 1, {"ao.Y"}, 0.0f);
+  ImageF mask = makeImage(4, 1, {"position.X", "position.Y", "position.Z", "A"}, 0.0f);
+  ImageF a = makeImage(4, 1, {"ao.Y"}, 0.0f), b = makeImage(4, 1, {"ao.Y"}, 0.0f);
   a.pixels = {1.0f, 0.5f, 0.0f, 100.0f};
   b.pixels = {0.0f, 0.5f, 0.0f, 0.0f};
   for (int x : {0, 1, 2}) mask.pixels[std::size_t(x) * 4 + 3] = 1.0f;  // pixel 3 is background
@@ -39,8 +30,8 @@ TEST_CASE("maskedError counts only geometry pixels" * doctest::test_suite("bench
 }
 
 TEST_CASE("maskedSsim is 1 for identical images and lower for noise" * doctest::test_suite("bench")) {
-  ImageF mask = image(32, 32, {"position.X", "position.Y", "position.Z", "A"}, 1.0f);
-  ImageF a = image(32, 32, {"R", "G", "B", "A"}, 0.0f);
+  ImageF mask = makeImage(32, 32, {"position.X", "position.Y", "position.Z", "A"}, 1.0f);
+  ImageF a = makeImage(32, 32, {"R", "G", "B", "A"}, 0.0f);
   std::mt19937 rng(3);
   for (float& v : a.pixels) v = float(rng() % 1000) / 500.0f;
   CHECK(maskedSsim(a, a, mask) == doctest::Approx(1.0));
@@ -88,8 +79,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   rows[1].method = "radiance";
   rows[1].frameMs = {7.25, 7, 8};
   rows[1].ao.rmse = 0.2;
-  const auto folder = std::filesystem::temp_directory_path() / ("headlight_bench_" + std::to_string(std::random_device{}()));
-  std::filesystem::create_directories(folder);
+  const auto folder = test::freshFolder("bench");
   writeBenchCsv(rows, folder / "bench.csv");
   writeBenchJson(rows, "headlight bench test", folder / "bench.json");
   std::ifstream csv(folder / "bench.csv");

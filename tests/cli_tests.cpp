@@ -5,45 +5,22 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <algorithm>
-#include <sys/wait.h>
+
+#include "support/process.hpp"
+#include "support/temp_folder.hpp"
 
 namespace fs = std::filesystem;
 
+using headlight::test::freshFolder;
+using headlight::test::runHeadlight;
+constexpr auto& quote = headlight::test::shellQuote;
+using Run = headlight::test::ProcessResult;
+
 namespace {
-
-struct Run {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-std::string quote(const std::string& text) { return "'" + text + "'"; }
-
-Run runHeadlight(const std::string& args) {
-  const std::string command = quote(HEADLIGHT_EXE) + " " + args + " 2>&1";
-  Run run;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer;
-  while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) run.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-fs::path freshFolder(const char* name) {
-  const fs::path path =
-      fs::temp_directory_path() / (std::string("headlight_cli_") + name + "_" + std::to_string(std::random_device{}()));
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path;
-}
 
 bool folderEmpty(const fs::path& folder) { return !fs::exists(folder) || fs::is_empty(folder); }
 

@@ -11,25 +11,17 @@
 #include <fstream>
 #include <numbers>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 
 #include "diff_command.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
+#include "support/temp_folder.hpp"
 
 using namespace headlight;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path freshFolder(const char* name) {
-  const fs::path path =
-      fs::temp_directory_path() / (std::string("headlight_diff_") + name + "_" + std::to_string(std::random_device{}()));
-  fs::remove_all(path);
-  fs::create_directories(path);
-  return path;
-}
 
 struct TestImage {
   int width = 8, height = 8;
@@ -119,7 +111,7 @@ TestImage rotated(TestImage image, double degrees) {
 }  // namespace
 
 TEST_CASE("diff: identical images pass with zero error, library and CLI" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("identical");
+  const fs::path folder = test::freshFolder("diff_identical");
   const TestImage image = gradient(12, 10, {"R", "G", "B", "A"});
   write(folder / "a.exr", image);
   write(folder / "b.exr", image);
@@ -143,7 +135,7 @@ TEST_CASE("diff: identical images pass with zero error, library and CLI" * docte
 
 TEST_CASE("diff: idiff's levels on an absolute target (albedo: warn 2e-3, fail 1e-2, 0.5 % allowed)" *
           doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("levels");
+  const fs::path folder = test::freshFolder("diff_levels");
   const TestImage reference = gradient(20, 20, {"albedo.B", "albedo.G", "albedo.R"});  // 400 pixels
   write(folder / "albedo.exr", reference);
   const fs::path b = folder / "b" / "albedo.exr";
@@ -214,7 +206,7 @@ TEST_CASE("diff: idiff's levels on an absolute target (albedo: warn 2e-3, fail 1
 
 TEST_CASE("diff: structural mismatches and file errors are statuses that name the problem" *
           doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("structural");
+  const fs::path folder = test::freshFolder("diff_structural");
   write(folder / "a.exr", gradient(8, 8, {"R", "G", "B"}));
   write(folder / "small.exr", gradient(8, 6, {"R", "G", "B"}));
   write(folder / "other.exr", gradient(8, 8, {"R", "G", "Z"}));
@@ -261,7 +253,7 @@ TEST_CASE("diff: structural mismatches and file errors are statuses that name th
 }
 
 TEST_CASE("diff: normals are compared by angle, not per component" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("normals");
+  const fs::path folder = test::freshFolder("diff_normals");
   const TestImage reference = normals();
   write(folder / "normal.exr", reference);
   fs::create_directories(folder / "b");
@@ -313,7 +305,7 @@ TEST_CASE("diff: normals are compared by angle, not per component" * doctest::te
 
 TEST_CASE("diff: position and depth are relative to headlight:far, lit to max(1, |value|)" *
           doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("relative");
+  const fs::path folder = test::freshFolder("diff_relative");
   fs::create_directories(folder / "b");
   TestImage position = gradient(10, 10, {"A", "position.X", "position.Y", "position.Z"});
   for (int y = 0; y < 10; ++y)
@@ -367,7 +359,7 @@ TEST_CASE("diff: position and depth are relative to headlight:far, lit to max(1,
 }
 
 TEST_CASE("diff: any NaN or Inf fails, even in the same pixel of both images" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("nan");
+  const fs::path folder = test::freshFolder("diff_nan");
   TestImage image = gradient(8, 8, {"R", "G", "B"});
   write(folder / "a.exr", image);
   TestImage broken = image;
@@ -390,7 +382,7 @@ TEST_CASE("diff: any NaN or Inf fails, even in the same pixel of both images" * 
 }
 
 TEST_CASE("diff: --json prints one object with the numbers and thresholds used" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("json");
+  const fs::path folder = test::freshFolder("diff_json");
   const TestImage image = gradient(10, 10, {"ao.Y", "indirect.B", "indirect.G", "indirect.R"});
   write(folder / "ssgi.exr", image);
   TestImage changed = image;
@@ -426,7 +418,7 @@ TEST_CASE("diff: --json prints one object with the numbers and thresholds used" 
 }
 
 TEST_CASE("diff: folder mode reports each target and the worst verdict" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("folders");
+  const fs::path folder = test::freshFolder("diff_folders");
   const fs::path a = folder / "a", b = folder / "b";
   fs::create_directories(a);
   fs::create_directories(b);
@@ -481,7 +473,7 @@ TEST_CASE("diff: folder mode reports each target and the worst verdict" * doctes
 }
 
 TEST_CASE("diff: --out writes a float diff.exr and a diff.png heatmap, atomically" * doctest::test_suite("diff")) {
-  const fs::path folder = freshFolder("out");
+  const fs::path folder = test::freshFolder("diff_out");
   const TestImage image = gradient(16, 16, {"R", "G", "B"});
   TestImage changed = image;
   changed.at(3, 3, 0) += 1.0f;

@@ -6,9 +6,9 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include <filesystem>
-#include <random>
 
-#include "gl_test_support.hpp"
+#include "support/gl.hpp"
+#include "support/temp_folder.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
@@ -17,13 +17,6 @@ using namespace headlight;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path freshFolder(const char* name) {
-  const fs::path path = fs::temp_directory_path() / (std::string("headlight_exr_") + name + "_" +
-                                                     std::to_string(std::random_device{}()));
-  fs::remove_all(path);
-  return path;
-}
 
 const Frame& cornellFrame() {
   static const Frame frame = [] {
@@ -38,7 +31,7 @@ const Frame& cornellFrame() {
 
 TEST_CASE("writeFrame: every target reads back with its channels, type, size and values") {
   const Frame& frame = cornellFrame();
-  const fs::path folder = freshFolder("roundtrip");
+  const fs::path folder = test::freshFolder("exr_roundtrip");
   const auto written = writeFrame(frame, folder);
   CHECK(written.size() == frame.targets().size() + 1);  // + preview.png
   for (const auto& [name, image] : frame.targets()) {
@@ -67,7 +60,7 @@ TEST_CASE("writeFrame: every target reads back with its channels, type, size and
 }
 
 TEST_CASE("EXR orientation: the top row of position.exr is higher in the world than the bottom row") {
-  const fs::path folder = freshFolder("orientation");
+  const fs::path folder = test::freshFolder("exr_orientation");
   writeFrame(cornellFrame(), folder);
   OIIO::ImageBuf file((folder / "position.exr").string());
   const int y = file.spec().channelindex("position.Y");
@@ -78,7 +71,7 @@ TEST_CASE("EXR orientation: the top row of position.exr is higher in the world t
 
 TEST_CASE("EXR metadata says what produced the image") {
   const Frame& frame = cornellFrame();
-  const fs::path folder = freshFolder("metadata");
+  const fs::path folder = test::freshFolder("exr_metadata");
   writeFrame(frame, folder);
   OIIO::ImageBuf file((folder / "lit.exr").string());
   const OIIO::ImageSpec& spec = file.spec();
@@ -105,7 +98,7 @@ TEST_CASE("EXR metadata says what produced the image") {
 
 TEST_CASE("writes are atomic: no temporary file stays, and a failed write leaves nothing") {
   const Frame& frame = cornellFrame();
-  const fs::path folder = freshFolder("atomic");
+  const fs::path folder = test::freshFolder("exr_atomic");
   writeFrame(frame, folder);
   for (const auto& entry : fs::directory_iterator(folder)) {
     CAPTURE(entry.path());

@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "gl_test_support.hpp"
+#include "support/gl.hpp"
 #include "headlight/error.hpp"
 
 int main(int argc, char** argv) {

@@ -10,10 +10,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gl_test_support.hpp"
 #include "headlight/error.hpp"
 #include "gl/shader_library.hpp"
+#include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/shapes.hpp"
+#include "support/gl.hpp"
 #include "shared_layout.h"
 
 using namespace headlight;
@@ -24,21 +26,18 @@ namespace {
 Scene quadScene() {
   Scene scene;
   scene.source = "test:quad";
-  scene.materials.push_back(plainMaterial({0.5f, 0.25f, 0.125f}, 0.3f, 0.6f));
-  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 0, 1}, 1.0f));
-  scene.instances.push_back({0, glm::mat4(1.0f), 0});
+  addInstance(scene, makeSquare({0, 0, 0}, {0, 0, 1}, 1.0f),
+              addMaterial(scene, makeMaterial({0.5f, 0.25f, 0.125f}, 0.6f, 0.3f)));
   // Orthographic from +Z, 3 units tall: the quad fills the middle 2/3.
-  scene.cameras.push_back(lookAtCamera({0, 0, 2}, {0, 0, 0}, 0.8f, 1.5f));
+  scene.cameras.push_back(makeOrthographicCamera({0, 0, 2}, {0, 0, 0}, 1.5f));
   return scene;
 }
 
 Scene planeScene() {
   Scene scene;
   scene.source = "test:plane";
-  scene.materials.push_back(plainMaterial({0.8f, 0.8f, 0.8f}));
-  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 1, 0}, 50.0f));
-  scene.instances.push_back({0, glm::mat4(1.0f), 0});
-  scene.cameras.push_back(lookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f));
+  addInstance(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 50.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.8f)));
+  scene.cameras.push_back(makeLookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f));
   return scene;
 }
 
@@ -215,7 +214,7 @@ TEST_CASE("one renderer renders many sizes and views; a repeated render is bit-i
   const Frame other = renderer.render(smallSettings(33, 17));
   CHECK(other.lit.width == 33);
   CHECK(other.lit.height == 17);
-  Camera side = lookAtCamera({1.5f, 1.0f, 3.0f}, {0, 1, 0}, 0.9f);
+  Camera side = makeLookAtCamera({1.5f, 1.0f, 3.0f}, {0, 1, 0}, 0.9f);
   const Frame moved = renderer.render(smallSettings(80, 60), &side);
   const Frame again = renderer.render(smallSettings(80, 60));
   CHECK(moved.lit.pixels != first.lit.pixels);
@@ -423,10 +422,8 @@ TEST_CASE("textured material: every texture variant builds, and UV (0,0) is the 
 TEST_CASE("a spot light lights its cone and not beyond, with inverse-square falloff") {
   Scene scene;
   scene.source = "test:spot";
-  scene.materials.push_back(plainMaterial({0.8f, 0.8f, 0.8f}, 0.0f, 1.0f));
-  scene.primitives.push_back(makeSquare({0, 0, 0}, {0, 1, 0}, 5.0f));
-  scene.instances.push_back({0, glm::mat4(1.0f), 0});
-  scene.cameras.push_back(lookAtCamera({0, 6, 0.01f}, {0, 0, 0}, 0.0f, 4.0f));  // orthographic, from above
+  addInstance(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 5.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 1.0f)));
+  scene.cameras.push_back(makeOrthographicCamera({0, 6, 0.01f}, {0, 0, 0}, 4.0f));  // from above
   Light spot;
   spot.type = Light::Type::Spot;
   spot.position = {0, 2, 0};

@@ -16,8 +16,10 @@
 
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/scene_builder.hpp"
 #include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
+#include "support/images.hpp"
 
 using namespace headlight;
 
@@ -27,20 +29,14 @@ constexpr float kPi = 3.14159265358979f;
 
 // ---- Scenes ------------------------------------------------------------------
 
-
 Material lambert(glm::vec3 color, glm::vec3 emissive = glm::vec3(0.0f)) {
-  Material material;
-  material.baseColorFactor = glm::vec4(color, 1.0f);
-  material.metallicFactor = 0.0f;
-  material.roughnessFactor = 1.0f;
+  Material material = makeMaterial(color, 1.0f);
   material.emissiveFactor = emissive;
   return material;
 }
 
 void add(Scene& scene, Primitive primitive, Material material) {
-  scene.primitives.push_back(std::move(primitive));
-  scene.materials.push_back(std::move(material));
-  scene.instances.push_back({int(scene.primitives.size()) - 1, glm::mat4(1.0f), int(scene.materials.size()) - 1});
+  addInstance(scene, std::move(primitive), addMaterial(scene, std::move(material)));
 }
 
 // Light only where a case asks for it: no sky unless set.
@@ -70,24 +66,15 @@ struct ShadingPoint {
   bool geometry = true;
 };
 
-ImageF image(int width, int height, std::vector<std::string> channels) {
-  ImageF result;
-  result.width = width;
-  result.height = height;
-  result.pixels.assign(std::size_t(width * height) * channels.size(), 0.0f);
-  result.channels = std::move(channels);
-  return result;
-}
-
 // A G-buffer whose pixel (x, y) holds point(x, y); sky intensity 0 unless
 // given. The view is the identity (camera at the origin looking down -Z).
 Frame syntheticFrame(int width, int height, const std::function<ShadingPoint(int x, int y)>& point,
                      float skyIntensity = 0.0f) {
   Frame frame;
-  frame.position = image(width, height, {"position.X", "position.Y", "position.Z", "A"});
-  frame.normal = image(width, height, {"normal.X", "normal.Y", "normal.Z"});
-  frame.albedo = image(width, height, {"albedo.R", "albedo.G", "albedo.B"});
-  frame.material = image(width, height, {"material.metallic", "material.roughness", "material.occlusion"});
+  frame.position = test::makeImage(width, height, {"position.X", "position.Y", "position.Z", "A"});
+  frame.normal = test::makeImage(width, height, {"normal.X", "normal.Y", "normal.Z"});
+  frame.albedo = test::makeImage(width, height, {"albedo.R", "albedo.G", "albedo.B"});
+  frame.material = test::makeImage(width, height, {"material.metallic", "material.roughness", "material.occlusion"});
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const ShadingPoint p = point(x, y);
@@ -436,7 +423,7 @@ TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite
   CHECK_THROWS_WITH_AS(traceReference(scene, Frame{}, referenceSettings(16, 1.0f)),
                        doctest::Contains("frame.position is empty"), SettingsError);
   Frame mismatched = frame;
-  mismatched.normal = image(3, 2, {"normal.X", "normal.Y", "normal.Z"});
+  mismatched.normal = test::makeImage(3, 2, {"normal.X", "normal.Y", "normal.Z"});
   CHECK_THROWS_WITH_AS(traceReference(scene, mismatched, referenceSettings(16, 1.0f)),
                        "traceReference: frame.normal is 3x2x3 with 18 floats; expected 2x2 with at least 3 channels",
                        SettingsError);

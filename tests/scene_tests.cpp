@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -13,21 +12,20 @@
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
-
-// meson defines this; the fallback only makes the shared-asset test skip.
-#ifndef HEADLIGHT_SOURCE_DIR
-#define HEADLIGHT_SOURCE_DIR "."
-#endif
+#include "support/assets.hpp"
+#include "support/encoding.hpp"
+#include "support/temp_folder.hpp"
 
 namespace fs = std::filesystem;
 using namespace headlight;
+using headlight::test::base64;
+using headlight::test::TempFolder;
 
 namespace {
 
@@ -40,41 +38,6 @@ bool isHex16(const std::string& text) {
 bool near(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f) {
   return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(tolerance)));
 }
-
-// A folder of its own under the system temp folder, removed afterwards.
-class TempFolder {
- public:
-  TempFolder() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("headlight_scene_tests_" + std::to_string(std::random_device{}()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-
-  fs::path write(const std::string& name, const void* bytes, std::size_t size) const {
-    const fs::path file = path_ / name;
-    fs::create_directories(file.parent_path());
-    std::ofstream(file, std::ios::binary).write(static_cast<const char*>(bytes), static_cast<std::streamsize>(size));
-    return file;
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    return write(name, text.data(), text.size());
-  }
-  fs::path write(const std::string& name, const std::vector<unsigned char>& bytes) const {
-    return write(name, bytes.data(), bytes.size());
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // One triangle in the XY plane, counter-clockwise seen from +Z: 36 bytes of
 // positions, then 6 bytes of 16-bit indices and 2 bytes of padding.
@@ -113,19 +76,6 @@ fs::path writeTriangleGltf(const TempFolder& folder, const GltfParts& parts = {}
                            const std::vector<unsigned char>& buffer = triangleBuffer()) {
   folder.write("triangle.bin", buffer);
   return folder.write("scene.gltf", gltfJson(parts));
-}
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  for (std::size_t at = 0; at < bytes.size(); at += 3) {
-    const std::uint32_t group = (bytes[at] << 16) | ((at + 1 < bytes.size() ? bytes[at + 1] : 0) << 8) |
-                                (at + 2 < bytes.size() ? bytes[at + 2] : 0);
-    for (std::size_t sextet = 0; sextet < 4; ++sextet) {
-      text += at + sextet <= bytes.size() ? kAlphabet[(group >> (18 - 6 * sextet)) & 63] : '=';
-    }
-  }
-  return text;
 }
 
 void appendU32(std::vector<unsigned char>& bytes, std::uint32_t value) {
@@ -213,13 +163,6 @@ void checkWindingMatchesNormals(const Primitive& primitive) {
 
 glm::vec3 cameraPosition(const Camera& camera) { return glm::vec3(camera.worldFromCamera[3]); }
 glm::vec3 cameraForward(const Camera& camera) { return -glm::vec3(camera.worldFromCamera[2]); }
-
-fs::path sharedFolder() {
-  if (const char* shared = std::getenv("HEADLIGHT_SHARED_DIR"); shared != nullptr && *shared != '\0') {
-    return shared;
-  }
-  return fs::path(HEADLIGHT_SOURCE_DIR) / ".." / "shared";
-}
 
 }  // namespace
 
@@ -364,13 +307,11 @@ TEST_CASE("an unknown built-in scene names the known ones") {
 
 // ---- Shared asset -------------------------------------------------------------
 
-TEST_CASE("MetalRoughSpheresNoTextures loads with shared geometry") {
-  const fs::path folder = sharedFolder() / "anchors-assets" / "MetalRoughSpheresNoTextures" / "glTF";
-  const fs::path path = folder / "MetalRoughSpheresNoTextures.gltf";
-  if (!fs::exists(path)) {
-    MESSAGE("skipped: " << path << " is absent (set HEADLIGHT_SHARED_DIR)");
-    return;
-  }
+// Skipped (and counted so) when the asset is absent: set HEADLIGHT_SHARED_DIR.
+TEST_CASE("MetalRoughSpheresNoTextures loads with shared geometry" *
+          doctest::skip(!test::exists(test::metalRoughSpheresGltf()))) {
+  const fs::path path = test::metalRoughSpheresGltf();
+  const fs::path folder = path.parent_path();
   const Scene scene = loadGltf(path);
   // 102 nodes carry meshes; four label meshes have several primitives, so
   // there are 123 (node, primitive) instances. The 98 sphere meshes differ

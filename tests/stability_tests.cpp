@@ -6,7 +6,7 @@
 // same numbers as the doc's table.
 #include <doctest/doctest.h>
 
-#include "gl_test_support.hpp"
+#include "support/gl.hpp"
 #include "headlight/reference.hpp"
 #include "stability/stability.hpp"
 

@@ -21,9 +21,8 @@ namespace headlight::stability {
 
 // ---- Scenes (stability_scenes.cpp) --------------------------------------------
 
-// Geometry comes from headlight/shapes.hpp.
-Material matteMaterial(glm::vec3 color);
-Camera lookAt(glm::vec3 eye, glm::vec3 target, float yfov);
+// Geometry comes from headlight/shapes.hpp, assembly from
+// headlight/scene_builder.hpp.
 
 // Case 1: a 100 x 100 floor seen from 2 units up; nothing can occlude it.
 Scene flatPlaneScene();

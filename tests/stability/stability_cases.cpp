@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <tuple>
 
@@ -19,6 +18,7 @@
 #include "headlight/reference.hpp"
 #include "headlight/scene_loader.hpp"
 #include "stability/stability.hpp"
+#include "support/temp_folder.hpp"
 
 namespace headlight::stability {
 
@@ -493,31 +493,12 @@ CaseResult sceneScale(Renderer& renderer, SsgiMethod method) {
 
 namespace {
 
-// A scratch file under the system temp folder, removed afterwards.
-class ScratchFile {
- public:
-  ScratchFile(const std::string& name, const std::string& text)
-      : path_(std::filesystem::temp_directory_path() /
-              ("headlight_stability_" + std::to_string(std::random_device{}()) + "_" + name)) {
-    std::ofstream(path_, std::ios::binary) << text;
-  }
-  ~ScratchFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  ScratchFile(const ScratchFile&) = delete;
-  ScratchFile& operator=(const ScratchFile&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
 // 1 when loading `json` throws a SceneError whose message names the problem.
 double rejectsNanPosition(const std::string& json) {
-  const ScratchFile file("nan.gltf", json);
+  const test::TempFolder folder("stability");
+  const std::filesystem::path file = folder.write("nan.gltf", json);
   try {
-    loadGltf(file.path());
+    loadGltf(file);
   } catch (const SceneError& error) {
     return std::string(error.what()).find("non-finite value at element 0") != std::string::npos ? 1.0 : 0.0;
   }
@@ -543,8 +524,9 @@ CaseResult degenerateInput(Renderer& renderer, SsgiMethod method) {
   const double rejected = rejectsNanPosition(quadGltfJson(true));
   result.checks.push_back(atLeast("glTF with a NaN position: SceneError (1 = yes)", rejected, 1));
   {
-    const ScratchFile file("quad.gltf", quadGltfJson(false));
-    const Frame frame = renderSmall(renderer, loadGltf(file.path()), method);
+    const test::TempFolder folder("stability");
+    const std::filesystem::path file = folder.write("quad.gltf", quadGltfJson(false));
+    const Frame frame = renderSmall(renderer, loadGltf(file), method);
     const double nonFinite = double(nonFiniteCount(frame)), geometry = double(geometryPixelCount(frame));
     result.checks.push_back(atMost("glTF, no indices, no normals: non-finite values", nonFinite, 0));
     result.checks.push_back(atLeast("glTF, no indices, no normals: geometry pixels", geometry, 100));

@@ -9,30 +9,18 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
 #include "stability/stability.hpp"
+#include "support/encoding.hpp"
 
 namespace headlight::stability {
 
 namespace {
 
-// A square floor at y = 0 facing +Y, `halfSize` each way.
-Primitive floorQuad(float halfSize) {
-  return makeQuad({-halfSize, 0, -halfSize}, {0, 0, 2 * halfSize}, {2 * halfSize, 0, 0});
-}
-
-int addMaterial(Scene& scene, glm::vec3 color) {
-  scene.materials.push_back(matteMaterial(color));
-  return int(scene.materials.size()) - 1;
-}
-
-void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f)) {
-  scene.primitives.push_back(std::move(primitive));
-  scene.instances.push_back({int(scene.primitives.size()) - 1, worldFromLocal, material});
-}
-
-glm::mat4 moved(glm::vec3 offset) { return glm::translate(glm::mat4(1.0f), offset); }
+// The matte white of every scene built here.
+Material matteWhite() { return makeMaterial(glm::vec3(0.8f), 0.9f); }
 
 // Sets bounds from the positions; NaN coordinates are left out of them by
 // Bounds::extend's comparisons (NaN < x is false).
@@ -42,21 +30,6 @@ void recomputeBounds(Primitive& primitive) {
 }
 
 }  // namespace
-
-Material matteMaterial(glm::vec3 color) {
-  Material material;
-  material.baseColorFactor = glm::vec4(color, 1.0f);
-  material.metallicFactor = 0.0f;
-  material.roughnessFactor = 0.9f;
-  return material;
-}
-
-Camera lookAt(glm::vec3 eye, glm::vec3 target, float yfov) {
-  Camera camera;
-  camera.yfov = yfov;
-  camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
-  return camera;
-}
 
 // The failure cases a user can render too are built-in scenes
 // (lib/scene/builtin_scenes.cpp), so the goldens and this suite share them.
@@ -68,7 +41,7 @@ Scene nearWallScene() {
   scene.source = "stability:near-wall";
   // 0.1 from the back wall (z = -1), looking down-left into the corner of
   // the back wall, the floor and the red wall; the radius is 0.52.
-  scene.cameras = {lookAt({-0.6f, 0.3f, -0.9f}, {-1.0f, 0.0f, -1.0f}, 1.2f)};
+  scene.cameras = {makeLookAtCamera({-0.6f, 0.3f, -0.9f}, {-1.0f, 0.0f, -1.0f}, 1.2f)};
   return scene;
 }
 Scene offscreenBoxScene() { return makeBuiltinScene("offscreen"); }
@@ -96,27 +69,27 @@ Camera cornellOrbitCamera(float degrees) {
   const glm::vec3 target{0.0f, 1.0f, 0.0f};
   const float angle = glm::radians(degrees);
   const glm::vec3 eye = target + 3.6f * glm::vec3(std::sin(angle), 0.0f, std::cos(angle));
-  return lookAt(eye, target, 0.7f);
+  return makeLookAtCamera(eye, target, 0.7f);
 }
 
 Scene nanVertexScene() {
   Scene scene;
   scene.source = "stability:nan-vertex";
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, floorQuad(2.0f), white);
+  const int white = addMaterial(scene, matteWhite());
+  addInstance(scene, makeFloor(2.0f), white);
   Primitive broken = makeQuad({-0.5f, 0.2f, -0.5f}, {1, 0, 0}, {0, 1, 0});
   broken.positions[2].y = std::numeric_limits<float>::quiet_NaN();
   recomputeBounds(broken);
   addInstance(scene, std::move(broken), white);
-  scene.cameras.push_back(lookAt({0, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({0, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
   return scene;
 }
 
 Scene zeroAreaScene() {
   Scene scene;
   scene.source = "stability:zero-area";
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, floorQuad(2.0f), white);
+  const int white = addMaterial(scene, matteWhite());
+  addInstance(scene, makeFloor(2.0f), white);
   Primitive wall = makeQuad({-1, 0, -1}, {2, 0, 0}, {0, 1.5f, 0});
   // A triangle collapsed to a point, and one whose corners lie on a line;
   // both add nothing to the area-weighted normals.
@@ -128,30 +101,30 @@ Scene zeroAreaScene() {
   generateNormals(wall);
   recomputeBounds(wall);
   addInstance(scene, std::move(wall), white);
-  scene.cameras.push_back(lookAt({0, 1.2f, 3}, {0, 0.5f, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({0, 1.2f, 3}, {0, 0.5f, 0}, 0.8f));
   return scene;
 }
 
 Scene missingNormalsScene() {
   Scene scene;
   scene.source = "stability:missing-normals";
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, floorQuad(2.0f), white);
+  const int white = addMaterial(scene, matteWhite());
+  addInstance(scene, makeFloor(2.0f), white);
   Primitive block = makeBox({0.8f, 0.8f, 0.8f});
   block.normals.clear();
   generateNormals(block);
   addInstance(scene, std::move(block), white, moved({0, 0.4f, 0}));
-  scene.cameras.push_back(lookAt({1, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({1, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
   return scene;
 }
 
 Scene hugeCoordinateScene() {
   Scene scene;
   scene.source = "stability:huge-coordinates";
-  const int white = addMaterial(scene, glm::vec3(0.8f));
-  addInstance(scene, floorQuad(1e20f), white);
+  const int white = addMaterial(scene, matteWhite());
+  addInstance(scene, makeFloor(1e20f), white);
   addInstance(scene, makeBox({1, 1, 1}), white, moved({0, 0.5f, 0}));
-  scene.cameras.push_back(lookAt({2, 1.5f, 3}, {0, 0.5f, 0}, 0.8f));
+  scene.cameras.push_back(makeLookAtCamera({2, 1.5f, 3}, {0, 0.5f, 0}, 0.8f));
   return scene;
 }
 
@@ -167,15 +140,7 @@ std::string quadGltfJson(bool nanPosition) {
   if (nanPosition) positions[0] = std::numeric_limits<float>::quiet_NaN();
   std::vector<unsigned char> bytes(sizeof positions);
   std::memcpy(bytes.data(), positions, sizeof positions);
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string base64;
-  for (std::size_t at = 0; at < bytes.size(); at += 3) {
-    const std::uint32_t group = (std::uint32_t(bytes[at]) << 16) |
-                                (at + 1 < bytes.size() ? std::uint32_t(bytes[at + 1]) << 8 : 0u) |
-                                (at + 2 < bytes.size() ? std::uint32_t(bytes[at + 2]) : 0u);
-    for (std::size_t sextet = 0; sextet < 4; ++sextet)
-      base64 += at + sextet <= bytes.size() ? kAlphabet[(group >> (18 - 6 * sextet)) & 63] : '=';
-  }
+  const std::string base64 = test::base64(bytes);
   // glTF requires min and max on POSITION accessors; NaN has no JSON
   // spelling, so they stay those of the finite quad.
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"

@@ -1,21 +1,6 @@
-#include "gl_test_support.hpp"
-
-#include <glm/gtc/matrix_transform.hpp>
+#include "support/gl.hpp"
 
 namespace headlight::test {
-
-
-Camera lookAtCamera(glm::vec3 eye, glm::vec3 target, float yfov, float orthoHalfHeight) {
-  Camera camera;
-  camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, glm::vec3(0, 1, 0)));
-  camera.yfov = yfov;
-  if (orthoHalfHeight > 0) {
-    camera.projection = Camera::Projection::Orthographic;
-    camera.ymag = orthoHalfHeight;
-    camera.xmag = orthoHalfHeight;
-  }
-  return camera;
-}
 
 double meanWhere(const Frame& frame, const ImageF& image, int channel,
                  const std::function<bool(glm::vec3, glm::vec3)>& select, int& count) {
