@@ -132,6 +132,68 @@ bool skipWithoutEmbree(const Scene& scene, const Frame& frame, const ReferenceSe
 
 }  // namespace
 
+// ---- CPU ports of the GLSL (reference/shading.hpp) ------------------------------
+// Values worked out by hand the way glsl/sampling.glsl computes them, so
+// that a port drifting from the shader (another frame, an added clamp)
+// fails here and not as a bias in the reference.
+
+TEST_CASE("basisAround builds the frame sampling.glsl builds" * doctest::test_suite("reference")) {
+  using reference::basisAround;
+  const auto near = [](glm::vec3 a, glm::vec3 b) { return glm::length(a - b) < 1e-6f; };
+  // Near +-Z the helper axis is +X: tangent = cross(+X, n), bitangent = cross(n, tangent).
+  const reference::Basis up = basisAround({0, 0, 1});
+  CHECK(near(up.tangent, {0, -1, 0}));
+  CHECK(near(up.bitangent, {1, 0, 0}));
+  const reference::Basis down = basisAround({0, 0, -1});
+  CHECK(near(down.tangent, {0, 1, 0}));
+  CHECK(near(down.bitangent, {1, 0, 0}));
+  // Elsewhere the helper is +Z.
+  const reference::Basis side = basisAround({1, 0, 0});
+  CHECK(near(side.tangent, {0, 1, 0}));
+  CHECK(near(side.bitangent, {0, 0, 1}));
+  const reference::Basis tilted = basisAround({0, 0.6f, 0.8f});
+  CHECK(near(tilted.tangent, {-1, 0, 0}));
+  CHECK(near(tilted.bitangent, {0, -0.8f, 0.6f}));
+  // Whatever the normal: orthonormal and right-handed.
+  for (const glm::vec3 n : {glm::vec3(0.3f, -0.5f, 0.81f), glm::vec3(-0.7f, 0.7f, 0.1f), glm::vec3(0.01f, 0.0f, -1.0f)}) {
+    const reference::Basis basis = basisAround(glm::normalize(n));
+    CHECK(glm::dot(basis.tangent, basis.bitangent) == doctest::Approx(0.0f).epsilon(1e-6));
+    CHECK(glm::length(basis.tangent) == doctest::Approx(1.0f));
+    CHECK(glm::length(basis.bitangent) == doctest::Approx(1.0f));
+    CHECK(near(glm::cross(basis.tangent, basis.bitangent), basis.normal));
+  }
+}
+
+TEST_CASE("importanceSampleGgx is sampling.glsl's, without a clamp" * doctest::test_suite("reference")) {
+  using reference::importanceSampleGgx;
+  // xi = (0.25, 0.5), alpha = 0.5: phi = pi/2, cos^2 = 0.5 / (1 - 0.75 * 0.5) = 0.8.
+  const glm::vec3 h = importanceSampleGgx(0.25f, 0.5f, 0.5f);
+  CHECK(h.x == doctest::Approx(0.0).epsilon(1e-6));
+  CHECK(h.y == doctest::Approx(std::sqrt(0.2)).epsilon(1e-6));
+  CHECK(h.z == doctest::Approx(std::sqrt(0.8)).epsilon(1e-6));
+  // alpha = 1 is the uniform-in-cos^2 case: cos^2 = 1 - xi1.
+  const glm::vec3 rough = importanceSampleGgx(0.0f, 0.36f, 1.0f);
+  CHECK(rough.z == doctest::Approx(0.8).epsilon(1e-6));
+  CHECK(rough.x == doctest::Approx(0.6).epsilon(1e-6));
+  // Bit for bit the GLSL's expression, NaN where it is NaN: sqrt(1 - cos^2)
+  // with nothing between.
+  for (float alpha : {0.0009f, 0.01f, 0.2f, 0.7f, 1.0f})
+    for (float xi1 : {0.0f, 1e-7f, 0.1f, 0.5f, 0.9f, 0.9999f})
+      for (float xi0 : {0.0f, 0.3f, 0.77f}) {
+        CAPTURE(alpha);
+        CAPTURE(xi1);
+        const float phi = 2.0f * kPi * xi0;
+        const float cosTheta = std::sqrt((1.0f - xi1) / (1.0f + (alpha * alpha - 1.0f) * xi1));
+        const float sinTheta = std::sqrt(1.0f - cosTheta * cosTheta);
+        const glm::vec3 glsl(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+        const glm::vec3 port = importanceSampleGgx(xi0, xi1, alpha);
+        for (int c = 0; c < 3; ++c) {
+          CHECK(std::isnan(port[c]) == std::isnan(glsl[c]));
+          if (!std::isnan(glsl[c])) CHECK(port[c] == glsl[c]);
+        }
+      }
+}
+
 TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctest::test_suite("reference")) {
   Scene scene = emptyScene();
   add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));

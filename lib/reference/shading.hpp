@@ -61,20 +61,18 @@ inline Pcg32 pixelStream(unsigned seed, std::uint64_t pixelIndex) {
 
 // ---- Directions ----------------------------------------------------------------
 
-// An orthonormal frame with `normal` as its third axis (Duff et al. 2017,
-// "Building an Orthonormal Basis, Revisited"): no branch on a helper axis,
-// continuous everywhere but at normal.z = -0.
+// sampling.glsl basisAround: an orthonormal frame with `normal` (unit) as
+// its third axis, built from a helper axis (+Z, or +X where the normal is
+// within 0.999 of +-Z) as the GLSL does, so that a direction drawn around a
+// normal here is the one the shaders draw.
 struct Basis {
   glm::vec3 tangent, bitangent, normal;
   glm::vec3 toWorld(const glm::vec3& local) const { return tangent * local.x + bitangent * local.y + normal * local.z; }
 };
 inline Basis basisAround(const glm::vec3& normal) {
-  const float sign = std::copysign(1.0f, normal.z);
-  const float a = -1.0f / (sign + normal.z);
-  const float b = normal.x * normal.y * a;
-  return {{1.0f + sign * normal.x * normal.x * a, sign * b, -sign * normal.x},
-          {b, sign + normal.y * normal.y * a, -normal.y},
-          normal};
+  const glm::vec3 up = std::abs(normal.z) < 0.999f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 tangent = glm::normalize(glm::cross(up, normal));
+  return {tangent, glm::cross(normal, tangent), normal};
 }
 
 // sampling.glsl cosineSampleHemisphere: density cos(theta) / pi around +Z.
@@ -84,11 +82,12 @@ inline glm::vec3 cosineSampleHemisphere(float xi0, float xi1) {
 }
 
 // sampling.glsl importanceSampleGgx: a half vector with density D(h) cos(h)
-// around +Z for alpha = perceptual roughness squared.
+// around +Z for alpha = perceptual roughness squared. No clamp under the
+// square root, as in the GLSL (cosTheta <= 1 in exact arithmetic).
 inline glm::vec3 importanceSampleGgx(float xi0, float xi1, float alpha) {
   const float phi = 2.0f * kPi * xi0;
   const float cosTheta = std::sqrt((1.0f - xi1) / (1.0f + (alpha * alpha - 1.0f) * xi1));
-  const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+  const float sinTheta = std::sqrt(1.0f - cosTheta * cosTheta);
   return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
 }
 
