@@ -19,8 +19,17 @@ namespace headlight::stability {
 
 namespace {
 
-// The matte white of every scene built here.
-Material matteWhite() { return makeMaterial(glm::vec3(0.8f), 0.9f); }
+// The start of every degenerate-input scene: `source`, a matte white floor
+// (material 0, `floorHalfSize` each way) and a camera at `eye` looking at
+// `target`; the caller adds the one broken thing.
+constexpr int kWhite = 0;
+Scene floorScene(const char* source, float floorHalfSize, glm::vec3 eye, glm::vec3 target) {
+  Scene scene;
+  scene.source = source;
+  addInstance(scene, makeFloor(floorHalfSize), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f)));
+  scene.cameras.push_back(makeLookAtCamera(eye, target, 0.8f));
+  return scene;
+}
 
 // Sets bounds from the positions; NaN coordinates are left out of them by
 // Bounds::extend's comparisons (NaN < x is false).
@@ -73,23 +82,16 @@ Camera cornellOrbitCamera(float degrees) {
 }
 
 Scene nanVertexScene() {
-  Scene scene;
-  scene.source = "stability:nan-vertex";
-  const int white = addMaterial(scene, matteWhite());
-  addInstance(scene, makeFloor(2.0f), white);
+  Scene scene = floorScene("stability:nan-vertex", 2.0f, {0, 1.5f, 3}, {0, 0.3f, 0});
   Primitive broken = makeQuad({-0.5f, 0.2f, -0.5f}, {1, 0, 0}, {0, 1, 0});
   broken.positions[2].y = std::numeric_limits<float>::quiet_NaN();
   recomputeBounds(broken);
-  addInstance(scene, std::move(broken), white);
-  scene.cameras.push_back(makeLookAtCamera({0, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  addInstance(scene, std::move(broken), kWhite);
   return scene;
 }
 
 Scene zeroAreaScene() {
-  Scene scene;
-  scene.source = "stability:zero-area";
-  const int white = addMaterial(scene, matteWhite());
-  addInstance(scene, makeFloor(2.0f), white);
+  Scene scene = floorScene("stability:zero-area", 2.0f, {0, 1.2f, 3}, {0, 0.5f, 0});
   Primitive wall = makeQuad({-1, 0, -1}, {2, 0, 0}, {0, 1.5f, 0});
   // A triangle collapsed to a point, and one whose corners lie on a line;
   // both add nothing to the area-weighted normals.
@@ -100,31 +102,22 @@ Scene zeroAreaScene() {
   wall.normals.clear();
   generateNormals(wall);
   recomputeBounds(wall);
-  addInstance(scene, std::move(wall), white);
-  scene.cameras.push_back(makeLookAtCamera({0, 1.2f, 3}, {0, 0.5f, 0}, 0.8f));
+  addInstance(scene, std::move(wall), kWhite);
   return scene;
 }
 
 Scene missingNormalsScene() {
-  Scene scene;
-  scene.source = "stability:missing-normals";
-  const int white = addMaterial(scene, matteWhite());
-  addInstance(scene, makeFloor(2.0f), white);
+  Scene scene = floorScene("stability:missing-normals", 2.0f, {1, 1.5f, 3}, {0, 0.3f, 0});
   Primitive block = makeBox({0.8f, 0.8f, 0.8f});
   block.normals.clear();
   generateNormals(block);
-  addInstance(scene, std::move(block), white, moved({0, 0.4f, 0}));
-  scene.cameras.push_back(makeLookAtCamera({1, 1.5f, 3}, {0, 0.3f, 0}, 0.8f));
+  addInstance(scene, std::move(block), kWhite, moved({0, 0.4f, 0}));
   return scene;
 }
 
 Scene hugeCoordinateScene() {
-  Scene scene;
-  scene.source = "stability:huge-coordinates";
-  const int white = addMaterial(scene, matteWhite());
-  addInstance(scene, makeFloor(1e20f), white);
-  addInstance(scene, makeBox({1, 1, 1}), white, moved({0, 0.5f, 0}));
-  scene.cameras.push_back(makeLookAtCamera({2, 1.5f, 3}, {0, 0.5f, 0}, 0.8f));
+  Scene scene = floorScene("stability:huge-coordinates", 1e20f, {2, 1.5f, 3}, {0, 0.5f, 0});
+  addInstance(scene, makeBox({1, 1, 1}), kWhite, moved({0, 0.5f, 0}));
   return scene;
 }
 
