@@ -18,6 +18,7 @@
 #include "headlight/reference.hpp"
 #include "headlight/scene_loader.hpp"
 #include "stability/stability.hpp"
+#include "support/images.hpp"
 #include "support/temp_folder.hpp"
 
 namespace headlight::stability {
@@ -66,12 +67,7 @@ ReferenceImages traceTruth(const Renderer& renderer, const Frame& frame) {
 
 // An image of the frame's size with one channel, zero everywhere.
 ImageF blankImage(const Frame& frame, const std::string& channel) {
-  ImageF image;
-  image.width = frame.position.width;
-  image.height = frame.position.height;
-  image.channels = {channel};
-  image.pixels.assign(std::size_t(image.width) * std::size_t(image.height), 0.0f);
-  return image;
+  return test::makeImage(frame.position.width, frame.position.height, {channel});
 }
 float& pixelOf(ImageF& image, int x, int y) {
   return image.pixels[std::size_t(y) * std::size_t(image.width) + std::size_t(x)];
