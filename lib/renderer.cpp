@@ -11,6 +11,7 @@
 #include "gl/objects.hpp"
 #include "gpu_scene.hpp"
 #include "headlight/error.hpp"
+#include "headlight/targets.hpp"
 #include "passes/environment.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/composite.hpp"
@@ -121,7 +122,7 @@ struct Renderer::Impl {
       gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
     ensure(direct.towardEye, true);
     ensure(direct.diffuse, ssgi.enabled && ssgi.method == SsgiMethod::Radiance);
-    ensure(ssgiRaw, ssgi.enabled && ssgi.blur, ssgi.downsample);
+    ensure(ssgiRaw, ssgi.enabled && ssgi.blur, ssgiDivisor(ssgi.resolution));
     ensure(ssgiTarget, ssgi.enabled);
     ensure(litTarget, true);
   }
@@ -133,13 +134,13 @@ struct Renderer::Impl {
   // Shadow maps are (re)made when the size changes or shadows are turned
   // on; with shadows off the lights read "no map" and nothing is allocated.
   bool needsShadowPass(const LightingSettings& settings) const {
-    return settings.shadows && hasShadowCasters() && shadowMapSize != settings.shadowMapSize;
+    return settings.shadows && hasShadowCasters() && shadowMapSize != *settings.shadowMapSize;
   }
 
   void renderShadows(const LightingSettings& settings) {
     lights = packLights(scene.lights);
-    shadowMaps = shadow.run(*gpuScene, scene.lights, lights, settings.shadowMapSize);
-    shadowMapSize = settings.shadowMapSize;
+    shadowMaps = shadow.run(*gpuScene, scene.lights, lights, *settings.shadowMapSize);
+    shadowMapSize = *settings.shadowMapSize;
     lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
   }
 
@@ -154,7 +155,7 @@ struct Renderer::Impl {
   // The block the direct-light and composite passes read, and the lights.
   void bindLighting(const LightingSettings& settings) {
     gpu::LightingBlock block{};
-    block.ambient = glm::vec4(settings.skyIntensity, 0.0f, float(lights.size()), settings.pcfRadius);
+    block.ambient = glm::vec4(*settings.skyIntensity, 0.0f, float(lights.size()), settings.pcfRadius);
     // 1.5 texels of normal offset: enough to clear acne at the PCF radius's
     // default without visibly detaching shadows.
     block.shadow = glm::vec4(1.5f, 0.0f, float(shadowMaps.size), 0.0f);
@@ -165,26 +166,39 @@ struct Renderer::Impl {
 
   const Camera& chooseCamera(const RenderSettings& settings, const Camera* override, Camera& fitted) const {
     if (override) return *override;
-    if (settings.camera >= 0) {
-      if (std::size_t(settings.camera) >= scene.cameras.size())
-        throw SettingsError("--camera " + std::to_string(settings.camera) + ": " + scene.source + " has " +
+    if (settings.camera) {
+      if (std::size_t(*settings.camera) >= scene.cameras.size())
+        throw SettingsError("--camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
                             std::to_string(scene.cameras.size()) + " camera(s)");
-      return scene.cameras[std::size_t(settings.camera)];
+      return scene.cameras[std::size_t(*settings.camera)];
     }
     if (!scene.cameras.empty()) return scene.cameras.front();
     fitted = fitCamera(scene.worldBounds(), float(settings.width) / float(settings.height));
     return fitted;
   }
 
+  // The GPU texture each frame target is read from; an empty texture (no
+  // emissive target, SSGI off) leaves the target empty.
+  const gl::Texture& sourceOf(const FrameTarget& target) const {
+    static const gl::Texture kNone;
+    const std::pair<ImageF Frame::*, const gl::Texture*> sources[] = {
+        {&Frame::position, &gbuffer.position}, {&Frame::normal, &gbuffer.normal},
+        {&Frame::albedo, &gbuffer.albedo},     {&Frame::material, &gbuffer.material},
+        {&Frame::depth, &gbuffer.depth},       {&Frame::emissive, &gbuffer.emissive},
+        {&Frame::ssgi, &ssgiTarget},           {&Frame::lit, &litTarget}};
+    for (const auto& [image, texture] : sources)
+      if (image == target.image) return *texture;
+    throw GlError("renderer: no GPU source for frame target '" + std::string(target.name) + "'");
+  }
+
   void readTargets(Frame& frame, bool withSsgi) const {
-    frame.position = readColor(gbuffer.position, {"position.X", "position.Y", "position.Z", "A"});
-    frame.normal = readColor(gbuffer.normal, {"normal.X", "normal.Y", "normal.Z"});
-    frame.albedo = readColor(gbuffer.albedo, {"albedo.R", "albedo.G", "albedo.B"});
-    frame.material = readColor(gbuffer.material, {"material.metallic", "material.roughness", "material.occlusion"});
-    frame.depth = readViewDepth(gbuffer.depth, frame.view);
-    if (gbuffer.emissive) frame.emissive = readColor(gbuffer.emissive, {"emissive.R", "emissive.G", "emissive.B"});
-    if (withSsgi) frame.ssgi = readColor(ssgiTarget, {"ao.Y", "indirect.R", "indirect.G", "indirect.B"});
-    frame.lit = readColor(litTarget, {"R", "G", "B", "A"});
+    for (const FrameTarget& target : frameTargets()) {
+      const gl::Texture& source = sourceOf(target);
+      if (!source || (target.image == &Frame::ssgi && !withSsgi)) continue;
+      frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
+                                ? readViewDepth(source, frame.view)
+                                : readColor(source, {target.channels.begin(), target.channels.end()});
+    }
   }
 };
 
@@ -241,11 +255,11 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   // An empty scene has no size; 1 keeps every derived value finite.
   const float sceneRadius = impl_->scene.worldBounds().radius();
   const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
-  if (used.ssgi.radius == 0.0f) used.ssgi.radius = std::max(SsgiSettings::kAutoRadiusFraction * diagonal, 1e-30f);
-  if (used.ssgi.bias == 0.0f) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * used.ssgi.radius;
-  if (used.lighting.shadowMapSize == 0) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
-  if (used.lighting.skyIntensity < 0.0f) used.lighting.skyIntensity = impl_->scene.sky.intensity;
-  if (used.ssgi.indirectStrength < 0.0f)
+  if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
+  if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
+  if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
+  if (!used.lighting.skyIntensity) used.lighting.skyIntensity = impl_->scene.sky.intensity;
+  if (!used.ssgi.indirectStrength)
     used.ssgi.indirectStrength = used.ssgi.method == SsgiMethod::Hemisphere ? 0.5f : 1.0f;
   return used;
 }
@@ -275,8 +289,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
     const gl::Texture* directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, directDiffuse, ssgiOutput, used.ssgi); });
     if (used.ssgi.blur)
-      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, used.ssgi.radius,
-                                                         used.ssgi.downsample); });
+      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, *used.ssgi.radius,
+                                                         ssgiDivisor(used.ssgi.resolution)); });
   }
   timer.run("composite", [&] {
     impl.composite.run(impl.gbuffer, impl.direct.towardEye, used.ssgi.enabled ? &impl.ssgiTarget : nullptr,
@@ -292,21 +306,6 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   frame.sceneSource = impl.scene.source;
   frame.sceneHash = impl.scene.sourceHash;
   return frame;
-}
-
-std::span<const std::string_view> frameTargetNames() {
-  static constexpr std::string_view names[] = {"position", "normal", "albedo", "material",
-                                               "depth",    "emissive", "ssgi", "lit"};
-  return names;
-}
-
-std::vector<std::pair<std::string, const ImageF*>> Frame::targets() const {
-  const ImageF* images[] = {&position, &normal, &albedo, &material, &depth, &emissive, &ssgi, &lit};
-  static_assert(std::size(images) == 8, "one image per frameTargetNames() entry");
-  std::vector<std::pair<std::string, const ImageF*>> list;
-  for (std::size_t i = 0; i < std::size(images); ++i)
-    if (!images[i]->empty()) list.emplace_back(frameTargetNames()[i], images[i]);
-  return list;
 }
 
 }  // namespace headlight

@@ -72,11 +72,13 @@ TEST_CASE("summarize gives median and spread" * doctest::test_suite("bench")) {
 TEST_CASE("bench.csv and bench.json hold every row with its time and error" * doctest::test_suite("bench")) {
   std::vector<BenchRow> rows(2);
   rows[0].scene = "builtin:cornell";
-  rows[0].method = "hemisphere";
+  rows[0].label = "ssgi-method=hemisphere";
+  rows[0].settings = {{"ssgi-method", "hemisphere"}, {"ssgi-samples", "64"}};
   rows[0].frameMs = {12.5, 12, 13};
   rows[0].ao.rmse = 0.1;
   rows[1].scene = "a, \"quoted\" scene";
-  rows[1].method = "radiance";
+  rows[1].label = "ssgi-method=radiance";
+  rows[1].settings = {{"ssgi-method", "radiance"}};
   rows[1].frameMs = {7.25, 7, 8};
   rows[1].ao.rmse = 0.2;
   const auto folder = test::freshFolder("bench");
@@ -87,6 +89,9 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   std::getline(csv, header);
   CHECK(header.find("frame_ms_median") != std::string::npos);
   CHECK(header.find("ao_rmse") != std::string::npos);
+  // One column per setting row, so a new setting reaches the CSV by itself.
+  for (const Option<RenderSettings>& option : settingOptions())
+    CHECK(header.find("," + std::string(option.spec.name) + ",") != std::string::npos);
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
   CHECK(lines == 2);
@@ -96,5 +101,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   CHECK(json["rows"][1]["scene"] == "a, \"quoted\" scene");
   CHECK(json["rows"][1]["frame_ms"]["median"] == 7.25);
   CHECK(json["rows"][0]["ao"]["rmse"] == 0.1);
+  CHECK(json["rows"][0]["settings"]["ssgi-samples"] == "64");
+  CHECK(json["rows"][1]["label"] == "ssgi-method=radiance");
   std::filesystem::remove_all(folder);
 }

@@ -102,7 +102,7 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
 TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("reference") / "out";
-  const Run run = runHeadlight("reference --width 32 --height 24 --samples 64 --strict --out " + quote(out.string()));
+  const Run run = runHeadlight("reference --width 32 --height 24 --reference-samples 64 --strict --out " + quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const std::pair<const char*, const char*> files[] = {
@@ -122,8 +122,9 @@ TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels
 TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("bench") / "out";
-  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --samples 4,16 --radius-scales 1 "
-                               "--blur on --ssgi-resolutions full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
+  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --sweep ssgi-method=hemisphere,radiance "
+                               "--sweep ssgi-samples=4,16 --ssgi-blur "
+                               "--sweep ssgi-resolution=full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
                                quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);

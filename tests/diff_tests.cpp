@@ -276,6 +276,13 @@ TEST_CASE("diff: normals are compared by angle, not per component" * doctest::te
   DiffOptions loose;
   loose.fail = 3;  // degrees
   CHECK(diffImages(a, b, loose).status == DiffStatus::Warn);
+  // The mean bound: every pixel within fail, but the mean of 1.875 degrees
+  // over the table's 1 degree fails once the caller asks for that bound.
+  DiffOptions meanBound = loose;
+  meanBound.failMean = 1.0;
+  const DiffResult tooHighOnAverage = diffImages(a, b, meanBound);
+  CHECK(tooHighOnAverage.status == DiffStatus::Fail);
+  CHECK(tooHighOnAverage.problem.find("mean error 1.875 in normal.angle > failmean 1") != std::string::npos);
   loose.warn = 2.5;
   CHECK(diffImages(a, b, loose).status == DiffStatus::Pass);
   // Components move by at most sin(2 deg) = 0.035: per component, fail 0.05
@@ -526,27 +533,30 @@ TEST_CASE("diff: --out writes a float diff.exr and a diff.png heatmap, atomicall
 }
 
 TEST_CASE("diff: default thresholds by target, overridden by options" * doctest::test_suite("diff")) {
-  CHECK(defaultMetric("normal") == DiffMetric::AngleDegrees);
-  CHECK(defaultMetric("position") == DiffMetric::RelativeToScene);
-  CHECK(defaultMetric("depth") == DiffMetric::RelativeToScene);
-  CHECK(defaultMetric("lit") == DiffMetric::RelativeToValue);
-  CHECK(defaultMetric("albedo") == DiffMetric::Absolute);
-  CHECK(defaultThresholds("normal").fail == 1.0);
-  CHECK(defaultThresholds("ssgi").failPercent == 1.0);
-  // Every target has a row with a reason, and warn <= fail.
-  for (std::string_view target : diffTargetNames()) {
-    CAPTURE(target);
-    const TargetTolerance& row = targetTolerance(target);
-    CHECK(row.target == target);
+  CHECK(targetTolerance("normal").metric == DiffMetric::AngleDegrees);
+  CHECK(targetTolerance("position").metric == DiffMetric::RelativeToScene);
+  CHECK(targetTolerance("depth").metric == DiffMetric::RelativeToScene);
+  CHECK(targetTolerance("lit").metric == DiffMetric::RelativeToValue);
+  CHECK(targetTolerance("albedo").metric == DiffMetric::Absolute);
+  CHECK(targetTolerance("normal").thresholds.fail == 1.0);
+  CHECK(targetTolerance("ssgi").thresholds.failPercent == 1.0);
+  // Every target has a row with a reason, warn <= fail, and a finite mean
+  // bound no looser than what its failPercent allowance could add at full scale.
+  for (const FrameTarget& target : frameTargets()) {
+    CAPTURE(target.name);
+    const FrameTarget& row = targetTolerance(target.name);
+    CHECK(row.name == target.name);
     CHECK(!row.reason.empty());
     CHECK(row.thresholds.warn <= row.thresholds.fail);
+    CHECK(std::isfinite(row.thresholds.failMean));
   }
   // Anything else gets idiff's defaults.
-  const DiffThresholds other = defaultThresholds("golden_beauty");
+  const DiffThresholds other = targetTolerance("golden_beauty").thresholds;
   CHECK(other.fail == 1e-6);
   CHECK(other.failPercent == 0);
   CHECK(std::isinf(other.hardFail));
-  CHECK(targetTolerance("golden_beauty").target.empty());
+  CHECK(std::isinf(other.failMean));
+  CHECK(targetTolerance("golden_beauty").name.empty());
 
   DiffOptions options;
   options.fail = 0.5;
@@ -554,7 +564,7 @@ TEST_CASE("diff: default thresholds by target, overridden by options" * doctest:
   const DiffThresholds resolved = resolveThresholds("lit", options);
   CHECK(resolved.fail == 0.5);
   CHECK(resolved.hardWarn == 2);
-  CHECK(resolved.warn == defaultThresholds("lit").warn);
+  CHECK(resolved.warn == targetTolerance("lit").thresholds.warn);
 }
 
 TEST_CASE("diff: the command's usage errors are exit 5, --help is 0 and lists the exit codes" *

@@ -92,7 +92,7 @@ TEST_CASE("EXR metadata says what produced the image") {
   CHECK(spec.get_string_attribute("headlight:setting:ssgi-samples") == "64");
   // "auto" is recorded as the number it resolved to.
   CHECK(std::stof(spec.get_string_attribute("headlight:setting:ssgi-radius")) ==
-        doctest::Approx(frame.settings.ssgi.radius));
+        doctest::Approx(*frame.settings.ssgi.radius));
   fs::remove_all(folder);
 }
 

@@ -166,7 +166,7 @@ TEST_CASE("SSGI at half and quarter resolution, upsampled by the blur, stays clo
   const Frame full = renderer.render(settings);
   for (int divisor : {2, 4}) {
     CAPTURE(divisor);
-    settings.ssgi.downsample = divisor;
+    settings.ssgi.resolution = divisor == 2 ? SsgiResolution::Half : SsgiResolution::Quarter;
     const Frame reduced = renderer.render(settings);
     REQUIRE(reduced.ssgi.width == 96);  // upsampled to the image size
     double difference = 0;
@@ -367,7 +367,7 @@ TEST_CASE("one renderer across setting and scene changes renders what a fresh on
   renderer.render(changed);
   changed = defaults;
   changed.ssgi.method = SsgiMethod::Radiance;
-  changed.ssgi.downsample = 2;
+  changed.ssgi.resolution = SsgiResolution::Half;
   renderer.render(changed);
   changed = defaults;
   changed.lighting.shadows = false;

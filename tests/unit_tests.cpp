@@ -118,28 +118,29 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
     return std::string("no error");
   };
   CHECK(message({"--width", "0"}) == "--width: must be in 1..16384, got 0");
-  CHECK(message({"--width", "abc"}) == "--width: expected an integer, got 'abc'");
+  CHECK(message({"--width", "abc"}) == "--width: expected an integer in 1..16384, got 'abc'");
   CHECK(message({"--ssgi-samples", "65"}) == "--ssgi-samples: must be in 1..64, got 65");
+  CHECK(message({"--ssgi-radius", "x"}) == "--ssgi-radius: expected auto or a number in 1e-09..1e+09, got 'x'");
   CHECK(message({"--bogus"}).find("unknown option '--bogus'") != std::string::npos);
-  CHECK(message({"--width"}) == "--width needs a value");
-  CHECK(message({"--backend", "vulkan"}).find("expected auto, egl or osmesa") != std::string::npos);
+  CHECK(message({"--width"}) == "--width needs a value (N)");
+  CHECK(message({"--backend", "vulkan"}).find("expected one of auto, egl, osmesa") != std::string::npos);
+  CHECK(message({"--ssgi-method", "bitmask"}) == "--ssgi-method: expected one of hemisphere, radiance, got 'bitmask'");
+  CHECK(message({"--reference-samples", "8"}).find("unknown option") != std::string::npos);  // reference only
   CHECK(message({"a.glb", "b.glb"}).find("more than one scene") != std::string::npos);
   CHECK(message({"--no-ssgi=1"}) == "--no-ssgi takes no value");
 }
 
-TEST_CASE("every setting formats to a value its own parser accepts") {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.25f;
-  for (const SettingOption& option : settingOptions()) {
-    CAPTURE(option.name);
-    if (option.valueName.empty()) continue;
-    RenderSettings copy;
-    CHECK_NOTHROW(option.parse(copy, option.format(settings)));
-    CHECK(option.format(copy) == option.format(settings));
-  }
-  CHECK_NOTHROW(settings.validate());
-  settings.ssgi.sampleCount = 100;
-  CHECK_THROWS_AS(settings.validate(), SettingsError);
+TEST_CASE("\"auto\" is its own value: 0 is a number like any other") {
+  using cli::parseRenderArgs;
+  // The old sentinel encoding turned --ssgi-bias 0 into 5% of the radius.
+  const auto zeroBias = parseRenderArgs({"--ssgi-bias", "0"});
+  REQUIRE(zeroBias.settings.ssgi.bias.has_value());
+  CHECK(*zeroBias.settings.ssgi.bias == 0.0f);
+  CHECK_FALSE(parseRenderArgs({"--ssgi-bias", "auto"}).settings.ssgi.bias.has_value());
+  CHECK_FALSE(RenderSettings{}.ssgi.bias.has_value());
+  // A row that cannot be auto refuses it.
+  CHECK_THROWS_WITH_AS(parseRenderArgs({"--ssgi-samples", "auto"}),
+                       "--ssgi-samples: expected an integer in 1..64, got 'auto'", SettingsError);
 }
 
 TEST_CASE("tone curves map 0 to 0, rise monotonically and stay below 1") {

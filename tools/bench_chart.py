@@ -21,7 +21,9 @@ METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
            ("indirect_rmse", "indirect RMSE vs reference (within R)"),
            ("lit_rel_rmse", "lit relative RMSE vs lit_ref (no R)")]
 MARKERS = {"hemisphere": "o", "radiance": "s"}
-SIZES = {"1": 26, "2": 12, "4": 6}  # SSGI resolution divisor: full-resolution points are the largest
+SIZES = {"full": 26, "half": 12, "quarter": 6}  # SSGI resolution: full-resolution points are the largest
+# Columns are the setting table's row names (bench.csv has one per setting).
+METHOD, BLUR, RESOLUTION = "ssgi-method", "ssgi-blur", "ssgi-resolution"
 
 
 def pareto(points):
@@ -36,9 +38,8 @@ def pareto(points):
 
 
 def describe(r):
-    resolution = {"1": "full", "2": "half", "4": "quarter"}.get(r["ssgi_downsample"], r["ssgi_downsample"])
-    return (f"{r['method']}, {r['samples']} samples, radius x{float(r['radius_scale']):.3g} "
-            f"({float(r['radius']):.3g}), {resolution} res, blur {'on' if r['blur'] == '1' else 'off'}")
+    """The configuration's swept settings, and the radius it resolved to."""
+    return f"{r['label']} (radius {float(r['ssgi-radius']):.3g})"
 
 
 def summary(rows, groups):
@@ -94,16 +95,16 @@ def main():
             ax = axes[row_index][column]
             points = [(float(r["frame_ms_median"]), float(r[metric])) for r in group]
             for method, marker in MARKERS.items():
-                for blur, fill in (("1", "full"), ("0", "none")):
-                    chosen = [(p, r) for p, r in zip(points, group) if r["method"] == method and r["blur"] == blur]
+                for blur, fill in (("on", "full"), ("off", "none")):
+                    chosen = [(p, r) for p, r in zip(points, group) if r[METHOD] == method and r[BLUR] == blur]
                     if not chosen:
                         continue
                     ax.scatter([p[0] for p, _ in chosen], [p[1] for p, _ in chosen], marker=marker,
-                               s=[SIZES.get(r["ssgi_downsample"], 10) for _, r in chosen],
+                               s=[SIZES.get(r[RESOLUTION], 10) for _, r in chosen],
                                facecolors=None if fill == "full" else "none",
                                edgecolors="C0" if method == "hemisphere" else "C1",
                                c=None if fill == "none" else ("C0" if method == "hemisphere" else "C1"),
-                               label=f"{method}, blur {'on' if blur == '1' else 'off'}", alpha=0.8)
+                               label=f"{method}, blur {blur}", alpha=0.8)
             front = pareto(points)
             ax.plot([points[i][0] for i in front], [points[i][1] for i in front], "k-", lw=1, label="Pareto front")
             for p, r in zip(points, group):

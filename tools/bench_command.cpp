@@ -23,72 +23,116 @@ std::string_view benchChartScript();  // tools/bench_chart.py, embedded at build
 namespace headlight::cli {
 namespace {
 
-std::vector<std::string> splitList(const std::string& text) {
+std::vector<std::string> splitList(const std::string& text, char separator) {
   std::vector<std::string> items;
   std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');)
+  for (std::string item; std::getline(stream, item, separator);)
     if (!item.empty()) items.push_back(item);
-  if (items.empty()) throw SettingsError("expected a comma-separated list, got '" + text + "'");
   return items;
-}
-
-template <class Number>
-Number parseNumber(const std::string& flag, const std::string& text, Number low, Number high) {
-  Number value{};
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high) {
-    std::ostringstream message;
-    message << "--" << flag << ": expected a number in " << low << ".." << high << ", got '" << text << "'";
-    throw SettingsError(message.str());
-  }
-  return value;
 }
 
 std::pair<int, int> parseResolution(const std::string& text) {
   const auto x = text.find('x');
   if (x == std::string::npos) throw SettingsError("--resolutions: expected WIDTHxHEIGHT, got '" + text + "'");
-  return {parseNumber<int>("resolutions", text.substr(0, x), 1, 16384),
-          parseNumber<int>("resolutions", text.substr(x + 1), 1, 16384)};
+  const Option<RenderSettings>& width = findOption(settingOptions(), "width");
+  const Option<RenderSettings>& height = findOption(settingOptions(), "height");
+  return {int(std::get<std::int64_t>(parseOptionValue(width.spec, text.substr(0, x)))),
+          int(std::get<std::int64_t>(parseOptionValue(height.spec, text.substr(x + 1))))};
 }
 
-// One configuration of the sweep: a label and the settings it renders with.
-struct Config {
-  RenderSettings settings;
-  float radiusScale = 1;
-  bool seedDefault = false;
-};
+// "NAME=V1,V2,..." against the setting table: each value checked by the row.
+SettingSweep parseSweep(const std::string& text) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw SettingsError("--sweep: expected NAME=V1,V2,... (NAME a render setting), got '" + text + "'");
+  SettingSweep sweep{text.substr(0, equals), {}};
+  const Option<RenderSettings>& row = findOption(settingOptions(), sweep.name);
+  for (const std::string& value : splitList(text.substr(equals + 1), ','))
+    sweep.values.push_back(parseOptionValue(row.spec, value));
+  if (sweep.values.empty()) throw SettingsError("--sweep " + sweep.name + ": no values");
+  return sweep;
+}
 
-std::vector<Config> sweep(const BenchCommand& command, int width, int height, float autoRadius) {
-  std::vector<Config> configs;
-  for (SsgiMethod method : command.methods)
-    for (int samples : command.samples)
-      for (float scale : command.radiusScales)
-        for (int downsample : command.downsamples)
-        for (bool blur : command.blurs) {
-          // Below full resolution the blur is the upsample: it cannot be off.
-          if (downsample > 1 && !blur) continue;
-          Config config;
-          config.settings.ssgi.downsample = downsample;
-          config.settings.width = width;
-          config.settings.height = height;
-          config.settings.ssgi.method = method;
-          config.settings.ssgi.sampleCount = samples;
-          config.settings.ssgi.radius = autoRadius * scale;
-          config.settings.ssgi.blur = blur;
-          config.radiusScale = scale;
-          configs.push_back(config);
-        }
+std::vector<Option<BenchCommand>> benchOptions() {
+  using T = OptionType;
+  using C = BenchCommand;
+  std::vector<Option<C>> rows = commonCommandOptions<C>();
+  rows.push_back(actionOption<C>({.name = "resolutions", .type = T::Text, .help = "image sizes, comma-separated (default 128x96)", .valueName = "WxH,..."},
+                                 [](C& c, const OptionValue& v) {
+                                   c.resolutions.clear();
+                                   for (const auto& item : splitList(std::get<std::string>(v), ','))
+                                     c.resolutions.push_back(parseResolution(item));
+                                 }));
+  rows.push_back(actionOption<C>({.name = "sweep", .type = T::Text, .help = "sweep a render setting over values; repeat for a cartesian product (default: "
+                                  "ssgi-method, ssgi-samples, ssgi-radius-fraction, ssgi-blur, ssgi-resolution)", .valueName = "NAME=V1,V2,..."},
+                                 [](C& c, const OptionValue& v) { c.sweeps.push_back(parseSweep(std::get<std::string>(v))); }));
+  rows.push_back(bindOption<C>({.name = "repetitions", .type = T::Int, .help = "timed frames per configuration", .minimum = 1, .maximum = 1000},
+                               [](auto& c) -> auto& { return c.repetitions; }));
+  rows.push_back(bindOption<C>({.name = "warmup", .type = T::Int, .help = "untimed frames first", .maximum = 1000},
+                               [](auto& c) -> auto& { return c.warmup; }));
+  rows.push_back(bindOption<C>({.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
+                               [](auto& c) -> auto& { return c.chart; }));
+  for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
+  return rows;
+}
+
+std::string configLabel(const std::vector<std::pair<const Option<RenderSettings>*, OptionValue>>& choice) {
+  std::string label;
+  for (const auto& [row, value] : choice)
+    (label += label.empty() ? "" : " ") += std::string(row->spec.name) + "=" + formatOptionValue(row->spec, value);
+  return label;
+}
+
+}  // namespace
+
+std::vector<SettingSweep> defaultBenchSweeps() {
+  return {parseSweep("ssgi-method=hemisphere,radiance"), parseSweep("ssgi-samples=4,8,16,32,64"),
+          parseSweep("ssgi-radius-fraction=0.075,0.15,0.3"), parseSweep("ssgi-blur=on,off"),
+          parseSweep("ssgi-resolution=full,half")};
+}
+
+std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, int height) {
+  const std::vector<SettingSweep> sweeps = command.sweeps.empty() ? defaultBenchSweeps() : command.sweeps;
+  std::vector<BenchConfig> configs;
+  std::vector<std::size_t> index(sweeps.size(), 0);  // an odometer over the sweeps' values
+  for (bool more = true; more;) {
+    BenchConfig config{command.base, "", false};
+    config.settings.width = width;
+    config.settings.height = height;
+    std::vector<std::pair<const Option<RenderSettings>*, OptionValue>> choice;
+    for (std::size_t s = 0; s < sweeps.size(); ++s) {
+      const Option<RenderSettings>& row = findOption(settingOptions(), sweeps[s].name);
+      row.set(config.settings, sweeps[s].values[index[s]]);
+      choice.emplace_back(&row, sweeps[s].values[index[s]]);
+    }
+    config.label = configLabel(choice);
+    try {
+      config.settings.validate();
+      configs.push_back(config);
+    } catch (const SettingsError&) {
+      // A combination the renderer refuses (half resolution without blur).
+    }
+    more = false;
+    for (std::size_t s = sweeps.size(); s-- > 0;) {
+      if (++index[s] < sweeps[s].values.size()) {
+        more = true;
+        break;
+      }
+      index[s] = 0;
+    }
+  }
   // The seed spec's own numbers, whatever the scene's size: the point to beat.
-  Config seed;
+  BenchConfig seed{RenderSettings{}, "preset=seed ssgi-blur=off", true};
   seed.settings.width = width;
   seed.settings.height = height;
   applyPreset(seed.settings, "seed");
   seed.settings.ssgi.blur = false;
-  seed.radiusScale = seed.settings.ssgi.radius / autoRadius;
-  seed.seedDefault = true;
   configs.push_back(seed);
   return configs;
 }
+
+namespace {
 
 class Progress {
  public:
@@ -129,26 +173,27 @@ double ssgiMilliseconds(const Frame& frame) {
   return total;
 }
 
-BenchRow measure(Renderer& renderer, const Config& config, const BenchCommand& command,
-                 const ReferenceImages& reference) {
+// Times one configuration: `warmup` frames, then `repetitions` timed ones.
+Frame timeFrames(Renderer& renderer, const BenchConfig& config, const BenchCommand& command,
+                 std::vector<double>& frameTimes, std::vector<double>& ssgiTimes) {
   for (int i = 0; i < command.warmup; ++i) renderer.render(config.settings);
-  std::vector<double> frameTimes, ssgiTimes;
   Frame frame;
   for (int i = 0; i < command.repetitions; ++i) {
     frame = renderer.render(config.settings);
     frameTimes.push_back(frameMilliseconds(frame));
     ssgiTimes.push_back(ssgiMilliseconds(frame));
   }
+  return frame;
+}
+
+BenchRow measure(const Frame& frame, const BenchConfig& config, const BenchCommand& command,
+                 std::vector<double> frameTimes, std::vector<double> ssgiTimes, const ReferenceImages& reference) {
   BenchRow row;
   row.scene = frame.sceneSource;
   row.width = frame.settings.width;
   row.height = frame.settings.height;
-  row.method = std::string(ssgiMethodName(frame.settings.ssgi.method));
-  row.samples = frame.settings.ssgi.sampleCount;
-  row.radius = frame.settings.ssgi.radius;
-  row.radiusScale = config.radiusScale;
-  row.blur = frame.settings.ssgi.blur;
-  row.downsample = frame.settings.ssgi.downsample;
+  row.label = config.label;
+  row.settings = settingsAsText(frame.settings);
   row.seedDefault = config.seedDefault;
   row.repetitions = command.repetitions;
   row.frameMs = summarize(frameTimes);
@@ -197,77 +242,30 @@ std::string joinArgs(const std::vector<std::string>& args) {
 
 BenchCommand parseBenchArgs(const std::vector<std::string>& args) {
   BenchCommand command;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw SettingsError(arg + " needs a value");
-      return args[++i];
-    };
-    if (arg == "--help") command.help = true;
-    else if (arg == "--out") command.outDir = value();
-    else if (arg == "--resolutions") {
-      command.resolutions.clear();
-      for (const auto& item : splitList(value())) command.resolutions.push_back(parseResolution(item));
-    } else if (arg == "--methods") {
-      command.methods.clear();
-      for (const auto& item : splitList(value())) command.methods.push_back(parseSsgiMethod(item));
-    } else if (arg == "--samples") {
-      command.samples.clear();
-      for (const auto& item : splitList(value())) command.samples.push_back(parseNumber<int>("samples", item, 1, 64));
-    } else if (arg == "--radius-scales") {
-      command.radiusScales.clear();
-      for (const auto& item : splitList(value()))
-        command.radiusScales.push_back(parseNumber<float>("radius-scales", item, 1e-3f, 1e3f));
-    } else if (arg == "--ssgi-resolutions") {
-      command.downsamples.clear();
-      for (const auto& item : splitList(value())) {
-        if (item != "full" && item != "half" && item != "quarter")
-          throw SettingsError("--ssgi-resolutions: expected full, half and/or quarter, got '" + item + "'");
-        command.downsamples.push_back(item == "full" ? 1 : item == "half" ? 2 : 4);
-      }
-    } else if (arg == "--blur") {
-      command.blurs.clear();
-      for (const auto& item : splitList(value())) {
-        if (item != "on" && item != "off") throw SettingsError("--blur: expected on and/or off, got '" + item + "'");
-        command.blurs.push_back(item == "on");
-      }
-    } else if (arg == "--repetitions") command.repetitions = parseNumber<int>("repetitions", value(), 1, 1000);
-    else if (arg == "--warmup") command.warmup = parseNumber<int>("warmup", value(), 0, 1000);
-    else if (arg == "--reference-samples")
-      command.referenceSamples = parseNumber<int>("reference-samples", value(), 1, 1 << 20);
-    else if (arg == "--backend") command.context.backend = parseBackend(value());
-    else if (arg == "--no-chart") command.chart = false;
-    else if (arg == "--quiet") command.quiet = true;
-    else if (!arg.empty() && arg[0] == '-') throw SettingsError("unknown option '" + arg + "' (see headlight bench --help)");
-    else command.scenes.push_back(arg);
-  }
+  const auto options = benchOptions();
+  command.scenes = parseCommandLine<BenchCommand>(args, options, command, "bench");
   if (command.scenes.empty())
     for (const auto& name : builtinSceneNames()) command.scenes.push_back("builtin:" + name);
   return command;
 }
 
 std::string benchHelp() {
-  return "usage: headlight bench [SCENE...] [options]\n\n"
-         "Times every SSGI configuration (median and spread of --repetitions frames after --warmup,\n"
-         "each pass bounded by glFinish) and compares its output with the Embree reference over\n"
-         "geometry pixels. Writes bench.csv, bench.json, bench.png and bench.svg into --out.\n"
-         "Scenes default to the built-ins.\n\noptions:\n"
-         "  --out DIR                 output folder (default bench)\n"
-         "  --resolutions WxH,...     image sizes (default 128x96)\n"
-         "  --methods LIST            hemisphere,radiance (default both)\n"
-         "  --samples LIST            SSGI kernel samples (default 4,8,16,32,64)\n"
-         "  --radius-scales LIST      radius as a multiple of the scene's auto radius (default 0.5,1,2)\n"
-         "  --blur LIST               on,off (default both; below full SSGI resolution always on)\n"
-         "  --ssgi-resolutions LIST   full,half,quarter: SSGI resolution (default full,half)\n"
-         "  --repetitions N           timed frames per configuration (default 5)\n"
-         "  --warmup N                untimed frames first (default 2)\n"
-         "  --reference-samples N     reference rays per pixel (default: the reference's own)\n"
-         "  --backend auto|egl|osmesa headless GL backend\n"
-         "  --no-chart                skip bench.png/svg (needs /usr/bin/python3 with matplotlib)\n"
-         "  --quiet                   no progress bar or table\n"
-         "The seed spec's settings (hemisphere, 64 samples, radius 0.5, bias 0.025, no blur) are always\n"
-         "measured too and marked in the chart.\n\n"
-         "Exit codes: 0 ok, 1 runtime error, 2 usage error.\n";
+  const BenchCommand defaults;
+  const auto options = benchOptions();
+  const std::size_t settingsStart = options.size() - settingOptions().size();
+  std::string help =
+      "usage: headlight bench [SCENE...] [options]\n\n"
+      "Times every SSGI configuration (median and spread of --repetitions frames after --warmup,\n"
+      "each pass bounded by glFinish) and compares its output with the Embree reference over\n"
+      "geometry pixels. Writes bench.csv, bench.json, bench.png and bench.svg into --out.\n"
+      "Scenes default to the built-ins. A configuration is the render settings below with one\n"
+      "combination of the --sweep values, e.g. --sweep ssgi-samples=4,8,16 --sweep ssgi-method=radiance.\n"
+      "The seed spec's settings (hemisphere, 64 samples, radius 0.5, bias 0.025, no blur) are always\n"
+      "measured too and marked in the chart. Exit codes: 0 ok, 1 runtime error, 2 usage error.\n\noptions:\n";
+  help += optionHelp<BenchCommand>(std::span(options).first(settingsStart), defaults);
+  help += "\nrender settings every configuration starts from (any of them can be swept):\n";
+  help += optionHelp<BenchCommand>(std::span(options).subspan(settingsStart), defaults);
+  return help;
 }
 
 int runBenchCommand(const std::vector<std::string>& args) {
@@ -280,30 +278,28 @@ int runBenchCommand(const std::vector<std::string>& args) {
   Context context(command.context);
   Renderer renderer(context);
   std::vector<BenchRow> rows;
-  const std::size_t configsPerGroup = sweep(command, 1, 1, 1.0f).size();
-  Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !command.quiet);
+  const bool quiet = command.verbosity == Verbosity::Quiet;
+  const std::size_t configsPerGroup = benchConfigs(command, 1, 1).size();
+  Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !quiet);
   std::size_t done = 0;
   for (const std::string& sceneName : command.scenes) {
     renderer.setScene(loadScene(sceneName));
     for (const auto& [width, height] : command.resolutions) {
-      RenderSettings base;
-      base.width = width;
-      base.height = height;
-      const float autoRadius = renderer.resolve(base).ssgi.radius;
-      const Frame gbufferFrame = renderer.render(base);
-      std::map<float, ReferenceImages> references;  // by radius
-      for (const Config& config : sweep(command, width, height, autoRadius)) {
-        const float radius = config.settings.ssgi.radius;
+      // The reference depends on the radius the frame used (and the
+      // G-buffer, the same for every configuration of one camera and size).
+      std::map<float, ReferenceImages> references;
+      for (const BenchConfig& config : benchConfigs(command, width, height)) {
+        progress.update(done, sceneName + " " + config.label);
+        std::vector<double> frameTimes, ssgiTimes;
+        const Frame frame = timeFrames(renderer, config, command, frameTimes, ssgiTimes);
+        const float radius = *frame.settings.ssgi.radius;
         if (!references.count(radius)) {
           progress.update(done, sceneName + " reference R=" + std::to_string(radius));
-          ReferenceSettings settings;
-          if (command.referenceSamples > 0) settings.samplesPerPixel = command.referenceSamples;
+          ReferenceSettings settings = command.reference;
           settings.radius = radius;
-          references.emplace(radius, traceReference(renderer.scene(), gbufferFrame, settings));
+          references.emplace(radius, traceReference(renderer.scene(), frame, settings));
         }
-        progress.update(done, sceneName + " " + std::string(ssgiMethodName(config.settings.ssgi.method)) + " s" +
-                                  std::to_string(config.settings.ssgi.sampleCount));
-        rows.push_back(measure(renderer, config, command, references.at(radius)));
+        rows.push_back(measure(frame, config, command, frameTimes, ssgiTimes, references.at(radius)));
         ++done;
       }
     }
@@ -315,7 +311,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   std::filesystem::create_directories(out);
   writeBenchCsv(rows, out / "bench.csv");
   writeBenchJson(rows, joinArgs(args), out / "bench.json");
-  if (!command.quiet) std::cout << (out / "bench.csv").string() << "\n" << (out / "bench.json").string() << "\n";
+  if (!quiet) std::cout << (out / "bench.csv").string() << "\n" << (out / "bench.json").string() << "\n";
   if (command.chart && !drawChart(out / "bench.csv", out))
     throw IoError((out / "bench.png").string() + ": the chart script failed (is python3-matplotlib installed?)");
   return 0;

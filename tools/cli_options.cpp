@@ -1,104 +1,68 @@
 #include "cli_options.hpp"
 
-#include <charconv>
-#include <functional>
-#include <optional>
 #include <sstream>
 
+#include "bench_command.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
 
 namespace headlight::cli {
 namespace {
 
-struct CliFlag {
-  bool referenceOnly;
-  const char* name;
-  const char* valueName;  // empty for a switch
-  const char* help;
-  std::function<void(RenderCommand&, const std::string&)> apply;
-};
+constexpr std::string_view kBackendNames[] = {"auto", "egl", "osmesa"};
 
-int parseCount(const char* name, const std::string& text, int low, int high) {
-  int value = 0;
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
-    throw SettingsError(std::string("--") + name + ": expected an integer in " + std::to_string(low) + ".." +
-                        std::to_string(high) + ", got '" + text + "'");
-  return value;
-}
+std::string text(const OptionValue& value) { return std::get<std::string>(value); }
 
-const std::vector<CliFlag>& cliFlags() {
-  static const std::vector<CliFlag> flags{
-      {false, "out", "DIR", "folder for the EXRs and preview.png (default: out)",
-       [](RenderCommand& c, const std::string& v) { c.outDir = v; }},
-      {false, "backend", "auto|egl|osmesa", "headless GL backend (default: auto = EGL, then OSMesa)",
-       [](RenderCommand& c, const std::string& v) { c.context.backend = parseBackend(v); }},
-      {false, "device", "N", "EGL device index (EGL_EXT_device_enumeration); default: the first that works",
-       [](RenderCommand& c, const std::string& v) { c.context.eglDevice = parseCount("device", v, 0, 1 << 16); }},
-      {false, "preset", "fast|default|high|seed", "named settings; flags after it override it",
-       [](RenderCommand& c, const std::string& v) { applyPreset(c.settings, v); }},
-      {false, "allow-external-paths", "", "let glTF URIs point outside the scene file's folder",
-       [](RenderCommand& c, const std::string&) { c.allowExternalPaths = true; }},
-      {false, "strict", "", "treat OpenGL errors as fatal (default: warn)",
-       [](RenderCommand& c, const std::string&) { c.context.errorPolicy = GlErrorPolicy::Throw; }},
-      {false, "quiet", "", "print nothing but errors", [](RenderCommand& c, const std::string&) { c.verbosity = Verbosity::Quiet; }},
-      {false, "verbose", "", "print the GL backend, renderer and each pass's time",
-       [](RenderCommand& c, const std::string&) { c.verbosity = Verbosity::Verbose; }},
-      {true, "samples", "N", "reference rays per pixel (1..1048576; default 4096)",
-       [](RenderCommand& c, const std::string& v) { c.referenceSamples = parseCount("samples", v, 1, 1 << 20); }},
-      {false, "help", "", "this help", [](RenderCommand& c, const std::string&) { c.help = true; }},
-  };
-  return flags;
-}
-
-// Splits "--name=value" and "--name value"; returns false if `arg` is no flag.
-bool splitFlag(const std::string& arg, std::string& name, std::optional<std::string>& inlineValue) {
-  if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) return false;
-  const auto equals = arg.find('=');
-  name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
-  if (equals != std::string::npos) inlineValue = arg.substr(equals + 1);
-  return true;
+std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
+  using T = OptionType;
+  using C = RenderCommand;
+  std::vector<Option<C>> rows = commonCommandOptions<C>();
+  rows.push_back(actionOption<C>({.name = "preset", .type = T::Choice, .help = "named settings; flags after it override it", .choices = presetNames()},
+                                 [](C& c, const OptionValue& v) { applyPreset(c.settings, text(v)); }));
+  rows.push_back(bindOption<C>({.name = "allow-external-paths", .type = T::Switch, .help = "let glTF URIs point outside the scene file's folder"},
+                               [](auto& c) -> auto& { return c.allowExternalPaths; }));
+  if (kind == CommandKind::Reference)
+    for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  for (auto& row : liftOptions(settingOptions(), &C::settings)) rows.push_back(std::move(row));
+  return rows;
 }
 
 }  // namespace
 
+template <class Command>
+std::vector<Option<Command>> commonCommandOptions() {
+  using T = OptionType;
+  using C = Command;
+  return {
+      bindOption<C>({.name = "out", .type = T::Text, .help = "folder for the output files", .valueName = "DIR"},
+                    [](auto& c) -> auto& { return c.outDir; }),
+      actionOption<C>({.name = "backend", .type = T::Choice, .help = "headless GL backend (auto: EGL, then OSMesa)", .choices = kBackendNames},
+                      [](C& c, const OptionValue& v) { c.context.backend = parseBackend(text(v)); },
+                      [](const C& c) { return OptionValue(std::string(backendName(c.context.backend))); }),
+      actionOption<C>({.name = "device", .type = T::Int, .help = "EGL device index (EGL_EXT_device_enumeration)", .maximum = 1 << 16, .autoMeaning = "the first that works"},
+                      [](C& c, const OptionValue& v) {
+                        if (std::holds_alternative<std::int64_t>(v)) c.context.eglDevice = int(std::get<std::int64_t>(v));
+                      }),
+      actionOption<C>({.name = "strict", .type = T::Switch, .help = "treat OpenGL errors as fatal (default: warn)"},
+                      [](C& c, const OptionValue&) { c.context.errorPolicy = GlErrorPolicy::Throw; }),
+      actionOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing but errors"},
+                      [](C& c, const OptionValue&) { c.verbosity = Verbosity::Quiet; }),
+      actionOption<C>({.name = "verbose", .type = T::Switch, .help = "print the GL backend, renderer and each pass's time"},
+                      [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
+      bindOption<C>({.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
+  };
+}
+template std::vector<Option<RenderCommand>> commonCommandOptions<RenderCommand>();
+template std::vector<Option<BenchCommand>> commonCommandOptions<BenchCommand>();
+
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind) {
   RenderCommand command;
   command.context.errorPolicy = GlErrorPolicy::Warn;
-  bool sceneGiven = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string name;
-    std::optional<std::string> inlineValue;
-    if (!splitFlag(args[i], name, inlineValue)) {
-      if (args[i].size() > 1 && args[i][0] == '-') throw SettingsError("unknown option '" + args[i] + "'");
-      if (sceneGiven) throw SettingsError("more than one scene given: '" + command.scene + "' and '" + args[i] + "'");
-      command.scene = args[i];
-      sceneGiven = true;
-      continue;
-    }
-    auto takeValue = [&](bool needsValue) -> std::string {
-      if (!needsValue) {
-        if (inlineValue) throw SettingsError(std::string("--") + name + " takes no value");
-        return {};
-      }
-      if (inlineValue) return *inlineValue;
-      if (i + 1 >= args.size()) throw SettingsError(std::string("--") + name + " needs a value");
-      return args[++i];
-    };
-    bool known = false;
-    for (const CliFlag& flag : cliFlags()) {
-      if (name != flag.name || (flag.referenceOnly && kind != CommandKind::Reference)) continue;
-      flag.apply(command, takeValue(*flag.valueName != '\0'));
-      known = true;
-    }
-    for (const SettingOption& option : settingOptions()) {
-      if (name != option.name) continue;
-      option.parse(command.settings, takeValue(!option.valueName.empty()));
-      known = true;
-    }
-    if (!known) throw SettingsError("unknown option '--" + name + "' (see headlight render --help)");
-  }
+  const auto options = renderCommandOptions(kind);
+  const std::vector<std::string> scenes =
+      parseCommandLine<RenderCommand>(args, options, command, kind == CommandKind::Render ? "render" : "reference");
+  if (scenes.size() > 1) throw SettingsError("more than one scene given: '" + scenes[0] + "' and '" + scenes[1] + "'");
+  if (!scenes.empty()) command.scene = scenes[0];
   return command;
 }
 
@@ -117,21 +81,13 @@ std::string renderHelp(CommandKind kind) {
   out << "Built-in scenes:";
   for (const std::string& name : builtinSceneNames()) out << " builtin:" << name;
   out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
-  auto line = [&](std::string_view name, std::string_view value, std::string_view help) {
-    std::string left = "  --";
-    left += name;
-    if (!value.empty()) (left += " ") += value;
-    if (left.size() < 34) left.resize(34, ' ');
-    else left += "\n" + std::string(34, ' ');
-    out << left << help << "\n";
-  };
-  for (const CliFlag& flag : cliFlags())
-    if (!flag.referenceOnly || kind == CommandKind::Reference) line(flag.name, flag.valueName, flag.help);
-  out << "\nrender settings (also recorded in every EXR's metadata):\n";
-  const RenderSettings defaults;
-  for (const SettingOption& option : settingOptions())
-    line(option.name, option.valueName,
-         std::string(option.help) + (option.valueName.empty() ? "" : " [default: " + option.format(defaults) + "]"));
+  RenderCommand defaults;
+  defaults.context.errorPolicy = GlErrorPolicy::Warn;
+  const auto rows = renderCommandOptions(kind);
+  const std::size_t settingsStart = rows.size() - settingOptions().size();
+  out << optionHelp<RenderCommand>(std::span(rows).first(settingsStart), defaults);
+  out << "\nrender settings (also recorded in every EXR's metadata as headlight:setting:NAME):\n";
+  out << optionHelp<RenderCommand>(std::span(rows).subspan(settingsStart), defaults);
   return out.str();
 }
 

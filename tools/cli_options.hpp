@@ -1,11 +1,15 @@
 #pragma once
-// Command-line parsing for `headlight render`. Render settings come from the
-// library's one table (settingOptions()); the flags here are only the CLI's
-// own (where to write, which backend, how chatty).
+// Command-line parsing for `headlight render` and `reference`. Render
+// settings are the library's one table (settingOptions()), reference
+// settings referenceOptions(); the rows here are only the CLI's own (where
+// to write, which backend, how chatty). Every row goes through the library's
+// one parser (parseCommandLine) and one help writer (optionHelp).
 #include <string>
 #include <vector>
 
 #include "headlight/context.hpp"
+#include "headlight/options.hpp"
+#include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
 
 namespace headlight::cli {
@@ -23,11 +27,17 @@ struct RenderCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   RenderSettings settings;
-  int referenceSamples = 4096;  // reference only: rays per pixel (ReferenceSettings' default)
+  ReferenceSettings reference;  // `reference` only
 };
 
-// Parses the arguments after "render". Throws SettingsError for a bad or
-// unknown flag or value (the CLI maps it to exit code 2).
+// The CLI's own rows shared by every command that renders (out, backend,
+// device, strict, quiet, verbose, help). `Command` is any struct with
+// outDir, context, verbosity and help members.
+template <class Command>
+std::vector<Option<Command>> commonCommandOptions();
+
+// Parses the arguments after "render" (or "reference"). Throws SettingsError
+// for a bad or unknown flag or value (the CLI maps it to exit code 2).
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind = CommandKind::Render);
 
 // `headlight render --help` (or reference's), generated from the same tables.

@@ -16,6 +16,7 @@
 
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
+#include "headlight/options.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -38,18 +39,6 @@ struct DiffCommand {
   bool help = false;
 };
 
-double parseNumber(const std::string& flag, const std::string& text, double highest) {
-  double value = 0;
-  const char* begin = text.data();
-  const char* end = begin + text.size();
-  if (!text.empty() && text[0] == '+') ++begin;  // from_chars takes no '+'
-  auto [stop, error] = std::from_chars(begin, end, value);
-  if (error != std::errc() || stop != end || std::isnan(value) || value < 0 || value > highest)
-    throw UsageError{"--" + flag + ": expected a number in 0.." + (std::isinf(highest) ? "inf" : std::to_string(int(highest))) +
-                     ", got '" + text + "'"};
-  return value;
-}
-
 std::vector<std::string> parseChannels(const std::string& text) {
   std::vector<std::string> names;
   std::stringstream stream(text);
@@ -61,83 +50,64 @@ std::vector<std::string> parseChannels(const std::string& text) {
   return names;
 }
 
-struct DiffFlag {
-  const char* name;
-  const char* valueName;  // empty for a switch
-  const char* help;
-  std::function<void(DiffCommand&, const std::string& flag, const std::string& value)> apply;
-};
+// The target table's names, for --target's choices.
+std::span<const std::string_view> targetNames() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> list;
+    for (const FrameTarget& target : frameTargets()) list.push_back(target.name);
+    return list;
+  }();
+  return names;
+}
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+// A threshold row: a number, or "auto" for the target's default (the table's).
+Option<DiffCommand> threshold(std::string_view name, std::string_view help, double maximum,
+                              std::optional<double> DiffOptions::*field) {
+  return bindOption<DiffCommand>({.name = name,
+                                  .type = OptionType::Float,
+                                  .help = help,
+                                  .maximum = maximum,
+                                  .autoMeaning = "the target's default (table below)"},
+                                 [field](auto& c) -> auto& { return c.options.*field; });
+}
 
-const std::vector<DiffFlag>& diffFlags() {
-  static const std::vector<DiffFlag> flags{
-      {"fail", "T", "a pixel fails when any channel's error > T",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.fail = parseNumber(f, v, kInf); }},
-      {"failpercent", "P", "FAIL when more than P % of the pixels fail (0..100)",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.failPercent = parseNumber(f, v, 100); }},
-      {"hardfail", "H", "FAIL when any error > H, however few pixels (inf = off)",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.hardFail = parseNumber(f, v, kInf); }},
-      {"warn", "T", "a pixel warns when any channel's error > T",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.warn = parseNumber(f, v, kInf); }},
-      {"warnpercent", "P", "WARN when more than P % of the pixels warn (0..100)",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.warnPercent = parseNumber(f, v, 100); }},
-      {"hardwarn", "H", "WARN when any error > H (inf = off)",
-       [](DiffCommand& c, const std::string& f, const std::string& v) { c.options.hardWarn = parseNumber(f, v, kInf); }},
-      {"channels", "c1,c2,...", "compare only these channels (file mode only)",
-       [](DiffCommand& c, const std::string&, const std::string& v) { c.options.channels = parseChannels(v); }},
-      {"target", "NAME", "use NAME's row of the default table (file mode only; default: A's file stem)",
-       [](DiffCommand& c, const std::string&, const std::string& v) {
-         // A typo would silently fall back to idiff's defaults: refuse it.
-         std::string names;
-         for (std::string_view name : diffTargetNames()) {
-           if (name == v) {
-             c.options.target = v;
-             return;
-           }
-           names += (names.empty() ? "" : ", ") + std::string(name);
-         }
-         throw UsageError{"--target: expected one of " + names + ", got '" + v + "'"};
-       }},
-      {"out", "PATH", "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH",
-       [](DiffCommand& c, const std::string&, const std::string& v) {
-         if (v.empty()) throw UsageError{"--out: expected a path"};
-         c.out = v;
-       }},
-      {"json", "", "print one JSON object instead of the table",
-       [](DiffCommand& c, const std::string&, const std::string&) { c.json = true; }},
-      {"quiet", "", "print nothing on stdout (the exit code tells); errors still go to stderr",
-       [](DiffCommand& c, const std::string&, const std::string&) { c.quiet = true; }},
-      {"help", "", "this help", [](DiffCommand& c, const std::string&, const std::string&) { c.help = true; }},
+const std::vector<Option<DiffCommand>>& diffOptions() {
+  using T = OptionType;
+  using C = DiffCommand;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  static const std::vector<Option<C>> rows{
+      threshold("fail", "a pixel fails when any channel's error > this", kInf, &DiffOptions::fail),
+      threshold("failpercent", "FAIL when more than this % of the pixels fail", 100, &DiffOptions::failPercent),
+      threshold("hardfail", "FAIL when any error > this, however few pixels (inf = off)", kInf, &DiffOptions::hardFail),
+      threshold("failmean", "FAIL when any channel's mean error > this (inf = off)", kInf, &DiffOptions::failMean),
+      threshold("warn", "a pixel warns when any channel's error > this", kInf, &DiffOptions::warn),
+      threshold("warnpercent", "WARN when more than this % of the pixels warn", 100, &DiffOptions::warnPercent),
+      threshold("hardwarn", "WARN when any error > this (inf = off)", kInf, &DiffOptions::hardWarn),
+      actionOption<C>({.name = "channels", .type = T::Text, .help = "compare only these channels (file mode only)", .valueName = "c1,c2,..."},
+                      [](C& c, const OptionValue& v) { c.options.channels = parseChannels(std::get<std::string>(v)); }),
+      // A typo would silently fall back to idiff's defaults: a choice refuses it.
+      actionOption<C>({.name = "target", .type = T::Choice, .help = "use this row of the default table (file mode only; default: A's file stem)", .choices = targetNames()},
+                      [](C& c, const OptionValue& v) { c.options.target = std::get<std::string>(v); }),
+      actionOption<C>({.name = "out", .type = T::Text, .help = "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH", .valueName = "PATH"},
+                      [](C& c, const OptionValue& v) {
+                        if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
+                        c.out = std::get<std::string>(v);
+                      }),
+      bindOption<C>({.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
+                    [](auto& c) -> auto& { return c.json; }),
+      bindOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing on stdout (the exit code tells); errors still go to stderr"},
+                    [](auto& c) -> auto& { return c.quiet; }),
+      bindOption<C>({.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
   };
-  return flags;
+  return rows;
 }
 
 DiffCommand parseDiffArgs(const std::vector<std::string>& args) {
   DiffCommand command;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) {
-      if (arg.size() > 1 && arg[0] == '-') throw UsageError{"unknown option '" + arg + "'"};
-      command.paths.push_back(arg);
-      continue;
-    }
-    const auto equals = arg.find('=');
-    const std::string name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
-    const DiffFlag* flag = nullptr;
-    for (const DiffFlag& candidate : diffFlags())
-      if (name == candidate.name) flag = &candidate;
-    if (!flag) throw UsageError{"unknown option '--" + name + "'"};
-    std::string value;
-    if (*flag->valueName == '\0') {
-      if (equals != std::string::npos) throw UsageError{"--" + name + " takes no value"};
-    } else if (equals != std::string::npos) {
-      value = arg.substr(equals + 1);
-    } else {
-      if (i + 1 >= args.size()) throw UsageError{"--" + name + " needs a value (" + flag->valueName + ")"};
-      value = args[++i];
-    }
-    flag->apply(command, name, value);
+  try {
+    command.paths = parseCommandLine<DiffCommand>(args, diffOptions(), command, "diff");
+  } catch (const SettingsError& error) {
+    throw UsageError{error.what()};
   }
   if (command.help) return command;
   if (command.paths.size() != 2)
@@ -243,7 +213,7 @@ std::string verdictLine(const DirectoryDiff& d) {
 json num(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 json toJson(const DiffThresholds& t) {
-  return {{"fail", num(t.fail)},         {"fail_percent", num(t.failPercent)}, {"hard_fail", num(t.hardFail)},
+  return {{"fail", num(t.fail)},         {"fail_percent", num(t.failPercent)}, {"hard_fail", num(t.hardFail)}, {"fail_mean", num(t.failMean)},
           {"warn", num(t.warn)},         {"warn_percent", num(t.warnPercent)}, {"hard_warn", num(t.hardWarn)}};
 }
 
@@ -390,26 +360,22 @@ std::string diffHelp() {
          "  0 pass   1 warn   2 fail   3 structural mismatch (size, channel names, target in one folder only)\n"
          "  4 file error (missing or unreadable file or folder, diff image not written)   5 usage error\n\n"
          "options:\n";
-  for (const DiffFlag& flag : diffFlags()) {
-    std::string left = "  --";
-    left += flag.name;
-    if (*flag.valueName) (left += " ") += flag.valueName;
-    if (left.size() < 26) left.resize(26, ' ');
-    else left += "\n" + std::string(26, ' ');
-    out << left << flag.help << "\n";
-  }
+  out << optionHelp<DiffCommand>(diffOptions(), DiffCommand{});
   out << "\ndefault thresholds by target (A's file stem; units are the metric's):\n";
   char line[256];
-  std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s\n", "target", "metric", "warn", "fail", "failpct",
-                "hardfail");
+  std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s %9s\n", "target", "metric", "warn", "fail", "failpct",
+                "failmean", "hardfail");
   out << line;
-  for (const TargetTolerance& row : targetTolerances()) {
+  auto printRow = [&](const FrameTarget& row) {
     const DiffThresholds& t = row.thresholds;
-    std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s\n", row.target.empty() ? "(other)" : row.target.data(),
+    std::snprintf(line, sizeof line, "  %-9s %-18s %8s %8s %9s %9s %9s\n",
+                  row.name.empty() ? "(other)" : std::string(row.name).c_str(),
                   std::string(metricName(row.metric)).c_str(), number(t.warn).c_str(), number(t.fail).c_str(),
-                  number(t.failPercent).c_str(), number(t.hardFail).c_str());
+                  number(t.failPercent).c_str(), number(t.failMean).c_str(), number(t.hardFail).c_str());
     out << line;
-  }
+  };
+  for (const FrameTarget& row : frameTargets()) printRow(row);
+  printRow(unknownTargetRow());
   out << "  (warnpercent 0 and hardwarn inf everywhere; reasons in docs/DIFF.md)\n"
          "relative-to-scene: error / A's headlight:far (coverage channel A absolute);\n"
          "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors.\n"

@@ -99,9 +99,8 @@ int runReference(const std::vector<std::string>& args) {
   Renderer renderer(context);
   renderer.setScene(std::move(scene));
   const Frame frame = renderer.render(command.settings);
-  ReferenceSettings settings;
-  settings.samplesPerPixel = command.referenceSamples;
-  settings.radius = frame.settings.ssgi.radius;
+  ReferenceSettings settings = command.reference;
+  settings.radius = *frame.settings.ssgi.radius;
   const ReferenceImages reference = traceReference(renderer.scene(), frame, settings);
   const ExrAttributes metadata{
       {"headlight:reference:samplesPerPixel", std::to_string(reference.samplesPerPixel)},

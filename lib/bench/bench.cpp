@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "headlight/error.hpp"
+#include "headlight/settings.hpp"
 #include "output/atomic_file.hpp"
 
 namespace headlight {
@@ -148,8 +149,10 @@ std::string machineDescription() {
 
 namespace {
 
-const char* kCsvHeader =
-    "scene,width,height,method,samples,radius,radius_scale,blur,ssgi_downsample,seed_default,repetitions,"
+// Settings columns (width and height among them) come between these, one per setting row.
+const char* kCsvHeaderStart = "scene,label,";
+const char* kCsvHeaderEnd =
+    "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
     "ao_rmse,ao_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
     "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
@@ -165,15 +168,22 @@ std::string csvField(const std::string& text) {
 
 void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::path& path) {
   std::ostringstream out;
-  out << std::setprecision(6) << kCsvHeader << "\n";
-  for (const BenchRow& r : rows)
-    out << csvField(r.scene) << ',' << r.width << ',' << r.height << ',' << r.method << ',' << r.samples << ','
-        << r.radius << ',' << r.radiusScale << ',' << r.blur << ',' << r.downsample << ',' << r.seedDefault << ',' << r.repetitions << ','
+  out << std::setprecision(6) << kCsvHeaderStart;
+  for (const Option<RenderSettings>& option : settingOptions()) out << option.spec.name << ',';
+  out << kCsvHeaderEnd << "\n";
+  for (const BenchRow& r : rows) {
+    out << csvField(r.scene) << ',' << csvField(r.label) << ',';
+    for (const Option<RenderSettings>& option : settingOptions()) {
+      const auto value = r.settings.find(std::string(option.spec.name));
+      out << (value == r.settings.end() ? "" : csvField(value->second)) << ',';
+    }
+    out << r.seedDefault << ',' << r.repetitions << ','
         << r.frameMs.median << ',' << r.frameMs.minimum << ',' << r.frameMs.maximum << ',' << r.ssgiMs.median << ','
         << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ',' << r.ao.rmse << ',' << r.ao.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
         << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
         << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+  }
   detail::writeTextAtomically(path, out.str());
 }
 
@@ -189,12 +199,8 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
     json["rows"].push_back({{"scene", r.scene},
                             {"width", r.width},
                             {"height", r.height},
-                            {"method", r.method},
-                            {"samples", r.samples},
-                            {"radius", r.radius},
-                            {"radius_scale", r.radiusScale},
-                            {"blur", r.blur},
-                            {"ssgi_downsample", r.downsample},
+                            {"label", r.label},
+                            {"settings", r.settings},
                             {"seed_default", r.seedDefault},
                             {"repetitions", r.repetitions},
                             {"frame_ms", summary(r.frameMs)},

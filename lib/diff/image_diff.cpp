@@ -26,53 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The default table. Common to every row:
-//  - failPercent 0.5 (ssgi 1): a silhouette pixel can flip between geometry
-//    and background on another rasterizer (tie-breaking, interpolation), and
-//    a flipped pixel can take any error; 0.5 % is a few times the share of
-//    silhouette pixels in the builtin scenes at 64x48 and above.
-//  - hardFail / hardWarn off (inf) for the same reason; same-driver suites
-//    can pass --hardfail.
-//  - warnPercent 0 (idiff's): WARN means "something exceeds the noise floor
-//    somewhere; look at diff.png", which is what warn is for.
-constexpr DiffThresholds rowThresholds(double warn, double fail, double failPercent) {
-  DiffThresholds t;
-  t.warn = warn;
-  t.fail = fail;
-  t.failPercent = failPercent;
-  return t;
-}
-
-const std::array<TargetTolerance, 9> kTolerances{{
-    {"position", DiffMetric::RelativeToScene, rowThresholds(1e-5, 1e-3, 0.5),
-     "float32 world positions over the view's far distance: drivers interpolate a few float ulps apart "
-     "(< 1e-5); 1e-3 of the view depth is a real geometry or camera change. Coverage A compared absolutely."},
-    {"normal", DiffMetric::AngleDegrees, rowThresholds(0.1, 1.0, 0.5),
-     "angle in degrees: half storage quantizes unit vectors to ~0.03 deg; 1 deg moves a sharp highlight, "
-     "and normal-map or TBN bugs cost many degrees. Components would weigh the axes unequally."},
-    {"albedo", DiffMetric::Absolute, rowThresholds(2e-3, 1e-2, 0.5),
-     "linear 0..1 from 8-bit sRGB textures: one 8-bit step is 3e-4..9e-3 linear, so texture filtering on "
-     "another GPU moves values by up to ~1e-2; more is a material or texture change."},
-    {"material", DiffMetric::Absolute, rowThresholds(2e-3, 1e-2, 0.5),
-     "metallic/roughness/occlusion stored in 8 bits (step 1/255 = 3.9e-3): any step warns, more than two "
-     "steps fails."},
-    {"depth", DiffMetric::RelativeToScene, rowThresholds(1e-5, 1e-3, 0.5),
-     "view-space depth over the far distance, like position: depth precision scales with distance; "
-     "background holds the far plane in both images."},
-    {"emissive", DiffMetric::RelativeToValue, rowThresholds(2e-3, 2e-2, 0.5),
-     "HDR radiance (emissiveStrength can be large): absolute below 1, relative above; half storage rounds "
-     "at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
-    {"ssgi", DiffMetric::Absolute, rowThresholds(5e-3, 5e-2, 1.0),
-     "AO and indirect in 0..~1: seeded and repeatable on one driver, but one of 64 kernel samples landing "
-     "on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade. 1 % of pixels: "
-     "samples flip at every depth discontinuity."},
-    {"lit", DiffMetric::RelativeToValue, rowThresholds(2e-3, 2e-2, 0.5),
-     "linear HDR radiance: absolute below 1, relative above (a highlight of 50 may move by 1); half "
-     "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},
-    {"", DiffMetric::Absolute, DiffThresholds{},
-     "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."},
-}};
-
 std::string number(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
@@ -305,6 +258,12 @@ void buildDifference(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const Met
   }
 }
 
+const ChannelDiff* worstMean(const DiffResult& r) {
+  const auto worst = std::max_element(r.channels.begin(), r.channels.end(),
+                                      [](const ChannelDiff& a, const ChannelDiff& b) { return a.meanError < b.meanError; });
+  return worst == r.channels.end() ? nullptr : &*worst;
+}
+
 // idiff's verdict, plus NaN/Inf (which compare() skips when both images
 // have one at the same place, and does not count as failing otherwise).
 void judge(DiffResult& r) {
@@ -328,6 +287,10 @@ void judge(DiffResult& r) {
   } else if (r.maxError > t.hardFail) {
     r.status = DiffStatus::Fail;
     r.problem = "max error " + number(r.maxError) + where() + " > hardfail " + number(t.hardFail);
+  } else if (const ChannelDiff* worst = worstMean(r); worst && worst->meanError > t.failMean) {
+    r.status = DiffStatus::Fail;
+    r.problem = "mean error " + number(worst->meanError) + " in " + worst->name + " > failmean " + number(t.failMean) +
+                " (the pixels within the allowance differ by too much)";
   } else if (double(r.warningPixels) > t.warnPercent / 100.0 * pixels) {
     r.status = DiffStatus::Warn;
     r.problem = percent(r.warningPercent) + " of pixels (" + std::to_string(r.warningPixels) + ") have error > warn " +
@@ -363,23 +326,20 @@ std::string_view metricName(DiffMetric metric) {
   return "?";
 }
 
-std::span<const TargetTolerance> targetTolerances() { return kTolerances; }
-
-const TargetTolerance& targetTolerance(std::string_view target) {
-  for (const TargetTolerance& row : kTolerances)
-    if (row.target == target) return row;
-  return kTolerances.back();
+const FrameTarget& targetTolerance(std::string_view target) {
+  const FrameTarget* row = findFrameTarget(target);
+  return row ? *row : unknownTargetRow();
 }
 
-DiffThresholds defaultThresholds(std::string_view target) { return targetTolerance(target).thresholds; }
-DiffMetric defaultMetric(std::string_view target) { return targetTolerance(target).metric; }
-std::span<const std::string_view> diffTargetNames() { return frameTargetNames(); }
-
 DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options) {
-  DiffThresholds t = defaultThresholds(target);
+  DiffThresholds t = targetTolerance(target).thresholds;
+  // A mean bound below a per-pixel bound the caller chose would overrule it
+  // (every pixel within --fail, the mean above): an explicit --fail raises it.
+  if (options.fail) t.failMean = std::max(t.failMean, *options.fail);
   if (options.fail) t.fail = *options.fail;
   if (options.failPercent) t.failPercent = *options.failPercent;
   if (options.hardFail) t.hardFail = *options.hardFail;
+  if (options.failMean) t.failMean = *options.failMean;
   if (options.warn) t.warn = *options.warn;
   if (options.warnPercent) t.warnPercent = *options.warnPercent;
   if (options.hardWarn) t.hardWarn = *options.hardWarn;
@@ -392,7 +352,7 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
   result.a = a;
   result.b = b;
   result.target = options.target.empty() ? a.stem().string() : options.target;
-  const TargetTolerance& row = targetTolerance(result.target);
+  const FrameTarget& row = targetTolerance(result.target);
   result.metric = row.metric;
   result.thresholds = resolveThresholds(result.target, options);
 
@@ -496,7 +456,8 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
     }
   }
   if (diff.status == DiffStatus::FileError) return diff;
-  for (std::string_view target : frameTargetNames()) {
+  for (const FrameTarget& row : frameTargets()) {
+    const std::string_view target = row.name;
     const std::string file = std::string(target) + ".exr";
     const bool inA = fs::exists(a / file, error), inB = fs::exists(b / file, error);
     if (!inA && !inB) continue;
@@ -508,7 +469,7 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
     missing.a = a / file;
     missing.b = b / file;
     missing.target = std::string(target);
-    missing.metric = defaultMetric(target);
+    missing.metric = row.metric;
     missing.thresholds = resolveThresholds(target, options);
     missing.status = DiffStatus::Structural;
     missing.problem = file + " is in " + (inA ? a : b).string() + " only";

@@ -9,6 +9,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "headlight/targets.hpp"
 #include "output/atomic_file.hpp"
 
 namespace headlight {
@@ -48,8 +49,7 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
   spec.attribute("headlight:conventions",
                  "right-handed world, +Y up; camera looks down -Z; rows top first; depth.Z = view-space depth");
   // As used: "auto" values appear as the numbers they resolved to.
-  for (const SettingOption& option : settingOptions())
-    spec.attribute("headlight:setting:" + std::string(option.name), option.format(frame.settings));
+  for (const auto& [name, value] : settingsAsText(frame.settings)) spec.attribute(std::string(kSettingAttributePrefix) + name, value);
 }
 
 std::string summarize(const fs::path& path, const ImageF& image, const char* type) {
@@ -115,23 +115,33 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir) 
   fs::create_directories(outDir, error);
   if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
   std::vector<WrittenFile> written;
-  for (const auto& [name, image] : frame.targets()) {
-    // Position and depth keep float32: half has 11 bits, too few for world
-    // coordinates far from the origin.
-    const bool halfFloat = name != "position" && name != "depth";
-    written.push_back(writeExr(frame, *image, outDir / (name + ".exr"), halfFloat));
+  for (const FrameTarget& target : frameTargets()) {
+    const ImageF& image = frame.*target.image;
+    if (!image.empty())
+      written.push_back(
+          writeExr(frame, image, outDir / (std::string(target.name) + ".exr"), target.storage == ExrStorage::Half));
   }
   written.push_back(writePreview(frame, outDir / "preview.png"));
   // A target this frame lacks (ssgi with SSGI off, emissive for a scene
   // without glow) must not survive from an earlier render into the folder,
   // where a diff would take it for this one's.
-  const auto made = frame.targets();
-  for (std::string_view name : frameTargetNames()) {
-    const bool present = std::any_of(made.begin(), made.end(), [&](const auto& t) { return t.first == name; });
+  for (const FrameTarget& target : frameTargets()) {
     std::error_code ignored;
-    if (!present) fs::remove(outDir / (std::string(name) + ".exr"), ignored);
+    if ((frame.*target.image).empty()) fs::remove(outDir / (std::string(target.name) + ".exr"), ignored);
   }
   return written;
+}
+
+std::map<std::string, std::string> readSettingAttributes(const fs::path& exr) {
+  auto input = OIIO::ImageInput::open(exr.string());
+  if (!input) throw IoError(exr.string() + ": cannot read: " + OIIO::geterror());
+  std::map<std::string, std::string> settings;
+  for (const OIIO::ParamValue& attribute : input->spec().extra_attribs) {
+    const std::string name = attribute.name().string();
+    if (name.rfind(kSettingAttributePrefix, 0) == 0)
+      settings[name.substr(kSettingAttributePrefix.size())] = attribute.get_string();
+  }
+  return settings;
 }
 
 }  // namespace headlight

@@ -73,8 +73,8 @@ void SsgiPass::updateKernel(const SsgiSettings& settings) {
 void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
                    const SsgiSettings& settings) {
   updateKernel(settings);
-  const glm::vec4 params(settings.radius, settings.bias, settings.intensity, settings.indirectStrength);
-  const glm::ivec4 counts(settings.sampleCount, settings.downsample, 0, 0);
+  const glm::vec4 params(*settings.radius, *settings.bias, settings.intensity, *settings.indirectStrength);
+  const glm::ivec4 counts(settings.sampleCount, ssgiDivisor(settings.resolution), 0, 0);
   block_.update(&params, sizeof(params), offsetof(gpu::SsgiBlock, params));
   block_.update(&counts, sizeof(counts), offsetof(gpu::SsgiBlock, counts));
 

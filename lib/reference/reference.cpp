@@ -38,6 +38,15 @@
 
 namespace headlight {
 
+std::span<const Option<ReferenceSettings>> referenceOptions() {
+  static const Option<ReferenceSettings> rows[] = {
+      bindOption<ReferenceSettings>(
+          {"reference-samples", OptionType::Int, "reference rays per pixel (cosine-weighted hemisphere)", 1, 1 << 20},
+          [](auto& s) -> auto& { return s.samplesPerPixel; }),
+  };
+  return rows;
+}
+
 #if !HEADLIGHT_HAS_EMBREE
 
 bool referenceAvailable() { return false; }
@@ -52,7 +61,6 @@ namespace {
 
 using namespace reference;
 
-constexpr int kMaxSamplesPerPixel = 1048576;
 // Specular ambient: a quarter as many GGX rays as cosine rays, at least 16
 // (below that the split-sum weights kd are too noisy for a 1-spp preview).
 constexpr int kMinSpecularSamples = 16;
@@ -73,9 +81,7 @@ void checkImage(const ImageF& image, const char* name, int width, int height, in
 }
 
 void validate(const Frame& frame, const ReferenceSettings& settings) {
-  if (settings.samplesPerPixel < 1 || settings.samplesPerPixel > kMaxSamplesPerPixel)
-    throw SettingsError("traceReference: samplesPerPixel must be in 1..1048576, got " +
-                        std::to_string(settings.samplesPerPixel));
+  for (const Option<ReferenceSettings>& option : referenceOptions()) checkOptionValue(option.spec, option.get(settings));
   if (!(settings.radius > 0.0f) || !std::isfinite(settings.radius))
     throw SettingsError("traceReference: radius must be a finite number > 0 (world units), got " +
                         std::to_string(settings.radius));
@@ -700,7 +706,7 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
       traced.scene.get(),
       traced.instances,
       rayEpsilon(scene),
-      frame.settings.lighting.skyIntensity >= 0.0f ? frame.settings.lighting.skyIntensity : scene.sky.intensity,
+      frame.settings.lighting.skyIntensity.value_or(scene.sky.intensity),
       std::max(kMinSpecularSamples, settings.samplesPerPixel / 4)};
   const Outputs outputs{images, aoStandardError, indirectStandardError};
 

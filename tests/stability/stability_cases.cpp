@@ -61,7 +61,7 @@ void forGeometryPixels(const Frame& frame, int margin, Visit&& visit) {
 ReferenceImages traceTruth(const Renderer& renderer, const Frame& frame) {
   ReferenceSettings settings;
   settings.samplesPerPixel = kReferenceSamples;
-  settings.radius = frame.settings.ssgi.radius;  // "within R" of the SSGI the frame used
+  settings.radius = *frame.settings.ssgi.radius;  // "within R" of the SSGI the frame used
   return traceReference(renderer.scene(), frame, settings);
 }
 
@@ -231,7 +231,7 @@ CaseResult cameraInsideRadius(Renderer& renderer, SsgiMethod method) {
   // Measured mean lit luminance: 0.056 hemisphere, 0.043 radiance; 1e-3 is
   // "not all zero".
   result.checks.push_back(atLeast("mean lit luminance", pixels ? litSum / double(pixels) : 0.0, 1e-3));
-  result.notes.push_back({"SSGI radius / eye-to-wall distance", frame.settings.ssgi.radius / 0.1});
+  result.notes.push_back({"SSGI radius / eye-to-wall distance", *frame.settings.ssgi.radius / 0.1});
   result.panels.push_back(aoPanel("AO", frame.ssgi, frame));
   if (referenceAvailable()) {
     const ReferenceImages truth = traceTruth(renderer, frame);
@@ -385,7 +385,7 @@ CaseResult depthDiscontinuity(Renderer& renderer, SsgiMethod method) {
   // The halo cannot reach further than the kernel: the radius projected at
   // the wall's depth (8 units), plus the blur's 2 pixels.
   const float focalPixels = float(height) / (2.0f * std::tan(0.5f * 0.6f));
-  const double kernelReach = frame.settings.ssgi.radius * focalPixels / 8.0f + 2.0;
+  const double kernelReach = *frame.settings.ssgi.radius * focalPixels / 8.0f + 2.0;
   // Measured halo width: 1 px (both methods), far inside the reach: the
   // kernel's cosine weighting keeps most samples near the pixel, and the
   // blur's depth weight stops the halo spreading. 3 = measured + the blur's
@@ -572,7 +572,7 @@ CaseResult resolutionEdges(Renderer& renderer, SsgiMethod method) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height) +
                              (downsample > 1 ? ", SSGI 1/" + std::to_string(downsample) : std::string());
     RenderSettings settings = caseSettings(method, width, height);
-    settings.ssgi.downsample = downsample;
+    settings.ssgi.resolution = downsample == 4 ? SsgiResolution::Quarter : SsgiResolution::Full;
     const Frame frame = renderer.render(settings);
     long long wrongSizes = 0;
     for (const auto& [name, image] : frame.targets())

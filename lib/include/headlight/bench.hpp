@@ -3,6 +3,7 @@
 // metrics over geometry pixels, the Pareto front of (time, error), and the
 // CSV/JSON rows. The sweep itself lives in tools/bench_command.cpp.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,12 +51,10 @@ struct BenchRow {
   std::string scene;
   int width = 0;
   int height = 0;
-  std::string method;       // "hemisphere", "radiance"
-  int samples = 0;          // SSGI kernel samples
-  double radius = 0;        // world units, as used
-  double radiusScale = 0;   // radius / the scene's auto radius
-  bool blur = false;
-  int downsample = 1;       // SSGI resolution divisor: 1 full, 2 half, 4 quarter
+  std::string label;        // the swept settings' values, e.g. "ssgi-method=radiance ssgi-samples=16"
+  // Every render setting as used (auto values resolved), by the setting
+  // table's row names: one CSV column each, so a new setting needs no change here.
+  std::map<std::string, std::string> settings;
   bool seedDefault = false;  // the seed spec's settings (hemisphere, 64, radius 0.5, bias 0.025, no blur)
   int repetitions = 0;
   Summary frameMs;          // passes of one frame (G-buffer to composite), shadows cached, readback excluded

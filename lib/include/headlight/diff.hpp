@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "headlight/frame.hpp"
+#include "headlight/targets.hpp"
 
 namespace headlight {
 
@@ -44,53 +45,15 @@ std::string_view statusName(DiffStatus status);  // "pass", "warn", "fail", "str
 inline int exitCode(DiffStatus status) { return int(status); }
 inline constexpr int kDiffExitUsage = 5;
 
-// How a pixel's error is measured. Every metric is turned into images EA and
-// EB whose absolute difference is the error, so ImageBufAlgo::compare does
-// the counting for all of them.
-enum class DiffMetric {
-  Absolute,         // |a - b|
-  RelativeToScene,  // |a - b| / scale, scale = A's headlight:far (see DiffResult::scaleSource);
-                    // a coverage channel ("A") stays absolute
-  RelativeToValue,  // |a - b| / max(1, |a|): absolute below 1, relative above (HDR radiance)
-  AngleDegrees,     // angle between the 3-channel vectors of A and B, in degrees; one channel
-                    // "<prefix>.angle"; 0 when both are zero vectors, 180 when only one is
-};
-
 std::string_view metricName(DiffMetric metric);  // "absolute", "relative-to-scene", ...
 
-// idiff's options and idiff's defaults. Units are the metric's.
-struct DiffThresholds {
-  double fail = 1e-6;         // >= 0; a pixel fails when any channel's error > fail
-  double failPercent = 0;     // 0..100; FAIL when more than this % of pixels fail
-  double hardFail = std::numeric_limits<double>::infinity();  // >= 0; FAIL when any error > hardFail
-  double warn = 1e-6;         // >= 0
-  double warnPercent = 0;     // 0..100
-  double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
-};
-
-// One row of the per-target default table.
-struct TargetTolerance {
-  std::string_view target;  // file stem; "" for the row used for any other name
-  DiffMetric metric = DiffMetric::Absolute;
-  DiffThresholds thresholds;
-  std::string_view reason;  // why these numbers (printed by --help, copied in docs/DIFF.md)
-};
-
-// The table: position, normal, albedo, material, depth, emissive, ssgi, lit,
-// then the fallback row ("") with idiff's defaults.
-std::span<const TargetTolerance> targetTolerances();
-
-// The row for `target`, or the fallback row for a name not in the table.
-const TargetTolerance& targetTolerance(std::string_view target);
-DiffThresholds defaultThresholds(std::string_view target);
-DiffMetric defaultMetric(std::string_view target);
-
-// The target names directory mode looks for, as <name>.exr.
-std::span<const std::string_view> diffTargetNames();
+// The frame-target table's row for `target` (headlight/targets.hpp): its
+// metric, thresholds and reason; unknownTargetRow() for any other name.
+const FrameTarget& targetTolerance(std::string_view target);
 
 struct DiffOptions {
   // Each set value replaces the target's default (the CLI's --fail, ...).
-  std::optional<double> fail, failPercent, hardFail, warn, warnPercent, hardWarn;
+  std::optional<double> fail, failPercent, hardFail, failMean, warn, warnPercent, hardWarn;
   // Channels to compare, by name, in this order; empty = every channel. A
   // name missing from either image is a Structural result.
   std::vector<std::string> channels;
@@ -149,10 +112,10 @@ struct DirectoryDiff {
   DiffStatus status = DiffStatus::Pass;  // the worst of `targets`, or FileError (see problem)
   std::string problem;                   // set when a folder is missing or holds no target
   std::filesystem::path a, b;
-  std::vector<DiffResult> targets;  // in diffTargetNames() order; a target in one folder only is Structural
+  std::vector<DiffResult> targets;  // in frameTargets() order; a target in one folder only is Structural
 };
 
-// Compares every <target>.exr of diffTargetNames() present in either folder.
+// Compares every <target>.exr of frameTargets() present in either folder.
 // options.target and options.channels must be empty (each file uses its own
 // row); throws std::invalid_argument otherwise.
 DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesystem::path& b,

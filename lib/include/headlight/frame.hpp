@@ -52,12 +52,9 @@ struct Frame {
   std::string sceneSource;  // file path or builtin name
   std::string sceneHash;
 
-  // Every non-empty target with its file stem ("position", ..., "lit").
+  // Every non-empty target with its file stem ("position", ..., "lit"), in
+  // the order of frameTargets() (headlight/targets.hpp).
   std::vector<std::pair<std::string, const ImageF*>> targets() const;
 };
-
-// Every target a frame can have, in Frame's order: the file stems of
-// `render`'s EXRs, and the names headlight diff's directory mode looks for.
-std::span<const std::string_view> frameTargetNames();
 
 }  // namespace headlight

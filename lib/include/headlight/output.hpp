@@ -5,7 +5,9 @@
 // temporary name in the same folder and renamed into place, so a crash or
 // Ctrl-C never leaves a half-written file under a final name.
 #include <filesystem>
+#include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "headlight/frame.hpp"
@@ -28,6 +30,13 @@ using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 // selects half.
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat,
                      const ExrAttributes& extra = {});
+
+// Every EXR records each render setting as used (auto values resolved) as
+// the string attribute headlight:setting:<row name> (settingsAsText).
+inline constexpr std::string_view kSettingAttributePrefix = "headlight:setting:";
+// Those attributes of `exr`, by row name: applySettingsText(settings, ...)
+// re-creates the settings a file was rendered with. Throws IoError.
+std::map<std::string, std::string> readSettingAttributes(const std::filesystem::path& exr);
 
 // The lit image tonemapped (frame.settings.tonemap, .exposure) to 8-bit sRGB.
 WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);

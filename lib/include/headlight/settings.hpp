@@ -1,11 +1,18 @@
 #pragma once
-// Render settings: plain structs with in-class defaults and a range comment.
-// Every setting a user can change is also a row of settingOptions(), the one
-// table that the CLI's flags, its --help and the EXR metadata all read.
-#include <functional>
+// Render settings: plain structs with in-class defaults. Each field a user
+// can set is one row of settingOptions() (settings.cpp), which holds its
+// flag name, type, range, help and whether it may be "auto"; the CLI's flags
+// and --help, bench sweeps, the EXR metadata and embedding code all read
+// that table. A setting that may be "auto" is a std::optional: std::nullopt
+// is resolved from the scene or the image by Renderer::resolve, and a frame's
+// settings have every optional filled in.
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+
+#include "headlight/options.hpp"
 
 namespace headlight {
 
@@ -14,62 +21,68 @@ enum class SsgiMethod {
   Radiance,    // the same occlusion test, gathering the occluders' direct Lambertian radiance
 };
 
+// The resolution the SSGI pass runs at; below full, the blur pass is also a
+// depth-aware upsample.
+enum class SsgiResolution { Full, Half, Quarter };
+int ssgiDivisor(SsgiResolution resolution);  // 1, 2, 4
+
 struct SsgiSettings {
   bool enabled = true;
   SsgiMethod method = SsgiMethod::Hemisphere;
-  int sampleCount = 64;          // kernel samples per pixel, 1..64 (the seed's 64)
-  float radius = 0.0f;           // world units, > 0; 0 = auto: kAutoRadiusFraction x scene diagonal
-  float bias = 0.0f;             // world units, >= 0; 0 = auto: kAutoBiasFraction x radius
-  float intensity = 1.0f;        // 0..~4: occlusion is multiplied by this before 1 - x
-  float indirectStrength = -1;   // 0..4: the one-bounce term is multiplied by this; -1 = auto:
-                                 // the seed's 0.5 for hemisphere, 1 (the estimator itself) for radiance
-  unsigned seed = 1;             // kernel and noise random seed (fixed: renders are repeatable)
-  bool blur = true;              // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
-  int downsample = 1;            // SSGI resolution divisor per side: 1 full, 2 half, 4 quarter; below
-                                 // full resolution the blur pass is also the (depth-aware) upsample
-
+  int sampleCount = 64;  // kernel samples per pixel (the seed's 64; at most the shader's kMaxKernelSamples)
+  // World units. Auto: radiusFraction x the scene's bounding-box diagonal.
+  std::optional<float> radius;
   // The seed's fixed 0.5 assumed a scene a few units across; a radius that
-  // follows the scene works from millimetres to kilometres. 0.15 of the
-  // diagonal gives 0.52 on the Cornell box, the seed's value for that size.
-  static constexpr float kAutoRadiusFraction = 0.15f;
+  // follows the scene works from millimetres to kilometres. 0.15 gives 0.52
+  // on the Cornell box, the seed's value for that size.
+  float radiusFraction = 0.15f;
+  std::optional<float> bias;  // world units; auto: kAutoBiasFraction x radius
+  float intensity = 1.0f;     // occlusion is multiplied by this before 1 - x
+  // The one-bounce term is multiplied by this; auto: the seed's 0.5 for
+  // hemisphere, 1 (the estimator itself) for radiance.
+  std::optional<float> indirectStrength;
+  unsigned seed = 1;  // kernel and noise random seed (fixed: renders are repeatable)
+  bool blur = true;   // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
+  SsgiResolution resolution = SsgiResolution::Full;
+
   // The seed's ratio of bias to radius (0.025 / 0.5).
   static constexpr float kAutoBiasFraction = 0.05f;
 };
 
 struct LightingSettings {
-  bool shadows = true;     // shadow maps for lights that cast shadows
-  int shadowMapSize = 0;   // texels per side, 64..8192; 0 = auto: longer image side to the next power of two, 512..2048
-  float pcfRadius = 1.5f;  // shadow filter radius in texels, 0..8
-  float skyIntensity = -1.0f;  // >= 0 overrides the scene's sky intensity; -1 = the scene's
+  bool shadows = true;                 // shadow maps for lights that cast shadows
+  std::optional<int> shadowMapSize;    // texels per side; auto: longer image side to the next power of two, 512..2048
+  float pcfRadius = 1.5f;              // shadow filter radius in texels
+  std::optional<float> skyIntensity;   // auto: the scene's sky intensity
 };
 
 enum class Tonemap { Aces, Reinhard };
 
 struct RenderSettings {
-  int width = 640;    // pixels, 1..16384, width x height at most 2^26
-  int height = 480;   // pixels, 1..16384
-  int camera = -1;    // glTF camera index; -1 = the scene's first camera, or one fitted to the bounds
+  int width = 640;                 // pixels; width x height at most 2^26
+  int height = 480;                // pixels
+  std::optional<int> camera;       // glTF camera index; auto: the scene's first camera, or one fitted to the bounds
   SsgiSettings ssgi;
   LightingSettings lighting;
   Tonemap tonemap = Tonemap::Aces;  // preview.png only; lit.exr stays linear
   float exposure = 0.0f;            // EV, preview.png only
 
-  // Throws SettingsError naming the setting, the allowed range and the value.
+  // Checks every row's range and the rules between settings; throws
+  // SettingsError naming the setting, the allowed range and the value.
   void validate() const;
 };
 
-std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance"
-SsgiMethod parseSsgiMethod(std::string_view name);   // throws SettingsError
+// The one table: every user-settable field of RenderSettings, in help order.
+std::span<const Option<RenderSettings>> settingOptions();
 
-// One user-settable setting. `parse` throws SettingsError for a bad value.
-struct SettingOption {
-  std::string_view name;       // CLI flag without the leading "--"
-  std::string_view valueName;  // e.g. "N", "auto|FLOAT"; empty for a switch
-  std::string_view help;
-  std::function<void(RenderSettings&, std::string_view value)> parse;
-  std::function<std::string(const RenderSettings&)> format;
-};
-std::span<const SettingOption> settingOptions();
+std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance" (the table's choice names)
+
+// Every setting as text, by row name ("ssgi-radius" -> "0.52"): what the EXR
+// metadata records (as headlight:setting:<name>) and bench rows carry.
+std::map<std::string, std::string> settingsAsText(const RenderSettings& settings);
+// The inverse: applies each named value onto `settings` (unknown names are
+// an error, so a typo in a settings file is not silently ignored).
+void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values);
 
 // Named presets: "fast" (radiance, 16 samples, SSGI at half resolution),
 // "default", "high" (radiance, 64 samples, larger shadow maps), "seed" (the

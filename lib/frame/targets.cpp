@@ -1,0 +1,101 @@
+// The frame-target table (headlight/targets.hpp). Common to every row's
+// thresholds:
+//  - failPercent 0.5 (ssgi 1): a silhouette pixel can flip between geometry
+//    and background on another rasterizer (tie-breaking, interpolation), and
+//    a flipped pixel can take any error; 0.5 % is a few times the share of
+//    silhouette pixels in the builtin scenes at 64x48 and above.
+//  - failMean: those flipped pixels may differ, but not without limit: the
+//    mean over all pixels stays within what 0.5 % of full-scale flips add
+//    (about fail, or 0.5 % of the metric's full scale where that is larger).
+//  - hardFail / hardWarn off (inf) for the same reason; same-driver suites
+//    can pass --hardfail.
+//  - warnPercent 0 (idiff's): WARN means "something exceeds the noise floor
+//    somewhere; look at diff.png", which is what warn is for.
+#include "headlight/targets.hpp"
+
+#include <algorithm>
+
+namespace headlight {
+namespace {
+
+constexpr DiffThresholds thresholds(double warn, double fail, double failPercent, double failMean) {
+  DiffThresholds t;
+  t.warn = warn;
+  t.fail = fail;
+  t.failPercent = failPercent;
+  t.failMean = failMean;
+  return t;
+}
+
+constexpr std::string_view kPositionChannels[] = {"position.X", "position.Y", "position.Z", "A"};
+constexpr std::string_view kNormalChannels[] = {"normal.X", "normal.Y", "normal.Z"};
+constexpr std::string_view kAlbedoChannels[] = {"albedo.R", "albedo.G", "albedo.B"};
+constexpr std::string_view kMaterialChannels[] = {"material.metallic", "material.roughness", "material.occlusion"};
+constexpr std::string_view kDepthChannels[] = {"depth.Z"};
+constexpr std::string_view kEmissiveChannels[] = {"emissive.R", "emissive.G", "emissive.B"};
+constexpr std::string_view kSsgiChannels[] = {"ao.Y", "indirect.R", "indirect.G", "indirect.B"};
+constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
+
+using M = DiffMetric;
+using G = GpuFormat;
+using E = ExrStorage;
+
+const FrameTarget kTargets[] = {
+    {"position", &Frame::position, kPositionChannels, G::Rgba32F, E::Float, M::RelativeToScene,
+     thresholds(1e-5, 1e-3, 0.5, 5e-3),
+     "world position, A = 1 on geometry. float32 (GPU and EXR): half's 11 bits are too few far from the origin. "
+     "Error over the view's far distance: drivers interpolate a few float ulps apart (< 1e-5); 1e-3 of the view "
+     "depth is a real geometry or camera change; a silhouette flip can cost ~1, so the mean allows 5e-3. "
+     "Coverage A compared absolutely."},
+    {"normal", &Frame::normal, kNormalChannels, G::Rgba16F, E::Half, M::AngleDegrees,
+     thresholds(0.1, 1.0, 0.5, 1.0),
+     "world unit normal. Angle in degrees: half storage quantizes unit vectors to ~0.03 deg; 1 deg moves a sharp "
+     "highlight, and normal-map or TBN bugs cost many degrees. Components would weigh the axes unequally."},
+    {"albedo", &Frame::albedo, kAlbedoChannels, G::Srgb8Alpha8, E::Half, M::Absolute,
+     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "linear base colour, 0..1, from 8-bit sRGB textures: one 8-bit step is 3e-4..9e-3 linear, so texture "
+     "filtering on another GPU moves values by up to ~1e-2; more is a material or texture change."},
+    {"material", &Frame::material, kMaterialChannels, G::Rgba8, E::Half, M::Absolute,
+     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "metallic/roughness/occlusion stored in 8 bits (step 1/255 = 3.9e-3): any step warns, more than two steps "
+     "fails."},
+    {"depth", &Frame::depth, kDepthChannels, G::Depth32F, E::Float, M::RelativeToScene,
+     thresholds(1e-5, 1e-3, 0.5, 5e-3),
+     "view-space depth (distance along -Z), far plane on background; float32 like position. Error over the far "
+     "distance: depth precision scales with distance."},
+    {"emissive", &Frame::emissive, kEmissiveChannels, G::Rgba16F, E::Half, M::RelativeToValue,
+     thresholds(2e-3, 2e-2, 0.5, 2e-2),
+     "emitted radiance, only for scenes that glow. HDR (emissiveStrength can be large): absolute below 1, relative "
+     "above; half storage rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
+    {"ssgi", &Frame::ssgi, kSsgiChannels, G::Rgba16F, E::Half, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
+     "AO and one-bounce indirect, 0..~1; absent with SSGI off. Seeded and repeatable on one driver, but one of 64 "
+     "kernel samples landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible "
+     "shade. 1 % of pixels: samples flip at every depth discontinuity."},
+    {"lit", &Frame::lit, kLitChannels, G::Rgba16F, E::Half, M::RelativeToValue, thresholds(2e-3, 2e-2, 0.5, 2e-2),
+     "linear HDR radiance, A = coverage: absolute below 1, relative above (a highlight of 50 may move by 1); half "
+     "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},
+};
+
+const FrameTarget kUnknownTarget{"", nullptr, {}, G::Rgba16F, E::Half, M::Absolute, DiffThresholds{},
+                                 "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."};
+
+}  // namespace
+
+std::span<const FrameTarget> frameTargets() { return kTargets; }
+
+const FrameTarget* findFrameTarget(std::string_view name) {
+  const auto found = std::find_if(std::begin(kTargets), std::end(kTargets),
+                                  [&](const FrameTarget& target) { return target.name == name; });
+  return found == std::end(kTargets) ? nullptr : &*found;
+}
+
+const FrameTarget& unknownTargetRow() { return kUnknownTarget; }
+
+std::vector<std::pair<std::string, const ImageF*>> Frame::targets() const {
+  std::vector<std::pair<std::string, const ImageF*>> list;
+  for (const FrameTarget& target : frameTargets())
+    if (!(this->*target.image).empty()) list.emplace_back(target.name, &(this->*target.image));
+  return list;
+}
+
+}  // namespace headlight

@@ -1,0 +1,68 @@
+#pragma once
+// The one table of frame targets: what each output is, how the GPU stores
+// it, how its EXR stores it and how a regression diff judges it. The
+// renderer's readback, writeFrame, headlight diff's defaults, its directory
+// mode and the tests all read this table; adding a target is one row here, a
+// Frame member, and the pass that draws it (docs/PIPELINE.md, "Adding a target").
+#include <limits>
+#include <span>
+#include <string_view>
+
+#include "headlight/frame.hpp"
+
+namespace headlight {
+
+// How a pixel's error is measured by headlight diff. Every metric is turned
+// into images EA and EB whose absolute difference is the error, so
+// OpenImageIO's compare does the counting for all of them.
+enum class DiffMetric {
+  Absolute,         // |a - b|
+  RelativeToScene,  // |a - b| / scale, scale = A's headlight:far (see DiffResult::scaleSource);
+                    // a coverage channel ("A") stays absolute
+  RelativeToValue,  // |a - b| / max(1, |a|): absolute below 1, relative above (HDR radiance)
+  AngleDegrees,     // angle between the 3-channel vectors of A and B, in degrees; one channel
+                    // "<prefix>.angle"; 0 when both are zero vectors, 180 when only one is
+};
+
+// idiff's options and idiff's defaults, plus a bound on the mean error. Units
+// are the metric's.
+struct DiffThresholds {
+  double fail = 1e-6;      // >= 0; a pixel fails when any channel's error > fail
+  double failPercent = 0;  // 0..100; FAIL when more than this % of pixels fail
+  double hardFail = std::numeric_limits<double>::infinity();  // >= 0; FAIL when any error > hardFail
+  // FAIL when any channel's mean error over all pixels exceeds this: the
+  // failPercent allowance lets a few pixels differ, this bounds by how much
+  // (0.5 % of pixels each wrong by E raise the mean by E / 200).
+  double failMean = std::numeric_limits<double>::infinity();
+  double warn = 1e-6;      // >= 0
+  double warnPercent = 0;  // 0..100
+  double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
+};
+
+// The GPU texture a target is read back from (the G-buffer pass and the
+// renderer allocate exactly these; lib/gl maps them to GL enums).
+enum class GpuFormat { Rgba32F, Rgba16F, Srgb8Alpha8, Rgba8, Depth32F };
+
+// What the EXR stores: float32 where half's 11 bits are too few.
+enum class ExrStorage { Half, Float };
+
+struct FrameTarget {
+  std::string_view name;                       // file stem (<name>.exr), and headlight diff's row name
+  ImageF Frame::*image = nullptr;              // where a Frame keeps it; null for the diff fallback row
+  std::span<const std::string_view> channels;  // EXR channel names, in order
+  GpuFormat gpuFormat = GpuFormat::Rgba16F;
+  ExrStorage storage = ExrStorage::Half;
+  DiffMetric metric = DiffMetric::Absolute;
+  DiffThresholds thresholds;
+  std::string_view reason;  // why this storage, metric and these thresholds (diff --help, docs/DIFF.md)
+};
+
+// Every target a frame can have, in output order.
+std::span<const FrameTarget> frameTargets();
+// The row named `name`, or nullptr.
+const FrameTarget* findFrameTarget(std::string_view name);
+// The row headlight diff uses for a file that is no headlight target:
+// idiff's defaults (absolute, warn = fail = 1e-6, no allowance).
+const FrameTarget& unknownTargetRow();
+
+}  // namespace headlight

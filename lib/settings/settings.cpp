@@ -1,0 +1,141 @@
+#include "headlight/settings.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "headlight/error.hpp"
+#include "shared_layout.h"
+
+namespace headlight {
+namespace {
+
+// Choice names, in the order of the enums' enumerators.
+constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance"};
+constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
+constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
+constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
+
+// The largest image side; width x height is further bounded in validate().
+constexpr double kMaxImageSide = 16384;
+
+using Row = Option<RenderSettings>;
+
+template <class Access>
+Row row(OptionSpec spec, Access access) {
+  return bindOption<RenderSettings>(spec, access);
+}
+
+const std::vector<Row>& table() {
+  using T = OptionType;
+  static const std::vector<Row> rows{
+      row({.name = "width", .type = T::Int, .help = "image width in pixels", .minimum = 1, .maximum = kMaxImageSide}, [](auto& s) -> auto& { return s.width; }),
+      row({.name = "height", .type = T::Int, .help = "image height in pixels", .minimum = 1, .maximum = kMaxImageSide}, [](auto& s) -> auto& { return s.height; }),
+      row({.name = "camera", .type = T::Int, .help = "glTF camera index", .maximum = 1 << 20, .autoMeaning = "the scene's first camera, else one fitted to the bounds"},
+          [](auto& s) -> auto& { return s.camera; }),
+      row({.name = "ssgi", .type = T::Bool, .help = "the SSGI pass (off: no ssgi.exr; ambient is unoccluded)"},
+          [](auto& s) -> auto& { return s.ssgi.enabled; }),
+      row({.name = "ssgi-method", .type = T::Choice, .help = "SSGI indirect term: the seed's occluder albedo (hemisphere) or occluders' direct light (radiance)", .choices = kSsgiMethodNames},
+          [](auto& s) -> auto& { return s.ssgi.method; }),
+      row({.name = "ssgi-samples", .type = T::Int, .help = "SSGI kernel samples per pixel", .minimum = 1, .maximum = gpu::kMaxKernelSamples},
+          [](auto& s) -> auto& { return s.ssgi.sampleCount; }),
+      row({.name = "ssgi-radius", .type = T::Float, .help = "SSGI radius in world units", .minimum = 1e-9, .maximum = 1e9, .autoMeaning = "ssgi-radius-fraction x the scene's bounding-box diagonal"},
+          [](auto& s) -> auto& { return s.ssgi.radius; }),
+      row({.name = "ssgi-radius-fraction", .type = T::Float, .help = "auto SSGI radius as a fraction of the scene's bounding-box diagonal", .minimum = 1e-6, .maximum = 10},
+          [](auto& s) -> auto& { return s.ssgi.radiusFraction; }),
+      row({.name = "ssgi-bias", .type = T::Float, .help = "SSGI depth bias in world units", .maximum = 1e9, .autoMeaning = "5% of the radius"},
+          [](auto& s) -> auto& { return s.ssgi.bias; }),
+      row({.name = "ssgi-intensity", .type = T::Float, .help = "SSGI occlusion intensity", .maximum = 4},
+          [](auto& s) -> auto& { return s.ssgi.intensity; }),
+      row({.name = "ssgi-indirect", .type = T::Float, .help = "SSGI one-bounce indirect strength", .maximum = 4, .autoMeaning = "0.5 hemisphere, 1 radiance"},
+          [](auto& s) -> auto& { return s.ssgi.indirectStrength; }),
+      row({.name = "ssgi-seed", .type = T::Int, .help = "random seed of the SSGI kernel and noise", .maximum = 1 << 30},
+          [](auto& s) -> auto& { return s.ssgi.seed; }),
+      row({.name = "ssgi-blur", .type = T::Bool, .help = "average out the SSGI pass's 4x4 noise pattern (a depth- and normal-aware blur)"},
+          [](auto& s) -> auto& { return s.ssgi.blur; }),
+      row({.name = "ssgi-resolution", .type = T::Choice, .help = "resolution the SSGI pass runs at (the blur upsamples)", .choices = kSsgiResolutionNames},
+          [](auto& s) -> auto& { return s.ssgi.resolution; }),
+      row({.name = "shadows", .type = T::Bool, .help = "shadow maps for the lights that cast shadows"},
+          [](auto& s) -> auto& { return s.lighting.shadows; }),
+      row({.name = "shadow-map-size", .type = T::Int, .help = "shadow map texels per side", .minimum = 64, .maximum = 8192, .autoMeaning = "the longer image side to the next power of two, 512..2048"},
+          [](auto& s) -> auto& { return s.lighting.shadowMapSize; }),
+      row({.name = "shadow-pcf-radius", .type = T::Float, .help = "shadow filter radius in shadow-map texels", .maximum = 8},
+          [](auto& s) -> auto& { return s.lighting.pcfRadius; }),
+      row({.name = "sky-intensity", .type = T::Float, .help = "sky (ambient) intensity", .maximum = 1000, .autoMeaning = "the scene's"},
+          [](auto& s) -> auto& { return s.lighting.skyIntensity; }),
+      row({.name = "tonemap", .type = T::Choice, .help = "tone curve for preview.png (lit.exr stays linear)", .choices = kTonemapNames},
+          [](auto& s) -> auto& { return s.tonemap; }),
+      row({.name = "exposure", .type = T::Float, .help = "exposure for preview.png in stops (EV)", .minimum = -20, .maximum = 20},
+          [](auto& s) -> auto& { return s.exposure; }),
+  };
+  return rows;
+}
+
+}  // namespace
+
+int ssgiDivisor(SsgiResolution resolution) { return 1 << int(resolution); }
+
+std::span<const Option<RenderSettings>> settingOptions() { return table(); }
+std::span<const std::string_view> presetNames() { return kPresetNames; }
+
+std::string_view ssgiMethodName(SsgiMethod method) { return kSsgiMethodNames[std::size_t(method)]; }
+
+std::map<std::string, std::string> settingsAsText(const RenderSettings& settings) {
+  std::map<std::string, std::string> values;
+  for (const Row& option : settingOptions())
+    values[std::string(option.spec.name)] = formatOptionValue(option.spec, option.get(settings));
+  return values;
+}
+
+void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values) {
+  for (const auto& [name, text] : values) {
+    const Row& option = findOption(settingOptions(), name);
+    option.set(settings, parseOptionValue(option.spec, text));
+  }
+}
+
+void applyPreset(RenderSettings& settings, std::string_view preset) {
+  const RenderSettings defaults;
+  if (preset == "default") {
+    settings.ssgi = defaults.ssgi;
+    settings.lighting = defaults.lighting;
+  } else if (preset == "fast") {
+    // On the bench's front for lit error at about half the seed's time
+    // (docs/BENCHMARKS.md): the radiance method, 16 samples, SSGI at half
+    // resolution.
+    settings.ssgi.method = SsgiMethod::Radiance;
+    settings.ssgi.sampleCount = 16;
+    settings.ssgi.resolution = SsgiResolution::Half;
+    settings.ssgi.blur = true;
+    settings.lighting.shadowMapSize = 1024;
+    settings.lighting.pcfRadius = 1.0f;
+  } else if (preset == "high") {
+    settings.ssgi.method = SsgiMethod::Radiance;
+    settings.ssgi.sampleCount = 64;
+    settings.ssgi.resolution = SsgiResolution::Full;
+    settings.lighting.shadowMapSize = 4096;
+    settings.lighting.pcfRadius = 2.0f;
+  } else if (preset == "seed") {
+    // The seed spec's numbers, for scenes of the size it was written for.
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.radius = 0.5f;
+    settings.ssgi.bias = 0.025f;
+  } else {
+    std::string known;
+    for (std::string_view name : presetNames()) (known += known.empty() ? "" : ", ") += name;
+    throw SettingsError("--preset: expected one of " + known + ", got '" + std::string(preset) + "'");
+  }
+}
+
+void RenderSettings::validate() const {
+  for (const Row& option : settingOptions()) checkOptionValue(option.spec, option.get(*this));
+  // Readback sizes are GLsizei (32-bit) byte counts: 2^26 RGBA float pixels
+  // is the most one texture read can hold (an 8192 x 8192 image).
+  if (std::int64_t(width) * height > (std::int64_t(1) << 26))
+    throw SettingsError("--width " + std::to_string(width) + " x --height " + std::to_string(height) +
+                        ": at most 67108864 pixels (8192 x 8192)");
+  if (ssgi.resolution != SsgiResolution::Full && !ssgi.blur)
+    throw SettingsError("--no-ssgi-blur needs --ssgi-resolution full: below full resolution the blur pass upsamples");
+}
+
+}  // namespace headlight
