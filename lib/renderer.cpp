@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 #include "headlight/error.hpp"
 #include "passes/environment.hpp"
 #include "passes/gbuffer.hpp"
@@ -18,7 +18,7 @@
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
 #include "passes/ssgi_blur.hpp"
-#include "readback.hpp"
+#include "gl/readback.hpp"
 #include "shared_layout.h"
 
 namespace headlight {

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
-#include "hex_code.hpp"
+#include "context/hex_code.hpp"
 
 namespace headlight::gl {
 

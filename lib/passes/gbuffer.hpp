@@ -11,7 +11,7 @@
 #include <map>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 
 namespace headlight {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
 namespace headlight {

@@ -1,4 +1,4 @@
-#include "readback.hpp"
+#include "gl/readback.hpp"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 
 #include <algorithm>
 #include <cstring>
