@@ -8,9 +8,9 @@
 //   RT4 GL_RGBA16F      emissive radiance, only if the scene has any
 //   depth GL_DEPTH_COMPONENT32F
 #include <cstdint>
-#include <map>
 
 #include "gl/objects.hpp"
+#include "passes/program_cache.hpp"
 #include "scene/gpu_scene.hpp"
 
 namespace headlight {
@@ -37,9 +37,7 @@ class GBufferPass {
   void run(const GpuScene& scene, GBuffer& target);
 
  private:
-  const gl::Program& programFor(std::uint32_t features);
-  std::map<std::uint32_t, gl::Program> programs_;
-  bool emissiveTarget_ = false;
+  ProgramCache<std::uint32_t> programs_;  // keyed by GBufferFeature bits
 };
 
 }  // namespace headlight
