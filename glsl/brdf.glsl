@@ -44,22 +44,22 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
 // Falloff of `light` at `position` (inverse square, range window, spot
 // cone); sets `toLight` to the unit direction toward the light.
 float lightAttenuation(GpuLight light, vec3 position, out vec3 toLight) {
-  const int type = int(light.directionType.w);
+  const int type = light.type;
   if (type == kLightDirectional) {
-    toLight = -light.directionType.xyz;
+    toLight = -light.direction;
     return 1.0;
   }
-  const vec3 offset = light.positionRange.xyz - position;
+  const vec3 offset = light.position - position;
   const float distanceSquared = max(dot(offset, offset), 1e-30);
   const float distance = sqrt(distanceSquared);
   toLight = offset / distance;
   float attenuation = 1.0 / distanceSquared;
-  const float range = light.positionRange.w;
+  const float range = light.range;
   if (range > 0.0) attenuation *= clamp(1.0 - pow(distance / range, 4.0), 0.0, 1.0);
   if (type == kLightSpot) {
-    const float cosOuter = light.spotShadow.x, cosInner = light.spotShadow.y;
+    const float cosOuter = light.cosOuterCone, cosInner = light.cosInnerCone;
     const float scale = 1.0 / max(cosInner - cosOuter, 1e-3);
-    const float t = clamp((dot(light.directionType.xyz, -toLight) - cosOuter) * scale, 0.0, 1.0);
+    const float t = clamp((dot(light.direction, -toLight) - cosOuter) * scale, 0.0, 1.0);
     attenuation *= t * t;
   }
   return attenuation;

@@ -43,7 +43,7 @@ vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
   const vec3 reflected = reflect(-surface.view, surface.normal);
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  return (diffuseIbl + specularIbl) * lighting.ambient.x * materialOcclusion * ssgi.r + ssgi.gba;
+  return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * ssgi.r + ssgi.gba;
 }
 
 void main() {
@@ -56,7 +56,7 @@ void main() {
     const vec4 viewFar = inverse(frame.projection) * clip;
     const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
     const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
-    outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.ambient.x, 0.0);
+    outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
     return;
   }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);

@@ -25,14 +25,14 @@ void main() {
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
   vec3 towardEye = vec3(0.0);
   vec3 irradiance = vec3(0.0);  // sum of light radiance * attenuation * visibility * N.L
-  const int lightCount = int(lighting.ambient.z);
+  const int lightCount = lighting.lightCount;
   for (int i = 0; i < lightCount; ++i) {
     const GpuLight light = lights.lightList[i];
     vec3 toLight;
     const float attenuation = lightAttenuation(light, worldPosition.xyz, toLight);
     if (attenuation <= 0.0) continue;
     const float visibility = shadowVisibility(light, worldPosition.xyz, surface.normal, toLight);
-    const vec3 incoming = light.radiance.rgb * (attenuation * visibility);
+    const vec3 incoming = light.radiance * (attenuation * visibility);
     towardEye += cookTorrance(surface, toLight) * incoming;
     irradiance += incoming * max(dot(surface.normal, toLight), 0.0);
   }

@@ -16,20 +16,20 @@ const vec2 kPoissonDisc[12] = vec2[](
     vec2(0.507, 0.064), vec2(0.896, 0.412), vec2(-0.322, -0.933), vec2(-0.792, -0.598));
 
 float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight) {
-  const float layer = light.spotShadow.z;
-  if (light.radiance.w < 0.5 || layer < 0.0) return 1.0;
-  const float mapSize = lighting.shadow.z;
-  const float pcfRadius = lighting.ambient.w;
-  const int type = int(light.directionType.w);
+  if (light.castsShadows == 0 || light.shadowLayer < 0) return 1.0;
+  const float layer = float(light.shadowLayer);
+  const float mapSize = float(lighting.shadowMapSize);
+  const float pcfRadius = lighting.pcfRadius;
+  const int type = light.type;
   // Surfaces facing away from the light are dark anyway; skip the lookups.
   if (dot(normal, toLight) <= 0.0) return 0.0;
 #ifdef HAS_CUBE_SHADOWS
   if (type == kLightPoint) {
-    const float far = light.spotShadow.w;
-    const float distance = length(light.positionRange.xyz - position);
+    const float far = light.shadowFar;
+    const float distance = length(light.position - position);
     const float texel = 2.0 * distance / mapSize;  // a 90 degree face
-    const vec3 shifted = position + normal * (lighting.shadow.x * texel);
-    const vec3 fromLight = shifted - light.positionRange.xyz;
+    const vec3 shifted = position + normal * (lighting.shadowNormalOffset * texel);
+    const vec3 fromLight = shifted - light.position;
     const mat3 basis = basisAround(normalize(fromLight));
     const float reference = length(fromLight) / far;
     float lit = 0.0;
@@ -42,12 +42,12 @@ float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight)
 #endif
 #ifdef HAS_PLANAR_SHADOWS
   if (type != kLightPoint) {
-    // World size of one texel (spotShadow.w, lib/passes/shadow.cpp):
+    // World size of one texel (shadowTexelSize, lib/passes/shadow.cpp):
     // constant for a directional light's orthographic map, growing with
     // distance for a spot light's perspective one.
-    const float distance = type == kLightSpot ? length(light.positionRange.xyz - position) : 1.0;
-    const float texel = light.spotShadow.w * distance;
-    const vec4 clip = light.shadowViewProjection * vec4(position + normal * (lighting.shadow.x * texel), 1.0);
+    const float distance = type == kLightSpot ? length(light.position - position) : 1.0;
+    const float texel = light.shadowTexelSize * distance;
+    const vec4 clip = light.shadowViewProjection * vec4(position + normal * (lighting.shadowNormalOffset * texel), 1.0);
     const vec3 ndc = clip.xyz / clip.w;
     const vec3 coordinate = ndc * 0.5 + 0.5;
     if (any(lessThan(coordinate, vec3(0.0))) || any(greaterThan(coordinate, vec3(1.0)))) return 1.0;

@@ -1,8 +1,10 @@
 // Shared by C++ and GLSL: texture units, buffer bindings and the std140
 // uniform blocks. Each layout is written once here; C++ checks its offsets
 // with static_asserts (lib/gl/shared_layout_checks.cpp) and GLSL declares the same
-// block with the same binding. Keep every member a vec4, ivec4 or mat4 so
-// std140 adds no hidden padding.
+// block with the same binding. Each value has its own named member; members
+// fill whole 16-byte rows (a vec4, ivec4 or mat4, a vec3 and one scalar, or
+// four scalars, spare ones named padN), so std140 and C++ agree with no
+// hidden padding. No scalar arrays: std140 strides their elements by 16.
 #ifndef HEADLIGHT_SHARED_LAYOUT_H
 #define HEADLIGHT_SHARED_LAYOUT_H
 
@@ -10,6 +12,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 namespace headlight::gpu {
+using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
@@ -61,7 +64,7 @@ HL_CONST(int, kSkyRoughnessLevels, 8)
 HL_CONST(int, kBrdfLutSize, 64)
 HL_CONST(int, kSkyTableWidth, 64)
 
-// Light types as stored in GpuLight::directionType.w.
+// Light types as stored in GpuLight::type.
 HL_CONST(int, kLightDirectional, 0)
 HL_CONST(int, kLightPoint, 1)
 HL_CONST(int, kLightSpot, 2)
@@ -92,19 +95,34 @@ HL_BLOCK_END(material)
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).
 HL_BLOCK_BEGIN(SsgiBlock, 3)
   vec4 kernel[kMaxKernelSamples];  // tangent space, z >= 0, |k| <= 1
-  vec4 params;              // radius (world), bias (world), intensity, indirect strength
-  ivec4 counts;             // sample count, resolution divisor (1, 2, 4), 0, 0
+  float radiusWorld;        // kernel radius, world units (> 0)
+  float biasWorld;          // depth a sample must be behind a surface to count as occluded, world units
+  float intensity;          // AO strength: AO = 1 - intensity * mean occlusion
+  float indirectStrength;   // scale of the indirect term
+  int sampleCount;          // kernel samples used, 1..kMaxKernelSamples
+  int downsample;           // resolution divisor of the SSGI target: 1, 2 or 4
+  int pad0;
+  int pad1;
 HL_BLOCK_END(ssgi)
 
 // SSGI blur pass.
 HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
-  vec4 params;              // SSGI radius (world units), SSGI resolution divisor, 0, 0
+  float ssgiRadiusWorld;    // depth differences are judged against it
+  int ssgiDownsample;       // the raw SSGI's resolution divisor (1, 2, 4)
+  float pad0;
+  float pad1;
 HL_BLOCK_END(blur)
 
 // Direct-light and composite passes.
 HL_BLOCK_BEGIN(LightingBlock, 4)
-  vec4 ambient;             // sky intensity, 0, light count, PCF radius (texels)
-  vec4 shadow;              // normal offset (world units per texel), depth bias, shadow-map size, 0
+  float skyIntensity;       // scales the sky's radiance (ambient and background)
+  int lightCount;           // entries of the light buffer
+  float pcfRadius;          // shadow filter radius, shadow-map texels
+  float shadowNormalOffset; // how far a shadow lookup moves along the normal, in texels of the map there
+  int shadowMapSize;        // texels per side of every shadow map; 0 without maps
+  int pad0;
+  int pad1;
+  int pad2;
 HL_BLOCK_END(lighting)
 
 // Shadow pass: one light view per draw batch.
@@ -122,11 +140,20 @@ HL_BLOCK_END(sky)
 
 // One light, in the lights storage buffer (std430, same layout as std140 here).
 struct GpuLight {
-  vec4 positionRange;       // world position, range (0 = infinite)
-  vec4 directionType;       // world direction the light travels, type
-  vec4 radiance;            // color * intensity, castsShadows (0/1)
-  vec4 spotShadow;          // cos(outer), cos(inner), shadow layer (-1 = none), w: point = shadow far,
-                            // directional = texel world size, spot = texel size per unit distance
+  vec3 position;            // world (point and spot)
+  float range;              // 0 = infinite
+  vec3 direction;           // world, unit: the way the light travels (directional and spot)
+  int type;                 // kLightDirectional, kLightPoint or kLightSpot
+  vec3 radiance;            // color * intensity
+  int castsShadows;         // 1 if the light has a shadow map (shadowLayer >= 0), else 0
+  float cosOuterCone;       // spot: cos(outer cone angle)
+  float cosInnerCone;       // spot: cos(inner cone angle)
+  int shadowLayer;          // layer of the planar map array, or cube of the cube array; -1 = none
+  float shadowFar;          // point: the distance the cube map's depth is divided by
+  float shadowTexelSize;    // directional: a texel's world size; spot: its world size per unit distance
+  float pad0;
+  float pad1;
+  float pad2;
   mat4 shadowViewProjection;  // world -> light clip (directional and spot)
 };
 #ifdef __cplusplus

@@ -22,7 +22,7 @@ layout(location = 0) out vec4 outSsgi;
 void main() {
   // Below full resolution each output pixel shades the G-buffer pixel at
   // the centre of the block it stands for.
-  const int divisor = ssgi.counts.y;
+  const int divisor = ssgi.downsample;
   const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
   const ivec2 pixel = min(outputPixel * divisor + divisor / 2, ivec2(frame.viewport.xy) - 1);
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
@@ -34,9 +34,9 @@ void main() {
   const vec2 rotation = texelFetch(ssgiNoise, outputPixel & 3, 0).xy;
   const mat3 tangentToView = tangentFrame(viewNormal, vec3(rotation, 0.0));
 
-  const float radius = ssgi.params.x;
-  const float bias = ssgi.params.y;
-  const int sampleCount = ssgi.counts.x;
+  const float radius = ssgi.radiusWorld;
+  const float bias = ssgi.biasWorld;
+  const int sampleCount = ssgi.sampleCount;
   float occlusion = 0.0;
   vec3 indirect = vec3(0.0);
   for (int i = 0; i < sampleCount; ++i) {
@@ -61,11 +61,11 @@ void main() {
 #endif
     }
   }
-  const float ambientOcclusion = clamp(1.0 - ssgi.params.z * occlusion / float(sampleCount), 0.0, 1.0);
+  const float ambientOcclusion = clamp(1.0 - ssgi.intensity * occlusion / float(sampleCount), 0.0, 1.0);
 #ifdef METHOD_RADIANCE
   // A Lambertian receiver reflects albedo / pi * integral(L cos); with
   // cosine-distributed kernel directions that is albedo * mean(L).
   indirect *= (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
 #endif
-  outSsgi = vec4(ambientOcclusion, indirect * (ssgi.params.w / float(sampleCount)));
+  outSsgi = vec4(ambientOcclusion, indirect * (ssgi.indirectStrength / float(sampleCount)));
 }

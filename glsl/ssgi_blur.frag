@@ -19,9 +19,9 @@ void main() {
   const float centerDepth = (frame.view * vec4(centerPosition.xyz, 1.0)).z;
   // A quarter of the SSGI radius: neighbours on the same surface differ by
   // far less, across a silhouette by more.
-  const float depthScale = 0.25 * blur.params.x;
+  const float depthScale = 0.25 * blur.ssgiRadiusWorld;
   const ivec2 size = ivec2(frame.viewport.xy);
-  const int divisor = int(blur.params.y);
+  const int divisor = blur.ssgiDownsample;
   const ivec2 rawSize = textureSize(rawSsgi, 0);
   const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);

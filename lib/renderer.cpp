@@ -7,9 +7,11 @@
 #include <bit>
 #include <chrono>
 #include <optional>
+#include <span>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "gl/target_formats.hpp"
+#include "scene/gpu_scene.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
 #include "passes/environment.hpp"
@@ -19,7 +21,7 @@
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
 #include "passes/ssgi_blur.hpp"
-#include "readback.hpp"
+#include "gl/readback.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -89,15 +91,14 @@ struct Renderer::Impl {
   ShadowPass shadow;
   DirectLightPass directLight;
   CompositePass composite;
-  gl::Buffer frameBlock{sizeof(gpu::FrameBlock), nullptr};
-  gl::Buffer lightingBlock{sizeof(gpu::LightingBlock), nullptr};
+  gl::Buffer frameBlock = gl::Buffer::create(sizeof(gpu::FrameBlock));
+  gl::Buffer lightingBlock = gl::Buffer::create(sizeof(gpu::LightingBlock));
 
   // Per scene.
   Scene scene;
   std::optional<GpuScene> gpuScene;
   std::optional<GBufferPass> gbufferPass;
-  std::vector<gpu::GpuLight> lights;
-  gl::Buffer lightBuffer;
+  gl::Buffer lightBuffer;  // scene.lights packed, with the shadow slots of shadowMaps
   ShadowMaps shadowMaps;  // kept across views: they do not depend on the camera
   int shadowMapSize = 0;  // what shadowMaps were made with; 0 = none yet
 
@@ -108,23 +109,33 @@ struct Renderer::Impl {
   gl::Texture ssgiTarget;  // what composite reads and ssgi.exr holds
   gl::Texture litTarget;
 
+  // Which targets a frame needs besides the G-buffer, direct light and lit.
+  struct TargetNeeds {
+    bool directDiffuse;  // SSGI on with the radiance method
+    bool ssgi;           // SSGI on
+    bool ssgiRaw;        // SSGI on with the blur
+    int ssgiDownsample;  // the raw SSGI's divisor
+  };
+
   // Targets follow the image size; the SSGI ones exist only while SSGI (and
   // its blur, or its radiance method) is on.
-  void ensureTargets(int width, int height, const SsgiSettings& ssgi) {
-    auto ensure = [&](gl::Texture& texture, bool wanted, int divisor = 1) {
+  void ensureTargets(int width, int height, const TargetNeeds& needs) {
+    auto ensure = [&](gl::Texture& texture, bool wanted, GLenum format, int divisor = 1) {
       const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
       if (!wanted)
         texture = gl::Texture();
       else if (texture.width() != w || texture.height() != h)
-        texture = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, w, h);
+        texture = gl::Texture::create2D(format, w, h);
     };
     if (gbuffer.width != width || gbuffer.height != height)
       gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
-    ensure(direct.towardEye, true);
-    ensure(direct.diffuse, ssgi.enabled && ssgi.method == SsgiMethod::Radiance);
-    ensure(ssgiRaw, ssgi.enabled && ssgi.blur, ssgiDivisor(ssgi.resolution));
-    ensure(ssgiTarget, ssgi.enabled);
-    ensure(litTarget, true);
+    // Direct light is internal (no frame target): half float holds HDR radiance.
+    ensure(direct.towardEye, true, GL_RGBA16F);
+    ensure(direct.diffuse, needs.directDiffuse, GL_RGBA16F);
+    // The raw SSGI is what the blur turns into the ssgi target: the same format.
+    ensure(ssgiRaw, needs.ssgiRaw, gl::targetFormat(&Frame::ssgi), needs.ssgiDownsample);
+    ensure(ssgiTarget, needs.ssgi, gl::targetFormat(&Frame::ssgi));
+    ensure(litTarget, true, gl::targetFormat(&Frame::lit));
   }
 
   bool hasShadowCasters() const {
@@ -133,32 +144,41 @@ struct Renderer::Impl {
 
   // Shadow maps are (re)made when the size changes or shadows are turned
   // on; with shadows off the lights read "no map" and nothing is allocated.
-  bool needsShadowPass(const LightingSettings& settings) const {
-    return settings.shadows && hasShadowCasters() && shadowMapSize != *settings.shadowMapSize;
+  bool needsShadowPass(bool shadows, int size) const {
+    return shadows && hasShadowCasters() && shadowMapSize != size;
   }
 
-  void renderShadows(const LightingSettings& settings) {
-    lights = packLights(scene.lights);
-    shadowMaps = shadow.run(*gpuScene, scene.lights, lights, *settings.shadowMapSize);
-    shadowMapSize = *settings.shadowMapSize;
+  // The light buffer: the scene's lights, each with its slot in the shadow
+  // maps (none without slots).
+  void uploadLights(std::span<const ShadowSlot> slots) {
+    const std::vector<gpu::GpuLight> lights = packLights(scene.lights, slots);
     lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+  }
+
+  void renderShadows(int size) {
+    ShadowOutputs shadows = shadow.run(*gpuScene, scene.lights, size);
+    shadowMaps = std::move(shadows.maps);
+    shadowMapSize = size;
+    uploadLights(shadows.slots);
   }
 
   void dropShadows() {
     if (shadowMapSize == 0) return;
     shadowMaps = ShadowMaps{};
     shadowMapSize = 0;
-    lights = packLights(scene.lights);
-    lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
+    uploadLights({});
   }
 
   // The block the direct-light and composite passes read, and the lights.
-  void bindLighting(const LightingSettings& settings) {
+  void bindLighting(float skyIntensity, float pcfRadius) {
     gpu::LightingBlock block{};
-    block.ambient = glm::vec4(*settings.skyIntensity, 0.0f, float(lights.size()), settings.pcfRadius);
+    block.skyIntensity = skyIntensity;
+    block.lightCount = int(scene.lights.size());
+    block.pcfRadius = pcfRadius;
     // 1.5 texels of normal offset: enough to clear acne at the PCF radius's
     // default without visibly detaching shadows.
-    block.shadow = glm::vec4(1.5f, 0.0f, float(shadowMaps.size), 0.0f);
+    block.shadowNormalOffset = 1.5f;
+    block.shadowMapSize = shadowMaps.size;
     lightingBlock.update(block);
     lightingBlock.bindUniform(gpu::LightingBlock::kBinding);
     lightBuffer.bindStorage(gpu::LightBuffer::kBinding);
@@ -196,7 +216,7 @@ struct Renderer::Impl {
       const gl::Texture& source = sourceOf(target);
       if (!source || (target.image == &Frame::ssgi && !withSsgi)) continue;
       frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
-                                ? readViewDepth(source, frame.view)
+                                ? readViewDepth(source, frame.view, std::string(target.channels.front()))
                                 : readColor(source, {target.channels.begin(), target.channels.end()});
     }
   }
@@ -227,21 +247,16 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.gpuScene.emplace(uploadScene(impl.scene));
   impl.gbufferPass.emplace(*impl.gpuScene);
   impl.environment.updateSky(impl.scene.sky);
-  impl.lights = packLights(impl.scene.lights);
   // At least one element: a zero-sized buffer cannot be bound.
-  impl.lightBuffer = gl::Buffer(std::max<std::size_t>(1, impl.lights.size()) * sizeof(gpu::GpuLight), nullptr);
-  if (!impl.lights.empty()) impl.lightBuffer.update(impl.lights.data(), impl.lights.size() * sizeof(gpu::GpuLight));
+  impl.lightBuffer = gl::Buffer::create(std::max<std::size_t>(1, impl.scene.lights.size()) * sizeof(gpu::GpuLight));
+  impl.uploadLights({});
   impl.shadowMaps = ShadowMaps{};
   impl.shadowMapSize = 0;
-  const auto casts = [&](bool point) {
-    return std::any_of(impl.scene.lights.begin(), impl.scene.lights.end(), [&](const Light& light) {
-      return light.castsShadows && (light.type == Light::Type::Point) == point;
-    });
-  };
   // The default settings' variants, so the first frame times shading, not compiling.
   const RenderSettings defaults;
-  impl.directLight.prepare({impl.gpuScene->hasEmissive, casts(false), casts(true),
-                            defaults.ssgi.method == SsgiMethod::Radiance});
+  impl.directLight.prepare(DirectLightPass::variantFor(impl.gpuScene->hasEmissive,
+                                                       countShadowCasters(impl.scene.lights),
+                                                       defaults.ssgi.method == SsgiMethod::Radiance));
   impl.ssgi.prepare(defaults.ssgi.method);
   impl.composite.prepare(true);
   impl.context.checkErrors("uploading " + impl.scene.source);
@@ -274,28 +289,44 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   frame.view = makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width,
                               used.height);
 
-  impl.ensureTargets(used.width, used.height, used.ssgi);
+  // The resolved settings, copied into the plain values each pass takes.
+  const bool ssgiOn = used.ssgi.enabled;
+  const bool ssgiBlur = used.ssgi.enabled && used.ssgi.blur;
+  SsgiInputs ssgiInputs{impl.gbuffer, nullptr};
+  ssgiInputs.method = used.ssgi.method;
+  ssgiInputs.sampleCount = used.ssgi.sampleCount;
+  ssgiInputs.seed = used.ssgi.seed;
+  ssgiInputs.radiusWorld = *used.ssgi.radius;
+  ssgiInputs.biasWorld = *used.ssgi.bias;
+  ssgiInputs.intensity = used.ssgi.intensity;
+  ssgiInputs.indirectStrength = *used.ssgi.indirectStrength;
+  ssgiInputs.downsample = ssgiDivisor(used.ssgi.resolution);
+  const bool shadows = used.lighting.shadows;
+  const int shadowMapSize = *used.lighting.shadowMapSize;
+  const float skyIntensity = *used.lighting.skyIntensity;
+  const float pcfRadius = used.lighting.pcfRadius;
+
+  impl.ensureTargets(used.width, used.height,
+                     {ssgiOn && ssgiInputs.method == SsgiMethod::Radiance, ssgiOn, ssgiBlur, ssgiInputs.downsample});
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
   PassTimer timer(impl.context);
-  if (!used.lighting.shadows) impl.dropShadows();
-  if (impl.needsShadowPass(used.lighting)) timer.run("shadows", [&] { impl.renderShadows(used.lighting); });
-  impl.bindLighting(used.lighting);
+  if (!shadows) impl.dropShadows();
+  if (impl.needsShadowPass(shadows, shadowMapSize)) timer.run("shadows", [&] { impl.renderShadows(shadowMapSize); });
+  impl.bindLighting(skyIntensity, pcfRadius);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
-  timer.run("direct", [&] { impl.directLight.run(impl.gbuffer, impl.shadowMaps, impl.direct); });
-  if (used.ssgi.enabled) {
-    const gl::Texture& ssgiOutput = used.ssgi.blur ? impl.ssgiRaw : impl.ssgiTarget;
-    const gl::Texture* directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
-    timer.run("ssgi", [&] { impl.ssgi.run(impl.gbuffer, directDiffuse, ssgiOutput, used.ssgi); });
-    if (used.ssgi.blur)
-      timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(impl.gbuffer, impl.ssgiRaw, impl.ssgiTarget, *used.ssgi.radius,
-                                                         ssgiDivisor(used.ssgi.resolution)); });
+  timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
+  if (ssgiOn) {
+    ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
+    const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
+    timer.run("ssgi", [&] { impl.ssgi.run(ssgiInputs, ssgiOutput); });
+    const SsgiBlurInputs blurInputs{impl.gbuffer, impl.ssgiRaw, ssgiInputs.radiusWorld, ssgiInputs.downsample};
+    if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, impl.ssgiTarget); });
   }
-  timer.run("composite", [&] {
-    impl.composite.run(impl.gbuffer, impl.direct.towardEye, used.ssgi.enabled ? &impl.ssgiTarget : nullptr,
-                       impl.environment.tables(), impl.litTarget);
-  });
+  const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, ssgiOn ? &impl.ssgiTarget : nullptr,
+                                        impl.environment.tables()};
+  timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
   timer.run("readback", [&] { impl.readTargets(frame, used.ssgi.enabled); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 

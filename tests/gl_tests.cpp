@@ -320,8 +320,10 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   const std::string_view ssgiFiles[] = {"fullscreen.vert", "ssgi.frag"};
   const gl::Program ssgi = detail::buildProgram(ssgiFiles);
   CHECK(blockDataSize(ssgi.id(), "SsgiBlock") == GLint(sizeof(gpu::SsgiBlock)));
-  CHECK(memberOffset(ssgi.id(), "SsgiBlock.params") == GLint(offsetof(gpu::SsgiBlock, params)));
-  CHECK(memberOffset(ssgi.id(), "SsgiBlock.counts") == GLint(offsetof(gpu::SsgiBlock, counts)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.radiusWorld") == GLint(offsetof(gpu::SsgiBlock, radiusWorld)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.indirectStrength") == GLint(offsetof(gpu::SsgiBlock, indirectStrength)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.sampleCount") == GLint(offsetof(gpu::SsgiBlock, sampleCount)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.downsample") == GLint(offsetof(gpu::SsgiBlock, downsample)));
   CHECK(blockDataSize(ssgi.id(), "FrameBlock") == GLint(sizeof(gpu::FrameBlock)));
   CHECK(memberOffset(ssgi.id(), "FrameBlock.projection") == GLint(offsetof(gpu::FrameBlock, projection)));
   CHECK(memberOffset(ssgi.id(), "FrameBlock.viewport") == GLint(offsetof(gpu::FrameBlock, viewport)));
@@ -336,6 +338,36 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   const std::string_view compositeFiles[] = {"fullscreen.vert", "composite.frag"};
   const gl::Program composite = detail::buildProgram(compositeFiles);
   CHECK(blockDataSize(composite.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
+  CHECK(memberOffset(composite.id(), "LightingBlock.skyIntensity") == GLint(offsetof(gpu::LightingBlock, skyIntensity)));
+
+  const std::string_view blurFiles[] = {"fullscreen.vert", "ssgi_blur.frag"};
+  const gl::Program blur = detail::buildProgram(blurFiles);
+  CHECK(blockDataSize(blur.id(), "SsgiBlurBlock") == GLint(sizeof(gpu::SsgiBlurBlock)));
+  CHECK(memberOffset(blur.id(), "SsgiBlurBlock.ssgiDownsample") == GLint(offsetof(gpu::SsgiBlurBlock, ssgiDownsample)));
+
+  // The lights are std430 and read through a struct: every member's offset.
+  const std::string_view directFiles[] = {"fullscreen.vert", "direct_light.frag"};
+  const std::string directDefines[] = {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"};
+  const gl::Program direct = detail::buildProgram(directFiles, directDefines);
+  CHECK(blockDataSize(direct.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
+  CHECK(memberOffset(direct.id(), "LightingBlock.pcfRadius") == GLint(offsetof(gpu::LightingBlock, pcfRadius)));
+  CHECK(memberOffset(direct.id(), "LightingBlock.shadowMapSize") == GLint(offsetof(gpu::LightingBlock, shadowMapSize)));
+  auto lightOffset = [&](const char* member) {
+    const GLuint index = glGetProgramResourceIndex(direct.id(), GL_BUFFER_VARIABLE, member);
+    REQUIRE(index != GL_INVALID_INDEX);
+    const GLenum properties[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+    GLint values[2] = {-1, -1};
+    glGetProgramResourceiv(direct.id(), GL_BUFFER_VARIABLE, index, 2, properties, 2, nullptr, values);
+    CHECK(values[1] == GLint(sizeof(gpu::GpuLight)));
+    return values[0];
+  };
+  CHECK(lightOffset("LightBuffer.lightList[0].range") == GLint(offsetof(gpu::GpuLight, range)));
+  CHECK(lightOffset("LightBuffer.lightList[0].type") == GLint(offsetof(gpu::GpuLight, type)));
+  CHECK(lightOffset("LightBuffer.lightList[0].castsShadows") == GLint(offsetof(gpu::GpuLight, castsShadows)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowLayer") == GLint(offsetof(gpu::GpuLight, shadowLayer)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowTexelSize") == GLint(offsetof(gpu::GpuLight, shadowTexelSize)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowViewProjection") ==
+        GLint(offsetof(gpu::GpuLight, shadowViewProjection)));
   sharedContext().checkErrors("querying uniform block layouts");
 }
 

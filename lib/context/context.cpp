@@ -9,7 +9,7 @@
 
 #include "context/backend.hpp"
 #include "headlight/error.hpp"
-#include "hex_code.hpp"
+#include "context/hex_code.hpp"
 
 namespace headlight {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "context/backend.hpp"
-#include "hex_code.hpp"
+#include "context/hex_code.hpp"
 
 namespace headlight::detail {
 namespace {

@@ -3,9 +3,20 @@
 #include <vector>
 
 #include "headlight/error.hpp"
-#include "hex_code.hpp"
+#include "context/hex_code.hpp"
 
 namespace headlight::gl {
+namespace {
+
+// glCreateTextures aside, every glCreate* of GL 4.5 has this signature.
+using CreateNames = void(GLAD_API_PTR*)(GLsizei, GLuint*);
+GLuint createOne(CreateNames create) {
+  GLuint id = 0;
+  create(1, &id);
+  return id;
+}
+
+}  // namespace
 
 void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
 void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
@@ -16,31 +27,44 @@ void deleteShader(GLuint id) { glDeleteShader(id); }
 void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
 
 Texture::Texture(GLenum target, GLenum internalFormat, int width, int height, int layers, int levels)
-    : internalFormat_(internalFormat), width_(width), height_(height) {
+    : target_(target), internalFormat_(internalFormat), width_(width), height_(height), layers_(layers) {
   GLuint id = 0;
   glCreateTextures(target, 1, &id);
-  name_ = Name<deleteTexture>(id);
-  if (target == GL_TEXTURE_2D || target == GL_TEXTURE_CUBE_MAP)
+  adopt(id);
+  if (target == GL_TEXTURE_2D)
     glTextureStorage2D(id, levels, internalFormat, width, height);
   else
     glTextureStorage3D(id, levels, internalFormat, width, height, layers);
 }
 
-Buffer::Buffer(std::size_t bytes, const void* data) : size_(bytes) {
-  GLuint id = 0;
-  glCreateBuffers(1, &id);
-  name_ = Name<deleteBuffer>(id);
-  glNamedBufferStorage(id, GLsizeiptr(bytes), data, GL_DYNAMIC_STORAGE_BIT);
+Texture Texture::create2D(GLenum internalFormat, int width, int height, int levels) {
+  return Texture(GL_TEXTURE_2D, internalFormat, width, height, 1, levels);
+}
+
+Texture Texture::create2DArray(GLenum internalFormat, int width, int height, int layers) {
+  return Texture(GL_TEXTURE_2D_ARRAY, internalFormat, width, height, layers, 1);
+}
+
+Texture Texture::createCubeArray(GLenum internalFormat, int size, int cubes) {
+  return Texture(GL_TEXTURE_CUBE_MAP_ARRAY, internalFormat, size, size, 6 * cubes, 1);
+}
+
+Buffer Buffer::create(std::size_t bytes, const void* data) {
+  Buffer buffer;
+  buffer.adopt(createOne(glCreateBuffers));
+  buffer.size_ = bytes;
+  glNamedBufferStorage(buffer.id(), GLsizeiptr(bytes), data, GL_DYNAMIC_STORAGE_BIT);
+  return buffer;
 }
 
 void Buffer::update(const void* data, std::size_t bytes, std::size_t offset) const {
   glNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
 }
 
-Framebuffer::Framebuffer() {
-  GLuint id = 0;
-  glCreateFramebuffers(1, &id);
-  name_ = Name<deleteFramebuffer>(id);
+Framebuffer Framebuffer::create() {
+  Framebuffer framebuffer;
+  framebuffer.adopt(createOne(glCreateFramebuffers));
+  return framebuffer;
 }
 
 void Framebuffer::attach(GLenum attachment, const Texture& texture, int layer) {
@@ -64,16 +88,16 @@ void Framebuffer::checkComplete(std::string_view what) const {
                   " framebuffer is incomplete (status " + detail::hexCode(status) + ")");
 }
 
-VertexArray::VertexArray() {
-  GLuint id = 0;
-  glCreateVertexArrays(1, &id);
-  name_ = Name<deleteVertexArray>(id);
+VertexArray VertexArray::create() {
+  VertexArray vertexArray;
+  vertexArray.adopt(createOne(glCreateVertexArrays));
+  return vertexArray;
 }
 
-Sampler::Sampler() {
-  GLuint id = 0;
-  glCreateSamplers(1, &id);
-  name_ = Name<deleteSampler>(id);
+Sampler Sampler::create() {
+  Sampler sampler;
+  sampler.adopt(createOne(glCreateSamplers));
+  return sampler;
 }
 
 namespace {
@@ -107,20 +131,23 @@ Name<deleteShader> compileStage(const Program::Stage& stage) {
 
 }  // namespace
 
-Program::Program(std::span<const Stage> stages) {
+Program Program::link(std::span<const Stage> stages) {
+  Program program;
   std::vector<Name<deleteShader>> shaders;
   std::string names;
   for (const Stage& stage : stages) {
     shaders.push_back(compileStage(stage));
     names += (names.empty() ? "" : " + ") + stage.name;
   }
-  name_ = Name<deleteProgram>(glCreateProgram());
-  for (const auto& shader : shaders) glAttachShader(id(), shader.id());
-  glLinkProgram(id());
+  program.adopt(glCreateProgram());
+  const GLuint id = program.id();
+  for (const auto& shader : shaders) glAttachShader(id, shader.id());
+  glLinkProgram(id);
   GLint ok = GL_FALSE;
-  glGetProgramiv(id(), GL_LINK_STATUS, &ok);
-  for (const auto& shader : shaders) glDetachShader(id(), shader.id());
-  if (ok != GL_TRUE) throw GlError("glLinkProgram: " + names + " failed to link:\n" + infoLog(id(), true));
+  glGetProgramiv(id, GL_LINK_STATUS, &ok);
+  for (const auto& shader : shaders) glDetachShader(id, shader.id());
+  if (ok != GL_TRUE) throw GlError("glLinkProgram: " + names + " failed to link:\n" + infoLog(id, true));
+  return program;
 }
 
 }  // namespace headlight::gl

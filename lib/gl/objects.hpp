@@ -12,7 +12,12 @@
 
 namespace headlight::gl {
 
-// Owns one name; Deleter is a function that deletes one name.
+// Owns one name; Delete is a function that deletes one name. Every class
+// below is a Name and follows the same rule: a default-constructed object
+// owns nothing (empty() is true, `if (object)` is false) and only a named
+// factory (`Texture::create2D`, `Framebuffer::create`, ...) creates a GL
+// object, so a member declared without an initializer never allocates
+// behind your back.
 template <void (*Delete)(GLuint)>
 class Name {
  public:
@@ -31,7 +36,15 @@ class Name {
   Name& operator=(const Name&) = delete;
 
   GLuint id() const { return id_; }
+  bool empty() const { return id_ == 0; }
   explicit operator bool() const { return id_ != 0; }
+
+ protected:
+  // Deletes what is owned and takes ownership of `id` (for the factories).
+  void adopt(GLuint id) {
+    reset();
+    id_ = id;
+  }
 
  private:
   void reset() {
@@ -49,53 +62,61 @@ void deleteProgram(GLuint id);
 void deleteShader(GLuint id);
 void deleteSampler(GLuint id);
 
-class Texture {
+// An immutable-storage texture (glTextureStorage*). One class for every
+// target the renderer uses: the factories name the target, target() and
+// layers() say which it is. Separate C++ types per target would buy little
+// here: every consumer (framebuffer attachment, bind to a unit, readback)
+// takes any of them.
+class Texture : public Name<deleteTexture> {
  public:
-  Texture() = default;
-  // An immutable-storage texture (glTextureStorage*): target is
-  // GL_TEXTURE_2D, GL_TEXTURE_2D_ARRAY or GL_TEXTURE_CUBE_MAP_ARRAY; layers
-  // is the array size (6 per cube for cube arrays), ignored for 2D.
-  Texture(GLenum target, GLenum internalFormat, int width, int height, int layers = 1, int levels = 1);
-  GLuint id() const { return name_.id(); }
+  Texture() = default;  // owns nothing
+  // GL_TEXTURE_2D; levels > 1 for mipmapped textures (filled by the caller).
+  static Texture create2D(GLenum internalFormat, int width, int height, int levels = 1);
+  // GL_TEXTURE_2D_ARRAY of `layers` layers.
+  static Texture create2DArray(GLenum internalFormat, int width, int height, int layers);
+  // GL_TEXTURE_CUBE_MAP_ARRAY of `cubes` cubes (6 layer-faces each).
+  static Texture createCubeArray(GLenum internalFormat, int size, int cubes);
+
+  GLenum target() const { return target_; }
   GLenum internalFormat() const { return internalFormat_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  explicit operator bool() const { return bool(name_); }
+  int layers() const { return layers_; }  // 1 for 2D; layer-faces for cube arrays
   void bind(int unit) const { glBindTextureUnit(GLuint(unit), id()); }
 
  private:
-  Name<deleteTexture> name_;
+  Texture(GLenum target, GLenum internalFormat, int width, int height, int layers, int levels);
+  GLenum target_ = 0;
   GLenum internalFormat_ = 0;
   int width_ = 0;
   int height_ = 0;
+  int layers_ = 0;
 };
 
-class Buffer {
+class Buffer : public Name<deleteBuffer> {
  public:
-  Buffer() = default;
+  Buffer() = default;  // owns nothing
   // Immutable storage of `bytes` (glNamedBufferStorage), updatable with
   // update(); data may be null.
-  Buffer(std::size_t bytes, const void* data);
+  static Buffer create(std::size_t bytes, const void* data = nullptr);
   template <class T>
-  explicit Buffer(std::span<const T> items) : Buffer(items.size_bytes(), items.data()) {}
+  static Buffer create(std::span<const T> items) { return create(items.size_bytes(), items.data()); }
 
   void update(const void* data, std::size_t bytes, std::size_t offset = 0) const;
   template <class T>
   void update(const T& value) const { update(&value, sizeof(T)); }
   void bindUniform(int binding) const { glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(binding), id()); }
   void bindStorage(int binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(binding), id()); }
-  GLuint id() const { return name_.id(); }
   std::size_t size() const { return size_; }
-  explicit operator bool() const { return bool(name_); }
 
  private:
-  Name<deleteBuffer> name_;
   std::size_t size_ = 0;
 };
 
-class Framebuffer {
+class Framebuffer : public Name<deleteFramebuffer> {
  public:
-  Framebuffer();  // creates an empty framebuffer object
+  Framebuffer() = default;  // owns nothing
+  static Framebuffer create();  // a framebuffer object with nothing attached
   // Attaches `texture` (level 0); layer >= 0 attaches one layer of an array.
   void attach(GLenum attachment, const Texture& texture, int layer = -1);
   // Passes that keep a framebuffer across frames detach their targets when
@@ -107,50 +128,35 @@ class Framebuffer {
   // Throws GlError naming `what` if the framebuffer is incomplete.
   void checkComplete(std::string_view what) const;
   void bind() const { glBindFramebuffer(GL_FRAMEBUFFER, id()); }
-  GLuint id() const { return name_.id(); }
-
- private:
-  Name<deleteFramebuffer> name_;
 };
 
-class VertexArray {
+class VertexArray : public Name<deleteVertexArray> {
  public:
-  VertexArray();
-  GLuint id() const { return name_.id(); }
+  VertexArray() = default;  // owns nothing
+  static VertexArray create();
   void bind() const { glBindVertexArray(id()); }
-
- private:
-  Name<deleteVertexArray> name_;
 };
 
-class Sampler {
+class Sampler : public Name<deleteSampler> {
  public:
-  Sampler();
-  GLuint id() const { return name_.id(); }
+  Sampler() = default;  // owns nothing
+  static Sampler create();
   void set(GLenum parameter, GLint value) const { glSamplerParameteri(id(), parameter, value); }
   void bind(int unit) const { glBindSampler(GLuint(unit), id()); }
-
- private:
-  Name<deleteSampler> name_;
 };
 
-// A linked program. Throws GlError with the info log (and the source's name)
-// if a stage fails to compile or the program fails to link.
-class Program {
+// A linked program. link() throws GlError with the info log (and the
+// source's name) if a stage fails to compile or the program fails to link.
+class Program : public Name<deleteProgram> {
  public:
   struct Stage {
     GLenum type;
     std::string name;    // for error messages, e.g. "gbuffer.frag"
     std::string source;  // complete source, #version first
   };
-  Program() = default;
-  explicit Program(std::span<const Stage> stages);
-  GLuint id() const { return name_.id(); }
+  Program() = default;  // owns nothing
+  static Program link(std::span<const Stage> stages);
   void use() const { glUseProgram(id()); }
-  explicit operator bool() const { return bool(name_); }
-
- private:
-  Name<deleteProgram> name_;
 };
 
 }  // namespace headlight::gl

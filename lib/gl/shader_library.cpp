@@ -76,7 +76,7 @@ gl::Program buildProgram(std::span<const std::string_view> files, std::span<cons
     }
     stages.push_back({stageOf(file), name, buildShaderSource(file, defines)});
   }
-  return gl::Program(stages);
+  return gl::Program::link(stages);
 }
 
 }  // namespace headlight::detail

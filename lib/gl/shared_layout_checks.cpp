@@ -15,15 +15,30 @@ static_assert(sizeof(ObjectBlock) == 128);
 static_assert(sizeof(MaterialBlock) == 48);
 static_assert(offsetof(MaterialBlock, factors) == 32);
 static_assert(sizeof(SsgiBlock) == kMaxKernelSamples * 16 + 32);
-static_assert(offsetof(SsgiBlock, params) == kMaxKernelSamples * 16);
-static_assert(offsetof(SsgiBlock, counts) == kMaxKernelSamples * 16 + 16);
+static_assert(offsetof(SsgiBlock, radiusWorld) == kMaxKernelSamples * 16);
+static_assert(offsetof(SsgiBlock, indirectStrength) == kMaxKernelSamples * 16 + 12);
+static_assert(offsetof(SsgiBlock, sampleCount) == kMaxKernelSamples * 16 + 16);
+static_assert(offsetof(SsgiBlock, downsample) == kMaxKernelSamples * 16 + 20);
 static_assert(sizeof(LightingBlock) == 32);
+static_assert(offsetof(LightingBlock, pcfRadius) == 8);
+static_assert(offsetof(LightingBlock, shadowNormalOffset) == 12);
+static_assert(offsetof(LightingBlock, shadowMapSize) == 16);
 static_assert(sizeof(SsgiBlurBlock) == 16);
+static_assert(offsetof(SsgiBlurBlock, ssgiDownsample) == 4);
 static_assert(sizeof(ShadowBlock) == 80);
 static_assert(sizeof(SkyBlock) == 48);
-// std430 array stride of GpuLight: four vec4 and a mat4, no padding.
-static_assert(sizeof(GpuLight) == 4 * 16 + 64);
-static_assert(offsetof(GpuLight, shadowViewProjection) == 64);
+// std430: a vec3 starts a 16-byte row and the scalar after it fills the row;
+// the array stride is the struct's size, five rows and a mat4.
+static_assert(sizeof(GpuLight) == 5 * 16 + 64);
+static_assert(offsetof(GpuLight, range) == 12);
+static_assert(offsetof(GpuLight, direction) == 16);
+static_assert(offsetof(GpuLight, type) == 28);
+static_assert(offsetof(GpuLight, radiance) == 32);
+static_assert(offsetof(GpuLight, castsShadows) == 44);
+static_assert(offsetof(GpuLight, cosOuterCone) == 48);
+static_assert(offsetof(GpuLight, shadowLayer) == 56);
+static_assert(offsetof(GpuLight, shadowTexelSize) == 64);
+static_assert(offsetof(GpuLight, shadowViewProjection) == 80);
 
 // Two passes' inputs must never share a unit, nor two blocks a binding.
 constexpr bool allDistinct(std::initializer_list<int> values) {

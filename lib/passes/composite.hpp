@@ -4,28 +4,27 @@
 // occlusion and the SSGI's AO, + the SSGI's indirect term, as in the seed:
 //   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_ao + ssgi_indirect
 // Output GL_RGBA16F linear radiance; background pixels get the sky, alpha 0.
-#include <map>
-
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
+#include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 
 namespace headlight {
 
-class CompositePass {
+struct CompositeInputs {
+  const GBuffer& gbuffer;              // position, normal, albedo, material
+  const gl::Texture& direct;           // DirectLightTargets::towardEye
+  const gl::Texture* ssgi;             // blurred SSGI; null with SSGI off (ambient then unoccluded but for
+                                       // the material's occlusion)
+  const EnvironmentTables& environment;
+};
+
+// Variants: with SSGI (true) or without.
+class CompositePass : public FullscreenPass<bool> {
  public:
   CompositePass();
-  void prepare(bool withSsgi) { programFor(withSsgi); }
-  // The lighting block must be bound. `ssgi` is null with SSGI off: ambient
-  // is then unoccluded but for the material's occlusion.
-  void run(const GBuffer& gbuffer, const gl::Texture& direct, const gl::Texture* ssgi,
-           const EnvironmentTables& environment, const gl::Texture& output);
-
- private:
-  const gl::Program& programFor(bool withSsgi);
-  std::map<bool, gl::Program> programs_;
-  gl::Framebuffer framebuffer_;
-  gl::VertexArray emptyVertexArray_;
+  // The lighting block must be bound (sky intensity).
+  void run(const CompositeInputs& inputs, const gl::Texture& output);
 };
 
 }  // namespace headlight

@@ -5,36 +5,41 @@
 //   target 1 GL_RGBA16F  Lambertian radiance leaving the surface, for the SSGI
 //                        `radiance` method to gather; made only when asked
 // Background pixels stay 0.
-#include <map>
-
 #include "gl/objects.hpp"
+#include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/shadow.hpp"
 
 namespace headlight {
 
-struct DirectLightTargets {
-  gl::Texture towardEye;  // always
-  gl::Texture diffuse;    // only for the SSGI radiance method
+struct DirectLightInputs {
+  const GBuffer& gbuffer;     // position, normal, albedo, material; emissive if it has one
+  const ShadowMaps& shadows;  // empty maps: no shadows
 };
 
-class DirectLightPass {
- public:
-  struct Variant {
-    bool emissive, planarShadows, cubeShadows, diffuseTarget;
-    auto operator<=>(const Variant&) const = default;
-  };
-  DirectLightPass() = default;
-  void prepare(const Variant& variant) { programFor(variant); }
-  // The lighting block (light count, PCF radius) and the light buffer must be
-  // bound; reads gbuffer and `shadows`.
-  void run(const GBuffer& gbuffer, const ShadowMaps& shadows, DirectLightTargets& targets);
+struct DirectLightTargets {
+  gl::Texture towardEye;  // always
+  gl::Texture diffuse;    // only for the SSGI radiance method; empty otherwise
+};
 
- private:
-  const gl::Program& programFor(const Variant& variant);
-  std::map<Variant, gl::Program> programs_;
-  gl::Framebuffer framebuffer_;
-  gl::VertexArray emptyVertexArray_;
+struct DirectLightVariant {
+  bool emissive, planarShadows, cubeShadows, diffuseTarget;
+  auto operator<=>(const DirectLightVariant&) const = default;
+};
+
+class DirectLightPass : public FullscreenPass<DirectLightVariant> {
+ public:
+  using Variant = DirectLightVariant;
+  // The one rule for which program a frame uses, whether the frame is here
+  // (run) or predicted from the scene (the renderer's prepare).
+  static Variant variantFor(bool emissive, const ShadowCasters& casters, bool diffuseTarget) {
+    return {emissive, casters.planar > 0, casters.cube > 0, diffuseTarget};
+  }
+
+  DirectLightPass();
+  // The lighting block (light count, PCF radius) and the light buffer must be
+  // bound.
+  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets);
 };
 
 }  // namespace headlight

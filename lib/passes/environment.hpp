@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "gl/objects.hpp"
+#include "passes/fullscreen.hpp"
 #include "headlight/scene.hpp"
 
 namespace headlight {
@@ -28,12 +29,11 @@ class EnvironmentPass {
   const EnvironmentTables& tables() const { return tables_; }
 
  private:
-  void renderTable(const gl::Program& program, const gl::Texture& target);
   gl::Program brdfProgram_;
   gl::Program prefilterProgram_;
   gl::Program irradianceProgram_;
   gl::Buffer skyBlock_;
-  gl::VertexArray emptyVertexArray_;
+  FullscreenDraw draw_;
   EnvironmentTables tables_;
   std::optional<Sky> tabulatedSky_;  // the colours the sky tables hold
 };

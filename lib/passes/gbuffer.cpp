@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "gl/shader_library.hpp"
+#include "gl/target_formats.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -12,11 +13,12 @@ GBuffer makeGBuffer(int width, int height, bool withEmissive) {
   GBuffer gbuffer;
   gbuffer.width = width;
   gbuffer.height = height;
-  gbuffer.position = gl::Texture(GL_TEXTURE_2D, GL_RGBA32F, width, height);
-  gbuffer.normal = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
-  gbuffer.albedo = gl::Texture(GL_TEXTURE_2D, GL_SRGB8_ALPHA8, width, height);
-  gbuffer.material = gl::Texture(GL_TEXTURE_2D, GL_RGBA8, width, height);
-  gbuffer.depth = gl::Texture(GL_TEXTURE_2D, GL_DEPTH_COMPONENT32F, width, height);
+  gbuffer.position = gl::Texture::create2D(gl::targetFormat(&Frame::position), width, height);
+  gbuffer.normal = gl::Texture::create2D(gl::targetFormat(&Frame::normal), width, height);
+  gbuffer.albedo = gl::Texture::create2D(gl::targetFormat(&Frame::albedo), width, height);
+  gbuffer.material = gl::Texture::create2D(gl::targetFormat(&Frame::material), width, height);
+  gbuffer.depth = gl::Texture::create2D(gl::targetFormat(&Frame::depth), width, height);
+  gbuffer.framebuffer = gl::Framebuffer::create();
   auto& fb = gbuffer.framebuffer;
   fb.attach(GL_COLOR_ATTACHMENT0, gbuffer.position);
   fb.attach(GL_COLOR_ATTACHMENT1, gbuffer.normal);
@@ -26,7 +28,7 @@ GBuffer makeGBuffer(int width, int height, bool withEmissive) {
   std::vector<GLenum> drawBuffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
                                   GL_COLOR_ATTACHMENT3};
   if (withEmissive) {
-    gbuffer.emissive = gl::Texture(GL_TEXTURE_2D, GL_RGBA16F, width, height);
+    gbuffer.emissive = gl::Texture::create2D(gl::targetFormat(&Frame::emissive), width, height);
     fb.attach(GL_COLOR_ATTACHMENT4, gbuffer.emissive);
     drawBuffers.push_back(GL_COLOR_ATTACHMENT4);
   }
@@ -79,18 +81,13 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 
 }  // namespace
 
-GBufferPass::GBufferPass(const GpuScene& scene) : emissiveTarget_(scene.hasEmissive) {
+GBufferPass::GBufferPass(const GpuScene& scene)
+    : programs_("gbuffer.vert", "gbuffer.frag", [emissiveTarget = scene.hasEmissive](std::uint32_t features) {
+        return definesFor(features, emissiveTarget);
+      }) {
   for (const GpuInstance& instance : scene.instances)
-    programFor(usableFeatures(scene.primitives[std::size_t(instance.primitive)],
-                              scene.materials[std::size_t(instance.material)]));
-}
-
-const gl::Program& GBufferPass::programFor(std::uint32_t features) {
-  auto found = programs_.find(features);
-  if (found != programs_.end()) return found->second;
-  const std::string_view files[] = {"gbuffer.vert", "gbuffer.frag"};
-  const auto defines = definesFor(features, emissiveTarget_);
-  return programs_.emplace(features, detail::buildProgram(files, defines)).first->second;
+    programs_.get(usableFeatures(scene.primitives[std::size_t(instance.primitive)],
+                                 scene.materials[std::size_t(instance.material)]));
 }
 
 void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
@@ -112,7 +109,7 @@ void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(scene.instances[i].primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(scene.instances[i].material)];
     const std::uint32_t features = usableFeatures(primitive, material);
-    programFor(features).use();
+    programs_.get(features).use();
     if (material.doubleSided)
       glDisable(GL_CULL_FACE);
     else

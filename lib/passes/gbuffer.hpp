@@ -1,6 +1,7 @@
 #pragma once
 // The G-buffer pass: the scene drawn once into four colour targets and depth
-// (five with an emissive target, made only for scenes that glow).
+// (five with an emissive target, made only for scenes that glow). Formats
+// come from the frame-target table (headlight/targets.hpp):
 //   RT0 GL_RGBA32F      world position, A = 1 on geometry, 0 on background
 //   RT1 GL_RGBA16F      world normal as a unit vector (not remapped to 0..1)
 //   RT2 GL_SRGB8_ALPHA8 base colour (albedo)
@@ -8,10 +9,10 @@
 //   RT4 GL_RGBA16F      emissive radiance, only if the scene has any
 //   depth GL_DEPTH_COMPONENT32F
 #include <cstdint>
-#include <map>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "passes/program_cache.hpp"
+#include "scene/gpu_scene.hpp"
 
 namespace headlight {
 
@@ -37,9 +38,7 @@ class GBufferPass {
   void run(const GpuScene& scene, GBuffer& target);
 
  private:
-  const gl::Program& programFor(std::uint32_t features);
-  std::map<std::uint32_t, gl::Program> programs_;
-  bool emissiveTarget_ = false;
+  ProgramCache<std::uint32_t> programs_;  // keyed by GBufferFeature bits
 };
 
 }  // namespace headlight

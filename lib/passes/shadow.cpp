@@ -1,6 +1,7 @@
 #include "passes/shadow.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -60,37 +61,50 @@ glm::mat4 cubeFaceView(const glm::vec3& position, int face) {
 
 }  // namespace
 
-std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights) {
+ShadowCasters countShadowCasters(const std::vector<Light>& lights) {
+  ShadowCasters casters;
+  for (const Light& light : lights)
+    if (light.castsShadows) (light.type == Light::Type::Point ? casters.cube : casters.planar)++;
+  return casters;
+}
+
+std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::span<const ShadowSlot> slots) {
   std::vector<gpu::GpuLight> packed;
-  for (const Light& light : lights) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
+    const ShadowSlot slot = i < slots.size() ? slots[i] : ShadowSlot{};
     gpu::GpuLight gpu{};
-    gpu.positionRange = glm::vec4(light.position, light.range);
-    gpu.directionType = glm::vec4(glm::normalize(light.direction), float(shaderType(light.type)));
-    gpu.radiance = glm::vec4(light.color * light.intensity, 0.0f);
-    gpu.spotShadow = glm::vec4(std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), -1.0f, 0.0f);
-    gpu.shadowViewProjection = glm::mat4(1.0f);
+    gpu.position = light.position;
+    gpu.range = light.range;
+    gpu.direction = glm::normalize(light.direction);
+    gpu.type = shaderType(light.type);
+    gpu.radiance = light.color * light.intensity;
+    gpu.castsShadows = slot.layer >= 0 ? 1 : 0;
+    gpu.cosOuterCone = std::cos(light.outerConeAngle);
+    gpu.cosInnerCone = std::cos(light.innerConeAngle);
+    gpu.shadowLayer = slot.layer;
+    gpu.shadowFar = slot.far;
+    gpu.shadowTexelSize = slot.texelSize;
+    gpu.shadowViewProjection = slot.viewProjection;
     packed.push_back(gpu);
   }
   return packed;
 }
 
-ShadowPass::ShadowPass() : block_(sizeof(gpu::ShadowBlock), nullptr) {
-  const std::string_view files[] = {"shadow.vert", "shadow.frag"};
-  program_ = detail::buildProgram(files);
+ShadowPass::ShadowPass()
+    : program_(detail::buildProgram(std::array<std::string_view, 2>{"shadow.vert", "shadow.frag"})),
+      block_(gl::Buffer::create(sizeof(gpu::ShadowBlock))),
+      framebuffer_(gl::Framebuffer::create()) {
   framebuffer_.setDrawBuffers({});
 }
 
-ShadowMaps ShadowPass::run(const GpuScene& scene, const std::vector<Light>& sceneLights,
-                           std::vector<gpu::GpuLight>& lights, int size) {
-  int planarCount = 0, cubeCount = 0;
-  for (const Light& light : sceneLights) {
-    if (!light.castsShadows) continue;
-    (light.type == Light::Type::Point ? cubeCount : planarCount)++;
-  }
-  ShadowMaps maps;
+ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& lights, int size) {
+  const ShadowCasters casters = countShadowCasters(lights);
+  ShadowOutputs out;
+  ShadowMaps& maps = out.maps;
   maps.size = size;
-  if (planarCount > 0) maps.planar = gl::Texture(GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F, size, size, planarCount);
-  if (cubeCount > 0) maps.cube = gl::Texture(GL_TEXTURE_CUBE_MAP_ARRAY, GL_DEPTH_COMPONENT32F, size, size, 6 * cubeCount);
+  if (casters.planar > 0) maps.planar = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, casters.planar);
+  if (casters.cube > 0) maps.cube = gl::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, size, casters.cube);
   for (const gl::Texture* map : {&maps.planar, &maps.cube}) {
     if (!*map) continue;
     glTextureParameteri(map->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -101,34 +115,32 @@ ShadowMaps ShadowPass::run(const GpuScene& scene, const std::vector<Light>& scen
     glTextureParameteri(map->id(), GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
   }
 
+  out.slots.resize(lights.size());
   int planarLayer = 0, cubeLayer = 0;
-  for (std::size_t i = 0; i < sceneLights.size(); ++i) {
-    const Light& light = sceneLights[i];
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const Light& light = lights[i];
     if (!light.castsShadows) continue;
-    gpu::GpuLight& gpuLight = lights[i];
-    gpuLight.radiance.w = 1.0f;
+    ShadowSlot& slot = out.slots[i];
     if (light.type == Light::Type::Point) {
       const float far = std::max(farDistance(light.position, scene.bounds), 1e-30f);
       const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, far * 1e-4f, far);
       for (int face = 0; face < 6; ++face)
         renderView(scene, maps.cube, 6 * cubeLayer + face, projection * cubeFaceView(light.position, face),
                    glm::vec4(light.position, far));
-      gpuLight.spotShadow.z = float(cubeLayer++);
-      gpuLight.spotShadow.w = far;
+      slot.layer = cubeLayer++;
+      slot.far = far;
     } else {
-      float texelSize = 0.0f;
       const glm::mat4 viewProjection = light.type == Light::Type::Directional
-                                           ? directionalViewProjection(light, scene.bounds, size, texelSize)
-                                           : spotViewProjection(light, scene.bounds, size, texelSize);
+                                           ? directionalViewProjection(light, scene.bounds, size, slot.texelSize)
+                                           : spotViewProjection(light, scene.bounds, size, slot.texelSize);
       renderView(scene, maps.planar, planarLayer, viewProjection, glm::vec4(0.0f));
-      gpuLight.shadowViewProjection = viewProjection;
-      gpuLight.spotShadow.z = float(planarLayer++);
-      gpuLight.spotShadow.w = texelSize;
+      slot.viewProjection = viewProjection;
+      slot.layer = planarLayer++;
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   framebuffer_.detach(GL_DEPTH_ATTACHMENT);
-  return maps;
+  return out;
 }
 
 void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, int layer,

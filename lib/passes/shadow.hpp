@@ -4,30 +4,52 @@
 // one cube of a depth cube-map array per point light. Their extent comes from
 // the scene bounds, so an 8 mm asset and a 2 km one are both covered.
 // Shadows do not depend on the camera: the renderer keeps them across views.
+#include <span>
 #include <vector>
 
 #include "gl/objects.hpp"
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
 
+// How many maps of each kind the scene's casting lights need.
+struct ShadowCasters {
+  int planar = 0;  // directional and spot lights: layers of ShadowMaps::planar
+  int cube = 0;    // point lights: cubes of ShadowMaps::cube
+};
+ShadowCasters countShadowCasters(const std::vector<Light>& lights);
+
 struct ShadowMaps {
-  gl::Texture planar;  // GL_TEXTURE_2D_ARRAY, GL_DEPTH_COMPONENT32F; empty without directional/spot casters
-  gl::Texture cube;    // GL_TEXTURE_CUBE_MAP_ARRAY, GL_DEPTH_COMPONENT32F, linear distance / far
-  int size = 0;        // texels per side
+  gl::Texture planar;  // 2D array, GL_DEPTH_COMPONENT32F; empty without directional/spot casters
+  gl::Texture cube;    // cube-map array, GL_DEPTH_COMPONENT32F, linear distance / far; empty without point casters
+  int size = 0;        // texels per side; 0 = no maps
+  ShadowCasters casters() const { return {planar.layers(), cube.layers() / 6}; }
 };
 
-// The lights as the lighting shader reads them, without shadows assigned.
-std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights);
+// Where one light's shadow is: what the lighting shader needs to look it up.
+struct ShadowSlot {
+  int layer = -1;                      // layer of ShadowMaps::planar, or cube of ShadowMaps::cube; -1 = none
+  float far = 0.0f;                    // point lights: the distance the cube's depth is divided by
+  float texelSize = 0.0f;              // directional: a texel's world size; spot: per unit distance from the light
+  glm::mat4 viewProjection{1.0f};      // directional and spot: world -> light clip
+};
+
+struct ShadowOutputs {
+  ShadowMaps maps;
+  std::vector<ShadowSlot> slots;  // one per scene light, in order; layer -1 for lights that cast none
+};
+
+// The lights as the lighting shader reads them. `slots` (one per light, or
+// empty for "no shadows") come from ShadowPass::run.
+std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::span<const ShadowSlot> slots = {});
 
 class ShadowPass {
  public:
   ShadowPass();
-  // Assigns a shadow layer, matrix and far distance to each casting light in
-  // `lights` and renders its map at `size` texels per side.
-  ShadowMaps run(const GpuScene& scene, const std::vector<Light>& sceneLights, std::vector<gpu::GpuLight>& lights,
-                 int size);
+  // Renders a map at `size` texels per side for each casting light of
+  // `lights` (the scene's, in order) and says where each one went.
+  ShadowOutputs run(const GpuScene& scene, const std::vector<Light>& lights, int size);
 
  private:
   void renderView(const GpuScene& scene, const gl::Texture& target, int layer, const glm::mat4& viewProjection,

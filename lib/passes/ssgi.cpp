@@ -44,64 +44,47 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed) {
 }
 
 SsgiPass::SsgiPass()
-    : block_(sizeof(gpu::SsgiBlock), nullptr), noise_(GL_TEXTURE_2D, GL_RG16F, 4, 4) {
-  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0};
-  framebuffer_.setDrawBuffers(drawBuffers);
-}
+    : FullscreenPass("ssgi.frag", [](SsgiMethod method) {
+        return method == SsgiMethod::Radiance ? std::vector<std::string>{"METHOD_RADIANCE"}
+                                              : std::vector<std::string>{};
+      }),
+      blockBuffer_(gl::Buffer::create(sizeof(gpu::SsgiBlock))),
+      noise_(gl::Texture::create2D(GL_RG16F, 4, 4)) {}
 
-const gl::Program& SsgiPass::programFor(SsgiMethod method) {
-  auto found = programs_.find(method);
-  if (found != programs_.end()) return found->second;
-  std::vector<std::string> defines;
-  if (method == SsgiMethod::Radiance) defines.emplace_back("METHOD_RADIANCE");
-  const std::string_view files[] = {"fullscreen.vert", "ssgi.frag"};
-  return programs_.emplace(method, detail::buildProgram(files, defines)).first->second;
-}
-
-void SsgiPass::updateKernel(const SsgiSettings& settings) {
-  if (settings.sampleCount == kernelSampleCount_ && settings.seed == kernelSeed_) return;
-  gpu::SsgiBlock block{};
-  const auto kernel = makeSsgiKernel(settings.sampleCount, settings.seed);
-  for (std::size_t i = 0; i < kernel.size(); ++i) block.kernel[i] = glm::vec4(kernel[i], 0.0f);
-  block_.update(&block, sizeof(block.kernel));
-  const auto noise = makeSsgiNoise(settings.seed);
+void SsgiPass::updateKernel(int sampleCount, unsigned seed) {
+  if (sampleCount == block_.sampleCount && seed == kernelSeed_) return;
+  const auto kernel = makeSsgiKernel(sampleCount, seed);
+  for (std::size_t i = 0; i < std::size(block_.kernel); ++i)
+    block_.kernel[i] = i < kernel.size() ? glm::vec4(kernel[i], 0.0f) : glm::vec4(0.0f);
+  const auto noise = makeSsgiNoise(seed);
   glTextureSubImage2D(noise_.id(), 0, 0, 0, 4, 4, GL_RG, GL_FLOAT, noise.data());
-  kernelSampleCount_ = settings.sampleCount;
-  kernelSeed_ = settings.seed;
+  block_.sampleCount = sampleCount;
+  kernelSeed_ = seed;
 }
 
-void SsgiPass::run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
-                   const SsgiSettings& settings) {
-  updateKernel(settings);
-  const glm::vec4 params(*settings.radius, *settings.bias, settings.intensity, *settings.indirectStrength);
-  const glm::ivec4 counts(settings.sampleCount, ssgiDivisor(settings.resolution), 0, 0);
-  block_.update(&params, sizeof(params), offsetof(gpu::SsgiBlock, params));
-  block_.update(&counts, sizeof(counts), offsetof(gpu::SsgiBlock, counts));
+void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
+  updateKernel(inputs.sampleCount, inputs.seed);
+  block_.radiusWorld = inputs.radiusWorld;
+  block_.biasWorld = inputs.biasWorld;
+  block_.intensity = inputs.intensity;
+  block_.indirectStrength = inputs.indirectStrength;
+  block_.downsample = inputs.downsample;
+  blockBuffer_.update(block_);
+  blockBuffer_.bindUniform(gpu::SsgiBlock::kBinding);
 
-  framebuffer_.attach(GL_COLOR_ATTACHMENT0, output);
-  framebuffer_.checkComplete("SSGI");
-  framebuffer_.bind();
-  glViewport(0, 0, output.width(), output.height());
-  // Background pixels are discarded by the shader and keep this: open, no
-  // indirect light.
-  const float clear[] = {1.0f, 0.0f, 0.0f, 0.0f};
-  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, clear);
-  glDisable(GL_DEPTH_TEST);
-
+  const GBuffer& gbuffer = inputs.gbuffer;
   gbuffer.position.bind(gpu::kUnitGbufferPosition);
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   noise_.bind(gpu::kUnitSsgiNoise);
-  if (settings.method == SsgiMethod::Radiance) {
-    if (directDiffuse == nullptr) throw GlError("SSGI radiance method: no direct-light diffuse target");
+  if (inputs.method == SsgiMethod::Radiance) {
+    if (inputs.directDiffuse == nullptr) throw GlError("SSGI radiance method: no direct-light diffuse target");
     gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-    directDiffuse->bind(gpu::kUnitDirectDiffuse);
+    inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   }
-  block_.bindUniform(gpu::SsgiBlock::kBinding);
-  programFor(settings.method).use();
-  emptyVertexArray_.bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
+  // Background pixels are discarded by the shader and keep the clear value:
+  // open, no indirect light.
+  draw("SSGI", inputs.method, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 
 }  // namespace headlight

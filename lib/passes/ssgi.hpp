@@ -7,14 +7,15 @@
 // `hemisphere` method) or its direct Lambertian radiance (`radiance`,
 // docs/ACCURACY.md). Output GL_RGBA16F: R = AO (1 = open), GBA = indirect.
 #include <array>
-#include <map>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "gl/objects.hpp"
 #include "headlight/settings.hpp"
+#include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "shared_layout.h"
 
 namespace headlight {
 
@@ -28,29 +29,35 @@ std::vector<glm::vec3> makeSsgiKernel(int sampleCount, unsigned seed);
 // normal, tiled every 4x4 pixels.
 std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 
-class SsgiPass {
+// Everything one SSGI frame reads. Values are resolved (no "auto"): the
+// renderer fills them from the frame's settings.
+struct SsgiInputs {
+  const GBuffer& gbuffer;              // position, normal, albedo; material for the radiance method
+  const gl::Texture* directDiffuse;    // DirectLightTargets::diffuse: required by radiance, ignored by hemisphere
+  SsgiMethod method = SsgiMethod::Hemisphere;
+  int sampleCount = 0;                 // kernel samples, 1..gpu::kMaxKernelSamples
+  unsigned seed = 0;                   // kernel and noise
+  float radiusWorld = 0.0f;            // kernel radius, world units, > 0
+  float biasWorld = 0.0f;              // occlusion depth bias, world units, >= 0
+  float intensity = 0.0f;              // AO = 1 - intensity * mean occlusion, >= 0
+  float indirectStrength = 0.0f;       // scale of the indirect term, >= 0
+  int downsample = 1;                  // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+};
+
+// Variants: one per method.
+class SsgiPass : public FullscreenPass<SsgiMethod> {
  public:
   SsgiPass();
-  void prepare(SsgiMethod method) { programFor(method); }
-  // Reads gbuffer (position, normal, albedo; material for the radiance
-  // method), `directDiffuse` (the direct-light pass's Lambertian target;
-  // required by the radiance method, ignored by hemisphere) and the frame
-  // block; writes `output` (GL_RGBA16F, the G-buffer's size divided by
-  // settings.downsample, rounded up). `settings` must be
-  // resolved (radius > 0, bias >= 0, indirectStrength >= 0).
-  void run(const GBuffer& gbuffer, const gl::Texture* directDiffuse, const gl::Texture& output,
-           const SsgiSettings& settings);
+  // Reads `inputs` and the frame block; writes `output` (GL_RGBA16F, the
+  // size SsgiInputs::downsample says).
+  void run(const SsgiInputs& inputs, const gl::Texture& output);
 
  private:
-  void updateKernel(const SsgiSettings& settings);
-  const gl::Program& programFor(SsgiMethod method);
-  std::map<SsgiMethod, gl::Program> programs_;
-  gl::Buffer block_;
+  void updateKernel(int sampleCount, unsigned seed);
+  gpu::SsgiBlock block_{};  // the CPU copy: the kernel (and sampleCount) changes rarely, the rest every frame
+  gl::Buffer blockBuffer_;
   gl::Texture noise_;
-  gl::Framebuffer framebuffer_;
-  gl::VertexArray emptyVertexArray_;  // a fullscreen triangle needs no vertices, but core GL needs a VAO bound
-  int kernelSampleCount_ = 0;
-  unsigned kernelSeed_ = 0;
+  unsigned kernelSeed_ = 0;  // with block_.sampleCount, what the kernel and noise were made from
 };
 
 }  // namespace headlight

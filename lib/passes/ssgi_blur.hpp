@@ -5,23 +5,28 @@
 // Below full resolution it is also the upsample, with the same weights.
 // Input and output GL_RGBA16F, same layout as the SSGI output.
 #include "gl/objects.hpp"
+#include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 
 namespace headlight {
 
+struct SsgiBlurInputs {
+  const GBuffer& gbuffer;       // position, normal
+  const gl::Texture& rawSsgi;   // the SSGI pass's output, at 1/ssgiDownsample of the G-buffer's size per side
+  float ssgiRadiusWorld = 0.0f; // the SSGI radius: depth differences are judged against it
+  int ssgiDownsample = 1;       // 1, 2 or 4
+};
+
 class SsgiBlurPass {
  public:
   SsgiBlurPass();
-  // `radius` is the SSGI radius in world units: depth differences are
-  // judged against it. The frame block must be bound.
-  // `input` is the raw SSGI at 1/divisor of the G-buffer's size per side.
-  void run(const GBuffer& gbuffer, const gl::Texture& input, const gl::Texture& output, float radius, int divisor);
+  // The frame block must be bound. `output` has the G-buffer's size.
+  void run(const SsgiBlurInputs& inputs, const gl::Texture& output);
 
  private:
   gl::Program program_;
   gl::Buffer block_;
-  gl::Framebuffer framebuffer_;
-  gl::VertexArray emptyVertexArray_;
+  FullscreenDraw draw_;
 };
 
 }  // namespace headlight

@@ -15,6 +15,6 @@ ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels);
 
 // Reads a depth texture and converts window depth to the distance along the
 // view direction (view-space -z), using view's projection and planes.
-ImageF readViewDepth(const gl::Texture& depth, const CameraView& view);
+ImageF readViewDepth(const gl::Texture& depth, const CameraView& view, std::string channel);
 
 }  // namespace headlight

@@ -1,4 +1,4 @@
-#include "gpu_scene.hpp"
+#include "scene/gpu_scene.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -13,7 +13,7 @@ namespace {
 
 template <class T>
 gl::Buffer makeBuffer(const std::vector<T>& items) {
-  return gl::Buffer(std::span<const T>(items));
+  return gl::Buffer::create(std::span<const T>(items));
 }
 
 // Attribute locations match gbuffer.vert's.
@@ -28,6 +28,7 @@ void addAttribute(GpuPrimitive& gpu, GLuint location, GLint components, std::siz
 
 GpuPrimitive uploadPrimitive(const Primitive& primitive) {
   GpuPrimitive gpu;
+  gpu.vertexArray = gl::VertexArray::create();
   addAttribute(gpu, 0, 3, sizeof(glm::vec3), makeBuffer(primitive.positions));
   addAttribute(gpu, 1, 3, sizeof(glm::vec3), makeBuffer(primitive.normals));
   if (!primitive.texcoords.empty()) {
@@ -74,8 +75,8 @@ class TextureCache {
   GpuTexture upload(const TextureRef& ref, bool srgb) {
     const ImageData& image = scene_.images[std::size_t(ref.image)];
     const int levels = isMipmapFilter(ref.minFilter) ? mipLevels(image.width, image.height) : 1;
-    GpuTexture gpu{gl::Texture(GL_TEXTURE_2D, srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height, 1, levels),
-                   gl::Sampler()};
+    GpuTexture gpu{gl::Texture::create2D(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height, levels),
+                   gl::Sampler::create()};
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Rows go up top first, so glTF's top-left UV origin needs no flip.
     glTextureSubImage2D(gpu.texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
@@ -100,7 +101,7 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   block.emissiveFactor = glm::vec4(material.emissiveFactor, 0.0f);
   block.factors = glm::vec4(material.metallicFactor, material.roughnessFactor, material.normalScale,
                             material.occlusionStrength);
-  gpu.block = gl::Buffer(sizeof(block), &block);
+  gpu.block = gl::Buffer::create(sizeof(block), &block);
   gpu.doubleSided = material.doubleSided;
   struct Slot {
     const TextureRef& ref;
@@ -133,7 +134,7 @@ gl::Buffer uploadInstances(const Scene& scene, std::size_t& stride) {
     block.normalFromLocal = glm::mat4(normalMatrix(block.worldFromLocal));
     std::memcpy(bytes.data() + i * stride, &block, sizeof(block));
   }
-  return gl::Buffer(bytes.size(), bytes.data());
+  return gl::Buffer::create(bytes.size(), bytes.data());
 }
 
 }  // namespace

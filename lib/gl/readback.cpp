@@ -1,4 +1,4 @@
-#include "readback.hpp"
+#include "gl/readback.hpp"
 
 #include <cmath>
 
@@ -45,11 +45,11 @@ ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels) 
   return image;
 }
 
-ImageF readViewDepth(const gl::Texture& depth, const CameraView& view) {
+ImageF readViewDepth(const gl::Texture& depth, const CameraView& view, std::string channel) {
   ImageF image;
   image.width = depth.width();
   image.height = depth.height();
-  image.channels = {"depth.Z"};
+  image.channels = {std::move(channel)};
   image.pixels.resize(std::size_t(image.width) * std::size_t(image.height));
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(image.pixels.size() * sizeof(float)),
