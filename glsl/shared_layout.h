@@ -5,6 +5,10 @@
 // fill whole 16-byte rows (a vec4, ivec4 or mat4, a vec3 and one scalar, or
 // four scalars, spare ones named padN), so std140 and C++ agree with no
 // hidden padding. No scalar arrays: std140 strides their elements by 16.
+// Not clang-formatted: the blocks are read as GLSL too, and their members are
+// laid out by hand as the std140 rows they fill (clang-format would unindent
+// them as macro arguments).
+// clang-format off
 #ifndef HEADLIGHT_SHARED_LAYOUT_H
 #define HEADLIGHT_SHARED_LAYOUT_H
 

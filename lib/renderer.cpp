@@ -10,18 +10,18 @@
 #include <span>
 
 #include "gl/objects.hpp"
+#include "gl/readback.hpp"
 #include "gl/target_formats.hpp"
-#include "scene/gpu_scene.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
-#include "passes/environment.hpp"
-#include "passes/gbuffer.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
+#include "passes/environment.hpp"
+#include "passes/gbuffer.hpp"
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
 #include "passes/ssgi_blur.hpp"
-#include "gl/readback.hpp"
+#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -99,8 +99,8 @@ struct Renderer::Impl {
   std::optional<GpuScene> gpuScene;
   std::optional<GBufferPass> gbufferPass;
   gl::Buffer lightBuffer;  // scene.lights packed, with the shadow slots of shadowMaps
-  ShadowMaps shadowMaps;  // kept across views: they do not depend on the camera
-  int shadowMapSize = 0;  // what shadowMaps were made with; 0 = none yet
+  ShadowMaps shadowMaps;   // kept across views: they do not depend on the camera
+  int shadowMapSize = 0;   // what shadowMaps were made with; 0 = none yet
 
   // Per image size.
   GBuffer gbuffer;
@@ -127,8 +127,7 @@ struct Renderer::Impl {
       else if (texture.width() != w || texture.height() != h)
         texture = gl::Texture::create2D(format, w, h);
     };
-    if (gbuffer.width != width || gbuffer.height != height)
-      gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
+    if (gbuffer.width != width || gbuffer.height != height) gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
     // Direct light is internal (no frame target): half float holds HDR radiance.
     ensure(direct.towardEye, true, GL_RGBA16F);
     ensure(direct.diffuse, needs.directDiffuse, GL_RGBA16F);
@@ -144,9 +143,7 @@ struct Renderer::Impl {
 
   // Shadow maps are (re)made when the size changes or shadows are turned
   // on; with shadows off the lights read "no map" and nothing is allocated.
-  bool needsShadowPass(bool shadows, int size) const {
-    return shadows && hasShadowCasters() && shadowMapSize != size;
-  }
+  bool needsShadowPass(bool shadows, int size) const { return shadows && hasShadowCasters() && shadowMapSize != size; }
 
   // The light buffer: the scene's lights, each with its slot in the shadow
   // maps (none without slots).
@@ -202,9 +199,8 @@ struct Renderer::Impl {
   const gl::Texture& sourceOf(const FrameTarget& target) const {
     static const gl::Texture kNone;
     const std::pair<ImageF Frame::*, const gl::Texture*> sources[] = {
-        {&Frame::position, &gbuffer.position}, {&Frame::normal, &gbuffer.normal},
-        {&Frame::albedo, &gbuffer.albedo},     {&Frame::material, &gbuffer.material},
-        {&Frame::depth, &gbuffer.depth},       {&Frame::emissive, &gbuffer.emissive},
+        {&Frame::position, &gbuffer.position}, {&Frame::normal, &gbuffer.normal}, {&Frame::albedo, &gbuffer.albedo},
+        {&Frame::material, &gbuffer.material}, {&Frame::depth, &gbuffer.depth},   {&Frame::emissive, &gbuffer.emissive},
         {&Frame::ssgi, &ssgiTarget},           {&Frame::lit, &litTarget}};
     for (const auto& [image, texture] : sources)
       if (image == target.image) return *texture;
@@ -254,9 +250,8 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.shadowMapSize = 0;
   // The default settings' variants, so the first frame times shading, not compiling.
   const RenderSettings defaults;
-  impl.directLight.prepare(DirectLightPass::variantFor(impl.gpuScene->hasEmissive,
-                                                       countShadowCasters(impl.scene.lights),
-                                                       defaults.ssgi.method == SsgiMethod::Radiance));
+  impl.directLight.prepare(DirectLightPass::variantFor(
+      impl.gpuScene->hasEmissive, countShadowCasters(impl.scene.lights), defaults.ssgi.method == SsgiMethod::Radiance));
   impl.ssgi.prepare(defaults.ssgi.method);
   impl.composite.prepare(true);
   impl.context.checkErrors("uploading " + impl.scene.source);
@@ -286,8 +281,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   frame.settings = resolve(settings);
   const RenderSettings& used = frame.settings;
   Camera fitted;
-  frame.view = makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width,
-                              used.height);
+  frame.view =
+      makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);
 
   // The resolved settings, copied into the plain values each pass takes.
   const bool ssgiOn = used.ssgi.enabled;

@@ -5,10 +5,10 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <algorithm>
 
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
@@ -42,7 +42,8 @@ TEST_CASE("render of the default scene writes every target with real content") {
     REQUIRE(stats.max.size() == std::size_t(image.nchannels()));
     // Not a blank image: some channel varies over the frame.
     float spread = 0;
-    for (int c = 0; c < image.nchannels(); ++c) spread = std::max(spread, stats.max[std::size_t(c)] - stats.min[std::size_t(c)]);
+    for (int c = 0; c < image.nchannels(); ++c)
+      spread = std::max(spread, stats.max[std::size_t(c)] - stats.min[std::size_t(c)]);
     CHECK(spread > 0.01f);
   }
   OIIO::ImageBuf preview((out / "preview.png").string());
@@ -66,8 +67,8 @@ TEST_CASE("a malformed glTF is exit 1 with a SceneError naming the file, and no 
 
 TEST_CASE("a missing scene file is exit 1 naming the file") {
   const fs::path folder = freshFolder("missing");
-  const Run run = runHeadlight("render " + quote((folder / "nope.glb").string()) + " --out " +
-                               quote((folder / "out").string()));
+  const Run run =
+      runHeadlight("render " + quote((folder / "nope.glb").string()) + " --out " + quote((folder / "out").string()));
   INFO(run.output);
   CHECK(run.exitCode == 1);
   CHECK(run.output.find("nope.glb") != std::string::npos);
@@ -102,7 +103,8 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
 TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("reference") / "out";
-  const Run run = runHeadlight("reference --width 32 --height 24 --reference-samples 64 --strict --out " + quote(out.string()));
+  const Run run =
+      runHeadlight("reference --width 32 --height 24 --reference-samples 64 --strict --out " + quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const std::pair<const char*, const char*> files[] = {
@@ -122,10 +124,11 @@ TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels
 TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("bench") / "out";
-  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --sweep ssgi-method=hemisphere,radiance "
-                               "--sweep ssgi-samples=4,16 --ssgi-blur "
-                               "--sweep ssgi-resolution=full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
-                               quote(out.string()));
+  const Run run = runHeadlight(
+      "bench builtin:cornell --resolutions 32x24 --sweep ssgi-method=hemisphere,radiance "
+      "--sweep ssgi-samples=4,16 --ssgi-blur "
+      "--sweep ssgi-resolution=full,half --repetitions 2 --warmup 1 --reference-samples 64 --quiet --out " +
+      quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   std::ifstream csv(out / "bench.csv");

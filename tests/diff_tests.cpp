@@ -9,8 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 
 #include "diff_command.hpp"
@@ -103,7 +103,8 @@ TestImage rotated(TestImage image, double degrees) {
     // t = normalize(n x (0.3, 0.5, 0.8)) is perpendicular to n; rotate towards it.
     double t[3] = {n[1] * 0.8 - n[2] * 0.5, n[2] * 0.3 - n[0] * 0.8, n[0] * 0.5 - n[1] * 0.3};
     const double length = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-    for (int i = 0; i < 3; ++i) image.pixels[p + std::size_t(i)] = float(std::cos(angle) * n[i] + std::sin(angle) * t[i] / length);
+    for (int i = 0; i < 3; ++i)
+      image.pixels[p + std::size_t(i)] = float(std::cos(angle) * n[i] + std::sin(angle) * t[i] / length);
   }
   return image;
 }
@@ -165,7 +166,7 @@ TEST_CASE("diff: idiff's levels on an absolute target (albedo: warn 2e-3, fail 1
   SUBCASE("over fail in more than failpercent: fail, with count, percent and the max pixel") {
     TestImage changed = reference;
     for (int x = 0; x < 20; ++x) changed.at(x, 7, 2) += 0.05f;  // 20 of 400 pixels: 5 %
-    changed.at(11, 7, 2) += 0.05f;                               // the largest: 0.1
+    changed.at(11, 7, 2) += 0.05f;                              // the largest: 0.1
     const DiffResult result = diffWith(changed);
     CHECK(result.status == DiffStatus::Fail);
     CHECK(result.failingPixels == 20);
@@ -501,7 +502,8 @@ TEST_CASE("diff: --out writes a float diff.exr and a diff.png heatmap, atomicall
   CHECK(diff.spec().channelnames[3] == "error");
   const int red = diff.spec().channelindex("R"), error = diff.spec().channelindex("error");
   CHECK(diff.getchannel(3, 3, 0, red) == doctest::Approx(1.0));
-  CHECK(diff.getchannel(3, 3, 0, error) == doctest::Approx(1.0 / std::max(1.0, double(image.pixels[(3 * 16 + 3) * 3]))));
+  CHECK(diff.getchannel(3, 3, 0, error) ==
+        doctest::Approx(1.0 / std::max(1.0, double(image.pixels[(3 * 16 + 3) * 3]))));
   CHECK(diff.getchannel(4, 3, 0, error) == 0);
 
   OIIO::ImageBuf png((folder / "report" / "diff.png").string());

@@ -112,8 +112,7 @@ TEST_CASE("direct light on the GPU matches the CPU ports per pixel") {
       }
       lit += expected.r + expected.g + expected.b > 1e-3f;
     }
-  MESSAGE("direct light: " << covered << " covered pixels, " << lit << " lit, worst relative error "
-                           << worstRelative);
+  MESSAGE("direct light: " << covered << " covered pixels, " << lit << " lit, worst relative error " << worstRelative);
   CHECK(outside == 0);
   // The scene does what it is for: most of the frame is geometry, and lit.
   CHECK(covered > frame.lit.width * frame.lit.height / 2);

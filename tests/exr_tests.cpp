@@ -7,11 +7,11 @@
 
 #include <filesystem>
 
-#include "support/gl.hpp"
-#include "support/temp_folder.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
+#include "support/gl.hpp"
+#include "support/temp_folder.hpp"
 
 using namespace headlight;
 namespace fs = std::filesystem;

@@ -7,8 +7,8 @@
 
 #include <iostream>
 
-#include "support/gl.hpp"
 #include "headlight/error.hpp"
+#include "support/gl.hpp"
 
 int main(int argc, char** argv) {
   try {

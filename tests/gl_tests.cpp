@@ -10,13 +10,13 @@
 #include <algorithm>
 #include <cmath>
 
-#include "headlight/error.hpp"
 #include "gl/shader_library.hpp"
+#include "headlight/error.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
-#include "support/gl.hpp"
 #include "shared_layout.h"
+#include "support/gl.hpp"
 
 using namespace headlight;
 using namespace headlight::test;
@@ -111,13 +111,14 @@ TEST_CASE("Cornell box: a corner is darker than the middle of the back wall, and
   const Frame frame = renderScene(loadScene("builtin:cornell"), smallSettings(128, 128));
   int cornerCount = 0, wallCount = 0, floorCount = 0;
   // The back wall's top right corner, where it meets the ceiling and the green wall.
-  const double cornerAo = meanWhere(frame, frame.ssgi, 0, [](glm::vec3 p, glm::vec3 n) {
-    return n.z > 0.9f && p.x > 0.9f && p.y > 1.9f;
-  }, cornerCount);
+  const double cornerAo = meanWhere(
+      frame, frame.ssgi, 0, [](glm::vec3 p, glm::vec3 n) { return n.z > 0.9f && p.x > 0.9f && p.y > 1.9f; },
+      cornerCount);
   // The back wall's middle, well away from both blocks and every edge.
-  const double wallAo = meanWhere(frame, frame.ssgi, 0, [](glm::vec3 p, glm::vec3 n) {
-    return n.z > 0.9f && std::abs(p.x) < 0.2f && p.y > 1.3f && p.y < 1.6f;
-  }, wallCount);
+  const double wallAo = meanWhere(
+      frame, frame.ssgi, 0,
+      [](glm::vec3 p, glm::vec3 n) { return n.z > 0.9f && std::abs(p.x) < 0.2f && p.y > 1.3f && p.y < 1.6f; },
+      wallCount);
   REQUIRE(cornerCount > 5);
   REQUIRE(wallCount > 20);
   CHECK(wallAo > 0.95);
@@ -221,8 +222,8 @@ TEST_CASE("one renderer renders many sizes and views; a repeated render is bit-i
   for (const auto& [name, image] : first.targets()) {
     CAPTURE(name);
     const auto& againTargets = again.targets();
-    const auto match = std::find_if(againTargets.begin(), againTargets.end(),
-                                    [&](const auto& t) { return t.first == name; });
+    const auto match =
+        std::find_if(againTargets.begin(), againTargets.end(), [&](const auto& t) { return t.first == name; });
     REQUIRE(match != againTargets.end());
     CHECK(image->pixels == match->second->pixels);
   }
@@ -279,14 +280,13 @@ TEST_CASE("EGL and OSMesa render the same images" * doctest::test_suite("backend
   for (const auto& [name, image] : egl.targets()) {
     CAPTURE(name);
     const auto other = osmesa.targets();
-    const auto match =
-        std::find_if(other.begin(), other.end(), [&](const auto& t) { return t.first == name; });
+    const auto match = std::find_if(other.begin(), other.end(), [&](const auto& t) { return t.first == name; });
     REQUIRE(match != other.end());
     REQUIRE(image->pixels.size() == match->second->pixels.size());
     float worst = 0;
     for (std::size_t i = 0; i < image->pixels.size(); ++i)
-      worst = std::max(worst, std::abs(image->pixels[i] - match->second->pixels[i]) /
-                                  std::max(1.0f, std::abs(image->pixels[i])));
+      worst = std::max(
+          worst, std::abs(image->pixels[i] - match->second->pixels[i]) / std::max(1.0f, std::abs(image->pixels[i])));
     CHECK(worst <= 1e-3f);
   }
 }
@@ -331,14 +331,16 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   const std::string_view gbufferFiles[] = {"gbuffer.vert", "gbuffer.frag"};
   const gl::Program gbuffer = detail::buildProgram(gbufferFiles);
   CHECK(blockDataSize(gbuffer.id(), "ObjectBlock") == GLint(sizeof(gpu::ObjectBlock)));
-  CHECK(memberOffset(gbuffer.id(), "ObjectBlock.normalFromLocal") == GLint(offsetof(gpu::ObjectBlock, normalFromLocal)));
+  CHECK(memberOffset(gbuffer.id(), "ObjectBlock.normalFromLocal") ==
+        GLint(offsetof(gpu::ObjectBlock, normalFromLocal)));
   CHECK(blockDataSize(gbuffer.id(), "MaterialBlock") == GLint(sizeof(gpu::MaterialBlock)));
   CHECK(memberOffset(gbuffer.id(), "MaterialBlock.factors") == GLint(offsetof(gpu::MaterialBlock, factors)));
 
   const std::string_view compositeFiles[] = {"fullscreen.vert", "composite.frag"};
   const gl::Program composite = detail::buildProgram(compositeFiles);
   CHECK(blockDataSize(composite.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
-  CHECK(memberOffset(composite.id(), "LightingBlock.skyIntensity") == GLint(offsetof(gpu::LightingBlock, skyIntensity)));
+  CHECK(memberOffset(composite.id(), "LightingBlock.skyIntensity") ==
+        GLint(offsetof(gpu::LightingBlock, skyIntensity)));
 
   const std::string_view blurFiles[] = {"fullscreen.vert", "ssgi_blur.frag"};
   const gl::Program blur = detail::buildProgram(blurFiles);

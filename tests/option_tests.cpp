@@ -20,7 +20,8 @@ namespace {
 std::string otherValue(const OptionSpec& spec, const OptionValue& defaultValue) {
   const bool isAuto = std::holds_alternative<AutoValue>(defaultValue);
   switch (spec.type) {
-    case OptionType::Bool: return std::get<bool>(defaultValue) ? "off" : "on";
+    case OptionType::Bool:
+      return std::get<bool>(defaultValue) ? "off" : "on";
     case OptionType::Choice:
       for (std::string_view choice : spec.choices)
         if (isAuto || choice != std::get<std::string>(defaultValue)) return std::string(choice);
@@ -35,7 +36,8 @@ std::string otherValue(const OptionSpec& spec, const OptionValue& defaultValue) 
       const double value = spec.minimum + (spec.maximum - spec.minimum) / 3.0;
       return formatOptionValue(spec, double(float(value)));
     }
-    default: break;
+    default:
+      break;
   }
   FAIL("no other value for --" << spec.name);
   return {};
@@ -43,7 +45,8 @@ std::string otherValue(const OptionSpec& spec, const OptionValue& defaultValue) 
 
 // The command line that sets the row to `text`.
 std::vector<std::string> flagFor(const OptionSpec& spec, const std::string& text) {
-  if (spec.type == OptionType::Bool) return {text == "on" ? "--" + std::string(spec.name) : "--no-" + std::string(spec.name)};
+  if (spec.type == OptionType::Bool)
+    return {text == "on" ? "--" + std::string(spec.name) : "--no-" + std::string(spec.name)};
   return {"--" + std::string(spec.name), text};
 }
 
@@ -117,8 +120,8 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
       CHECK_THROWS_AS(parseOptionValue(spec, "maybe"), SettingsError);
     }
   }
-  CHECK_THROWS_WITH_AS(applySettingsText(settings, {{"ssgi-radios", "1"}}), doctest::Contains("unknown setting 'ssgi-radios'"),
-                       SettingsError);
+  CHECK_THROWS_WITH_AS(applySettingsText(settings, {{"ssgi-radios", "1"}}),
+                       doctest::Contains("unknown setting 'ssgi-radios'"), SettingsError);
 }
 
 TEST_CASE("validate() reads the table's ranges; the rules between settings stay") {
@@ -137,9 +140,9 @@ TEST_CASE("validate() reads the table's ranges; the rules between settings stay"
 }
 
 TEST_CASE("bench sweeps any setting row; the product skips what the settings refuse") {
-  const cli::BenchCommand command = cli::parseBenchArgs(
-      {"--sweep", "ssgi-samples=4,8,16", "--sweep", "ssgi-resolution=full,half", "--sweep", "ssgi-blur=on,off",
-       "--ssgi-method", "radiance", "--reference-samples", "256"});
+  const cli::BenchCommand command =
+      cli::parseBenchArgs({"--sweep", "ssgi-samples=4,8,16", "--sweep", "ssgi-resolution=full,half", "--sweep",
+                           "ssgi-blur=on,off", "--ssgi-method", "radiance", "--reference-samples", "256"});
   CHECK(command.reference.samplesPerPixel == 256);
   const auto configs = cli::benchConfigs(command, 64, 48);
   // 3 x 2 x 2 = 12, less the 3 half-resolution configurations without blur, plus the seed.

@@ -155,7 +155,8 @@ TEST_CASE("basisAround builds the frame sampling.glsl builds" * doctest::test_su
   CHECK(near(tilted.tangent, {-1, 0, 0}));
   CHECK(near(tilted.bitangent, {0, -0.8f, 0.6f}));
   // Whatever the normal: orthonormal and right-handed.
-  for (const glm::vec3 n : {glm::vec3(0.3f, -0.5f, 0.81f), glm::vec3(-0.7f, 0.7f, 0.1f), glm::vec3(0.01f, 0.0f, -1.0f)}) {
+  for (const glm::vec3 n :
+       {glm::vec3(0.3f, -0.5f, 0.81f), glm::vec3(-0.7f, 0.7f, 0.1f), glm::vec3(0.01f, 0.0f, -1.0f)}) {
     const reference::Basis basis = basisAround(glm::normalize(n));
     CHECK(glm::dot(basis.tangent, basis.bitangent) == doctest::Approx(0.0f).epsilon(1e-6));
     CHECK(glm::length(basis.tangent) == doctest::Approx(1.0f));

@@ -14,10 +14,15 @@ namespace fs = std::filesystem;
 
 // The channels a person would look at, by name (files store them sorted).
 std::vector<std::string> displayChannels(const OIIO::ImageSpec& spec) {
-  for (const auto& names : std::vector<std::vector<std::string>>{
-           {"R", "G", "B"}, {"position.X", "position.Y", "position.Z"}, {"normal.X", "normal.Y", "normal.Z"},
-           {"albedo.R", "albedo.G", "albedo.B"}, {"emissive.R", "emissive.G", "emissive.B"},
-           {"material.metallic", "material.roughness", "material.occlusion"}, {"ao.Y"}, {"depth.Z"}}) {
+  for (const auto& names :
+       std::vector<std::vector<std::string>>{{"R", "G", "B"},
+                                             {"position.X", "position.Y", "position.Z"},
+                                             {"normal.X", "normal.Y", "normal.Z"},
+                                             {"albedo.R", "albedo.G", "albedo.B"},
+                                             {"emissive.R", "emissive.G", "emissive.B"},
+                                             {"material.metallic", "material.roughness", "material.occlusion"},
+                                             {"ao.Y"},
+                                             {"depth.Z"}}) {
     bool all = true;
     for (const auto& name : names) all &= spec.channelindex(name) >= 0;
     if (all) return names;
@@ -45,7 +50,8 @@ std::pair<float, float> range(const fs::path& exr) {
   if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return {0.0f, 1.0f};
   std::vector<int> order;
   for (const auto& name : displayChannels(image.spec())) order.push_back(image.spec().channelindex(name));
-  const auto stats = OIIO::ImageBufAlgo::computePixelStats(OIIO::ImageBufAlgo::channels(image, int(order.size()), order));
+  const auto stats =
+      OIIO::ImageBufAlgo::computePixelStats(OIIO::ImageBufAlgo::channels(image, int(order.size()), order));
   float low = INFINITY, high = -INFINITY;
   for (std::size_t c = 0; c < stats.min.size(); ++c) {
     if (std::isfinite(stats.min[c])) low = std::min(low, stats.min[c]);

@@ -301,7 +301,9 @@ TEST_CASE("an unknown built-in scene names the known ones") {
     loadScene("builtin:teapot");
     FAIL("expected a SceneError");
   } catch (const SceneError& error) {
-    CHECK(std::string(error.what()) == "builtin:teapot: no such built-in scene; known: cornell, spheres, plane, slats, offscreen, depth-step, grazing");
+    CHECK(std::string(error.what()) ==
+          "builtin:teapot: no such built-in scene; known: cornell, spheres, plane, slats, offscreen, depth-step, "
+          "grazing");
   }
 }
 

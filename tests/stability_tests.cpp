@@ -6,9 +6,9 @@
 // same numbers as the doc's table.
 #include <doctest/doctest.h>
 
-#include "support/gl.hpp"
 #include "headlight/reference.hpp"
 #include "stability/stability.hpp"
+#include "support/gl.hpp"
 
 using namespace headlight;
 using namespace headlight::stability;
@@ -55,33 +55,30 @@ constexpr bool kWithoutReference = false;
 constexpr bool kWithoutReference = true;
 #endif
 
-TEST_CASE("flat open plane: no false occlusion away from the border (AO >= 0.98)") {
-  checkEveryMethod(flatOpenPlane);
-}
+TEST_CASE("flat open plane: no false occlusion away from the border (AO >= 0.98)") { checkEveryMethod(flatOpenPlane); }
 
 TEST_CASE("camera inside the SSGI radius: finite, AO in 0..1, indirect >= 0, no black-out") {
   checkEveryMethod(cameraInsideRadius);
 }
 
-TEST_CASE("thin slats before a wall: over-darkening against the reference stays bounded" * doctest::skip(kWithoutReference)) {
+TEST_CASE("thin slats before a wall: over-darkening against the reference stays bounded" *
+          doctest::skip(kWithoutReference)) {
   checkEveryMethod(thinGeometry);
 }
 
-TEST_CASE("object cut by the image border: AO error in the border band stays bounded" * doctest::skip(kWithoutReference)) {
+TEST_CASE("object cut by the image border: AO error in the border band stays bounded" *
+          doctest::skip(kWithoutReference)) {
   checkEveryMethod(screenEdge);
 }
 
-TEST_CASE("foreground sphere before a distant wall: the halo is no wider than the kernel reaches" * doctest::skip(kWithoutReference)) {
+TEST_CASE("foreground sphere before a distant wall: the halo is no wider than the kernel reaches" *
+          doctest::skip(kWithoutReference)) {
   checkEveryMethod(depthDiscontinuity);
 }
 
-TEST_CASE("floor at a grazing angle to the horizon: AO >= 0.95 everywhere") {
-  checkEveryMethod(grazingFloor);
-}
+TEST_CASE("floor at a grazing angle to the horizon: AO >= 0.95 everywhere") { checkEveryMethod(grazingFloor); }
 
-TEST_CASE("scene scale 1e-3 and 1e3: the auto radius gives the same AO as at scale 1") {
-  checkEveryMethod(sceneScale);
-}
+TEST_CASE("scene scale 1e-3 and 1e3: the auto radius gives the same AO as at scale 1") { checkEveryMethod(sceneScale); }
 
 TEST_CASE("degenerate input: rejected with SceneError or rendered without NaN or Inf") {
   checkEveryMethod(degenerateInput);
@@ -91,6 +88,4 @@ TEST_CASE("image sizes 1x1, 67x45, 1024x8, SSGI at full and quarter size: right 
   checkEveryMethod(resolutionEdges);
 }
 
-TEST_CASE("orbiting camera: fixed noise flickers less than a seed per frame, and little") {
-  checkEveryMethod(flicker);
-}
+TEST_CASE("orbiting camera: fixed noise flickers less than a seed per frame, and little") { checkEveryMethod(flicker); }

@@ -30,11 +30,11 @@ struct BenchCommand {
   std::vector<std::string> scenes;  // default: the built-ins
   std::string outDir = "bench";
   std::vector<std::pair<int, int>> resolutions{{128, 96}};
-  RenderSettings base;                // what every configuration starts from (render flags)
-  std::vector<SettingSweep> sweeps;   // empty: defaultBenchSweeps()
-  ReferenceSettings reference;        // rays per pixel (--reference-samples)
-  int repetitions = 5;  // timed frames per configuration (median and spread reported)
-  int warmup = 2;       // untimed frames first (shader variants, caches)
+  RenderSettings base;               // what every configuration starts from (render flags)
+  std::vector<SettingSweep> sweeps;  // empty: defaultBenchSweeps()
+  ReferenceSettings reference;       // rays per pixel (--reference-samples)
+  int repetitions = 5;               // timed frames per configuration (median and spread reported)
+  int warmup = 2;                    // untimed frames first (shader variants, caches)
   bool chart = true;
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;

@@ -17,10 +17,16 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
   using T = OptionType;
   using C = RenderCommand;
   std::vector<Option<C>> rows = commonCommandOptions<C>();
-  rows.push_back(actionOption<C>({.name = "preset", .type = T::Choice, .help = "named settings; flags after it override it", .choices = presetNames()},
+  rows.push_back(actionOption<C>({.name = "preset",
+                                  .type = T::Choice,
+                                  .help = "named settings; flags after it override it",
+                                  .choices = presetNames()},
                                  [](C& c, const OptionValue& v) { applyPreset(c.settings, text(v)); }));
-  rows.push_back(bindOption<C>({.name = "allow-external-paths", .type = T::Switch, .help = "let glTF URIs point outside the scene file's folder"},
-                               [](auto& c) -> auto& { return c.allowExternalPaths; }));
+  rows.push_back(bindOption<C>(
+      {.name = "allow-external-paths",
+       .type = T::Switch,
+       .help = "let glTF URIs point outside the scene file's folder"},
+      [](auto& c) -> auto& { return c.allowExternalPaths; }));
   if (kind == CommandKind::Reference)
     for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
   for (auto& row : liftOptions(settingOptions(), &C::settings)) rows.push_back(std::move(row));
@@ -34,22 +40,34 @@ std::vector<Option<Command>> commonCommandOptions() {
   using T = OptionType;
   using C = Command;
   return {
-      bindOption<C>({.name = "out", .type = T::Text, .help = "folder for the output files", .valueName = "DIR"},
-                    [](auto& c) -> auto& { return c.outDir; }),
-      actionOption<C>({.name = "backend", .type = T::Choice, .help = "headless GL backend (auto: EGL, then OSMesa)", .choices = kBackendNames},
-                      [](C& c, const OptionValue& v) { c.context.backend = parseBackend(text(v)); },
-                      [](const C& c) { return OptionValue(std::string(backendName(c.context.backend))); }),
-      actionOption<C>({.name = "device", .type = T::Int, .help = "EGL device index (EGL_EXT_device_enumeration)", .maximum = 1 << 16, .autoMeaning = "the first that works"},
+      bindOption<C>(
+          {.name = "out", .type = T::Text, .help = "folder for the output files", .valueName = "DIR"},
+          [](auto& c) -> auto& { return c.outDir; }),
+      actionOption<C>(
+          {.name = "backend",
+           .type = T::Choice,
+           .help = "headless GL backend (auto: EGL, then OSMesa)",
+           .choices = kBackendNames},
+          [](C& c, const OptionValue& v) { c.context.backend = parseBackend(text(v)); },
+          [](const C& c) { return OptionValue(std::string(backendName(c.context.backend))); }),
+      actionOption<C>({.name = "device",
+                       .type = T::Int,
+                       .help = "EGL device index (EGL_EXT_device_enumeration)",
+                       .maximum = 1 << 16,
+                       .autoMeaning = "the first that works"},
                       [](C& c, const OptionValue& v) {
-                        if (std::holds_alternative<std::int64_t>(v)) c.context.eglDevice = int(std::get<std::int64_t>(v));
+                        if (std::holds_alternative<std::int64_t>(v))
+                          c.context.eglDevice = int(std::get<std::int64_t>(v));
                       }),
       actionOption<C>({.name = "strict", .type = T::Switch, .help = "treat OpenGL errors as fatal (default: warn)"},
                       [](C& c, const OptionValue&) { c.context.errorPolicy = GlErrorPolicy::Throw; }),
       actionOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing but errors"},
                       [](C& c, const OptionValue&) { c.verbosity = Verbosity::Quiet; }),
-      actionOption<C>({.name = "verbose", .type = T::Switch, .help = "print the GL backend, renderer and each pass's time"},
-                      [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
-      bindOption<C>({.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
+      actionOption<C>(
+          {.name = "verbose", .type = T::Switch, .help = "print the GL backend, renderer and each pass's time"},
+          [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
+      bindOption<C>(
+          {.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
   };
 }
 template std::vector<Option<RenderCommand>> commonCommandOptions<RenderCommand>();

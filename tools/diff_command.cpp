@@ -63,12 +63,13 @@ std::span<const std::string_view> targetNames() {
 // A threshold row: a number, or "auto" for the target's default (the table's).
 Option<DiffCommand> threshold(std::string_view name, std::string_view help, double maximum,
                               std::optional<double> DiffOptions::*field) {
-  return bindOption<DiffCommand>({.name = name,
-                                  .type = OptionType::Float,
-                                  .help = help,
-                                  .maximum = maximum,
-                                  .autoMeaning = "the target's default (table below)"},
-                                 [field](auto& c) -> auto& { return c.options.*field; });
+  return bindOption<DiffCommand>(
+      {.name = name,
+       .type = OptionType::Float,
+       .help = help,
+       .maximum = maximum,
+       .autoMeaning = "the target's default (table below)"},
+      [field](auto& c) -> auto& { return c.options.*field; });
 }
 
 const std::vector<Option<DiffCommand>>& diffOptions() {
@@ -83,21 +84,36 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
       threshold("warn", "a pixel warns when any channel's error > this", kInf, &DiffOptions::warn),
       threshold("warnpercent", "WARN when more than this % of the pixels warn", 100, &DiffOptions::warnPercent),
       threshold("hardwarn", "WARN when any error > this (inf = off)", kInf, &DiffOptions::hardWarn),
-      actionOption<C>({.name = "channels", .type = T::Text, .help = "compare only these channels (file mode only)", .valueName = "c1,c2,..."},
+      actionOption<C>({.name = "channels",
+                       .type = T::Text,
+                       .help = "compare only these channels (file mode only)",
+                       .valueName = "c1,c2,..."},
                       [](C& c, const OptionValue& v) { c.options.channels = parseChannels(std::get<std::string>(v)); }),
       // A typo would silently fall back to idiff's defaults: a choice refuses it.
-      actionOption<C>({.name = "target", .type = T::Choice, .help = "use this row of the default table (file mode only; default: A's file stem)", .choices = targetNames()},
+      actionOption<C>({.name = "target",
+                       .type = T::Choice,
+                       .help = "use this row of the default table (file mode only; default: A's file stem)",
+                       .choices = targetNames()},
                       [](C& c, const OptionValue& v) { c.options.target = std::get<std::string>(v); }),
-      actionOption<C>({.name = "out", .type = T::Text, .help = "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH", .valueName = "PATH"},
-                      [](C& c, const OptionValue& v) {
-                        if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
-                        c.out = std::get<std::string>(v);
-                      }),
-      bindOption<C>({.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
-                    [](auto& c) -> auto& { return c.json; }),
-      bindOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing on stdout (the exit code tells); errors still go to stderr"},
-                    [](auto& c) -> auto& { return c.quiet; }),
-      bindOption<C>({.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
+      actionOption<C>(
+          {.name = "out",
+           .type = T::Text,
+           .help = "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH",
+           .valueName = "PATH"},
+          [](C& c, const OptionValue& v) {
+            if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
+            c.out = std::get<std::string>(v);
+          }),
+      bindOption<C>(
+          {.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
+          [](auto& c) -> auto& { return c.json; }),
+      bindOption<C>(
+          {.name = "quiet",
+           .type = T::Switch,
+           .help = "print nothing on stdout (the exit code tells); errors still go to stderr"},
+          [](auto& c) -> auto& { return c.quiet; }),
+      bindOption<C>(
+          {.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
   };
   return rows;
 }
@@ -111,8 +127,8 @@ DiffCommand parseDiffArgs(const std::vector<std::string>& args) {
   }
   if (command.help) return command;
   if (command.paths.size() != 2)
-    throw UsageError{"expected two images or two folders (A B), got " + std::to_string(command.paths.size()) +
-                     " path" + (command.paths.size() == 1 ? "" : "s")};
+    throw UsageError{"expected two images or two folders (A B), got " + std::to_string(command.paths.size()) + " path" +
+                     (command.paths.size() == 1 ? "" : "s")};
   return command;
 }
 
@@ -135,11 +151,14 @@ std::string unitSuffix(DiffMetric metric) { return metric == DiffMetric::AngleDe
 
 std::string describeMetric(const DiffResult& r) {
   switch (r.metric) {
-    case DiffMetric::Absolute: return "error = |a - b|";
+    case DiffMetric::Absolute:
+      return "error = |a - b|";
     case DiffMetric::RelativeToScene:
       return "error = |a - b| / " + number(r.scale) + " (" + r.scaleSource + "); coverage channel absolute";
-    case DiffMetric::RelativeToValue: return "error = |a - b| / max(1, |a|)";
-    case DiffMetric::AngleDegrees: return "error = angle between the normals of A and B, in degrees";
+    case DiffMetric::RelativeToValue:
+      return "error = |a - b| / max(1, |a|)";
+    case DiffMetric::AngleDegrees:
+      return "error = angle between the normals of A and B, in degrees";
   }
   return "";
 }
@@ -163,8 +182,8 @@ void printFileResult(const DiffResult& r, std::ostream& out) {
   out << "thresholds: " << thresholdsLine(r.thresholds) << "\n";
   if (!r.channels.empty()) {
     char line[512];
-    std::snprintf(line, sizeof line, "%-16s %10s %10s %8s %10s %12s  %-24s %-24s %s\n", "channel", "mean", "rms", "PSNR",
-                  "max", "at (x, y)", "A there", "B there", "> fail");
+    std::snprintf(line, sizeof line, "%-16s %10s %10s %8s %10s %12s  %-24s %-24s %s\n", "channel", "mean", "rms",
+                  "PSNR", "max", "at (x, y)", "A there", "B there", "> fail");
     out << line;
     for (const ChannelDiff& c : r.channels) {
       // Built with += : GCC 12 warns falsely (-Wrestrict) on "(" + std::to_string(...).
@@ -192,7 +211,8 @@ std::string targetLine(const DiffResult& r) {
                                " (allowed " + number(r.thresholds.failPercent) + "%)";
   // The problem already holds the numbers that decided; a warning adds the
   // share over fail, which it stayed within.
-  if (!r.problem.empty()) return text + r.problem + (r.status == DiffStatus::Warn && r.failingPixels ? "; " + overFail : "");
+  if (!r.problem.empty())
+    return text + r.problem + (r.status == DiffStatus::Warn && r.failingPixels ? "; " + overFail : "");
   if (r.maxError == 0) return text + "identical";
   return text + "max " + number(r.maxError) + unitSuffix(r.metric) + " at (" + std::to_string(r.maxX) + ", " +
          std::to_string(r.maxY) + ") " + r.maxChannel + ", " + overFail;
@@ -213,8 +233,10 @@ std::string verdictLine(const DirectoryDiff& d) {
 json num(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 json toJson(const DiffThresholds& t) {
-  return {{"fail", num(t.fail)},         {"fail_percent", num(t.failPercent)}, {"hard_fail", num(t.hardFail)}, {"fail_mean", num(t.failMean)},
-          {"warn", num(t.warn)},         {"warn_percent", num(t.warnPercent)}, {"hard_warn", num(t.hardWarn)}};
+  return {{"fail", num(t.fail)},          {"fail_percent", num(t.failPercent)},
+          {"hard_fail", num(t.hardFail)}, {"fail_mean", num(t.failMean)},
+          {"warn", num(t.warn)},          {"warn_percent", num(t.warnPercent)},
+          {"hard_warn", num(t.hardWarn)}};
 }
 
 json toJson(const DiffResult& r) {
@@ -309,14 +331,16 @@ int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
 
 int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.options.channels.empty() || !command.options.target.empty())
-    throw UsageError{"--channels and --target apply to one file; in folder mode each target uses its own row "
-                     "(compare the files one by one instead)"};
+    throw UsageError{
+        "--channels and --target apply to one file; in folder mode each target uses its own row "
+        "(compare the files one by one instead)"};
   const DirectoryDiff result = diffDirectories(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
   if (!command.out.empty() && !result.targets.empty()) {
     std::error_code error;
     fs::create_directories(command.out, error);
-    if (error) errors.push_back(command.out + ": cannot create the output folder: " + error.message());
+    if (error)
+      errors.push_back(command.out + ": cannot create the output folder: " + error.message());
     else
       for (const DiffResult& r : result.targets)
         for (std::string& path : writeImages(r, fs::path(command.out) / (r.target + "_diff.exr"), errors))

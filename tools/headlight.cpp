@@ -51,9 +51,8 @@ void printVerboseHeader(const Context& context, const Scene& scene) {
   for (const auto& attempt : context.attempts()) std::cerr << "context: " << attempt << "\n";
   std::cerr << "backend: " << backendName(context.backend()) << " (" << context.description() << ")\n"
             << "GL_RENDERER: " << context.renderer() << "\nGL_VERSION: " << context.version() << "\n"
-            << "scene: " << scene.source << ": " << scene.instances.size() << " instances, "
-            << scene.triangleCount() << " triangles, " << scene.lights.size() << " lights, "
-            << scene.cameras.size() << " cameras\n";
+            << "scene: " << scene.source << ": " << scene.instances.size() << " instances, " << scene.triangleCount()
+            << " triangles, " << scene.lights.size() << " lights, " << scene.cameras.size() << " cameras\n";
 }
 
 void printTimings(const Frame& frame) {

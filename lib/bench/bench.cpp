@@ -22,8 +22,8 @@ void requireSameSize(const ImageF& a, const ImageF& b, const ImageF& mask) {
   if (a.width != b.width || a.height != b.height || a.width != mask.width || a.height != mask.height ||
       mask.channels.size() != 4)
     throw Error("bench metrics: images of different sizes (" + std::to_string(a.width) + "x" +
-                        std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) +
-                        ") or a mask without coverage");
+                std::to_string(a.height) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) +
+                ") or a mask without coverage");
 }
 
 float toneMappedLuminance(const ImageF& image, std::size_t pixel) {
@@ -31,7 +31,6 @@ float toneMappedLuminance(const ImageF& image, std::size_t pixel) {
   const float luminance = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
   return std::max(luminance, 0.0f) / (1.0f + std::max(luminance, 0.0f));
 }
-
 
 }  // namespace
 
@@ -107,8 +106,8 @@ double maskedSsim(const ImageF& a, const ImageF& b, const ImageF& mask) {
       varA = varA / n - meanA * meanA;
       varB = varB / n - meanB * meanB;
       cov = cov / n - meanA * meanB;
-      sum += ((2 * meanA * meanB + kC1) * (2 * cov + kC2)) /
-             ((meanA * meanA + meanB * meanB + kC1) * (varA + varB + kC2));
+      sum +=
+          ((2 * meanA * meanB + kC1) * (2 * cov + kC2)) / ((meanA * meanA + meanB * meanB + kC1) * (varA + varB + kC2));
       ++windows;
     }
   return windows > 0 ? sum / double(windows) : 1.0;
@@ -177,18 +176,17 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
       const auto value = r.settings.find(std::string(option.spec.name));
       out << (value == r.settings.end() ? "" : csvField(value->second)) << ',';
     }
-    out << r.seedDefault << ',' << r.repetitions << ','
-        << r.frameMs.median << ',' << r.frameMs.minimum << ',' << r.frameMs.maximum << ',' << r.ssgiMs.median << ','
-        << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ',' << r.ao.rmse << ',' << r.ao.meanAbsolute << ','
-        << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
-        << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
-        << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+    out << r.seedDefault << ',' << r.repetitions << ',' << r.frameMs.median << ',' << r.frameMs.minimum << ','
+        << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
+        << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.indirect.rmse << ',' << r.indirect.relativeRmse << ','
+        << r.lit.relativeRmse << ',' << r.litSsim << ',' << r.referenceSamples << ',' << r.referenceAoStandardError
+        << ',' << r.paretoAo << ',' << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine)
+        << "\n";
   }
   detail::writeTextAtomically(path, out.str());
 }
 
-void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& command,
-                    const std::filesystem::path& path) {
+void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& command, const std::filesystem::path& path) {
   nlohmann::json json;
   json["command"] = command;
   json["rows"] = nlohmann::json::array();
@@ -196,23 +194,24 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
     auto summary = [](const Summary& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.minimum}, {"max", s.maximum}};
     };
-    json["rows"].push_back({{"scene", r.scene},
-                            {"width", r.width},
-                            {"height", r.height},
-                            {"label", r.label},
-                            {"settings", r.settings},
-                            {"seed_default", r.seedDefault},
-                            {"repetitions", r.repetitions},
-                            {"frame_ms", summary(r.frameMs)},
-                            {"ssgi_ms", summary(r.ssgiMs)},
-                            {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
-                            {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
-                            {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}}},
-                            {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},
-                            {"pareto_ao", r.paretoAo},
-                            {"renderer", r.renderer},
-                            {"backend", r.backend},
-                            {"machine", r.machine}});
+    json["rows"].push_back(
+        {{"scene", r.scene},
+         {"width", r.width},
+         {"height", r.height},
+         {"label", r.label},
+         {"settings", r.settings},
+         {"seed_default", r.seedDefault},
+         {"repetitions", r.repetitions},
+         {"frame_ms", summary(r.frameMs)},
+         {"ssgi_ms", summary(r.ssgiMs)},
+         {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
+         {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
+         {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}}},
+         {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},
+         {"pareto_ao", r.paretoAo},
+         {"renderer", r.renderer},
+         {"backend", r.backend},
+         {"machine", r.machine}});
   }
   detail::writeTextAtomically(path, json.dump(2) + "\n");
 }

@@ -2,22 +2,25 @@
 
 #include <glad/gl.h>
 
-#include <iostream>
 #include <atomic>
 #include <cstdint>
+#include <iostream>
 #include <mutex>
 
 #include "context/backend.hpp"
-#include "headlight/error.hpp"
 #include "context/hex_code.hpp"
+#include "headlight/error.hpp"
 
 namespace headlight {
 
 std::string_view backendName(Backend backend) {
   switch (backend) {
-    case Backend::Auto: return "auto";
-    case Backend::Egl: return "egl";
-    case Backend::OSMesa: return "osmesa";
+    case Backend::Auto:
+      return "auto";
+    case Backend::Egl:
+      return "egl";
+    case Backend::OSMesa:
+      return "osmesa";
   }
   return "?";
 }
@@ -36,7 +39,7 @@ namespace {
 // whenever a different Context is made or made current than the one that
 // loaded it last.
 std::mutex gladMutex;
-std::uint64_t gladLoadedBy = 0;           // id of the Context whose entry points glad holds; 0 = none
+std::uint64_t gladLoadedBy = 0;               // id of the Context whose entry points glad holds; 0 = none
 std::atomic<std::uint64_t> nextContextId{1};  // ids are never reused, unlike addresses
 
 void loadGlEntryPoints(const detail::PlatformContext& platform, std::uint64_t key) {
@@ -57,12 +60,18 @@ std::string glString(GLenum name) {
 
 std::string glErrorName(GLenum error) {
   switch (error) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    default: return "GL error " + detail::hexCode(error);
+    case GL_INVALID_ENUM:
+      return "GL_INVALID_ENUM";
+    case GL_INVALID_VALUE:
+      return "GL_INVALID_VALUE";
+    case GL_INVALID_OPERATION:
+      return "GL_INVALID_OPERATION";
+    case GL_INVALID_FRAMEBUFFER_OPERATION:
+      return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case GL_OUT_OF_MEMORY:
+      return "GL_OUT_OF_MEMORY";
+    default:
+      return "GL error " + detail::hexCode(error);
   }
 }
 
@@ -76,8 +85,8 @@ struct Context::Impl {
   std::vector<std::string> attempts;
   std::vector<std::string> errors;  // KHR_debug errors not yet reported
 
-  static void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei,
-                                        const GLchar* message, const void* user) {
+  static void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message,
+                                        const void* user) {
     // Only errors (and undefined behaviour) are failures; performance and
     // portability notes from the driver are not.
     if (type != GL_DEBUG_TYPE_ERROR && type != GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) return;
@@ -107,8 +116,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     impl_->backend = Backend::OSMesa;
   }
   if (!impl_->platform) {
-    std::string message = "no OpenGL 4.5 core context (backend " + std::string(backendName(options.backend)) +
-                          "); tried:";
+    std::string message =
+        "no OpenGL 4.5 core context (backend " + std::string(backendName(options.backend)) + "); tried:";
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
@@ -146,8 +155,8 @@ void Context::checkErrors(std::string_view operation) {
   for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError())
     impl_->errors.push_back("glGetError: " + glErrorName(error));
   if (impl_->errors.empty()) return;
-  std::string message = std::string(operation) + ": OpenGL reported " + std::to_string(impl_->errors.size()) +
-                        " error(s):";
+  std::string message =
+      std::string(operation) + ": OpenGL reported " + std::to_string(impl_->errors.size()) + " error(s):";
   for (const auto& error : impl_->errors) message += "\n  " + error;
   impl_->errors.clear();
   if (impl_->errorPolicy == GlErrorPolicy::Throw) throw GlError(message);

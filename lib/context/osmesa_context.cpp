@@ -26,11 +26,16 @@ class OSMesaPlatformContext final : public PlatformContext {
 }  // namespace
 
 std::unique_ptr<PlatformContext> createOSMesaContext(std::vector<std::string>& attempts) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                         OSMESA_CONTEXT_MINOR_VERSION, 5,
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         4,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         5,
                          0};
   OSMesaContext context = OSMesaCreateContextAttribs(attribs, nullptr);
   if (context == nullptr) {

@@ -17,8 +17,8 @@
 #include <stdexcept>
 
 #include "headlight/diff.hpp"
-#include "output/atomic_file.hpp"
 #include "headlight/error.hpp"
+#include "output/atomic_file.hpp"
 
 namespace headlight {
 namespace {
@@ -89,8 +89,10 @@ std::vector<std::string> selectChannels(const OIIO::ImageSpec& a, const OIIO::Im
                                         const DiffOptions& options, std::string& problem) {
   if (!options.channels.empty()) {
     for (const std::string& name : options.channels) {
-      if (a.channelindex(name) < 0) problem = result.a.string() + " has no channel '" + name + "' (it has " + joined(a.channelnames) + ")";
-      else if (b.channelindex(name) < 0) problem = result.b.string() + " has no channel '" + name + "' (it has " + joined(b.channelnames) + ")";
+      if (a.channelindex(name) < 0)
+        problem = result.a.string() + " has no channel '" + name + "' (it has " + joined(a.channelnames) + ")";
+      else if (b.channelindex(name) < 0)
+        problem = result.b.string() + " has no channel '" + name + "' (it has " + joined(b.channelnames) + ")";
       if (!problem.empty()) return {};
     }
     return options.channels;
@@ -131,11 +133,14 @@ OIIO::ImageBuf angleImage(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
     const double bx = vb[3 * i], by = vb[3 * i + 1], bz = vb[3 * i + 2];
     const bool zeroA = ax == 0 && ay == 0 && az == 0, zeroB = bx == 0 && by == 0 && bz == 0;
     double degrees;
-    if (zeroA && zeroB) degrees = 0;  // background in both (normal.exr holds 0 there)
-    else if (zeroA || zeroB) degrees = 180;  // geometry in one only: the largest possible angle
+    if (zeroA && zeroB)
+      degrees = 0;  // background in both (normal.exr holds 0 there)
+    else if (zeroA || zeroB)
+      degrees = 180;  // geometry in one only: the largest possible angle
     else {
       const double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
-      degrees = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz) * (180.0 / std::numbers::pi);
+      degrees =
+          std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), ax * bx + ay * by + az * bz) * (180.0 / std::numbers::pi);
     }
     angle[i] = float(degrees);  // NaN input stays NaN
   }
@@ -176,7 +181,7 @@ void chooseScale(const OIIO::ImageBuf& a, const std::vector<std::string>& channe
 }
 
 struct MetricImages {
-  OIIO::ImageBuf a, b;  // |a - b| is the error, channel by channel
+  OIIO::ImageBuf a, b;                    // |a - b| is the error, channel by channel
   std::vector<std::vector<int>> sources;  // per metric channel: indices into the selected channels
 };
 
@@ -194,7 +199,8 @@ MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
     case DiffMetric::RelativeToScene: {
       chooseScale(a, channels, result);
       std::vector<float> factors;
-      for (const std::string& name : channels) factors.push_back(isCoverageChannel(name) ? 1.0f : float(1.0 / result.scale));
+      for (const std::string& name : channels)
+        factors.push_back(isCoverageChannel(name) ? 1.0f : float(1.0 / result.scale));
       m.a = iba::mul(a, factors);
       m.b = iba::mul(b, factors);
       break;
@@ -259,8 +265,9 @@ void buildDifference(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const Met
 }
 
 const ChannelDiff* worstMean(const DiffResult& r) {
-  const auto worst = std::max_element(r.channels.begin(), r.channels.end(),
-                                      [](const ChannelDiff& a, const ChannelDiff& b) { return a.meanError < b.meanError; });
+  const auto worst =
+      std::max_element(r.channels.begin(), r.channels.end(),
+                       [](const ChannelDiff& a, const ChannelDiff& b) { return a.meanError < b.meanError; });
   return worst == r.channels.end() ? nullptr : &*worst;
 }
 
@@ -307,21 +314,30 @@ void judge(DiffResult& r) {
 
 std::string_view statusName(DiffStatus status) {
   switch (status) {
-    case DiffStatus::Pass: return "pass";
-    case DiffStatus::Warn: return "warn";
-    case DiffStatus::Fail: return "fail";
-    case DiffStatus::Structural: return "structural";
-    case DiffStatus::FileError: return "file-error";
+    case DiffStatus::Pass:
+      return "pass";
+    case DiffStatus::Warn:
+      return "warn";
+    case DiffStatus::Fail:
+      return "fail";
+    case DiffStatus::Structural:
+      return "structural";
+    case DiffStatus::FileError:
+      return "file-error";
   }
   return "?";
 }
 
 std::string_view metricName(DiffMetric metric) {
   switch (metric) {
-    case DiffMetric::Absolute: return "absolute";
-    case DiffMetric::RelativeToScene: return "relative-to-scene";
-    case DiffMetric::RelativeToValue: return "relative-to-value";
-    case DiffMetric::AngleDegrees: return "angle-degrees";
+    case DiffMetric::Absolute:
+      return "absolute";
+    case DiffMetric::RelativeToScene:
+      return "relative-to-scene";
+    case DiffMetric::RelativeToValue:
+      return "relative-to-value";
+    case DiffMetric::AngleDegrees:
+      return "angle-degrees";
   }
   return "?";
 }
@@ -477,7 +493,8 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
   }
   if (diff.targets.empty()) {
     diff.status = DiffStatus::FileError;
-    diff.problem = "no headlight targets (position.exr, normal.exr, ..., lit.exr) in " + a.string() + " or " + b.string();
+    diff.problem =
+        "no headlight targets (position.exr, normal.exr, ..., lit.exr) in " + a.string() + " or " + b.string();
     return diff;
   }
   for (const DiffResult& target : diff.targets) diff.status = std::max(diff.status, target.status);

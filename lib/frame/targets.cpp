@@ -47,16 +47,13 @@ const FrameTarget kTargets[] = {
      "Error over the view's far distance: drivers interpolate a few float ulps apart (< 1e-5); 1e-3 of the view "
      "depth is a real geometry or camera change; a silhouette flip can cost ~1, so the mean allows 5e-3. "
      "Coverage A compared absolutely."},
-    {"normal", &Frame::normal, kNormalChannels, G::Rgba16F, E::Half, M::AngleDegrees,
-     thresholds(0.1, 1.0, 0.5, 1.0),
+    {"normal", &Frame::normal, kNormalChannels, G::Rgba16F, E::Half, M::AngleDegrees, thresholds(0.1, 1.0, 0.5, 1.0),
      "world unit normal. Angle in degrees: half storage quantizes unit vectors to ~0.03 deg; 1 deg moves a sharp "
      "highlight, and normal-map or TBN bugs cost many degrees. Components would weigh the axes unequally."},
-    {"albedo", &Frame::albedo, kAlbedoChannels, G::Srgb8Alpha8, E::Half, M::Absolute,
-     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+    {"albedo", &Frame::albedo, kAlbedoChannels, G::Srgb8Alpha8, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
      "linear base colour, 0..1, from 8-bit sRGB textures: one 8-bit step is 3e-4..9e-3 linear, so texture "
      "filtering on another GPU moves values by up to ~1e-2; more is a material or texture change."},
-    {"material", &Frame::material, kMaterialChannels, G::Rgba8, E::Half, M::Absolute,
-     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+    {"material", &Frame::material, kMaterialChannels, G::Rgba8, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
      "metallic/roughness/occlusion stored in 8 bits (step 1/255 = 3.9e-3): any step warns, more than two steps "
      "fails."},
     {"depth", &Frame::depth, kDepthChannels, G::Depth32F, E::Float, M::RelativeToScene,
@@ -76,8 +73,15 @@ const FrameTarget kTargets[] = {
      "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},
 };
 
-const FrameTarget kUnknownTarget{"", nullptr, {}, G::Rgba16F, E::Half, M::Absolute, DiffThresholds{},
-                                 "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."};
+const FrameTarget kUnknownTarget{
+    "",
+    nullptr,
+    {},
+    G::Rgba16F,
+    E::Half,
+    M::Absolute,
+    DiffThresholds{},
+    "not a headlight target: idiff's defaults (absolute, warn = fail = 1e-6, no allowance)."};
 
 }  // namespace
 

@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "headlight/error.hpp"
 #include "context/hex_code.hpp"
+#include "headlight/error.hpp"
 
 namespace headlight::gl {
 namespace {
@@ -84,8 +84,8 @@ void Framebuffer::setDrawBuffers(std::span<const GLenum> buffers) {
 void Framebuffer::checkComplete(std::string_view what) const {
   GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
-    throw GlError("glCheckNamedFramebufferStatus: " + std::string(what) +
-                  " framebuffer is incomplete (status " + detail::hexCode(status) + ")");
+    throw GlError("glCheckNamedFramebufferStatus: " + std::string(what) + " framebuffer is incomplete (status " +
+                  detail::hexCode(status) + ")");
 }
 
 VertexArray VertexArray::create() {

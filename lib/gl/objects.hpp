@@ -100,11 +100,15 @@ class Buffer : public Name<deleteBuffer> {
   // update(); data may be null.
   static Buffer create(std::size_t bytes, const void* data = nullptr);
   template <class T>
-  static Buffer create(std::span<const T> items) { return create(items.size_bytes(), items.data()); }
+  static Buffer create(std::span<const T> items) {
+    return create(items.size_bytes(), items.data());
+  }
 
   void update(const void* data, std::size_t bytes, std::size_t offset = 0) const;
   template <class T>
-  void update(const T& value) const { update(&value, sizeof(T)); }
+  void update(const T& value) const {
+    update(&value, sizeof(T));
+  }
   void bindUniform(int binding) const { glBindBufferBase(GL_UNIFORM_BUFFER, GLuint(binding), id()); }
   void bindStorage(int binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(binding), id()); }
   std::size_t size() const { return size_; }
@@ -115,7 +119,7 @@ class Buffer : public Name<deleteBuffer> {
 
 class Framebuffer : public Name<deleteFramebuffer> {
  public:
-  Framebuffer() = default;  // owns nothing
+  Framebuffer() = default;      // owns nothing
   static Framebuffer create();  // a framebuffer object with nothing attached
   // Attaches `texture` (level 0); layer >= 0 attaches one layer of an array.
   void attach(GLenum attachment, const Texture& texture, int layer = -1);

@@ -30,8 +30,7 @@ void appendExpanded(std::string_view fileName, std::set<std::string>& included, 
     const auto first = line.find_first_not_of(" \t");
     // Only #include "file" is ours; #include <...> lines sit in the shared
     // header's C++-only section, which the GLSL preprocessor skips.
-    if (first != std::string::npos && line.compare(first, 8, "#include") == 0 &&
-        line.find('<') == std::string::npos) {
+    if (first != std::string::npos && line.compare(first, 8, "#include") == 0 && line.find('<') == std::string::npos) {
       const auto open = line.find('"'), close = line.rfind('"');
       if (open == std::string::npos || close <= open)
         throw GlError(std::string(fileName) + ":" + std::to_string(lineNumber) + ": malformed #include");

@@ -11,11 +11,16 @@ namespace headlight::gl {
 
 inline GLenum internalFormat(GpuFormat format) {
   switch (format) {
-    case GpuFormat::Rgba32F: return GL_RGBA32F;
-    case GpuFormat::Rgba16F: return GL_RGBA16F;
-    case GpuFormat::Srgb8Alpha8: return GL_SRGB8_ALPHA8;
-    case GpuFormat::Rgba8: return GL_RGBA8;
-    case GpuFormat::Depth32F: return GL_DEPTH_COMPONENT32F;
+    case GpuFormat::Rgba32F:
+      return GL_RGBA32F;
+    case GpuFormat::Rgba16F:
+      return GL_RGBA16F;
+    case GpuFormat::Srgb8Alpha8:
+      return GL_SRGB8_ALPHA8;
+    case GpuFormat::Rgba8:
+      return GL_RGBA8;
+    case GpuFormat::Depth32F:
+      return GL_DEPTH_COMPONENT32F;
   }
   return GL_NONE;
 }

@@ -19,8 +19,8 @@ void writeAtomically(const std::filesystem::path& path,
 
 // `buffer` written with `spec` (its format decides the pixel type) by
 // OpenImageIO's writer named `format` ("openexr", "png"). Throws IoError.
-void writeImageAtomically(const std::filesystem::path& path, const OIIO::ImageBuf& buffer,
-                          const OIIO::ImageSpec& spec, const char* format);
+void writeImageAtomically(const std::filesystem::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec,
+                          const char* format);
 
 // A text file. Throws IoError.
 void writeTextAtomically(const std::filesystem::path& path, std::string_view text);

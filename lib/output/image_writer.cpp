@@ -49,7 +49,8 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
   spec.attribute("headlight:conventions",
                  "right-handed world, +Y up; camera looks down -Z; rows top first; depth.Z = view-space depth");
   // As used: "auto" values appear as the numbers they resolved to.
-  for (const auto& [name, value] : settingsAsText(frame.settings)) spec.attribute(std::string(kSettingAttributePrefix) + name, value);
+  for (const auto& [name, value] : settingsAsText(frame.settings))
+    spec.attribute(std::string(kSettingAttributePrefix) + name, value);
 }
 
 std::string summarize(const fs::path& path, const ImageF& image, const char* type) {
@@ -61,7 +62,6 @@ std::string summarize(const fs::path& path, const ImageF& image, const char* typ
          << stats.max[std::size_t(c)] << "]";
   return line.str();
 }
-
 
 }  // namespace
 

@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "gl/objects.hpp"
-#include "passes/fullscreen.hpp"
 #include "headlight/scene.hpp"
+#include "passes/fullscreen.hpp"
 
 namespace headlight {
 
@@ -24,7 +24,7 @@ struct EnvironmentTables {
 
 class EnvironmentPass {
  public:
-  EnvironmentPass();  // builds the programs and the BRDF table
+  EnvironmentPass();               // builds the programs and the BRDF table
   void updateSky(const Sky& sky);  // recomputes the sky tables if the sky's colours changed
   const EnvironmentTables& tables() const { return tables_; }
 

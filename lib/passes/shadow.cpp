@@ -13,9 +13,12 @@ namespace {
 
 int shaderType(Light::Type type) {
   switch (type) {
-    case Light::Type::Directional: return gpu::kLightDirectional;
-    case Light::Type::Point: return gpu::kLightPoint;
-    case Light::Type::Spot: return gpu::kLightSpot;
+    case Light::Type::Directional:
+      return gpu::kLightDirectional;
+    case Light::Type::Point:
+      return gpu::kLightPoint;
+    case Light::Type::Spot:
+      return gpu::kLightSpot;
   }
   return gpu::kLightPoint;
 }

@@ -29,10 +29,10 @@ struct ShadowMaps {
 
 // Where one light's shadow is: what the lighting shader needs to look it up.
 struct ShadowSlot {
-  int layer = -1;                      // layer of ShadowMaps::planar, or cube of ShadowMaps::cube; -1 = none
-  float far = 0.0f;                    // point lights: the distance the cube's depth is divided by
-  float texelSize = 0.0f;              // directional: a texel's world size; spot: per unit distance from the light
-  glm::mat4 viewProjection{1.0f};      // directional and spot: world -> light clip
+  int layer = -1;                  // layer of ShadowMaps::planar, or cube of ShadowMaps::cube; -1 = none
+  float far = 0.0f;                // point lights: the distance the cube's depth is divided by
+  float texelSize = 0.0f;          // directional: a texel's world size; spot: per unit distance from the light
+  glm::mat4 viewProjection{1.0f};  // directional and spot: world -> light clip
 };
 
 struct ShadowOutputs {

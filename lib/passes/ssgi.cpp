@@ -44,10 +44,11 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed) {
 }
 
 SsgiPass::SsgiPass()
-    : FullscreenPass("ssgi.frag", [](SsgiMethod method) {
-        return method == SsgiMethod::Radiance ? std::vector<std::string>{"METHOD_RADIANCE"}
-                                              : std::vector<std::string>{};
-      }),
+    : FullscreenPass("ssgi.frag",
+                     [](SsgiMethod method) {
+                       return method == SsgiMethod::Radiance ? std::vector<std::string>{"METHOD_RADIANCE"}
+                                                             : std::vector<std::string>{};
+                     }),
       blockBuffer_(gl::Buffer::create(sizeof(gpu::SsgiBlock))),
       noise_(gl::Texture::create2D(GL_RG16F, 4, 4)) {}
 

@@ -32,16 +32,16 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 // Everything one SSGI frame reads. Values are resolved (no "auto"): the
 // renderer fills them from the frame's settings.
 struct SsgiInputs {
-  const GBuffer& gbuffer;              // position, normal, albedo; material for the radiance method
-  const gl::Texture* directDiffuse;    // DirectLightTargets::diffuse: required by radiance, ignored by hemisphere
+  const GBuffer& gbuffer;            // position, normal, albedo; material for the radiance method
+  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by radiance, ignored by hemisphere
   SsgiMethod method = SsgiMethod::Hemisphere;
-  int sampleCount = 0;                 // kernel samples, 1..gpu::kMaxKernelSamples
-  unsigned seed = 0;                   // kernel and noise
-  float radiusWorld = 0.0f;            // kernel radius, world units, > 0
-  float biasWorld = 0.0f;              // occlusion depth bias, world units, >= 0
-  float intensity = 0.0f;              // AO = 1 - intensity * mean occlusion, >= 0
-  float indirectStrength = 0.0f;       // scale of the indirect term, >= 0
-  int downsample = 1;                  // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+  int sampleCount = 0;            // kernel samples, 1..gpu::kMaxKernelSamples
+  unsigned seed = 0;              // kernel and noise
+  float radiusWorld = 0.0f;       // kernel radius, world units, > 0
+  float biasWorld = 0.0f;         // occlusion depth bias, world units, >= 0
+  float intensity = 0.0f;         // AO = 1 - intensity * mean occlusion, >= 0
+  float indirectStrength = 0.0f;  // scale of the indirect term, >= 0
+  int downsample = 1;             // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
 };
 
 // Variants: one per method.

@@ -11,10 +11,10 @@
 namespace headlight {
 
 struct SsgiBlurInputs {
-  const GBuffer& gbuffer;       // position, normal
-  const gl::Texture& rawSsgi;   // the SSGI pass's output, at 1/ssgiDownsample of the G-buffer's size per side
-  float ssgiRadiusWorld = 0.0f; // the SSGI radius: depth differences are judged against it
-  int ssgiDownsample = 1;       // 1, 2 or 4
+  const GBuffer& gbuffer;        // position, normal
+  const gl::Texture& rawSsgi;    // the SSGI pass's output, at 1/ssgiDownsample of the G-buffer's size per side
+  float ssgiRadiusWorld = 0.0f;  // the SSGI radius: depth differences are judged against it
+  int ssgiDownsample = 1;        // 1, 2 or 4
 };
 
 class SsgiBlurPass {

@@ -81,7 +81,8 @@ void checkImage(const ImageF& image, const char* name, int width, int height, in
 }
 
 void validate(const Frame& frame, const ReferenceSettings& settings) {
-  for (const Option<ReferenceSettings>& option : referenceOptions()) checkOptionValue(option.spec, option.get(settings));
+  for (const Option<ReferenceSettings>& option : referenceOptions())
+    checkOptionValue(option.spec, option.get(settings));
   if (!(settings.radius > 0.0f) || !std::isfinite(settings.radius))
     throw SettingsError("traceReference: radius must be a finite number > 0 (world units), got " +
                         std::to_string(settings.radius));
@@ -699,15 +700,14 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
   std::vector<double> aoStandardError(pixelCount, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> indirectStandardError(pixelCount, std::numeric_limits<double>::quiet_NaN());
 
-  const TraceInputs inputs{
-      scene,
-      frame,
-      settings,
-      traced.scene.get(),
-      traced.instances,
-      rayEpsilon(scene),
-      frame.settings.lighting.skyIntensity.value_or(scene.sky.intensity),
-      std::max(kMinSpecularSamples, settings.samplesPerPixel / 4)};
+  const TraceInputs inputs{scene,
+                           frame,
+                           settings,
+                           traced.scene.get(),
+                           traced.instances,
+                           rayEpsilon(scene),
+                           frame.settings.lighting.skyIntensity.value_or(scene.sky.intensity),
+                           std::max(kMinSpecularSamples, settings.samplesPerPixel / 4)};
   const Outputs outputs{images, aoStandardError, indirectStandardError};
 
   // Rows handed out one at a time: a row's cost varies with what it sees.

@@ -8,7 +8,7 @@ namespace headlight::builtin {
 // builtin:slats: thin vertical slats in front of a wall facing +Z at z = 0.
 struct SlatLayout {
   static constexpr int kCount = 9;
-  static constexpr float kFirstX = -0.8f, kSpacing = 0.2f;               // slat centres
+  static constexpr float kFirstX = -0.8f, kSpacing = 0.2f;              // slat centres
   static constexpr float kWidth = 0.04f, kHeight = 2.0f, kGap = 0.12f;  // gap: wall to slat centre
 };
 

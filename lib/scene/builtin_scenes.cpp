@@ -11,8 +11,8 @@
 #include <string>
 
 #include "headlight/error.hpp"
-#include "headlight/scene_loader.hpp"
 #include "headlight/scene_builder.hpp"
+#include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
 #include "scene/builtin_layouts.hpp"
 

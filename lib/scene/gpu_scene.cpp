@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
-#include <tuple>
 #include <span>
+#include <tuple>
 
 #include "shared_layout.h"
 
@@ -99,8 +99,8 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   gpu::MaterialBlock block{};
   block.baseColorFactor = material.baseColorFactor;
   block.emissiveFactor = glm::vec4(material.emissiveFactor, 0.0f);
-  block.factors = glm::vec4(material.metallicFactor, material.roughnessFactor, material.normalScale,
-                            material.occlusionStrength);
+  block.factors =
+      glm::vec4(material.metallicFactor, material.roughnessFactor, material.normalScale, material.occlusionStrength);
   gpu.block = gl::Buffer::create(sizeof(block), &block);
   gpu.doubleSided = material.doubleSided;
   struct Slot {

@@ -44,8 +44,8 @@ struct GpuTexture {
 };
 
 struct GpuInstance {
-  int primitive = 0;  // index into GpuScene::primitives
-  int material = 0;   // index into GpuScene::materials
+  int primitive = 0;      // index into GpuScene::primitives
+  int material = 0;       // index into GpuScene::materials
   bool mirrored = false;  // negative determinant: clockwise triangles face front (glTF)
 };
 
@@ -54,7 +54,7 @@ struct GpuScene {
   std::vector<GpuInstance> instances;  // same order as Scene::instances and instanceBlocks
   std::vector<GpuMaterial> materials;  // the scene's, then glTF's default material last
   std::vector<GpuTexture> textures;
-  gl::Buffer instanceBlocks;      // one ObjectBlock per instance, at instanceStride apart
+  gl::Buffer instanceBlocks;       // one ObjectBlock per instance, at instanceStride apart
   std::size_t instanceStride = 0;  // bytes, a multiple of GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT
   Bounds bounds;
   bool hasEmissive = false;

@@ -51,12 +51,22 @@ bool parseNumber(std::string_view text, Number& value) {
 std::string optionValueName(const OptionSpec& spec) {
   std::string name;
   switch (spec.type) {
-    case OptionType::Switch: return "";
-    case OptionType::Bool: return "";
-    case OptionType::Int: name = "N"; break;
-    case OptionType::Float: name = "FLOAT"; break;
-    case OptionType::Choice: name = choiceList(spec, "|"); break;
-    case OptionType::Text: name = spec.valueName.empty() ? "TEXT" : std::string(spec.valueName); break;
+    case OptionType::Switch:
+      return "";
+    case OptionType::Bool:
+      return "";
+    case OptionType::Int:
+      name = "N";
+      break;
+    case OptionType::Float:
+      name = "FLOAT";
+      break;
+    case OptionType::Choice:
+      name = choiceList(spec, "|");
+      break;
+    case OptionType::Text:
+      name = spec.valueName.empty() ? "TEXT" : std::string(spec.valueName);
+      break;
   }
   return spec.autoMeaning.empty() ? name : "auto|" + name;
 }
@@ -88,7 +98,8 @@ OptionValue parseOptionValue(const OptionSpec& spec, std::string_view text) {
       for (std::string_view choice : spec.choices)
         if (choice == text) return std::string(text);
       expected(spec, expectedAuto + "one of " + choiceList(spec, ", "), text);
-    case OptionType::Text: return std::string(text);
+    case OptionType::Text:
+      return std::string(text);
   }
   return std::string(text);
 }
@@ -183,7 +194,8 @@ std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& d
   std::string left = spec.type == OptionType::Bool ? "  --[no-]" : "  --";
   left += spec.name;
   if (const std::string value = optionValueName(spec); !value.empty()) (left += " ") += value;
-  left += left.size() < kHelpColumn ? std::string(kHelpColumn - left.size(), ' ') : "\n" + std::string(kHelpColumn, ' ');
+  left +=
+      left.size() < kHelpColumn ? std::string(kHelpColumn - left.size(), ' ') : "\n" + std::string(kHelpColumn, ' ');
   std::string line = left + std::string(spec.help);
   if (!spec.autoMeaning.empty()) line += " (auto: " + std::string(spec.autoMeaning) + ")";
   if (spec.type == OptionType::Int || spec.type == OptionType::Float) line += " [" + rangeText(spec) + "]";

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "scene/builtin_layouts.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene.hpp"
 #include "headlight/settings.hpp"
+#include "scene/builtin_layouts.hpp"
 
 namespace headlight::stability {
 
@@ -46,11 +46,11 @@ Scene scaledScene(Scene scene, float scale);
 Camera cornellOrbitCamera(float degrees);
 
 // Case 7: degenerate input.
-Scene nanVertexScene();          // a good floor plus a triangle with a NaN vertex, built in code
-Scene zeroAreaScene();           // a quad plus point and collinear triangles, normals from generateNormals
-Scene missingNormalsScene();     // a box whose normals come from generateNormals (it had none)
-Scene hugeCoordinateScene();     // a floor reaching 1e20 and a unit box on it
-Scene emptyScene();              // no instances at all
+Scene nanVertexScene();       // a good floor plus a triangle with a NaN vertex, built in code
+Scene zeroAreaScene();        // a quad plus point and collinear triangles, normals from generateNormals
+Scene missingNormalsScene();  // a box whose normals come from generateNormals (it had none)
+Scene hugeCoordinateScene();  // a floor reaching 1e20 and a unit box on it
+Scene emptyScene();           // no instances at all
 // A one-quad glTF (non-indexed, no normals: the loader generates them) with
 // its buffer as a data URI; `nanPosition` puts a NaN in the first vertex.
 std::string quadGltfJson(bool nanPosition);
@@ -83,10 +83,10 @@ struct Panel {
   enum class Kind { Grey, Tonemapped, Signed };
   std::string label;
   ImageF image;
-  int channel = 0;   // first channel shown
+  int channel = 0;  // first channel shown
   Kind kind = Kind::Grey;
-  float scale = 1;   // Signed: the error shown at full colour
-  ImageF coverage;   // optional: a frame's position target; background (A = 0) is shown as sky blue
+  float scale = 1;  // Signed: the error shown at full colour
+  ImageF coverage;  // optional: a frame's position target; background (A = 0) is shown as sky blue
 };
 
 struct CaseResult {

@@ -619,8 +619,8 @@ float aoAtWorldPoint(const Frame& frame, glm::vec3 point, float tolerance) {
 }
 
 struct TemporalChange {
-  double mean = 0;     // mean |AO(t+1) - AO(t)| over tracked points and frame pairs
-  ImageF perPoint;     // that mean per tracked point, at its pixel in the first frame
+  double mean = 0;  // mean |AO(t+1) - AO(t)| over tracked points and frame pairs
+  ImageF perPoint;  // that mean per tracked point, at its pixel in the first frame
 };
 
 TemporalChange measureOrbit(Renderer& renderer, SsgiMethod method, bool noisePerFrame) {

@@ -123,9 +123,12 @@ void writeCasePicture(const std::vector<CaseResult>& perMethod, const fs::path& 
 std::string formatNumber(double value) {
   char text[32];
   if (!std::isfinite(value)) return value != value ? "NaN" : (value > 0 ? "inf" : "-inf");
-  if (value == std::round(value)) std::snprintf(text, sizeof text, "%.0f", value);
-  else if (value != 0 && std::abs(value) < 1e-3) std::snprintf(text, sizeof text, "%.1e", value);
-  else std::snprintf(text, sizeof text, std::abs(value) < 10 ? "%.3f" : "%.1f", value);
+  if (value == std::round(value))
+    std::snprintf(text, sizeof text, "%.0f", value);
+  else if (value != 0 && std::abs(value) < 1e-3)
+    std::snprintf(text, sizeof text, "%.1e", value);
+  else
+    std::snprintf(text, sizeof text, std::abs(value) < 10 ? "%.3f" : "%.1f", value);
   return text;
 }
 
@@ -172,8 +175,8 @@ void appendCaseRows(std::ostringstream& table, const std::vector<CaseResult>& pe
 
 std::string makeTable(const std::vector<std::vector<CaseResult>>& results, const Context& context) {
   std::ostringstream table;
-  table << "Renderer: " << context.renderer() << " (" << context.description() << "), "
-        << machineDescription() << ". Reference: Embree, " << kReferenceSamples << " rays per pixel.\n\n";
+  table << "Renderer: " << context.renderer() << " (" << context.description() << "), " << machineDescription()
+        << ". Reference: Embree, " << kReferenceSamples << " rays per pixel.\n\n";
   table << "| Failure mode | Quantity";
   for (SsgiMethod method : kMethods) table << " | " << ssgiMethodName(method);
   table << " | Asserted | Picture |\n|---|---";

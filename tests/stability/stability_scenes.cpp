@@ -139,9 +139,10 @@ std::string quadGltfJson(bool nanPosition) {
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
          R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
          R"("buffers":[{"uri":"data:application/octet-stream;base64,)" +
-         base64 + R"(","byteLength":72}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":72}],)"
-                  R"("accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3",)"
-                  R"("min":[-1,0,-1],"max":[1,0,1]}]})";
+         base64 +
+         R"(","byteLength":72}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":72}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3",)"
+         R"("min":[-1,0,-1],"max":[1,0,1]}]})";
 }
 
 }  // namespace headlight::stability

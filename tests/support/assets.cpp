@@ -12,7 +12,8 @@ fs::path sharedFolder() {
 }
 
 fs::path metalRoughSpheresGltf() {
-  return sharedFolder() / "anchors-assets" / "MetalRoughSpheresNoTextures" / "glTF" / "MetalRoughSpheresNoTextures.gltf";
+  return sharedFolder() / "anchors-assets" / "MetalRoughSpheresNoTextures" / "glTF" /
+         "MetalRoughSpheresNoTextures.gltf";
 }
 
 bool exists(const fs::path& path) {

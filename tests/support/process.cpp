@@ -1,9 +1,9 @@
 #include "support/process.hpp"
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <stdexcept>
-#include <sys/wait.h>
 
 namespace headlight::test {
 

@@ -12,9 +12,9 @@ fs::path freshFolder(std::string_view prefix) {
   // The random part keeps runs apart (ctest runs suites side by side), the
   // counter keeps the folders of one run apart.
   static std::atomic<int> counter{0};
-  const fs::path path = fs::temp_directory_path() / ("headlight_" + std::string(prefix) + "_" +
-                                                     std::to_string(std::random_device{}()) + "_" +
-                                                     std::to_string(counter++));
+  const fs::path path =
+      fs::temp_directory_path() / ("headlight_" + std::string(prefix) + "_" + std::to_string(std::random_device{}()) +
+                                   "_" + std::to_string(counter++));
   fs::remove_all(path);
   fs::create_directories(path);
   return path;

@@ -51,24 +51,24 @@ struct BenchRow {
   std::string scene;
   int width = 0;
   int height = 0;
-  std::string label;        // the swept settings' values, e.g. "ssgi-method=radiance ssgi-samples=16"
+  std::string label;  // the swept settings' values, e.g. "ssgi-method=radiance ssgi-samples=16"
   // Every render setting as used (auto values resolved), by the setting
   // table's row names: one CSV column each, so a new setting needs no change here.
   std::map<std::string, std::string> settings;
   bool seedDefault = false;  // the seed spec's settings (hemisphere, 64, radius 0.5, bias 0.025, no blur)
   int repetitions = 0;
-  Summary frameMs;          // passes of one frame (G-buffer to composite), shadows cached, readback excluded
-  Summary ssgiMs;           // SSGI (+ blur)
-  ErrorStats ao;            // vs ao_ref within R
+  Summary frameMs;           // passes of one frame (G-buffer to composite), shadows cached, readback excluded
+  Summary ssgiMs;            // SSGI (+ blur)
+  ErrorStats ao;             // vs ao_ref within R
   ColorErrorStats indirect;  // vs indirect_ref within R
   ColorErrorStats lit;       // vs lit_ref
   double litSsim = 0;
   int referenceSamples = 0;
   double referenceAoStandardError = 0;
-  bool paretoAo = false;    // on the (frame time, AO RMSE) front of its scene and resolution
-  std::string renderer;     // GL_RENDERER
+  bool paretoAo = false;  // on the (frame time, AO RMSE) front of its scene and resolution
+  std::string renderer;   // GL_RENDERER
   std::string backend;
-  std::string machine;      // CPU model and core count
+  std::string machine;  // CPU model and core count
 };
 
 void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::path& path);

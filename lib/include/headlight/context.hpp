@@ -10,7 +10,7 @@
 namespace headlight {
 
 enum class Backend {
-  Auto,    // EGL (device platform, then surfaceless), then OSMesa
+  Auto,  // EGL (device platform, then surfaceless), then OSMesa
   Egl,
   OSMesa,
 };
@@ -41,7 +41,7 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
-  Backend backend() const;         // Egl or OSMesa, never Auto
+  Backend backend() const;          // Egl or OSMesa, never Auto
   std::string description() const;  // e.g. "EGL device 0 (EGL_MESA_device_software)"
   std::string renderer() const;     // GL_RENDERER
   std::string version() const;      // GL_VERSION

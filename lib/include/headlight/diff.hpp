@@ -70,20 +70,20 @@ struct ChannelDiff {
   double meanError = 0;              // mean error over all pixels, in the metric's units
   double rmsError = 0;
   double psnr = std::numeric_limits<double>::infinity();  // 20 log10(1 / rms), as OIIO computes it
-  double maxError = 0;               // +inf where only one image is NaN/Inf there (OIIO's rule)
-  int maxX = 0, maxY = 0;            // pixel of maxError
-  std::vector<float> valuesA, valuesB;  // `sources` of A and B at (maxX, maxY)
-  std::uint64_t failingPixels = 0;   // error > fail
-  std::uint64_t warningPixels = 0;   // error > warn (failing pixels included)
-  double failingPercent = 0;         // of all pixels
-  std::uint64_t nonFiniteA = 0, nonFiniteB = 0;  // NaN or Inf values in the sources
+  double maxError = 0;                                    // +inf where only one image is NaN/Inf there (OIIO's rule)
+  int maxX = 0, maxY = 0;                                 // pixel of maxError
+  std::vector<float> valuesA, valuesB;                    // `sources` of A and B at (maxX, maxY)
+  std::uint64_t failingPixels = 0;                        // error > fail
+  std::uint64_t warningPixels = 0;                        // error > warn (failing pixels included)
+  double failingPercent = 0;                              // of all pixels
+  std::uint64_t nonFiniteA = 0, nonFiniteB = 0;           // NaN or Inf values in the sources
 };
 
 struct DiffResult {
   DiffStatus status = DiffStatus::Pass;
   std::string problem;  // one line saying why the status is not Pass; empty on Pass
   std::filesystem::path a, b;
-  std::string target;   // table row used
+  std::string target;  // table row used
   DiffMetric metric = DiffMetric::Absolute;
   DiffThresholds thresholds;  // as used
   double scale = 1;           // RelativeToScene only: the divisor

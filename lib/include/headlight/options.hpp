@@ -48,8 +48,8 @@ struct OptionSpec {
   double minimum = 0;  // Int, Float: inclusive range
   double maximum = 0;
   std::span<const std::string_view> choices{};  // Choice: the accepted names
-  std::string_view autoMeaning{};  // non-empty: "auto" is accepted, and this says what it becomes
-  std::string_view valueName{};    // Text: shown in help (e.g. "DIR"); other types derive theirs
+  std::string_view autoMeaning{};               // non-empty: "auto" is accepted, and this says what it becomes
+  std::string_view valueName{};                 // Text: shown in help (e.g. "DIR"); other types derive theirs
 };
 
 // Parses `text` for the row: on|off, a number in range, one of the choices,
@@ -67,7 +67,7 @@ template <class Target>
 struct Option {
   OptionSpec spec;
   std::function<void(Target&, const OptionValue&)> set;  // checks the value, then stores it
-  std::function<OptionValue(const Target&)> get;          // empty for write-only rows (--help, --preset)
+  std::function<OptionValue(const Target&)> get;         // empty for write-only rows (--help, --preset)
 };
 
 namespace detail {
@@ -151,8 +151,8 @@ template <class Outer, class Inner>
 std::vector<Option<Outer>> liftOptions(std::span<const Option<Inner>> options, Inner Outer::*member) {
   std::vector<Option<Outer>> lifted;
   for (const Option<Inner>& option : options) {
-    Option<Outer> row{option.spec, [set = option.set, member](Outer& o, const OptionValue& v) { set(o.*member, v); },
-                      {}};
+    Option<Outer> row{
+        option.spec, [set = option.set, member](Outer& o, const OptionValue& v) { set(o.*member, v); }, {}};
     if (option.get) row.get = [get = option.get, member](const Outer& o) { return get(o.*member); };
     lifted.push_back(std::move(row));
   }
@@ -186,9 +186,8 @@ std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& d
 // take --name, --no-name or --name=on|off; Switch rows take no value. Throws
 // SettingsError naming the flag for an unknown flag or a bad value.
 template <class Target>
-std::vector<std::string> parseCommandLine(const std::vector<std::string>& args,
-                                          std::span<const Option<Target>> options, Target& target,
-                                          std::string_view command) {
+std::vector<std::string> parseCommandLine(const std::vector<std::string>& args, std::span<const Option<Target>> options,
+                                          Target& target, std::string_view command) {
   std::vector<std::string> positional;
   for (std::size_t i = 0; i < args.size(); ++i) {
     std::string name;
@@ -216,8 +215,7 @@ std::vector<std::string> parseCommandLine(const std::vector<std::string>& args,
       continue;
     }
     if (!inlineValue) {
-      if (i + 1 >= args.size())
-        throw SettingsError("--" + name + " needs a value (" + optionValueName(spec) + ")");
+      if (i + 1 >= args.size()) throw SettingsError("--" + name + " needs a value (" + optionValueName(spec) + ")");
       inlineValue = args[++i];
     }
     found->set(target, parseOptionValue(spec, *inlineValue));

@@ -16,9 +16,9 @@ struct ReferenceSettings {
   // Cosine-weighted hemisphere rays per pixel. 4096 keeps the mean AO
   // standard error under 0.005 on the built-ins at 128x96 (docs/ACCURACY.md).
   int samplesPerPixel = 4096;
-  float radius = 0.0f;         // world units, > 0: the R of "within R" (pass the SSGI radius the frame used)
-  unsigned seed = 1;           // per-pixel random streams derive from it: results do not depend on threads
-  int threads = 0;             // 0 = all hardware threads
+  float radius = 0.0f;  // world units, > 0: the R of "within R" (pass the SSGI radius the frame used)
+  unsigned seed = 1;    // per-pixel random streams derive from it: results do not depend on threads
+  int threads = 0;      // 0 = all hardware threads
 };
 
 // The user-settable rows of ReferenceSettings (`reference` and `bench` read them).
@@ -35,7 +35,7 @@ struct ReferenceImages {
   // + one-bounce indirect (unlimited) + emission; A = coverage.
   ImageF lit;
   int samplesPerPixel = 0;
-  double aoMeanStandardError = 0;        // mean over geometry pixels of sqrt(p(1-p)/(n-1))
+  double aoMeanStandardError = 0;  // mean over geometry pixels of sqrt(p(1-p)/(n-1))
   double aoMaxStandardError = 0;
   double indirectMeanStandardError = 0;  // of indirect (unlimited), mean over pixels and channels
   double seconds = 0;                    // wall time of the trace

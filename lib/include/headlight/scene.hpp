@@ -89,7 +89,7 @@ struct Primitive {
   std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
   std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
   std::vector<std::uint32_t> indices;
-  Bounds bounds;      // in the primitive's own space
+  Bounds bounds;  // in the primitive's own space
 };
 
 // A primitive placed in the world by the flattened node hierarchy, with
@@ -133,8 +133,8 @@ struct Light {
   float intensity = 1.0f;
   float range = 0.0f;  // 0 = infinite
   float innerConeAngle = 0.0f;
-  float outerConeAngle = 0.7853982f;  // pi/4, glTF's default
-  glm::vec3 position{0.0f};             // world; point and spot
+  float outerConeAngle = 0.7853982f;       // pi/4, glTF's default
+  glm::vec3 position{0.0f};                // world; point and spot
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // world, unit; directional and spot
   bool castsShadows = true;
 };
@@ -150,7 +150,7 @@ struct Sky {
 };
 
 struct Scene {
-  std::string source;  // file path, or "builtin:<name>"
+  std::string source;      // file path, or "builtin:<name>"
   std::string sourceHash;  // hex fingerprint of the file's bytes (or the builtin's name and version)
   std::vector<Primitive> primitives;
   std::vector<Material> materials;

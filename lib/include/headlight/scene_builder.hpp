@@ -33,7 +33,7 @@ glm::mat4 rotatedAboutYThenMoved(float degrees, const glm::vec3& center);
 
 // ---- Assembly -------------------------------------------------------------------
 
-int addMaterial(Scene& scene, Material material);  // returns its index in scene.materials
+int addMaterial(Scene& scene, Material material);    // returns its index in scene.materials
 int addGeometry(Scene& scene, Primitive primitive);  // returns its index in scene.primitives
 
 // Places geometry `geometry` (an index from addGeometry) with `material` (an

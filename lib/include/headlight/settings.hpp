@@ -50,18 +50,18 @@ struct SsgiSettings {
 };
 
 struct LightingSettings {
-  bool shadows = true;                 // shadow maps for lights that cast shadows
-  std::optional<int> shadowMapSize;    // texels per side; auto: longer image side to the next power of two, 512..2048
-  float pcfRadius = 1.5f;              // shadow filter radius in texels
-  std::optional<float> skyIntensity;   // auto: the scene's sky intensity
+  bool shadows = true;                // shadow maps for lights that cast shadows
+  std::optional<int> shadowMapSize;   // texels per side; auto: longer image side to the next power of two, 512..2048
+  float pcfRadius = 1.5f;             // shadow filter radius in texels
+  std::optional<float> skyIntensity;  // auto: the scene's sky intensity
 };
 
 enum class Tonemap { Aces, Reinhard };
 
 struct RenderSettings {
-  int width = 640;                 // pixels; width x height at most 2^26
-  int height = 480;                // pixels
-  std::optional<int> camera;       // glTF camera index; auto: the scene's first camera, or one fitted to the bounds
+  int width = 640;            // pixels; width x height at most 2^26
+  int height = 480;           // pixels
+  std::optional<int> camera;  // glTF camera index; auto: the scene's first camera, or one fitted to the bounds
   SsgiSettings ssgi;
   LightingSettings lighting;
   Tonemap tonemap = Tonemap::Aces;  // preview.png only; lit.exr stays linear

@@ -27,15 +27,15 @@ enum class DiffMetric {
 // idiff's options and idiff's defaults, plus a bound on the mean error. Units
 // are the metric's.
 struct DiffThresholds {
-  double fail = 1e-6;      // >= 0; a pixel fails when any channel's error > fail
-  double failPercent = 0;  // 0..100; FAIL when more than this % of pixels fail
+  double fail = 1e-6;                                         // >= 0; a pixel fails when any channel's error > fail
+  double failPercent = 0;                                     // 0..100; FAIL when more than this % of pixels fail
   double hardFail = std::numeric_limits<double>::infinity();  // >= 0; FAIL when any error > hardFail
   // FAIL when any channel's mean error over all pixels exceeds this: the
   // failPercent allowance lets a few pixels differ, this bounds by how much
   // (0.5 % of pixels each wrong by E raise the mean by E / 200).
   double failMean = std::numeric_limits<double>::infinity();
-  double warn = 1e-6;      // >= 0
-  double warnPercent = 0;  // 0..100
+  double warn = 1e-6;                                         // >= 0
+  double warnPercent = 0;                                     // 0..100
   double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
 };
 
