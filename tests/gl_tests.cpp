@@ -265,7 +265,7 @@ TEST_CASE("SSGI off: no ssgi target, and the image SSGI would give with no occlu
 TEST_CASE("EGL and OSMesa render the same images" * doctest::test_suite("backends")) {
   RenderSettings settings = smallSettings(64, 48);
   auto renderWith = [&](Backend backend) {
-    Context context(ContextOptions{backend, -1, GlErrorPolicy::Throw});
+    Context context(ContextOptions{.backend = backend, .errorPolicy = GlErrorPolicy::Throw, .eglDeviceName = {}});
     Renderer renderer(context);
     renderer.setScene(loadScene("builtin:cornell"));
     return renderer.render(settings);

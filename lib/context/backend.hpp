@@ -13,15 +13,19 @@ using GlProc = void (*)();
 class PlatformContext {
  public:
   virtual ~PlatformContext() = default;
-  virtual void makeCurrent() = 0;
+  virtual bool makeCurrent() = 0;  // false: the platform refused (say, current on another thread)
   virtual GlProc procAddress(const char* name) const = 0;
   virtual std::string description() const = 0;
 };
 
 // Each appends a line per attempt to `attempts` ("EGL device 0: ...") and
 // returns null if no context could be made; it never throws for a missing
-// driver, so that Backend::Auto can go on to the next backend.
-std::unique_ptr<PlatformContext> createEglContext(int device, std::vector<std::string>& attempts);
+// driver, so that Backend::Auto can go on to the next backend. `device` < 0
+// and an empty `deviceName` mean the first device that works.
+std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName,
+                                                  std::vector<std::string>& attempts);
+// libOSMesa is opened with dlopen here, on first use: linking it would load
+// Mesa's LLVM into every process, EGL users and `headlight --version` included.
 std::unique_ptr<PlatformContext> createOSMesaContext(std::vector<std::string>& attempts);
 
 }  // namespace headlight::detail

@@ -2,10 +2,7 @@
 
 #include <glad/gl.h>
 
-#include <atomic>
-#include <cstdint>
 #include <iostream>
-#include <mutex>
 
 #include "context/backend.hpp"
 #include "context/hex_code.hpp"
@@ -33,24 +30,19 @@ Backend parseBackend(std::string_view name) {
 
 namespace {
 
-// glad keeps one table of GL entry points per process. On Mesa the entry
-// points EGL and OSMesa hand out are the same dispatch stubs (they share
-// libglapi), so reloading is harmless; the table is reloaded, under a lock,
-// whenever a different Context is made or made current than the one that
-// loaded it last.
-std::mutex gladMutex;
-std::uint64_t gladLoadedBy = 0;               // id of the Context whose entry points glad holds; 0 = none
-std::atomic<std::uint64_t> nextContextId{1};  // ids are never reused, unlike addresses
-
-void loadGlEntryPoints(const detail::PlatformContext& platform, std::uint64_t key) {
-  std::lock_guard lock(gladMutex);
-  if (gladLoadedBy == key) return;
+// Every Context owns its table of GL entry points (glad --mx): the pointers
+// EGL hands out (glvnd's libGLdispatch stubs on Debian) only dispatch to EGL
+// contexts, OSMesa's (libglapi stubs) only to OSMesa ones, so a process-wide
+// table would serve one backend's pointers to another backend's thread.
+// makeCurrent() makes the context's table the calling thread's
+// (gladSetCurrentGLContext, thread-local), and every glFoo() call in the
+// library goes through it (subprojects/glad/generate.sh).
+void loadGlEntryPoints(const detail::PlatformContext& platform, GladGLContext& table) {
   auto load = [](void* user, const char* name) -> GLADapiproc {
     return static_cast<const detail::PlatformContext*>(user)->procAddress(name);
   };
-  if (gladLoadGLUserPtr(load, const_cast<detail::PlatformContext*>(&platform)) == 0)
-    throw ContextError("gladLoadGL: could not load OpenGL entry points from " + platform.description());
-  gladLoadedBy = key;
+  if (gladLoadGLContextUserPtr(&table, load, const_cast<detail::PlatformContext*>(&platform)) == 0)
+    throw ContextError("gladLoadGLContext: could not load OpenGL entry points from " + platform.description());
 }
 
 std::string glString(GLenum name) {
@@ -78,12 +70,13 @@ std::string glErrorName(GLenum error) {
 }  // namespace
 
 struct Context::Impl {
-  std::uint64_t id = nextContextId++;
   std::unique_ptr<detail::PlatformContext> platform;
+  GladGLContext gl{};  // this context's entry points
   Backend backend = Backend::Auto;
   GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
   std::vector<std::string> attempts;
-  std::vector<std::string> errors;  // KHR_debug errors not yet reported
+  std::string glRenderer, glVersion;  // read once: usable from any thread
+  std::vector<std::string> errors;    // KHR_debug errors not yet reported
 
   static void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint id, GLenum severity, GLsizei, const GLchar* message,
                                         const void* user) {
@@ -108,7 +101,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   impl_->errorPolicy = options.errorPolicy;
   auto& attempts = impl_->attempts;
   if (options.backend == Backend::Auto || options.backend == Backend::Egl) {
-    impl_->platform = detail::createEglContext(options.eglDevice, attempts);
+    impl_->platform = detail::createEglContext(options.eglDevice, options.eglDeviceName, attempts);
     impl_->backend = Backend::Egl;
   }
   if (!impl_->platform && (options.backend == Backend::Auto || options.backend == Backend::OSMesa)) {
@@ -121,36 +114,60 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
-  loadGlEntryPoints(*impl_->platform, impl_->id);
-  GLint major = 0, minor = 0;
-  glGetIntegerv(GL_MAJOR_VERSION, &major);
-  glGetIntegerv(GL_MINOR_VERSION, &minor);
-  if (major * 10 + minor < 45)
-    throw ContextError(impl_->platform->description() + ": got OpenGL " + glString(GL_VERSION) + ", need 4.5 core");
-  impl_->installDebugCallback();
-  // Filtered lookups near a cube face's edge read the neighbouring face too;
-  // without this, point-light shadows show the cube's seams as lines.
-  glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  loadGlEntryPoints(*impl_->platform, impl_->gl);
+  gladSetCurrentGLContext(&impl_->gl);
+  try {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 45)
+      throw ContextError(impl_->platform->description() + ": got OpenGL " + glString(GL_VERSION) + ", need 4.5 core");
+    impl_->glRenderer = glString(GL_RENDERER);
+    impl_->glVersion = glString(GL_VERSION);
+    impl_->installDebugCallback();
+    // Filtered lookups near a cube face's edge read the neighbouring face too;
+    // without this, point-light shadows show the cube's seams as lines.
+    glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  } catch (...) {
+    gladSetCurrentGLContext(nullptr);  // the table dies with impl_
+    throw;
+  }
 }
 
-Context::~Context() = default;
+Context::~Context() {
+  if (!impl_) return;  // moved from
+  if (gladGetCurrentGLContext() == &impl_->gl) gladSetCurrentGLContext(nullptr);
+  // The platform context is destroyed (made not current first) by its own destructor.
+}
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 
 Backend Context::backend() const { return impl_->backend; }
 std::string Context::description() const { return impl_->platform->description(); }
-std::string Context::renderer() const { return glString(GL_RENDERER); }
-std::string Context::version() const { return glString(GL_VERSION); }
+std::string Context::renderer() const { return impl_->glRenderer; }
+std::string Context::version() const { return impl_->glVersion; }
 const std::vector<std::string>& Context::attempts() const { return impl_->attempts; }
 
 void Context::makeCurrent() {
-  impl_->platform->makeCurrent();
-  loadGlEntryPoints(*impl_->platform, impl_->id);
+  if (!impl_->platform->makeCurrent())
+    throw ContextError(impl_->platform->description() +
+                       ": could not make the context current on this thread (is it current on another thread?)");
+  gladSetCurrentGLContext(&impl_->gl);
+}
+
+bool Context::isCurrent() const { return gladGetCurrentGLContext() == &impl_->gl; }
+
+void Context::requireCurrent(std::string_view operation) const {
+  if (!isCurrent())
+    throw ContextError(std::string(operation) + ": the context (" + impl_->platform->description() +
+                       ") is not current on this thread; call Context::makeCurrent() on this thread first "
+                       "(a context is current on one thread at a time)");
 }
 
 std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }
 
 void Context::checkErrors(std::string_view operation) {
+  requireCurrent(operation);
   // glGetError catches what a driver reports without a debug message.
   for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError())
     impl_->errors.push_back("glGetError: " + glErrorName(error));

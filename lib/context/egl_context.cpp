@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "context/backend.hpp"
 #include "context/hex_code.hpp"
@@ -59,7 +60,7 @@ class EglContext final : public PlatformContext {
     eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(display_, context_);
   }
-  void makeCurrent() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_); }
+  bool makeCurrent() override { return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE; }
   GlProc procAddress(const char* name) const override { return eglGetProcAddress(name); }
   std::string description() const override { return description_; }
 
@@ -118,18 +119,53 @@ std::unique_ptr<PlatformContext> contextOnDisplay(EGLDisplay display, const std:
   return std::make_unique<EglContext>(display, context, label);
 }
 
-std::string deviceLabel(int index, EGLDeviceEXT device) {
+// What a device can be chosen by: its DRM device and render-node files,
+// its driver and renderer names (EGL_EXT_device_persistent_id /
+// EGL_EXT_device_query_name) and every extension it lists
+// (EGL_MESA_device_software for llvmpipe).
+struct DeviceNames {
+  std::string label;  // "EGL device 0 (/dev/dri/card0)"
+  std::vector<std::string> names;
+};
+
+DeviceNames deviceNames(int index, EGLDeviceEXT device, const char* deviceExtensions) {
+  DeviceNames result{"EGL device " + std::to_string(index), {}};
   auto queryString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
-  std::string label = "EGL device " + std::to_string(index);
-  if (queryString == nullptr) return label;
-  if (const char* drm = queryString(device, EGL_DRM_DEVICE_FILE_EXT)) return label + " (" + drm + ")";
-  if (const char* extensions = queryString(device, EGL_EXTENSIONS)) return label + " (" + extensions + ")";
-  return label;
+  if (queryString == nullptr) return result;
+  const char* extensions = deviceExtensions;
+  auto query = [&](EGLint name, const char* needs) -> const char* {
+    if (needs != nullptr && !hasExtension(extensions, needs)) return nullptr;
+    const char* value = queryString(device, name);
+    eglGetError();  // a name this device lacks is no error of ours
+    return value;
+  };
+  const char* drm = query(EGL_DRM_DEVICE_FILE_EXT, "EGL_EXT_device_drm");
+  const char* renderNode = query(EGL_DRM_RENDER_NODE_FILE_EXT, "EGL_EXT_device_drm_render_node");
+  const char* driver = query(EGL_DRIVER_NAME_EXT, "EGL_EXT_device_persistent_id");
+  const char* renderer = query(EGL_RENDERER_EXT, "EGL_EXT_device_query_name");
+  for (const char* name : {drm, renderNode, driver, renderer})
+    if (name != nullptr && *name != '\0') result.names.emplace_back(name);
+  if (extensions != nullptr) {
+    std::string list = extensions;
+    for (std::size_t start = 0; start < list.size();) {
+      std::size_t end = list.find(' ', start);
+      if (end == std::string::npos) end = list.size();
+      if (end > start) result.names.push_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  if (drm != nullptr)
+    result.label += std::string(" (") + drm + ")";
+  else if (extensions != nullptr)
+    result.label += std::string(" (") + extensions + ")";
+  return result;
 }
 
-std::unique_ptr<PlatformContext> tryDevicePlatform(int wanted, std::vector<std::string>& attempts) {
+std::unique_ptr<PlatformContext> tryDevicePlatform(int wanted, const std::string& wantedName,
+                                                   std::vector<std::string>& attempts) {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  auto queryString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
   auto platformDisplay =
       reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
   if (!hasExtension(client, "EGL_EXT_platform_device") || queryDevices == nullptr || platformDisplay == nullptr) {
@@ -147,12 +183,26 @@ std::unique_ptr<PlatformContext> tryDevicePlatform(int wanted, std::vector<std::
                        " device(s) exist (0.." + std::to_string(count - 1) + ")");
     return nullptr;
   }
+  std::string known;  // for the message when no device has the wanted name
+  bool named = false;
   for (int i = 0; i < count; ++i) {
     if (wanted >= 0 && i != wanted) continue;
-    const std::string label = deviceLabel(i, devices[i]);
+    const char* extensions = queryString != nullptr ? queryString(devices[i], EGL_EXTENSIONS) : nullptr;
+    const DeviceNames device = deviceNames(i, devices[i], extensions);
+    if (!wantedName.empty()) {
+      bool matches = false;
+      for (const std::string& name : device.names) matches = matches || name == wantedName;
+      std::string list;
+      for (const std::string& name : device.names) (list += list.empty() ? "" : ", ") += name;
+      (known += known.empty() ? "" : "; ") += std::to_string(i) + ": " + list;
+      if (!matches) continue;
+      named = true;
+    }
     EGLDisplay display = platformDisplay(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-    if (auto context = contextOnDisplay(display, label, attempts)) return context;
+    if (auto context = contextOnDisplay(display, device.label, attempts)) return context;
   }
+  if (!wantedName.empty() && !named)
+    attempts.push_back("EGL device named '" + wantedName + "': no device has that name (" + known + ")");
   return nullptr;
 }
 
@@ -170,9 +220,10 @@ std::unique_ptr<PlatformContext> trySurfacelessPlatform(std::vector<std::string>
 
 }  // namespace
 
-std::unique_ptr<PlatformContext> createEglContext(int device, std::vector<std::string>& attempts) {
-  if (auto context = tryDevicePlatform(device, attempts)) return context;
-  if (device >= 0) return nullptr;  // a specific device was asked for: no silent fallback
+std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName,
+                                                  std::vector<std::string>& attempts) {
+  if (auto context = tryDevicePlatform(device, deviceName, attempts)) return context;
+  if (device >= 0 || !deviceName.empty()) return nullptr;  // a specific device was asked for: no silent fallback
   return trySurfacelessPlatform(attempts);
 }
 

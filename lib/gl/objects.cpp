@@ -16,15 +16,34 @@ GLuint createOne(CreateNames create) {
   return id;
 }
 
+// An object destroyed on a thread where no context is current (a Renderer
+// dropped on the wrong thread) leaves its name to the context's own
+// destruction rather than calling through a null table.
+bool haveCurrent() { return gladGetCurrentGLContext() != nullptr; }
+
 }  // namespace
 
-void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-void deleteProgram(GLuint id) { glDeleteProgram(id); }
-void deleteShader(GLuint id) { glDeleteShader(id); }
-void deleteSampler(GLuint id) { glDeleteSamplers(1, &id); }
+void deleteTexture(GLuint id) {
+  if (haveCurrent()) glDeleteTextures(1, &id);
+}
+void deleteBuffer(GLuint id) {
+  if (haveCurrent()) glDeleteBuffers(1, &id);
+}
+void deleteFramebuffer(GLuint id) {
+  if (haveCurrent()) glDeleteFramebuffers(1, &id);
+}
+void deleteVertexArray(GLuint id) {
+  if (haveCurrent()) glDeleteVertexArrays(1, &id);
+}
+void deleteProgram(GLuint id) {
+  if (haveCurrent()) glDeleteProgram(id);
+}
+void deleteShader(GLuint id) {
+  if (haveCurrent()) glDeleteShader(id);
+}
+void deleteSampler(GLuint id) {
+  if (haveCurrent()) glDeleteSamplers(1, &id);
+}
 
 Texture::Texture(GLenum target, GLenum internalFormat, int width, int height, int layers, int levels)
     : target_(target), internalFormat_(internalFormat), width_(width), height_(height), layers_(layers) {

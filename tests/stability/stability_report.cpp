@@ -211,7 +211,9 @@ int main(int argc, char** argv) {
   try {
     const fs::path docs = argv[1];
     fs::create_directories(docs / "stability");
-    Context context(ContextOptions{argc == 4 ? parseBackend(argv[3]) : Backend::Auto, -1, GlErrorPolicy::Throw});
+    Context context(ContextOptions{.backend = argc == 4 ? parseBackend(argv[3]) : Backend::Auto,
+                                   .errorPolicy = GlErrorPolicy::Throw,
+                                   .eglDeviceName = {}});
     Renderer renderer(context);
     std::vector<std::vector<CaseResult>> results;
     for (const CaseEntry& entry : allCases()) {

@@ -20,7 +20,8 @@ inline Backend backendUnderTest() {
 
 // Errors throw (GlErrorPolicy::Throw): a GL error fails the test.
 inline Context& sharedContext() {
-  static Context context(ContextOptions{backendUnderTest(), -1, GlErrorPolicy::Throw});
+  static Context context(
+      ContextOptions{.backend = backendUnderTest(), .errorPolicy = GlErrorPolicy::Throw, .eglDeviceName = {}});
   return context;
 }
 

@@ -7,9 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // Error of channel `channelA` of `a` against channel `channelB` of `b` over
 // the pixels where `mask` (a Frame's position target) has A = 1.
@@ -77,4 +78,4 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
 // "Model name" from /proc/cpuinfo and the hardware thread count.
 std::string machineDescription();
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

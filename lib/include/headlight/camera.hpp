@@ -4,9 +4,10 @@
 // for an 8 mm asset and a 2 km one alike.
 #include <glm/glm.hpp>
 
+#include "headlight/export.hpp"
 #include "headlight/scene.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 struct CameraView {
   glm::mat4 view{1.0f};        // world -> view; the camera looks down -Z, +Y up
@@ -32,4 +33,4 @@ void fitDepthRange(const Camera& camera, const Bounds& bounds, float& nearPlane,
 // asking for a size expects no stretching).
 CameraView makeCameraView(const Camera& camera, const Bounds& sceneBounds, int width, int height);
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

@@ -1,13 +1,22 @@
 #pragma once
 // A headless OpenGL 4.5 core context: no window, no surface, rendering only
-// into the renderer's own framebuffers. Create one per thread and keep it for
-// as many scenes and frames as you like; it is current on the creating thread.
+// into the renderer's own framebuffers. Keep it for as many scenes and frames
+// as you like; it is current on the creating thread.
+//
+// Threads: a context is current on one thread at a time, and every GL call
+// goes through the calling thread's current context. Use one Context (and
+// the Renderer made with it) per thread; contexts of different backends (EGL
+// on one thread, OSMesa on another) may render at the same time, since each
+// Context owns its table of GL entry points. To move a context to another
+// thread, stop using it on the first and call makeCurrent() on the second.
+// docs/EMBEDDING.md has the rules.
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+#include "headlight/export.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 enum class Backend {
   Auto,  // EGL (device platform, then surfaceless), then OSMesa
@@ -29,6 +38,12 @@ struct ContextOptions {
   Backend backend = Backend::Auto;
   int eglDevice = -1;  // EGL device index (EGL_EXT_device_enumeration); -1 = first that works
   GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
+  // Non-empty: the EGL device with this name: its DRM device or render-node
+  // file ("/dev/dri/renderD128"), its driver or renderer name, or one of its
+  // extensions ("EGL_MESA_device_software" is llvmpipe). With eglDevice >= 0
+  // as well, that device must also have the name. No silent fallback to
+  // another device or backend when the named one fails.
+  std::string eglDeviceName;
 };
 
 class Context {
@@ -43,14 +58,19 @@ class Context {
 
   Backend backend() const;          // Egl or OSMesa, never Auto
   std::string description() const;  // e.g. "EGL device 0 (EGL_MESA_device_software)"
-  std::string renderer() const;     // GL_RENDERER
-  std::string version() const;      // GL_VERSION
+  std::string renderer() const;     // GL_RENDERER (read at construction; any thread)
+  std::string version() const;      // GL_VERSION (read at construction; any thread)
   // What was tried before this context was made, one line per attempt.
   const std::vector<std::string>& attempts() const;
 
   // Makes this context current on the calling thread (it already is after
-  // construction).
+  // construction). Throws ContextError when the platform refuses (an EGL
+  // context still current on another thread).
   void makeCurrent();
+  // Whether this context is the calling thread's current one.
+  bool isCurrent() const;
+  // Throws ContextError naming `operation` unless isCurrent().
+  void requireCurrent(std::string_view operation) const;
 
   // Reports the GL errors collected since the last call (KHR_debug messages
   // of type ERROR, plus glGetError), naming `operation`. Under
@@ -64,4 +84,4 @@ class Context {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

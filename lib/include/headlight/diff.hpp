@@ -26,10 +26,11 @@
 #include <string_view>
 #include <vector>
 
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/targets.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // Ordered by severity: the worst of several results is the largest. The
 // values are the CLI's exit codes (5 is the CLI's usage error).
@@ -129,4 +130,4 @@ DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesys
 // writing fails, Error when the result has no difference image.
 std::vector<std::filesystem::path> writeDiffImages(const DiffResult& result, const std::filesystem::path& exrPath);
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

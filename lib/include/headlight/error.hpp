@@ -4,8 +4,9 @@
 // print what() and a user knows what to fix.
 #include <stdexcept>
 #include <string>
+#include "headlight/export.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 class Error : public std::runtime_error {
  public:
@@ -44,4 +45,4 @@ class SettingsError : public Error {
   using Error::Error;
 };
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

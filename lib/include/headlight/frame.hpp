@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "headlight/camera.hpp"
+#include "headlight/export.hpp"
 #include "headlight/settings.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // An interleaved float image, rows top first (image order, not GL's).
 struct ImageF {
@@ -57,4 +58,4 @@ struct Frame {
   std::vector<std::pair<std::string, const ImageF*>> targets() const;
 };
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

@@ -23,8 +23,9 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "headlight/export.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 enum class OptionType {
   Switch,  // a flag without a value (--verbose); sets true
@@ -235,4 +236,4 @@ std::string optionHelp(std::span<const Option<Target>> options, const Target& de
   return text;
 }
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

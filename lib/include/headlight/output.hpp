@@ -10,9 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 struct WrittenFile {
   std::filesystem::path path;
@@ -45,4 +46,4 @@ WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);
 float tonemapAces(float x);      // Narkowicz's fit of the ACES filmic curve
 float tonemapReinhard(float x);  // x / (1 + x)
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

@@ -6,11 +6,12 @@
 #include <span>
 #include <string>
 
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/options.hpp"
 #include "headlight/scene.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 struct ReferenceSettings {
   // Cosine-weighted hemisphere rays per pixel. 4096 keeps the mean AO
@@ -50,4 +51,4 @@ bool referenceAvailable();
 // Throws SettingsError for bad settings, Error if Embree is missing or fails.
 ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings);
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

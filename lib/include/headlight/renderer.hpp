@@ -12,11 +12,12 @@
 #include <memory>
 
 #include "headlight/context.hpp"
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/scene.hpp"
 #include "headlight/settings.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 class Renderer {
  public:
@@ -45,4 +46,4 @@ class Renderer {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

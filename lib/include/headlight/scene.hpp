@@ -13,8 +13,9 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_precision.hpp>
+#include "headlight/export.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 struct Bounds {
   glm::vec3 min{std::numeric_limits<float>::infinity()};
@@ -165,4 +166,4 @@ struct Scene {
   std::size_t triangleCount() const;  // as drawn: per instance
 };
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

@@ -7,9 +7,10 @@
 #include <glm/glm.hpp>
 #include <string>
 
+#include "headlight/export.hpp"
 #include "headlight/scene.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // ---- Elements ------------------------------------------------------------------
 
@@ -43,4 +44,4 @@ void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worl
 // Geometry used once: added and placed in one step.
 void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f));
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

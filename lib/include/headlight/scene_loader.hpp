@@ -6,9 +6,10 @@
 #include <string_view>
 #include <vector>
 
+#include "headlight/export.hpp"
 #include "headlight/scene.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 struct SceneLoadOptions {
   // glTF URIs that resolve outside the asset's folder (../x.bin, /etc/x.png)
@@ -34,4 +35,4 @@ std::vector<std::string> builtinSceneNames();
 // vertex no triangle touches gets +Z.
 void generateNormals(Primitive& primitive);
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

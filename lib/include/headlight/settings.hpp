@@ -12,9 +12,10 @@
 #include <string>
 #include <string_view>
 
+#include "headlight/export.hpp"
 #include "headlight/options.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 enum class SsgiMethod {
   Hemisphere,  // the seed's: indirect = occluders' albedo x range weight (not light)
@@ -90,4 +91,4 @@ void applySettingsText(RenderSettings& settings, const std::map<std::string, std
 void applyPreset(RenderSettings& settings, std::string_view preset);
 std::span<const std::string_view> presetNames();
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

@@ -5,9 +5,10 @@
 // the side their normals point to, as glTF and GL expect.
 #include <glm/glm.hpp>
 
+#include "headlight/export.hpp"
 #include "headlight/scene.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // The parallelogram corner, corner+edgeU, corner+edgeU+edgeV, corner+edgeV,
 // facing cross(edgeU, edgeV); UV (0,1) at the corner, (1,0) opposite.
@@ -29,4 +30,4 @@ Primitive makeBox(const glm::vec3& size);
 // zero-area triangles cost little and keep the code simple.
 Primitive makeUvSphere(float radius, int segments, int rings, const glm::vec3& center = glm::vec3(0.0f));
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

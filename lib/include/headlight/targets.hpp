@@ -8,9 +8,10 @@
 #include <span>
 #include <string_view>
 
+#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 
-namespace headlight {
+namespace headlight HEADLIGHT_PUBLIC {
 
 // How a pixel's error is measured by headlight diff. Every metric is turned
 // into images EA and EB whose absolute difference is the error, so
@@ -65,4 +66,4 @@ const FrameTarget* findFrameTarget(std::string_view name);
 // idiff's defaults (absolute, warn = fail = 1e-6, no allowance).
 const FrameTarget& unknownTargetRow();
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC

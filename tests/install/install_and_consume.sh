@@ -1,0 +1,45 @@
+#!/bin/sh
+# Installs the build into a temporary DESTDIR, then, with nothing but what
+# was installed and pkg-config:
+#  1. compiles one translation unit that includes every installed public
+#     header, and fails if any of them pulls in glad, EGL, OSMesa, GL,
+#     tinygltf, Embree or OpenImageIO (compiler's dependency list, -M);
+#  2. builds examples/embed.cpp with `pkg-config --cflags --libs headlight`
+#     and runs it (it renders builtin:cornell into memory and checks a pixel).
+# Usage: install_and_consume.sh BUILD_DIR SOURCE_DIR PREFIX LIBDIR CXX...
+set -eu
+build="$1"; source="$2"; prefix="$3"; libdir="$4"; shift 4
+case "$libdir" in /*) ;; *) libdir="$prefix/$libdir" ;; esac
+dest=$(mktemp -d)
+trap 'rm -rf "$dest"' EXIT
+
+meson install -C "$build" --no-rebuild --quiet --destdir "$dest" >/dev/null
+include="$dest$prefix/include"
+test -f "$include/headlight/renderer.hpp" || { echo "no headers under $include/headlight"; exit 1; }
+test -f "$dest$libdir/pkgconfig/headlight.pc" || { echo "no headlight.pc under $dest$libdir/pkgconfig"; exit 1; }
+ls "$dest$libdir"/libheadlight.so.* >/dev/null || { echo "no libheadlight.so.* under $dest$libdir"; exit 1; }
+
+# pkg-config reads the installed .pc; the sysroot maps its /usr/local paths
+# into the temporary folder.
+export PKG_CONFIG_PATH="$dest$libdir/pkgconfig"
+export PKG_CONFIG_SYSROOT_DIR="$dest"
+flags=$(pkg-config --cflags --libs headlight)
+echo "pkg-config --cflags --libs headlight: $flags"
+
+# 1. Every public header, with only the installed include path.
+tu="$dest/all_headers.cpp"
+for header in "$include"/headlight/*.hpp; do
+  echo "#include <headlight/$(basename "$header")>" >> "$tu"
+done
+echo 'int main() { return 0; }' >> "$tu"
+"$@" -std=c++20 $(pkg-config --cflags headlight) -M "$tu" > "$dest/deps.txt"
+"$@" -std=c++20 -Wall -Wextra -Werror $(pkg-config --cflags headlight) -c "$tu" -o "$dest/all_headers.o"
+if grep -E -i 'glad|/EGL/|/GL/|/KHR/|tiny_gltf|tinygltf|embree|OpenImageIO|nlohmann' "$dest/deps.txt"; then
+  echo "public headers include the files above"
+  exit 1
+fi
+echo "$(ls "$include"/headlight/*.hpp | wc -l) public headers compile alone; they include no GL, EGL, OSMesa, glad, tinygltf, Embree or OpenImageIO header"
+
+# 2. The example, built and run against the installed library.
+"$@" -std=c++20 "$source/examples/embed.cpp" $flags -o "$dest/embed"
+LD_LIBRARY_PATH="$dest$libdir" "$dest/embed"
