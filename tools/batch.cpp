@@ -3,6 +3,8 @@
 // thread while the next job renders -> one summary (lines or JSON).
 #include "batch.hpp"
 
+#include <sys/resource.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <chrono>
@@ -133,7 +135,14 @@ struct JobResult {
   std::vector<WrittenFile> files;
   std::vector<PassTime> passes;
   double renderMs = 0, writeMs = 0;
+  long peakRssKb = 0;  // the process's peak resident memory after the job's render
 };
+
+long peakRssKb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;  // kilobytes on Linux
+}
 
 // Scenes stay loaded while a later job of this shard uses them.
 class SceneCache {
@@ -193,6 +202,7 @@ json summaryJson(const std::vector<Job>& jobs, const std::vector<JobResult>& res
       entry["passes_ms"] = passes;
       entry["render_ms"] = r.renderMs;
       entry["write_ms"] = r.writeMs;
+      entry["peak_rss_kb"] = r.peakRssKb;
       entry["files"] = fileList;
     }
     if (r.status == JobResult::Status::Skipped) ++skipped;
@@ -469,6 +479,7 @@ int runRenderBatch(const RenderCommand& command) {
       auto frame = std::make_shared<Frame>(renderer->render(job.settings, camera ? &*camera : nullptr, renderTargets));
       result.renderMs = millisecondsSince(renderStart);
       result.passes = frame->timings;
+      result.peakRssKb = peakRssKb();
       if (verbose) {
         double total = 0;
         for (const PassTime& time : frame->timings) {

@@ -46,7 +46,7 @@ enum class NonFinitePolicy { Error, Clamp };
 struct OutputOptions {
   // Target names (frameTargets()) and "preview" to write; empty: all of them.
   std::vector<std::string> targets;
-  ExrCompression compression = ExrCompression::Zips;
+  ExrCompression compression = ExrCompression::Zip;  // docs/BENCHMARKS.md: smallest, and faster than zips and piz
   NonFinitePolicy nonFinite = NonFinitePolicy::Error;
   int threads = 0;  // files encoded at once; 0: one per hardware thread
   // Recorded in frame.json as "job": what a caller needs to decide later
@@ -71,7 +71,7 @@ using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 // One target as EXR with the frame's metadata (and `extra`); `halfFloat`
 // selects half. Non-finite values are an IoError (see NonFinitePolicy).
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat,
-                     const ExrAttributes& extra = {}, ExrCompression compression = ExrCompression::Zips,
+                     const ExrAttributes& extra = {}, ExrCompression compression = ExrCompression::Zip,
                      NonFinitePolicy nonFinite = NonFinitePolicy::Error);
 
 // Every EXR records each render setting as used (auto values resolved) as
