@@ -8,6 +8,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "output/atomic_file.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
 
@@ -95,6 +97,62 @@ TEST_CASE("job lines: each job through the setting table, bad lines named and ke
   CHECK(jobs[4].error.find("not valid JSON") != std::string::npos);
   CHECK(jobs[5].error.empty());
   CHECK(jobs[5].settings.camera == 2);
+}
+
+TEST_CASE("command-line jobs: scenes x orbit views or x cameras, each in its own folder") {
+  RenderCommand command;
+  command.outDir = "out";
+  command.scenes = {"builtin:cornell", "a/duck.glb", "b/duck.glb"};
+  command.orbit = true;
+  command.views = 3;
+  std::vector<Job> jobs = expandJobs(command, [](const std::string&) -> int { throw SettingsError("not asked"); });
+  REQUIRE(jobs.size() == 9);
+  CHECK(jobs[0].outDir == (fs::path("out") / "cornell" / "view_000").string());
+  CHECK(jobs[4].outDir == (fs::path("out") / "duck-1" / "view_001").string());
+  CHECK(jobs[8].outDir == (fs::path("out") / "duck-2" / "view_002").string());
+  CHECK(jobs[5].camera.kind == JobCamera::Kind::Orbit);
+  CHECK(jobs[5].camera.orbitIndex == 2);
+  CHECK(jobs[5].camera.orbitViews == 3);
+
+  command.orbit = false;
+  command.views = 0;
+  command.camerasAll = true;
+  command.scenes = {"builtin:cornell", "broken.gltf"};
+  jobs = expandJobs(command, [](const std::string& scene) {
+    if (scene == "broken.gltf") throw SceneError("broken.gltf: no");
+    return 2;
+  });
+  REQUIRE(jobs.size() == 3);
+  CHECK(jobs[1].settings.camera == 1);
+  CHECK(jobs[1].outDir == (fs::path("out") / "cornell" / "camera_1").string());
+  CHECK(jobs[2].error.find("broken.gltf: no") != std::string::npos);  // a job that reports, not an abort
+}
+
+TEST_CASE("orbit cameras circle the bounds' centre at one distance, looking at it") {
+  Scene scene;
+  scene.instances.clear();
+  JobCamera orbit;
+  orbit.kind = JobCamera::Kind::Orbit;
+  orbit.orbitViews = 4;
+  std::vector<glm::vec3> eyes;
+  for (int v = 0; v < 4; ++v) {
+    orbit.orbitIndex = v;
+    const std::optional<Camera> camera = orbit.build(scene, 1.0f);
+    REQUIRE(camera);
+    eyes.push_back(glm::vec3(camera->worldFromCamera[3]));
+    const glm::vec3 forward = -glm::vec3(camera->worldFromCamera[2]);
+    CHECK(glm::dot(glm::normalize(-eyes.back()), forward) == doctest::Approx(1.0f));  // towards the centre
+  }
+  for (const glm::vec3& eye : eyes) CHECK(glm::length(eye) == doctest::Approx(glm::length(eyes[0])));
+  CHECK(glm::length(eyes[0] - eyes[2]) > glm::length(eyes[0]));  // opposite sides
+  CHECK_FALSE(JobCamera{}.build(scene, 1.0f));                   // the settings' camera
+}
+
+TEST_CASE("a failed write names the system's reason") {
+  const std::string reason = detail::writeFailureReason("/tmp/x.exr", "", ENOSPC);
+  CHECK(reason.find("No space left on device") != std::string::npos);
+  CHECK(detail::writeFailureReason("/tmp/x.exr", "Failed OpenEXR write", 0).find("Failed OpenEXR write") == 0);
+  CHECK_FALSE(detail::writeFailureReason("/tmp/x.exr", "", 0).empty());
 }
 
 TEST_CASE("shards: every job in exactly one shard, in order, every N-th from I") {

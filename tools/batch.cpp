@@ -156,6 +156,10 @@ class SceneCache {
     if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_})).first;
     return found->second;
   }
+  // A scene loaded before the batch started (to count its cameras).
+  void adopt(const std::string& name, Scene scene) {
+    if (remaining_[name] > 0) scenes_.emplace(name, std::move(scene));
+  }
   // A job of `name` is done: drop the scene when no later job needs it.
   void release(const std::string& name) {
     if (--remaining_[name] <= 0) scenes_.erase(name);
@@ -404,10 +408,11 @@ int runRenderBatch(const RenderCommand& command) {
   // One job from the command line behaves as a plain render: its errors
   // are the command's (exit 1, or 2 for bad settings).
   const bool single = all.size() == 1 && command.jobFiles.empty();
-  countedScenes.clear();
 
   std::vector<JobResult> results(jobs.size());
   SceneCache cache(jobs, command.allowExternalPaths);
+  for (auto& [name, scene] : countedScenes) cache.adopt(name, std::move(scene));  // loaded once
+  countedScenes.clear();
   std::optional<Context> context;
   std::optional<Renderer> renderer;
   std::string currentScene, rendererName;
