@@ -446,7 +446,10 @@ int runRenderBatch(const RenderCommand& command) {
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const Job& job = jobs[i];
     JobResult& result = results[i];
-    progress.update(i, job.origin);
+    {
+      const std::lock_guard<std::mutex> lock(reportMutex);  // the writer thread prints too
+      progress.update(i, job.origin);
+    }
     if (!job.error.empty()) {
       result.error = job.error;
       report(i);
