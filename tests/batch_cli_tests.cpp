@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <cstring>
+#include <vector>
+
+#include "support/encoding.hpp"
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
 
@@ -68,4 +72,47 @@ TEST_CASE("headlight diff: an incomplete set is exit 6 and named") {
   INFO(run.output);
   CHECK(run.exitCode == 6);
   CHECK(run.output.find("INCOMPLETE SET") != std::string::npos);
+}
+
+namespace {
+
+// One quad facing +Z, lit by a point light whose red is 1e39: finite as a
+// double in the file, infinite as the float the shader gets (issue 10).
+std::string overbrightGltf() {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const unsigned indices[] = {0, 1, 2, 0, 2, 3};
+  std::vector<unsigned char> bytes(sizeof positions + sizeof indices);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, indices, sizeof indices);
+  return R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1e39, 1, 1], "intensity": 1}]}},
+    "scene": 0, "scenes": [{"nodes": [0, 1]}],
+    "nodes": [{"mesh": 0}, {"translation": [0, 0, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+    "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,)" +
+         headlight::test::base64(bytes) + R"("}]})";
+}
+
+}  // namespace
+
+TEST_CASE("a target with NaN or inf is exit 1 naming the target and the count, or clamped when asked") {
+  headlight::test::TempFolder folder("nonfinite_cli");
+  const fs::path scene = folder.write("overbright.gltf", overbrightGltf());
+  const fs::path out = folder.path() / "out";
+  Run run = runHeadlight("render " + quote(scene.string()) + " --width 32 --height 32 --out " + quote(out.string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("lit.exr: ") != std::string::npos);
+  CHECK(run.output.find("values are NaN or infinite") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));  // nothing of the set written
+
+  run = runHeadlight("render " + quote(scene.string()) + " --width 32 --height 32 --clamp-nonfinite --out " +
+                     quote(out.string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("(clamped)") != std::string::npos);
+  CHECK(fs::exists(out / "frame.json"));
 }
