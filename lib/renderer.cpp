@@ -78,8 +78,6 @@ gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   return block;
 }
 
-}  // namespace
-
 // Whether the caller asked for a frame target (an empty list: all).
 struct TargetWanted {
   std::span<const std::string> names;
@@ -87,6 +85,8 @@ struct TargetWanted {
     return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
   }
 };
+
+}  // namespace
 
 struct Renderer::Impl {
   explicit Impl(Context& context) : context(context) { context.checkErrors("building the renderer"); }

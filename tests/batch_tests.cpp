@@ -89,11 +89,11 @@ TEST_CASE("job lines: each job through the setting table, bad lines named and ke
   CHECK(jobs[1].camera.kind == JobCamera::Kind::LookAt);
   CHECK(jobs[1].camera.fovDegrees == doctest::Approx(30));
   // The setting table's own range message, with the line.
-  CHECK(jobs[2].error.find("jobs.jsonl:5") == 0);
+  CHECK(jobs[2].origin == "jobs.jsonl:5");
   CHECK(jobs[2].error.find("ssgi-samples") != std::string::npos);
-  CHECK(jobs[3].error.find("jobs.jsonl:6") == 0);
+  CHECK(jobs[3].origin == "jobs.jsonl:6");
   CHECK(jobs[3].error.find("unknown key \"colour\"") != std::string::npos);
-  CHECK(jobs[4].error.find("jobs.jsonl:7") == 0);
+  CHECK(jobs[4].origin == "jobs.jsonl:7");
   CHECK(jobs[4].error.find("not valid JSON") != std::string::npos);
   CHECK(jobs[5].error.empty());
   CHECK(jobs[5].settings.camera == 2);

@@ -269,7 +269,7 @@ std::vector<Job> parseJobLines(const std::string& text, const std::string& name,
     } catch (const Error& error) {
       Job bad;
       bad.origin = origin;
-      bad.error = origin + ": " + error.what();
+      bad.error = error.what();
       jobs.push_back(std::move(bad));
     }
   }
@@ -311,7 +311,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
         count = cameraCount(scene);
       } catch (const Error& error) {
         Job bad = base;
-        bad.error = base.origin + ": " + error.what();
+        bad.error = error.what();
         jobs.push_back(bad);
         continue;
       }
@@ -324,7 +324,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
       }
       if (count == 0) {
         Job bad = base;
-        bad.error = base.origin + ": --cameras all: the scene has no camera";
+        bad.error = "--cameras all: the scene has no camera";
         jobs.push_back(bad);
       }
     } else {
@@ -523,6 +523,8 @@ int runRenderBatch(const RenderCommand& command) {
         results[i].writeMs = millisecondsSince(writeStart);
         report(i);
       });
+    } catch (const ContextError&) {
+      throw;  // no job can render without a context: the batch stops
     } catch (const std::exception& error) {
       if (single) throw;
       cache.release(job.scene);
