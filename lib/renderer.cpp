@@ -78,6 +78,14 @@ gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   return block;
 }
 
+// Whether the caller asked for a frame target (an empty list: all).
+struct TargetWanted {
+  std::span<const std::string> names;
+  bool operator()(std::string_view name) const {
+    return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  }
+};
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -207,10 +215,10 @@ struct Renderer::Impl {
     throw GlError("renderer: no GPU source for frame target '" + std::string(target.name) + "'");
   }
 
-  void readTargets(Frame& frame, bool withSsgi) const {
+  void readTargets(Frame& frame, bool withSsgi, const TargetWanted& wanted) const {
     for (const FrameTarget& target : frameTargets()) {
       const gl::Texture& source = sourceOf(target);
-      if (!source || (target.image == &Frame::ssgi && !withSsgi)) continue;
+      if (!source || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
       frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
                                 ? readViewDepth(source, frame.view, std::string(target.channels.front()))
                                 : readColor(source, {target.channels.begin(), target.channels.end()});
@@ -290,7 +298,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   return used;
 }
 
-Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
+Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::render");
   if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
@@ -323,13 +331,21 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
+  // Passes only unwanted targets need are skipped: the G-buffer targets
+  // alone need neither light nor SSGI; ssgi alone needs no composite.
+  const TargetWanted wanted{targets};
+  const bool wantLit = wanted("lit"), wantSsgi = ssgiOn && wanted("ssgi");
+  const bool runSsgi = ssgiOn && (wantLit || wantSsgi);
+  const bool runDirect = wantLit || (runSsgi && ssgiInputs.method == SsgiMethod::Radiance);
+
   PassTimer timer(impl.context);
   if (!shadows) impl.dropShadows();
-  if (impl.needsShadowPass(shadows, shadowMapSize)) timer.run("shadows", [&] { impl.renderShadows(shadowMapSize); });
+  if (runDirect && impl.needsShadowPass(shadows, shadowMapSize))
+    timer.run("shadows", [&] { impl.renderShadows(shadowMapSize); });
   impl.bindLighting(skyIntensity, pcfRadius);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
-  timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
-  if (ssgiOn) {
+  if (runDirect) timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
+  if (runSsgi) {
     ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
     timer.run("ssgi", [&] { impl.ssgi.run(ssgiInputs, ssgiOutput); });
@@ -338,8 +354,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   }
   const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, ssgiOn ? &impl.ssgiTarget : nullptr,
                                         impl.environment.tables()};
-  timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
-  timer.run("readback", [&] { impl.readTargets(frame, used.ssgi.enabled); });
+  if (wantLit) timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
+  timer.run("readback", [&] { impl.readTargets(frame, runSsgi, wanted); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
   frame.timings = timer.times();

@@ -90,7 +90,7 @@ bool compareGolden(const Golden& golden) {
   INFO(run.output);
   CHECK(run.exitCode == 0);
   if (run.exitCode != 0) return false;
-  fs::remove(actual / "preview.png");
+  // preview.png stays: the set's frame.json lists it, and diff reads only the targets.
   const DirectoryDiff diff = diffDirectories(expected, actual);
   bool failed = diff.status > DiffStatus::Warn || diff.targets.empty();
   for (const DiffResult& target : diff.targets) {

@@ -126,7 +126,13 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   CHECK(message({"--backend", "vulkan"}).find("expected one of auto, egl, osmesa") != std::string::npos);
   CHECK(message({"--ssgi-method", "bitmask"}) == "--ssgi-method: expected one of hemisphere, radiance, got 'bitmask'");
   CHECK(message({"--reference-samples", "8"}).find("unknown option") != std::string::npos);  // reference only
-  CHECK(message({"a.glb", "b.glb"}).find("more than one scene") != std::string::npos);
+  CHECK(parseRenderArgs({"a.glb", "b.glb", "jobs.jsonl"}).scenes.size() == 2);  // a batch
+  CHECK(parseRenderArgs({"a.glb", "b.glb", "jobs.jsonl"}).jobFiles.size() == 1);
+  CHECK_THROWS_WITH(parseRenderArgs({"a.glb", "b.glb"}, cli::CommandKind::Reference),
+                    doctest::Contains("more than one scene"));
+  CHECK(message({"--views", "4"}).find("needs --orbit") != std::string::npos);
+  CHECK(message({"--shard", "3/3"}).find("expected 0 <= I < N") != std::string::npos);
+  CHECK(message({"--targets", "lit,glow"}).find("unknown target 'glow'") != std::string::npos);
   CHECK(message({"--no-ssgi=1"}) == "--no-ssgi takes no value");
 }
 

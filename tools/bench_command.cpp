@@ -15,6 +15,7 @@
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
+#include "progress.hpp"
 
 namespace headlight::detail {
 std::string_view benchChartScript();  // tools/bench_chart.py, embedded at build time
@@ -144,29 +145,6 @@ std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, in
 
 namespace {
 
-class Progress {
- public:
-  Progress(std::size_t total, bool enabled) : total_(total), enabled_(enabled && isatty(2)) {}
-  void update(std::size_t done, const std::string& what) {
-    if (!enabled_) return;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double eta = done > 0 ? elapsed / double(done) * double(total_ - done) : 0.0;
-    const int width = 30, filled = int(double(width) * double(done) / double(std::max<std::size_t>(total_, 1)));
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu ETA %3d:%02d  %-48.48s", std::string(std::size_t(filled), '#').c_str(),
-                 std::string(std::size_t(width - filled), ' ').c_str(), done, total_, int(eta) / 60, int(eta) % 60,
-                 what.c_str());
-    std::fflush(stderr);
-  }
-  void finish() {
-    if (enabled_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  std::size_t total_;
-  bool enabled_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 // Frame time without readback (a cost of getting images to the CPU, not of
 // rendering) and without shadows (made once per scene, then cached).
 double frameMilliseconds(const Frame& frame) {
@@ -290,7 +268,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   std::vector<BenchRow> rows;
   const bool quiet = command.verbosity == Verbosity::Quiet;
   const std::size_t configsPerGroup = benchConfigs(command, 1, 1).size();
-  Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !quiet);
+  Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !quiet, "configs");
   std::size_t done = 0;
   for (const std::string& sceneName : command.scenes) {
     renderer.setScene(loadScene(sceneName));

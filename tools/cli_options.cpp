@@ -1,5 +1,6 @@
 #include "cli_options.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 #include "bench_command.hpp"
@@ -12,6 +13,115 @@ namespace {
 constexpr std::string_view kBackendNames[] = {"auto", "egl", "osmesa"};
 
 std::string text(const OptionValue& value) { return std::get<std::string>(value); }
+
+constexpr std::string_view kCameraModes[] = {"one", "all"};
+
+std::vector<std::string> splitCommas(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream stream(list);
+  for (std::string item; std::getline(stream, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+// "I/N": shard I of N, 0 <= I < N.
+void parseShard(RenderCommand& c, const std::string& value) {
+  const auto slash = value.find('/');
+  try {
+    std::size_t usedIndex = 0, usedCount = 0;
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    const std::string index = value.substr(0, slash), count = value.substr(slash + 1);
+    c.shardIndex = index.empty() ? 0 : std::stoi(index, &usedIndex);
+    c.shardCount = std::stoi(count, &usedCount);
+    if (usedIndex != index.size() || usedCount != count.size()) throw std::invalid_argument("trailing text");
+  } catch (const std::exception&) {
+    throw SettingsError("--shard: expected I/N (shard I of N, counting from 0), got '" + value + "'");
+  }
+  if (c.shardCount < 1 || c.shardIndex < 0 || c.shardIndex >= c.shardCount)
+    throw SettingsError("--shard " + value + ": expected 0 <= I < N");
+}
+
+std::vector<Option<RenderCommand>> batchOptions() {
+  using T = OptionType;
+  using C = RenderCommand;
+  return {
+      actionOption<C>({.name = "jobs",
+                       .type = T::Text,
+                       .help = "a job file: JSON Lines, one job per line (docs/BATCH.md); repeatable",
+                       .valueName = "FILE"},
+                      [](C& c, const OptionValue& v) { c.jobFiles.push_back(text(v)); }),
+      bindOption<C>(
+          {.name = "views",
+           .type = T::Int,
+           .help = "views per scene on a turntable (needs --orbit); 0: one view",
+           .maximum = 100000},
+          [](auto& c) -> auto& { return c.views; }),
+      bindOption<C>(
+          {.name = "orbit",
+           .type = T::Switch,
+           .help = "--views N cameras on a circle around the scene's bounds, looking at their centre"},
+          [](auto& c) -> auto& { return c.orbit; }),
+      actionOption<C>(
+          {.name = "cameras",
+           .type = T::Choice,
+           .help = "one: the view the camera setting picks; all: one job per camera in the scene",
+           .choices = kCameraModes},
+          [](C& c, const OptionValue& v) { c.camerasAll = text(v) == "all"; },
+          [](const C& c) { return OptionValue(std::string(c.camerasAll ? "all" : "one")); }),
+      actionOption<C>({.name = "shard",
+                       .type = T::Text,
+                       .help = "render only jobs k with k % N == I (I from 0); with --shard-index-env, write /N",
+                       .valueName = "I/N"},
+                      [](C& c, const OptionValue& v) { parseShard(c, text(v)); }),
+      bindOption<C>(
+          {.name = "shard-index-env",
+           .type = T::Text,
+           .help = "read the shard index I from this environment variable (SLURM_ARRAY_TASK_ID, "
+                   "JOB_COMPLETION_INDEX)",
+           .valueName = "VAR"},
+          [](auto& c) -> auto& { return c.shardIndexEnv; }),
+      bindOption<C>(
+          {.name = "resume",
+           .type = T::Switch,
+           .help = "skip a job whose folder holds a complete set (frame.json) of the same job hash"},
+          [](auto& c) -> auto& { return c.resume; }),
+      actionOption<C>({.name = "targets",
+                       .type = T::Text,
+                       .help = "write only these (position,normal,albedo,material,depth,emissive,ssgi,lit,preview); "
+                               "passes only other targets need are skipped",
+                       .valueName = "LIST"},
+                      [](C& c, const OptionValue& v) {
+                        c.output.targets = splitCommas(text(v));
+                        const auto names = outputTargetNames();
+                        for (const std::string& name : c.output.targets)
+                          if (std::find(names.begin(), names.end(), name) == names.end())
+                            throw SettingsError("--targets: unknown target '" + name +
+                                                "' (known: position, normal, albedo, material, depth, emissive, "
+                                                "ssgi, lit, preview)");
+                        if (c.output.targets.empty()) throw SettingsError("--targets: expected a list of targets");
+                      }),
+      actionOption<C>(
+          {.name = "exr-compression",
+           .type = T::Choice,
+           .help = "OpenEXR's lossless compression (docs/BENCHMARKS.md measures each)",
+           .choices = exrCompressionNames()},
+          [](C& c, const OptionValue& v) {
+            const auto names = exrCompressionNames();
+            c.output.compression = ExrCompression(std::find(names.begin(), names.end(), text(v)) - names.begin());
+          },
+          [](const C& c) { return OptionValue(std::string(exrCompressionName(c.output.compression))); }),
+      actionOption<C>({.name = "clamp-nonfinite",
+                       .type = T::Switch,
+                       .help = "write NaN as 0 and inf as the largest finite value, counting them (default: "
+                               "a target with NaN or inf is an error)"},
+                      [](C& c, const OptionValue&) { c.output.nonFinite = NonFinitePolicy::Clamp; }),
+      bindOption<C>(
+          {.name = "json",
+           .type = T::Switch,
+           .help = "print one JSON summary (jobs, files, pass times, failures) instead of the lines"},
+          [](auto& c) -> auto& { return c.json; }),
+  };
+}
 
 std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
   using T = OptionType;
@@ -29,6 +139,8 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
       [](auto& c) -> auto& { return c.allowExternalPaths; }));
   if (kind == CommandKind::Reference)
     for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  if (kind == CommandKind::Render)
+    for (auto& row : batchOptions()) rows.push_back(std::move(row));
   for (auto& row : liftOptions(settingOptions(), &C::settings)) rows.push_back(std::move(row));
   return rows;
 }
@@ -79,18 +191,34 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
   const auto options = renderCommandOptions(kind);
   const std::vector<std::string> scenes =
       parseCommandLine<RenderCommand>(args, options, command, kind == CommandKind::Render ? "render" : "reference");
-  if (scenes.size() > 1) throw SettingsError("more than one scene given: '" + scenes[0] + "' and '" + scenes[1] + "'");
+  if (kind == CommandKind::Reference && scenes.size() > 1)
+    throw SettingsError("more than one scene given: '" + scenes[0] + "' and '" + scenes[1] + "'");
   if (!scenes.empty()) command.scene = scenes[0];
+  // A .jsonl positional is a job file, the rest are scenes.
+  for (const std::string& scene : scenes)
+    if (scene.size() > 6 && scene.compare(scene.size() - 6, 6, ".jsonl") == 0)
+      command.jobFiles.push_back(scene);
+    else
+      command.scenes.push_back(scene);
+  if (command.views > 0 && !command.orbit)
+    throw SettingsError("--views " + std::to_string(command.views) +
+                        ": needs --orbit (the only way to place several views)");
+  if (command.orbit && command.views == 0) throw SettingsError("--orbit: needs --views N");
+  if (command.orbit && command.camerasAll) throw SettingsError("--orbit and --cameras all: choose one");
   return command;
 }
 
 std::string renderHelp(CommandKind kind) {
   std::ostringstream out;
   if (kind == CommandKind::Render)
-    out << "usage: headlight render [SCENE] [options]\n\n"
+    out << "usage: headlight render [SCENE...] [JOBS.jsonl...] [options]\n\n"
            "Renders SCENE (a .gltf/.glb file or builtin:NAME; default builtin:cornell) and writes\n"
-           "position, normal, albedo, material, depth, [emissive], ssgi and lit .exr plus preview.png\n"
-           "into the output folder, printing one line per file.\n\n";
+           "position, normal, albedo, material, depth, [emissive], ssgi and lit .exr, preview.png and\n"
+           "frame.json (the set's manifest, written last) into the output folder, printing one line per file.\n"
+           "Several scenes, --views N --orbit, --cameras all and job files make a batch: one process, one\n"
+           "GL context, each scene loaded once; each job writes into <out>/<scene>[/view_NNN|/camera_N]\n"
+           "(job files name their own folders). A failed job is reported with its line and the others go\n"
+           "on; the exit code is then 1. docs/BATCH.md has job files, sharding and --resume.\n\n";
   else
     out << "usage: headlight reference [SCENE] [options]\n\n"
            "Ray-traces (Embree) the ground truth for SCENE at the pixels `render` would draw with the same\n"

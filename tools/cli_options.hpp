@@ -9,6 +9,7 @@
 
 #include "headlight/context.hpp"
 #include "headlight/options.hpp"
+#include "headlight/output.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
 
@@ -28,6 +29,19 @@ struct RenderCommand {
   bool help = false;
   RenderSettings settings;
   ReferenceSettings reference;  // `reference` only
+
+  // `render` only: batches (tools/batch.hpp, docs/BATCH.md).
+  std::vector<std::string> scenes;    // every SCENE given (empty: `scene`)
+  std::vector<std::string> jobFiles;  // --jobs FILE: JSON Lines, one job per line
+  int views = 0;                      // --views N: N views per scene (with --orbit)
+  bool orbit = false;                 // --orbit: a turntable around the scene's bounds
+  bool camerasAll = false;            // --cameras all: one job per camera of the scene
+  int shardIndex = 0;                 // --shard I/N: jobs k with k % N == I
+  int shardCount = 1;
+  std::string shardIndexEnv;  // --shard-index-env VAR: I read from $VAR when the batch starts
+  bool resume = false;        // skip jobs whose complete frame.json records the same job hash
+  OutputOptions output;       // --targets, --exr-compression, --clamp-nonfinite
+  bool json = false;          // --json: one JSON summary on stdout instead of the summary lines
 };
 
 // The CLI's own rows shared by every command that renders (out, backend,

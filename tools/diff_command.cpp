@@ -219,6 +219,7 @@ std::string targetLine(const DiffResult& r) {
 }
 
 std::string verdictLine(const DirectoryDiff& d) {
+  if (d.incompleteSet) return "verdict: INCOMPLETE SET: " + d.problem;
   if (d.targets.empty()) return "verdict: " + upper(statusName(d.status)) + ": " + d.problem;
   int counts[5] = {};
   for (const DiffResult& r : d.targets) ++counts[int(r.status)];
@@ -346,19 +347,20 @@ int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err)
         for (std::string& path : writeImages(r, fs::path(command.out) / (r.target + "_diff.exr"), errors))
           written.push_back(std::move(path));
   }
-  int code = exitCode(result.status);
-  if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
+  int code = result.incompleteSet ? kDiffExitIncompleteSet : exitCode(result.status);
+  if (!errors.empty() && !result.incompleteSet) code = std::max(code, exitCode(DiffStatus::FileError));
   if (command.json) {
     json targets = json::array();
     for (const DiffResult& r : result.targets) targets.push_back(toJson(r));
-    const json j = {{"status", std::string(statusName(result.status))},
-                    {"exit_code", code},
-                    {"problem", result.problem},
-                    {"a", result.a.string()},
-                    {"b", result.b.string()},
-                    {"targets", targets},
-                    {"written", written},
-                    {"write_errors", errors}};
+    const json j = {
+        {"status", result.incompleteSet ? std::string("incomplete-set") : std::string(statusName(result.status))},
+        {"exit_code", code},
+        {"problem", result.problem},
+        {"a", result.a.string()},
+        {"b", result.b.string()},
+        {"targets", targets},
+        {"written", written},
+        {"write_errors", errors}};
     out << j.dump(2) << "\n";
   } else if (!command.quiet) {
     out << "A: " << result.a.string() << "\nB: " << result.b.string() << "\n";
@@ -382,7 +384,9 @@ std::string diffHelp() {
          "PASS. Any NaN or Inf in A or B is FAIL. Flags override the target's defaults (table below).\n\n"
          "Exit codes (folder mode: the worst target):\n"
          "  0 pass   1 warn   2 fail   3 structural mismatch (size, channel names, target in one folder only)\n"
-         "  4 file error (missing or unreadable file or folder, diff image not written)   5 usage error\n\n"
+         "  4 file error (missing or unreadable file or folder, diff image not written)   5 usage error\n"
+         "  6 incomplete output set: a folder's frame.json says a render never finished writing it, or a\n"
+         "    file differs from the one the set recorded (nothing is compared)\n\n"
          "options:\n";
   out << optionHelp<DiffCommand>(diffOptions(), DiffCommand{});
   out << "\ndefault thresholds by target (A's file stem; units are the metric's):\n";

@@ -1,12 +1,13 @@
 // headlight: glTF (or a built-in scene) in, every G-buffer target, the SSGI
 // output and the lit image out as EXR. The whole data flow of `render`:
-//   parse flags -> Context -> loadScene -> Renderer::setScene ->
-//   Renderer::render -> writeFrame -> one summary line per file.
+//   parse flags -> jobs (tools/batch.cpp) -> Context -> loadScene ->
+//   Renderer::setScene -> Renderer::render -> writeFrame -> one summary line per file.
 #include <cstdio>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "batch.hpp"
 #include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "diff_command.hpp"
@@ -55,32 +56,13 @@ void printVerboseHeader(const Context& context, const Scene& scene) {
             << " triangles, " << scene.lights.size() << " lights, " << scene.cameras.size() << " cameras\n";
 }
 
-void printTimings(const Frame& frame) {
-  double total = 0;
-  for (const PassTime& time : frame.timings) {
-    std::fprintf(stderr, "pass %-10s %9.2f ms\n", time.pass.c_str(), time.milliseconds);
-    total += time.milliseconds;
-  }
-  std::fprintf(stderr, "pass %-10s %9.2f ms\n", "total", total);
-}
-
 int runRender(const std::vector<std::string>& args) {
   const cli::RenderCommand command = cli::parseRenderArgs(args);
   if (command.help) {
     std::cout << cli::renderHelp();
     return kExitOk;
   }
-  const bool verbose = command.verbosity == cli::Verbosity::Verbose;
-  Scene scene = loadScene(command.scene, {command.allowExternalPaths});
-  Context context(command.context);
-  if (verbose) printVerboseHeader(context, scene);
-  Renderer renderer(context);
-  renderer.setScene(std::move(scene));
-  const Frame frame = renderer.render(command.settings);
-  if (verbose) printTimings(frame);
-  for (const WrittenFile& file : writeFrame(frame, command.outDir))
-    if (command.verbosity != cli::Verbosity::Quiet) std::cout << file.summary << "\n";
-  return kExitOk;
+  return cli::runRenderBatch(command);
 }
 
 // `reference`: the G-buffer as `render` would draw it, then Embree traces

@@ -18,6 +18,7 @@
 
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
+#include "headlight/output.hpp"
 #include "output/atomic_file.hpp"
 
 namespace headlight {
@@ -472,6 +473,16 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
     }
   }
   if (diff.status == DiffStatus::FileError) return diff;
+  // A set a killed render left half old, half new compares file by file as
+  // if whole: refuse it.
+  for (const fs::path& folder : {a, b}) {
+    const FrameSetCheck check = checkFrameSet(folder);
+    if (check.state != FrameSetState::Incomplete) continue;
+    diff.status = DiffStatus::FileError;
+    diff.incompleteSet = true;
+    diff.problem += (diff.problem.empty() ? "" : "; ") + std::string("incomplete output set: ") + check.problem;
+  }
+  if (diff.incompleteSet) return diff;
   for (const FrameTarget& row : frameTargets()) {
     const std::string_view target = row.name;
     const std::string file = std::string(target) + ".exr";

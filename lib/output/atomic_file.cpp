@@ -4,7 +4,9 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <fstream>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 
@@ -15,11 +17,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Hidden, ending in .tmp, unique per process and call.
+// Hidden, ending in .tmp, unique per machine, process and call. The host
+// name lets a writer on one node of a shared file system leave the
+// temporaries of another node's live process alone.
 fs::path temporaryPathFor(const fs::path& path) {
   thread_local std::mt19937 rng(std::random_device{}());
+  static const std::string host = temporaryHostTag();
   std::string name = ".";
   name += path.filename().string();
+  (name += '.') += host;
   (name += '.') += std::to_string(::getpid());
   (name += '-') += std::to_string(rng());
   name += ".tmp";
@@ -27,6 +33,32 @@ fs::path temporaryPathFor(const fs::path& path) {
 }
 
 }  // namespace
+
+std::string temporaryHostTag() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0 || host[0] == '\0') return "localhost";
+  std::string tag(host);
+  for (char& c : tag)
+    if (c == '.' || c == '/') c = '_';
+  return tag;
+}
+
+std::string writeFailureReason(const fs::path& path, std::string writerMessage, int savedErrno) {
+  std::string reason = std::move(writerMessage);
+  while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) reason.pop_back();
+  if (savedErrno != 0) {
+    const std::string system = std::strerror(savedErrno);
+    if (reason.find(system) == std::string::npos) reason += (reason.empty() ? "" : ": ") + system;
+  }
+  // A full disk often reaches the writer as a short write with errno lost
+  // (OpenEXR's exceptions); the free space says what happened.
+  std::error_code error;
+  const fs::space_info space = fs::space(path.parent_path().empty() ? fs::path(".") : path.parent_path(), error);
+  if (!error && space.available < (1u << 20))
+    reason += (reason.empty() ? "" : "; ") + std::string("only ") + std::to_string(space.available) +
+              " bytes free on the file system (disk full?)";
+  return reason.empty() ? "unknown reason (the writer gave none)" : reason;
+}
 
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
   const fs::path temporary = temporaryPathFor(path);
@@ -42,22 +74,48 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
   }
 }
 
+void writePixelsAtomically(const fs::path& path, const void* pixels, OIIO::TypeDesc pixelType,
+                           const OIIO::ImageSpec& spec, const char* format) {
+  writeAtomically(path, [&](const fs::path& temporary) {
+    auto output = OIIO::ImageOutput::create(format);
+    if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
+    errno = 0;
+    const bool ok = output->open(temporary.string(), spec) && output->write_image(pixelType, pixels);
+    const int openWriteErrno = errno;
+    const bool closed = output->close();
+    const int savedErrno = ok ? errno : openWriteErrno;
+    if (!ok || !closed)
+      throw IoError(path.string() + ": writing failed: " + writeFailureReason(path, output->geterror(), savedErrno));
+  });
+}
+
 void writeImageAtomically(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec,
                           const char* format) {
   writeAtomically(path, [&](const fs::path& temporary) {
     auto output = OIIO::ImageOutput::create(format);
     if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-    if (!output->open(temporary.string(), spec) || !buffer.write(output.get()) || !output->close())
-      throw IoError(path.string() + ": writing failed: " + output->geterror());
+    errno = 0;
+    const bool ok = output->open(temporary.string(), spec) && buffer.write(output.get());
+    const int openWriteErrno = errno;
+    const bool closed = output->close();
+    const int savedErrno = ok ? errno : openWriteErrno;
+    if (!ok || !closed)
+      throw IoError(path.string() + ": writing failed: " + writeFailureReason(path, output->geterror(), savedErrno));
   });
 }
 
 void writeTextAtomically(const fs::path& path, std::string_view text) {
   writeAtomically(path, [&](const fs::path& temporary) {
-    std::ofstream out(temporary);
-    out << text;
-    out.close();
-    if (!out) throw IoError(path.string() + ": writing failed");
+    errno = 0;
+    FILE* file = std::fopen(temporary.c_str(), "wb");
+    if (!file)
+      throw IoError(path.string() + ": cannot create " + temporary.filename().string() + ": " +
+                    writeFailureReason(path, "", errno));
+    const bool wrote = std::fwrite(text.data(), 1, text.size(), file) == text.size() && std::fflush(file) == 0;
+    const int savedErrno = errno;
+    const bool closed = std::fclose(file) == 0;
+    if (!wrote || !closed)
+      throw IoError(path.string() + ": writing failed: " + writeFailureReason(path, "", wrote ? errno : savedErrno));
   });
 }
 

@@ -2,9 +2,12 @@
 // Every file the project writes goes through here: into a hidden temporary
 // name in the same folder (so the rename is atomic), then renamed over the
 // final name. A crash, a Ctrl-C or an error never leaves a half-written file
-// under a name a reader takes for a result.
+// under a name a reader takes for a result; a kill -9 may leave the hidden
+// temporary, which removeStaleTemporaries (headlight/output.hpp) clears once
+// its process is gone.
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <string_view>
 
 #include <OpenImageIO/imagebuf.h>
@@ -22,7 +25,20 @@ void writeAtomically(const std::filesystem::path& path,
 void writeImageAtomically(const std::filesystem::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec,
                           const char* format);
 
+// `pixels` (of `pixelType`, interleaved, rows top first) written with
+// `spec` by the writer named `format`, without an ImageBuf copy.
+void writePixelsAtomically(const std::filesystem::path& path, const void* pixels, OIIO::TypeDesc pixelType,
+                           const OIIO::ImageSpec& spec, const char* format);
+
 // A text file. Throws IoError.
 void writeTextAtomically(const std::filesystem::path& path, std::string_view text);
+
+// Why a write failed: the writer's own message, else the system's (errno
+// captured by the caller right after the failure), plus the free space when
+// the disk is (nearly) full.
+std::string writeFailureReason(const std::filesystem::path& path, std::string writerMessage, int savedErrno);
+
+// The temporary name's parts: ".<name>.<host>.<pid>-<n>.tmp".
+std::string temporaryHostTag();  // this machine's host name, dots replaced
 
 }  // namespace headlight::detail

@@ -1,32 +1,29 @@
 #include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
+#include <exception>
+#include <limits>
 #include <sstream>
+#include <thread>
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
 #include "output/atomic_file.hpp"
+#include "output/frame_set.hpp"
 
 namespace headlight {
 namespace {
 
 namespace fs = std::filesystem;
 
-OIIO::ImageBuf toImageBuf(const ImageF& image) {
-  OIIO::ImageSpec spec(image.width, image.height, image.channelCount(), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = image.channels;
-  spec.alpha_channel = -1;
-  for (int c = 0; c < image.channelCount(); ++c)
-    if (image.channels[std::size_t(c)] == "A") spec.alpha_channel = c;
-  OIIO::ImageBuf buffer(spec);
-  buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, image.pixels.data());
-  return buffer;
-}
+constexpr std::string_view kCompressionNames[] = {"none", "rle", "zips", "zip", "piz"};
+// Half's largest finite value: a clamped +inf must stay finite once stored.
+constexpr float kHalfMax = 65504.0f;
 
 void addMatrix(OIIO::ImageSpec& spec, const char* name, const glm::mat4& columnMajor) {
   // glm stores column vectors column by column; OpenEXR's M44f multiplies
@@ -53,17 +50,139 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
     spec.attribute(std::string(kSettingAttributePrefix) + name, value);
 }
 
-std::string summarize(const fs::path& path, const ImageF& image, const char* type) {
+// Per-channel range of the finite values and the non-finite count, in one
+// pass (OpenImageIO's computePixelStats needs an ImageBuf copy first).
+struct ImageStats {
+  std::vector<float> min, max;
+  std::size_t nonFinite = 0;
+};
+
+ImageStats imageStats(const ImageF& image) {
+  const std::size_t channels = image.channels.size();
+  ImageStats stats{std::vector<float>(channels, std::numeric_limits<float>::infinity()),
+                   std::vector<float>(channels, -std::numeric_limits<float>::infinity()), 0};
+  for (std::size_t i = 0; i < image.pixels.size(); i += channels)
+    for (std::size_t c = 0; c < channels; ++c) {
+      const float v = image.pixels[i + c];
+      if (!std::isfinite(v)) {
+        ++stats.nonFinite;
+        continue;
+      }
+      stats.min[c] = std::min(stats.min[c], v);
+      stats.max[c] = std::max(stats.max[c], v);
+    }
+  return stats;
+}
+
+std::string summarize(const fs::path& path, const ImageF& image, const char* type, const ImageStats& stats,
+                      NonFinitePolicy policy) {
   std::ostringstream line;
   line << path.string() << ": " << image.width << "x" << image.height << " " << type << " ";
-  const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(toImageBuf(image));
-  for (int c = 0; c < image.channelCount(); ++c)
-    line << (c ? ", " : "") << image.channels[std::size_t(c)] << " [" << stats.min[std::size_t(c)] << ", "
-         << stats.max[std::size_t(c)] << "]";
+  for (std::size_t c = 0; c < image.channels.size(); ++c) {
+    line << (c ? ", " : "") << image.channels[c];
+    if (stats.min[c] <= stats.max[c])
+      line << " [" << stats.min[c] << ", " << stats.max[c] << "]";
+    else
+      line << " [no finite value]";
+  }
+  line << "; non-finite " << stats.nonFinite;
+  if (stats.nonFinite && policy == NonFinitePolicy::Clamp) line << " (clamped)";
   return line.str();
 }
 
+// NaN -> 0, +-inf -> +-limit.
+ImageF clampedCopy(const ImageF& image, float limit) {
+  ImageF copy = image;
+  for (float& v : copy.pixels)
+    if (std::isnan(v))
+      v = 0.0f;
+    else if (std::isinf(v))
+      v = v > 0 ? limit : -limit;
+  return copy;
+}
+
+std::string nonFiniteMessage(std::string_view what, std::size_t count, std::size_t total) {
+  return std::string(what) + ": " + std::to_string(count) + " of " + std::to_string(total) +
+         " values are NaN or infinite (pass --clamp-nonfinite to write them clamped: NaN -> 0, inf -> the largest "
+         "finite value)";
+}
+
+// The one-pass tonemap of the preview, straight to 8-bit sRGB.
+std::uint8_t encodeSrgb8(float linear) {
+  const float v = std::clamp(linear, 0.0f, 1.0f);
+  const float encoded = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return std::uint8_t(encoded * 255.0f + 0.5f);
+}
+
+// Runs `tasks` on up to `threads` threads; rethrows the first exception
+// after all have finished (so no task outlives the data it reads).
+void runParallel(const std::vector<std::function<void()>>& tasks, int threads) {
+  const std::size_t workers = std::min<std::size_t>(tasks.size(), std::size_t(std::max(1, threads)));
+  std::vector<std::exception_ptr> errors(tasks.size());
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i; (i = next++) < tasks.size();) try {
+        tasks[i]();
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
+}
+
+bool wanted(const OutputOptions& options, std::string_view name) {
+  return options.targets.empty() ||
+         std::find(options.targets.begin(), options.targets.end(), name) != options.targets.end();
+}
+
+WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
+                            const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy policy,
+                            const ImageStats& stats) {
+  if (stats.nonFinite && policy == NonFinitePolicy::Error)
+    throw IoError(nonFiniteMessage(path.string(), stats.nonFinite, image.pixels.size()));
+  const ImageF* source = &image;
+  ImageF clamped;
+  if (stats.nonFinite) {
+    clamped = clampedCopy(image, halfFloat ? kHalfMax : std::numeric_limits<float>::max());
+    source = &clamped;
+  }
+  OIIO::ImageSpec spec(image.width, image.height, image.channelCount(),
+                       halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  spec.channelnames = image.channels;
+  spec.alpha_channel = -1;
+  for (int c = 0; c < image.channelCount(); ++c)
+    if (image.channels[std::size_t(c)] == "A") spec.alpha_channel = c;
+  spec.attribute("compression", std::string(exrCompressionName(compression)));
+  addMetadata(spec, frame);
+  for (const auto& [name, value] : extra) spec.attribute(name, value);
+  detail::writePixelsAtomically(path, source->pixels.data(), OIIO::TypeDesc::FLOAT, spec, "openexr");
+  WrittenFile file{path, summarize(path, image, halfFloat ? "half" : "float", stats, policy), stats.nonFinite, 0};
+  std::error_code error;
+  file.bytes = std::size_t(fs::file_size(path, error));
+  return file;
+}
+
 }  // namespace
+
+std::span<const std::string_view> exrCompressionNames() { return kCompressionNames; }
+std::string_view exrCompressionName(ExrCompression compression) { return kCompressionNames[int(compression)]; }
+
+std::vector<std::string_view> outputTargetNames() {
+  std::vector<std::string_view> names;
+  for (const FrameTarget& target : frameTargets()) names.push_back(target.name);
+  names.push_back("preview");
+  return names;
+}
+
+std::size_t countNonFinite(const ImageF& image) {
+  return std::size_t(
+      std::count_if(image.pixels.begin(), image.pixels.end(), [](float v) { return !std::isfinite(v); }));
+}
 
 float tonemapAces(float x) {
   const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
@@ -73,62 +192,86 @@ float tonemapAces(float x) {
 float tonemapReinhard(float x) { return x / (1.0f + x); }
 
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
-                     const ExrAttributes& extra) {
-  OIIO::ImageBuf buffer = toImageBuf(image);
-  OIIO::ImageSpec spec = buffer.spec();
-  spec.set_format(halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-  spec.attribute("compression", "zip");
-  addMetadata(spec, frame);
-  for (const auto& [name, value] : extra) spec.attribute(name, value);
-  detail::writeImageAtomically(path, buffer, spec, "openexr");
-  return {path, summarize(path, image, halfFloat ? "half" : "float")};
+                     const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy nonFinite) {
+  return writeExrChecked(frame, image, path, halfFloat, extra, compression, nonFinite, imageStats(image));
 }
 
 WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   const ImageF& lit = frame.lit;
   const float scale = std::exp2(frame.settings.exposure);
-  auto curve = frame.settings.tonemap == Tonemap::Aces ? tonemapAces : tonemapReinhard;
-  ImageF display;
-  display.width = lit.width;
-  display.height = lit.height;
-  display.channels = {"R", "G", "B"};
-  display.pixels.reserve(std::size_t(lit.width) * std::size_t(lit.height) * 3);
-  for (std::size_t p = 0; p < lit.pixels.size(); p += 4)
-    for (int c = 0; c < 3; ++c) display.pixels.push_back(curve(std::max(0.0f, lit.pixels[p + std::size_t(c)] * scale)));
-  // The sRGB transfer function, through OpenImageIO's colour management.
-  OIIO::ImageBuf linear = toImageBuf(display);
-  OIIO::ImageBuf encoded = OIIO::ImageBufAlgo::colorconvert(linear, "linear", "sRGB");
-  if (encoded.has_error()) throw IoError(path.string() + ": sRGB conversion failed: " + encoded.geterror());
-  OIIO::ImageSpec spec = encoded.spec();
-  spec.set_format(OIIO::TypeDesc::UINT8);
+  const bool aces = frame.settings.tonemap == Tonemap::Aces;
+  const std::size_t channels = lit.channels.size(), pixels = std::size_t(lit.width) * std::size_t(lit.height);
+  std::vector<std::uint8_t> encoded(pixels * 3);
+  for (std::size_t p = 0; p < pixels; ++p)
+    for (std::size_t c = 0; c < 3; ++c) {
+      float v = lit.pixels[p * channels + c] * scale;
+      v = std::isfinite(v) ? std::max(0.0f, v) : 0.0f;
+      encoded[p * 3 + c] = encodeSrgb8(aces ? tonemapAces(v) : tonemapReinhard(v));
+    }
+  OIIO::ImageSpec spec(lit.width, lit.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
-  detail::writeImageAtomically(path, encoded, spec, "png");
+  detail::writePixelsAtomically(path, encoded.data(), OIIO::TypeDesc::UINT8, spec, "png");
   std::ostringstream line;
   line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
-       << (frame.settings.tonemap == Tonemap::Aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure
-       << " EV)";
-  return {path, line.str()};
+       << (aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure << " EV)";
+  WrittenFile file{path, line.str(), 0, 0};
+  std::error_code error;
+  file.bytes = std::size_t(fs::file_size(path, error));
+  return file;
 }
 
-std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir) {
+std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, const OutputOptions& options) {
+  for (const std::string& name : options.targets)
+    if (name != "preview" && !findFrameTarget(name))
+      throw SettingsError("output target '" + name + "': not a frame target");
+
+  // Every target checked before anything is written: a refused set leaves
+  // the folder as it was.
+  struct Job {
+    const FrameTarget* target;  // null: the preview
+    ImageStats stats;
+  };
+  std::vector<Job> jobs;
+  std::string refused;
+  for (const FrameTarget& target : frameTargets()) {
+    const ImageF& image = frame.*target.image;
+    if (image.empty() || !wanted(options, target.name)) continue;
+    jobs.push_back({&target, imageStats(image)});
+    if (jobs.back().stats.nonFinite && options.nonFinite == NonFinitePolicy::Error)
+      refused += (refused.empty() ? "" : "; ") +
+                 nonFiniteMessage(std::string(target.name) + ".exr", jobs.back().stats.nonFinite, image.pixels.size());
+  }
+  if (!refused.empty()) throw IoError(outDir.string() + ": not written: " + refused);
+  const bool preview = wanted(options, "preview") && !frame.lit.empty();
+  if (preview) jobs.push_back({nullptr, {}});
+
   std::error_code error;
   fs::create_directories(outDir, error);
   if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
-  std::vector<WrittenFile> written;
-  for (const FrameTarget& target : frameTargets()) {
-    const ImageF& image = frame.*target.image;
-    if (!image.empty())
-      written.push_back(
-          writeExr(frame, image, outDir / (std::string(target.name) + ".exr"), target.storage == ExrStorage::Half));
-  }
-  written.push_back(writePreview(frame, outDir / "preview.png"));
+  removeStaleTemporaries(outDir);
+  detail::beginFrameSet(frame, outDir, options);
+
+  std::vector<WrittenFile> written(jobs.size());
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    tasks.push_back([&, i] {
+      const Job& job = jobs[i];
+      written[i] = job.target ? writeExrChecked(frame, frame.*job.target->image,
+                                                outDir / (std::string(job.target->name) + ".exr"),
+                                                job.target->storage == ExrStorage::Half, {}, options.compression,
+                                                options.nonFinite, job.stats)
+                              : writePreview(frame, outDir / "preview.png");
+    });
+  runParallel(tasks, options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency())));
+
   // A target this frame lacks (ssgi with SSGI off, emissive for a scene
-  // without glow) must not survive from an earlier render into the folder,
-  // where a diff would take it for this one's.
-  for (const FrameTarget& target : frameTargets()) {
-    std::error_code ignored;
-    if ((frame.*target.image).empty()) fs::remove(outDir / (std::string(target.name) + ".exr"), ignored);
-  }
+  // without glow) or that was not asked for must not survive from an
+  // earlier render into the folder, where a diff would take it for this one's.
+  for (const FrameTarget& target : frameTargets())
+    if ((frame.*target.image).empty() || !wanted(options, target.name))
+      fs::remove(outDir / (std::string(target.name) + ".exr"), error);
+  if (!preview) fs::remove(outDir / "preview.png", error);
+  detail::finishFrameSet(frame, outDir, options, written);
   return written;
 }
 

@@ -45,6 +45,9 @@ enum class DiffStatus {
 std::string_view statusName(DiffStatus status);  // "pass", "warn", "fail", "structural", "file-error"
 inline int exitCode(DiffStatus status) { return int(status); }
 inline constexpr int kDiffExitUsage = 5;
+// Folder mode: a folder's frame.json says its set is incomplete (a killed
+// render) or a file differs from what the set wrote; nothing is compared.
+inline constexpr int kDiffExitIncompleteSet = 6;
 
 std::string_view metricName(DiffMetric metric);  // "absolute", "relative-to-scene", ...
 
@@ -112,6 +115,10 @@ DiffResult diffImages(const std::filesystem::path& a, const std::filesystem::pat
 struct DirectoryDiff {
   DiffStatus status = DiffStatus::Pass;  // the worst of `targets`, or FileError (see problem)
   std::string problem;                   // set when a folder is missing or holds no target
+  // Set (and status FileError, targets empty) when A or B holds an
+  // incomplete frame set (checkFrameSet, headlight/output.hpp): exit code
+  // kDiffExitIncompleteSet.
+  bool incompleteSet = false;
   std::filesystem::path a, b;
   std::vector<DiffResult> targets;  // in frameTargets() order; a target in one folder only is Structural
 };

@@ -10,6 +10,8 @@
 //   headlight::Frame frame = renderer.render(settings);   // float buffers
 //   headlight::writeFrame(frame, "out/");                  // optional
 #include <memory>
+#include <span>
+#include <string>
 
 #include "headlight/context.hpp"
 #include "headlight/export.hpp"
@@ -33,9 +35,12 @@ class Renderer {
   const Scene& scene() const;
 
   // Renders one frame of the scene. `camera` overrides settings.camera.
-  // Throws SettingsError for bad settings (or a camera index the scene
-  // lacks) and GlError for GL errors under GlErrorPolicy::Throw.
-  Frame render(const RenderSettings& settings, const Camera* camera = nullptr);
+  // `targets` names the frame targets (frameTargets(), headlight/targets.hpp)
+  // to read back; passes that only other targets need are skipped (empty:
+  // every target). Throws SettingsError for bad settings (or a camera index
+  // the scene lacks) and GlError for GL errors under GlErrorPolicy::Throw.
+  Frame render(const RenderSettings& settings, const Camera* camera = nullptr,
+               std::span<const std::string> targets = {});
 
   // The settings render() would use: auto radius, bias and shadow-map size
   // resolved from the scene and image size.

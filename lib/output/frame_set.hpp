@@ -1,0 +1,18 @@
+#pragma once
+// The frame.json protocol of writeFrame (headlight/output.hpp): an
+// "incomplete" manifest before the first file is touched, the complete one
+// (each file's size and hash, the settings hash) after the last.
+#include <filesystem>
+#include <vector>
+
+#include "headlight/output.hpp"
+
+namespace headlight::detail {
+
+// Replaces frame.json with one that says a write is under way.
+void beginFrameSet(const Frame& frame, const std::filesystem::path& folder, const OutputOptions& options);
+// Hashes the written files and writes frame.json with "complete": true.
+void finishFrameSet(const Frame& frame, const std::filesystem::path& folder, const OutputOptions& options,
+                    const std::vector<WrittenFile>& files);
+
+}  // namespace headlight::detail

@@ -1,0 +1,118 @@
+// `headlight render` batches as a user runs them: job files with a bad
+// line, --resume, --targets, --json, and `headlight diff` on an incomplete set.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <cstring>
+#include <vector>
+
+#include "support/encoding.hpp"
+#include "support/process.hpp"
+#include "support/temp_folder.hpp"
+
+namespace fs = std::filesystem;
+using headlight::test::runHeadlight;
+namespace {
+constexpr auto& quote = headlight::test::shellQuote;
+}  // namespace
+using Run = headlight::test::ProcessResult;
+
+TEST_CASE("a job file: a bad line is named and the other jobs still render; --resume skips finished ones") {
+  headlight::test::TempFolder folder("batch_cli");
+  const fs::path a = folder.path() / "a", b = folder.path() / "b";
+  const fs::path jobs = folder.write(
+      "jobs.jsonl", R"({"scene": "builtin:cornell", "out": ")" + a.string() + R"(", "size": "64x48"})" + "\n" +
+                        R"({"scene": "builtin:cornell", "out": "x", "settings": {"ssgi-sample": 8}})" + "\n" +
+                        R"({"scene": "builtin:spheres", "out": ")" + b.string() +
+                        R"(", "size": "64x48", "eye": [0, 1, 6], "target": [0, 0.5, 0]})" + "\n");
+  Run run = runHeadlight("render --jobs " + quote(jobs.string()) + " --strict");
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("jobs.jsonl:2") != std::string::npos);
+  CHECK(run.output.find("unknown setting 'ssgi-sample'") != std::string::npos);
+  CHECK(run.output.find("3 jobs: 2 rendered, 0 skipped, 1 failed") != std::string::npos);
+  CHECK(fs::exists(a / "frame.json"));
+  CHECK(fs::exists(b / "lit.exr"));
+
+  run = runHeadlight("render --jobs " + quote(jobs.string()) + " --strict --resume --shard 0/3");
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("1 job (shard 0/3 of 3): 0 rendered, 1 skipped, 0 failed") != std::string::npos);
+}
+
+TEST_CASE("--targets writes only the named targets; --json summarises") {
+  headlight::test::TempFolder folder("targets_cli");
+  const Run run = runHeadlight(
+      "render builtin:cornell builtin:spheres --width 64 --height 48 --targets depth,normal "
+      "--json --strict --out " +
+      quote(folder.path().string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(run.output.find("\"rendered\": 2") != std::string::npos);
+  CHECK(run.output.find("\"gbuffer\"") != std::string::npos);
+  CHECK(run.output.find("\"ssgi\"") == std::string::npos);  // the pass was skipped
+  for (const char* scene : {"cornell", "spheres"}) {
+    CHECK(fs::exists(folder.path() / scene / "depth.exr"));
+    CHECK(fs::exists(folder.path() / scene / "normal.exr"));
+    CHECK_FALSE(fs::exists(folder.path() / scene / "lit.exr"));
+    CHECK_FALSE(fs::exists(folder.path() / scene / "preview.png"));
+  }
+}
+
+TEST_CASE("headlight diff: an incomplete set is exit 6 and named") {
+  headlight::test::TempFolder folder("incomplete_cli");
+  const std::string a = (folder.path() / "a").string(), b = (folder.path() / "b").string();
+  REQUIRE(runHeadlight("render --width 64 --height 48 --quiet --out " + quote(a)).exitCode == 0);
+  REQUIRE(runHeadlight("render --width 64 --height 48 --quiet --out " + quote(b)).exitCode == 0);
+  CHECK(runHeadlight("diff " + quote(a) + " " + quote(b)).exitCode == 0);
+  std::ofstream(fs::path(b) / "frame.json") << R"({"complete": false, "files": []})";
+  const Run run = runHeadlight("diff " + quote(a) + " " + quote(b));
+  INFO(run.output);
+  CHECK(run.exitCode == 6);
+  CHECK(run.output.find("INCOMPLETE SET") != std::string::npos);
+}
+
+namespace {
+
+// One quad facing +Z, lit by a point light whose red is 1e39: finite as a
+// double in the file, infinite as the float the shader gets (issue 10).
+std::string overbrightGltf() {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const unsigned indices[] = {0, 1, 2, 0, 2, 3};
+  std::vector<unsigned char> bytes(sizeof positions + sizeof indices);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, indices, sizeof indices);
+  return R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "color": [1e39, 1, 1], "intensity": 1}]}},
+    "scene": 0, "scenes": [{"nodes": [0, 1]}],
+    "nodes": [{"mesh": 0}, {"translation": [0, 0, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, -1, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5125, "count": 6, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],
+    "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,)" +
+         headlight::test::base64(bytes) + R"("}]})";
+}
+
+}  // namespace
+
+TEST_CASE("a target with NaN or inf is exit 1 naming the target and the count, or clamped when asked") {
+  headlight::test::TempFolder folder("nonfinite_cli");
+  const fs::path scene = folder.write("overbright.gltf", overbrightGltf());
+  const fs::path out = folder.path() / "out";
+  Run run = runHeadlight("render " + quote(scene.string()) + " --width 32 --height 32 --out " + quote(out.string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("lit.exr: ") != std::string::npos);
+  CHECK(run.output.find("values are NaN or infinite") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));  // nothing of the set written
+
+  run = runHeadlight("render " + quote(scene.string()) + " --width 32 --height 32 --clamp-nonfinite --out " +
+                     quote(out.string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("(clamped)") != std::string::npos);
+  CHECK(fs::exists(out / "frame.json"));
+}

@@ -1,0 +1,355 @@
+// Batches without a GL context: job files, sharding, the job hash and
+// --resume's decision, output sets (frame.json) and their checks, stale
+// temporaries, and non-finite values refused or clamped.
+#include <doctest/doctest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imagebuf.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <set>
+
+#include "batch.hpp"
+#include "headlight/diff.hpp"
+#include "headlight/error.hpp"
+#include "headlight/output.hpp"
+#include "output/atomic_file.hpp"
+#include "support/images.hpp"
+#include "support/temp_folder.hpp"
+
+using namespace headlight;
+using namespace headlight::cli;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A CPU-made frame: every target the size of a thumbnail, values finite.
+Frame syntheticFrame(float value = 0.5f) {
+  Frame frame;
+  frame.position = test::makeImage(8, 6, {"position.X", "position.Y", "position.Z", "A"}, value);
+  frame.normal = test::makeImage(8, 6, {"normal.X", "normal.Y", "normal.Z"}, value);
+  frame.depth = test::makeImage(8, 6, {"depth.Z"}, value);
+  frame.lit = test::makeImage(8, 6, {"R", "G", "B", "A"}, value);
+  frame.sceneSource = "builtin:synthetic";
+  frame.sceneHash = "0123456789abcdef";
+  frame.settings.width = 8;
+  frame.settings.height = 6;
+  return frame;
+}
+
+std::vector<Job> numberedJobs(int count) {
+  std::vector<Job> jobs(std::size_t(count), Job{});
+  for (int k = 0; k < count; ++k) jobs[std::size_t(k)].origin = std::to_string(k);
+  return jobs;
+}
+
+// A pid that no process has: a child that has exited and been reaped.
+pid_t deadPid() {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return child;
+}
+
+}  // namespace
+
+TEST_CASE("job lines: each job through the setting table, bad lines named and kept apart") {
+  const std::string text =
+      "# a comment, then a blank line\n"
+      "\n"
+      R"({"scene": "builtin:cornell", "out": "a", "size": "64x48", "settings": {"ssgi-samples": 16, "ssgi": false}})"
+      "\n"
+      R"({"scene": "builtin:spheres", "out": "b", "eye": [0, 1, 5], "target": [0, 1, 0], "fov": 30})"
+      "\n"
+      R"({"scene": "builtin:cornell", "out": "c", "settings": {"ssgi-samples": 100000}})"
+      "\n"
+      R"({"scene": "builtin:cornell", "out": "d", "colour": "red"})"
+      "\n"
+      "{not json\n"
+      R"({"scene": "builtin:cornell", "out": "e", "camera": 2})"
+      "\n";
+  RenderSettings base;
+  base.ssgi.seed = 7;
+  const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", base);
+  REQUIRE(jobs.size() == 6);
+  CHECK(jobs[0].origin == "jobs.jsonl:3");
+  CHECK(jobs[0].error.empty());
+  CHECK(jobs[0].settings.width == 64);
+  CHECK(jobs[0].settings.height == 48);
+  CHECK(jobs[0].settings.ssgi.sampleCount == 16);
+  CHECK_FALSE(jobs[0].settings.ssgi.enabled);
+  CHECK(jobs[0].settings.ssgi.seed == 7);  // the command line's settings are the base
+  CHECK(jobs[1].camera.kind == JobCamera::Kind::LookAt);
+  CHECK(jobs[1].camera.fovDegrees == doctest::Approx(30));
+  // The setting table's own range message, with the line.
+  CHECK(jobs[2].origin == "jobs.jsonl:5");
+  CHECK(jobs[2].error.find("ssgi-samples") != std::string::npos);
+  CHECK(jobs[3].origin == "jobs.jsonl:6");
+  CHECK(jobs[3].error.find("unknown key \"colour\"") != std::string::npos);
+  CHECK(jobs[4].origin == "jobs.jsonl:7");
+  CHECK(jobs[4].error.find("not valid JSON") != std::string::npos);
+  CHECK(jobs[5].error.empty());
+  CHECK(jobs[5].settings.camera == 2);
+}
+
+TEST_CASE("command-line jobs: scenes x orbit views or x cameras, each in its own folder") {
+  RenderCommand command;
+  command.outDir = "out";
+  command.scenes = {"builtin:cornell", "a/duck.glb", "b/duck.glb"};
+  command.orbit = true;
+  command.views = 3;
+  std::vector<Job> jobs = expandJobs(command, [](const std::string&) -> int { throw SettingsError("not asked"); });
+  REQUIRE(jobs.size() == 9);
+  CHECK(jobs[0].outDir == (fs::path("out") / "cornell" / "view_000").string());
+  CHECK(jobs[4].outDir == (fs::path("out") / "duck-1" / "view_001").string());
+  CHECK(jobs[8].outDir == (fs::path("out") / "duck-2" / "view_002").string());
+  CHECK(jobs[5].camera.kind == JobCamera::Kind::Orbit);
+  CHECK(jobs[5].camera.orbitIndex == 2);
+  CHECK(jobs[5].camera.orbitViews == 3);
+
+  command.orbit = false;
+  command.views = 0;
+  command.camerasAll = true;
+  command.scenes = {"builtin:cornell", "broken.gltf"};
+  jobs = expandJobs(command, [](const std::string& scene) {
+    if (scene == "broken.gltf") throw SceneError("broken.gltf: no");
+    return 2;
+  });
+  REQUIRE(jobs.size() == 3);
+  CHECK(jobs[1].settings.camera == 1);
+  CHECK(jobs[1].outDir == (fs::path("out") / "cornell" / "camera_1").string());
+  CHECK(jobs[2].error.find("broken.gltf: no") != std::string::npos);  // a job that reports, not an abort
+}
+
+TEST_CASE("orbit cameras circle the bounds' centre at one distance, looking at it") {
+  Scene scene;
+  scene.instances.clear();
+  JobCamera orbit;
+  orbit.kind = JobCamera::Kind::Orbit;
+  orbit.orbitViews = 4;
+  std::vector<glm::vec3> eyes;
+  for (int v = 0; v < 4; ++v) {
+    orbit.orbitIndex = v;
+    const std::optional<Camera> camera = orbit.build(scene, 1.0f);
+    REQUIRE(camera);
+    eyes.push_back(glm::vec3(camera->worldFromCamera[3]));
+    const glm::vec3 forward = -glm::vec3(camera->worldFromCamera[2]);
+    CHECK(glm::dot(glm::normalize(-eyes.back()), forward) == doctest::Approx(1.0f));  // towards the centre
+  }
+  for (const glm::vec3& eye : eyes) CHECK(glm::length(eye) == doctest::Approx(glm::length(eyes[0])));
+  CHECK(glm::length(eyes[0] - eyes[2]) > glm::length(eyes[0]));  // opposite sides
+  CHECK_FALSE(JobCamera{}.build(scene, 1.0f));                   // the settings' camera
+}
+
+TEST_CASE("a failed write names the system's reason") {
+  const std::string reason = detail::writeFailureReason("/tmp/x.exr", "", ENOSPC);
+  CHECK(reason.find("No space left on device") != std::string::npos);
+  CHECK(detail::writeFailureReason("/tmp/x.exr", "Failed OpenEXR write", 0).find("Failed OpenEXR write") == 0);
+  CHECK_FALSE(detail::writeFailureReason("/tmp/x.exr", "", 0).empty());
+}
+
+TEST_CASE("shards: every job in exactly one shard, in order, every N-th from I") {
+  const std::vector<Job> jobs = numberedJobs(23);
+  for (int count : {1, 2, 3, 7, 23, 40}) {
+    CAPTURE(count);
+    std::multiset<std::string> seen;
+    for (int index = 0; index < count; ++index) {
+      const std::vector<Job> shard = selectShard(jobs, index, count);
+      for (std::size_t k = 0; k < shard.size(); ++k) {
+        CHECK(std::stoi(shard[k].origin) == index + int(k) * count);
+        seen.insert(shard[k].origin);
+      }
+    }
+    CHECK(seen.size() == jobs.size());
+    CHECK(std::set<std::string>(seen.begin(), seen.end()).size() == jobs.size());
+  }
+  CHECK_THROWS_AS(selectShard(jobs, 3, 3), SettingsError);
+  CHECK_THROWS_AS(selectShard(jobs, -1, 3), SettingsError);
+}
+
+TEST_CASE("shard index from an environment variable: a scheduler's task id") {
+  RenderCommand command;
+  command.shardCount = 4;
+  command.shardIndexEnv = "HEADLIGHT_TEST_SHARD_INDEX";
+  setenv("HEADLIGHT_TEST_SHARD_INDEX", "3", 1);
+  CHECK(resolveShardIndex(command) == 3);
+  setenv("HEADLIGHT_TEST_SHARD_INDEX", "4", 1);
+  CHECK_THROWS_WITH_AS(resolveShardIndex(command), doctest::Contains("HEADLIGHT_TEST_SHARD_INDEX"), SettingsError);
+  setenv("HEADLIGHT_TEST_SHARD_INDEX", "1x", 1);
+  CHECK_THROWS_AS(resolveShardIndex(command), SettingsError);
+  unsetenv("HEADLIGHT_TEST_SHARD_INDEX");
+  CHECK_THROWS_WITH_AS(resolveShardIndex(command), doctest::Contains("not set"), SettingsError);
+}
+
+TEST_CASE("job hash: changes with the settings, camera and targets, not with the output folder") {
+  Job job;
+  job.scene = "builtin:cornell";
+  job.outDir = "x";
+  const std::string hash = jobHash(job, {});
+  Job moved = job;
+  moved.outDir = "y";
+  CHECK(jobHash(moved, {}) == hash);
+  Job other = job;
+  other.settings.ssgi.sampleCount = 8;
+  CHECK(jobHash(other, {}) != hash);
+  other = job;
+  other.camera.kind = JobCamera::Kind::Orbit;
+  CHECK(jobHash(other, {}) != hash);
+  OutputOptions litOnly;
+  litOnly.targets = {"lit"};
+  CHECK(jobHash(job, litOnly) != hash);
+}
+
+TEST_CASE("frame sets: frame.json lists each file; a changed or missing file, or a pending write, is incomplete") {
+  test::TempFolder folder("frameset");
+  const fs::path out = folder.path() / "set";
+  OutputOptions options;
+  options.jobHash = "job-1";
+  const auto written = writeFrame(syntheticFrame(), out, options);
+  CHECK(written.size() == 5);  // position, normal, depth, lit, preview
+  const std::optional<FrameManifest> manifest = readManifest(out);
+  REQUIRE(manifest);
+  CHECK(manifest->complete);
+  CHECK(manifest->jobHash == "job-1");
+  CHECK(manifest->files.size() == 5);
+  CHECK(checkFrameSet(out).state == FrameSetState::Complete);
+
+  // Another render's lit.exr under the same name (a mixed set).
+  fs::copy_file(out / "depth.exr", out / "lit.exr", fs::copy_options::overwrite_existing);
+  FrameSetCheck check = checkFrameSet(out);
+  CHECK(check.state == FrameSetState::Incomplete);
+  CHECK(check.problem.find("lit.exr") != std::string::npos);
+
+  writeFrame(syntheticFrame(), out, options);
+  fs::remove(out / "normal.exr");
+  check = checkFrameSet(out);
+  CHECK(check.state == FrameSetState::Incomplete);
+  CHECK(check.problem.find("normal.exr, which is missing") != std::string::npos);
+
+  // What a kill between the first and the last file leaves: the pending manifest.
+  writeFrame(syntheticFrame(), out, options);
+  std::ofstream(out / "frame.json") << R"({"complete": false, "files": []})";
+  CHECK(checkFrameSet(out).state == FrameSetState::Incomplete);
+  CHECK(checkFrameSet(folder.path()).state == FrameSetState::NoManifest);
+}
+
+TEST_CASE("headlight diff refuses an incomplete set with its own status") {
+  test::TempFolder folder("diffset");
+  writeFrame(syntheticFrame(), folder.path() / "a");
+  writeFrame(syntheticFrame(), folder.path() / "b");
+  CHECK(diffDirectories(folder.path() / "a", folder.path() / "b").status == DiffStatus::Pass);
+  std::ofstream(folder.path() / "b" / "frame.json") << R"({"complete": false, "files": []})";
+  const DirectoryDiff diff = diffDirectories(folder.path() / "a", folder.path() / "b");
+  CHECK(diff.incompleteSet);
+  CHECK(diff.targets.empty());
+  CHECK(diff.problem.find("incomplete output set") != std::string::npos);
+}
+
+TEST_CASE("--resume's decision: a complete set of the same job hash, nothing else") {
+  test::TempFolder folder("resume");
+  Job job;
+  job.scene = "builtin:cornell";
+  job.outDir = (folder.path() / "job").string();
+  CHECK_FALSE(jobAlreadyDone(job, {}));  // nothing there
+  OutputOptions options;
+  options.jobHash = jobHash(job, {});
+  writeFrame(syntheticFrame(), job.outDir, options);
+  CHECK(jobAlreadyDone(job, {}));
+  Job changed = job;
+  changed.settings.ssgi.sampleCount = 4;
+  CHECK_FALSE(jobAlreadyDone(changed, {}));  // other settings: render again
+  fs::remove(fs::path(job.outDir) / "lit.exr");
+  CHECK_FALSE(jobAlreadyDone(job, {}));  // a file gone: render again
+}
+
+TEST_CASE("stale temporaries: a dead writer's are removed, a live one's kept") {
+  test::TempFolder folder("stale");
+  const fs::path dead = folder.write(".lit.exr.x." + std::to_string(deadPid()) + "-1.tmp", "partial");
+  const fs::path deadOld = folder.write(".lit.exr." + std::to_string(deadPid()) + "-2.tmp", "partial");
+  const fs::path live = folder.write(".lit.exr." + std::to_string(getpid()) + "-3.tmp", "partial");
+  const fs::path other = folder.write("notes.tmp", "not ours");
+  // ".x." is another host's tag: not ours to judge.
+  CHECK(removeStaleTemporaries(folder.path()) == 1);
+  CHECK(fs::exists(dead));
+  CHECK_FALSE(fs::exists(deadOld));
+  CHECK(fs::exists(live));
+  CHECK(fs::exists(other));
+}
+
+TEST_CASE("non-finite values: an error naming the target and the count, or clamped when asked") {
+  test::TempFolder folder("nonfinite");
+  Frame frame = syntheticFrame();
+  frame.depth.pixels[3] = std::numeric_limits<float>::quiet_NaN();
+  frame.lit.pixels[0] = std::numeric_limits<float>::infinity();
+  frame.lit.pixels[5] = -std::numeric_limits<float>::infinity();
+  CHECK(countNonFinite(frame.lit) == 2);
+  const fs::path out = folder.path() / "refused";
+  try {
+    writeFrame(frame, out);
+    FAIL("expected an IoError");
+  } catch (const IoError& error) {
+    const std::string message = error.what();
+    CHECK(message.find("depth.exr: 1 of 48 values") != std::string::npos);
+    CHECK(message.find("lit.exr: 2 of 192 values") != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(out));  // nothing written
+
+  OutputOptions clamp;
+  clamp.nonFinite = NonFinitePolicy::Clamp;
+  const auto written = writeFrame(frame, folder.path() / "clamped", clamp);
+  bool sawLit = false;
+  for (const WrittenFile& file : written)
+    if (file.path.filename() == "lit.exr") {
+      sawLit = true;
+      CHECK(file.nonFinite == 2);
+      CHECK(file.summary.find("non-finite 2 (clamped)") != std::string::npos);
+    }
+  CHECK(sawLit);
+  OIIO::ImageBuf lit((folder.path() / "clamped" / "lit.exr").string());
+  REQUIRE(lit.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  CHECK(lit.getchannel(0, 0, 0, 0) == doctest::Approx(65504.0f));  // half's largest
+  CHECK(std::isfinite(lit.getchannel(1, 0, 0, 1)));
+}
+
+TEST_CASE("--targets: only the named files, and stale ones of an earlier set removed") {
+  test::TempFolder folder("targets");
+  writeFrame(syntheticFrame(), folder.path());
+  OutputOptions depthOnly;
+  depthOnly.targets = {"depth"};
+  const auto written = writeFrame(syntheticFrame(), folder.path(), depthOnly);
+  REQUIRE(written.size() == 1);
+  CHECK(fs::exists(folder.path() / "depth.exr"));
+  CHECK_FALSE(fs::exists(folder.path() / "lit.exr"));
+  CHECK_FALSE(fs::exists(folder.path() / "preview.png"));
+  CHECK(checkFrameSet(folder.path()).state == FrameSetState::Complete);
+  depthOnly.targets = {"depht"};
+  CHECK_THROWS_AS(writeFrame(syntheticFrame(), folder.path(), depthOnly), SettingsError);
+}
+
+TEST_CASE("every lossless EXR compression writes the same pixels") {
+  test::TempFolder folder("compression");
+  Frame frame = syntheticFrame();
+  for (std::size_t i = 0; i < frame.depth.pixels.size(); ++i) frame.depth.pixels[i] = 0.1f * float(i);
+  for (std::size_t i = 0; i < exrCompressionNames().size(); ++i) {
+    const std::string_view name = exrCompressionNames()[i];
+    CAPTURE(name);
+    OutputOptions options;
+    options.compression = ExrCompression(i);
+    options.targets = {"depth"};
+    writeFrame(frame, folder.path() / std::string(name), options);
+    OIIO::ImageBuf depth((folder.path() / std::string(name) / "depth.exr").string());
+    REQUIRE(depth.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    CHECK(depth.spec().get_string_attribute("compression") == name);
+    int differing = 0;
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 8; ++x) differing += depth.getchannel(x, y, 0, 0) != frame.depth.at(x, y, 0);
+    CHECK(differing == 0);
+  }
+}
