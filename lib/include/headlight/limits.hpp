@@ -34,8 +34,9 @@ std::uint64_t maxMemoryBytes(const ResourceLimits& limits);
 // Peak memory a render of width x height costs beyond the scene, in bytes:
 // kFrameBytesPerPixel per pixel (measured: docs/RELIABILITY.md) plus a fixed
 // base. An estimate for refusing sizes that cannot fit, not an accounting.
-inline constexpr std::uint64_t kFrameBytesPerPixel = 220;
-inline constexpr std::uint64_t kFrameBaseBytes = std::uint64_t(160) << 20;
+inline constexpr std::uint64_t kFrameBytesPerPixel = 240;  // measured 227 (1024^2 to 2048^2), plus margin
+inline constexpr std::uint64_t kFrameBaseBytes = std::uint64_t(256)
+                                                 << 20;  // measured 245 MiB at 0 pixels (extrapolated)
 std::uint64_t estimateFrameBytes(int width, int height);
 
 // Throws LimitError when a width x height render plus `sceneBytes` would not
