@@ -93,6 +93,8 @@ struct Renderer::Impl {
   void loadScene(Scene newScene);  // Renderer::setScene's work
 
   Context& context;
+  ResourceLimits limits;
+  std::uint64_t sceneBytes = 0;  // estimateSceneBytes of the current scene
   EnvironmentPass environment;
   SsgiPass ssgi;
   SsgiBlurPass ssgiBlur;
@@ -260,8 +262,16 @@ void Renderer::setScene(Scene scene) {
   }
 }
 
+void Renderer::setLimits(const ResourceLimits& limits) { impl_->limits = limits; }
+
 void Renderer::Impl::loadScene(Scene newScene) {
   Impl& impl = *this;
+  checkSceneRanges(newScene);
+  impl.sceneBytes = estimateSceneBytes(newScene);
+  if (impl.sceneBytes > maxMemoryBytes(impl.limits))
+    throw LimitError(newScene.source + ": the scene needs about " + std::to_string(impl.sceneBytes >> 20) +
+                     " MiB, more than --max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
+                     " MiB)");
   impl.scene = std::move(newScene);
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
@@ -305,6 +315,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   Frame frame;
   frame.settings = resolve(settings);
   const RenderSettings& used = frame.settings;
+  // Before any target of this size is allocated.
+  checkFrameFits(used.width, used.height, impl.sceneBytes, impl.limits);
   Camera fitted;
   frame.view =
       makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);

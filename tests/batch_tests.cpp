@@ -18,6 +18,7 @@
 #include "batch.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
+#include "headlight/finite.hpp"
 #include "headlight/output.hpp"
 #include "output/atomic_file.hpp"
 #include "support/images.hpp"
@@ -289,7 +290,7 @@ TEST_CASE("non-finite values: an error naming the target and the count, or clamp
   frame.depth.pixels[3] = std::numeric_limits<float>::quiet_NaN();
   frame.lit.pixels[0] = std::numeric_limits<float>::infinity();
   frame.lit.pixels[5] = -std::numeric_limits<float>::infinity();
-  CHECK(countNonFinite(frame.lit) == 2);
+  CHECK(countNonFinite(frame.lit, "lit").count == 2);
   const fs::path out = folder.path() / "refused";
   try {
     writeFrame(frame, out);

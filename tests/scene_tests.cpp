@@ -481,7 +481,7 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
     const fs::path path = folder.write("broken.gltf", R"({"asset": {"version": "2.0"}, "nodes": [)");
     const std::string message = loadError(path);
     CHECK(message.find(path.string() + ": ") == 0);
-    CHECK(message.find("tinygltf") != std::string::npos);
+    CHECK(message.find("is not valid JSON") != std::string::npos);  // checked before tinygltf parses
   }
   SUBCASE("accessor past its bufferView") {
     GltfParts parts;
@@ -540,7 +540,7 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
   SUBCASE("external image missing") {
     GltfParts parts;
     parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
-    parts.extra = R"(,"materials":[{"normalTexture":{"index":0,"texCoord":1}}],"textures":[{"source":0}],
+    parts.extra = R"(,"materials":[{"normalTexture":{"index":0}}],"textures":[{"source":0}],
                      "images":[{"uri":"absent.png"}])";
     const std::string message = loadError(writeTriangleGltf(folder, parts));
     CHECK(message.find("image 0 (uri 'absent.png') could not be loaded") != std::string::npos);

@@ -147,13 +147,14 @@ long peakRssKb() {
 // Scenes stay loaded while a later job of this shard uses them.
 class SceneCache {
  public:
-  explicit SceneCache(const std::vector<Job>& jobs, bool allowExternalPaths) : allow_(allowExternalPaths) {
+  SceneCache(const std::vector<Job>& jobs, bool allowExternalPaths, const ResourceLimits& limits)
+      : allow_(allowExternalPaths), limits_(limits) {
     for (const Job& job : jobs)
       if (job.error.empty()) ++remaining_[job.scene];
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_})).first;
+    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_}, limits_)).first;
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -167,6 +168,7 @@ class SceneCache {
 
  private:
   bool allow_;
+  ResourceLimits limits_;
   std::map<std::string, int> remaining_;
   std::map<std::string, Scene> scenes_;
 };
@@ -400,7 +402,7 @@ int runRenderBatch(const RenderCommand& command) {
   auto cameraCount = [&](const std::string& scene) {
     auto found = countedScenes.find(scene);
     if (found == countedScenes.end())
-      found = countedScenes.emplace(scene, loadScene(scene, {command.allowExternalPaths})).first;
+      found = countedScenes.emplace(scene, loadScene(scene, {command.allowExternalPaths}, command.limits)).first;
     return int(found->second.cameras.size());
   };
   const std::vector<Job> all = expandJobs(command, cameraCount);
@@ -410,7 +412,7 @@ int runRenderBatch(const RenderCommand& command) {
   const bool single = all.size() == 1 && command.jobFiles.empty();
 
   std::vector<JobResult> results(jobs.size());
-  SceneCache cache(jobs, command.allowExternalPaths);
+  SceneCache cache(jobs, command.allowExternalPaths, command.limits);
   for (auto& [name, scene] : countedScenes) cache.adopt(name, std::move(scene));  // loaded once
   countedScenes.clear();
   std::optional<Context> context;
@@ -466,6 +468,7 @@ int runRenderBatch(const RenderCommand& command) {
       if (!context) {
         context.emplace(command.context);
         renderer.emplace(*context);
+        renderer->setLimits(command.limits);
         rendererName = context->renderer();
       }
       if (currentScene != job.scene) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "headlight/context.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/options.hpp"
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
@@ -28,6 +29,7 @@ struct RenderCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   RenderSettings settings;
+  ResourceLimits limits;        // --max-memory, --max-instances, --max-triangles, --max-texels
   ReferenceSettings reference;  // `reference` only
 
   // `render` only: batches (tools/batch.hpp, docs/BATCH.md).

@@ -45,6 +45,7 @@ const char* errorKind(const std::exception& error) {
   if (dynamic_cast<const ContextError*>(&error)) return "ContextError";
   if (dynamic_cast<const IoError*>(&error)) return "IoError";
   if (dynamic_cast<const GlError*>(&error)) return "GlError";
+  if (dynamic_cast<const LimitError*>(&error)) return "LimitError";
   return "error";
 }
 
@@ -74,10 +75,11 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
-  Scene scene = loadScene(command.scene, {command.allowExternalPaths});
+  Scene scene = loadScene(command.scene, {command.allowExternalPaths}, command.limits);
   Context context(command.context);
   if (command.verbosity == cli::Verbosity::Verbose) printVerboseHeader(context, scene);
   Renderer renderer(context);
+  renderer.setLimits(command.limits);
   renderer.setScene(std::move(scene));
   const Frame frame = renderer.render(command.settings);
   ReferenceSettings settings = command.reference;

@@ -169,14 +169,19 @@ std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }
 void Context::checkErrors(std::string_view operation) {
   requireCurrent(operation);
   // glGetError catches what a driver reports without a debug message.
-  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError())
+  // Issue 10: GL_OUT_OF_MEMORY leaves objects silently missing, so it is an
+  // error under every policy (Warn only warns about the recoverable ones).
+  bool outOfMemory = false;
+  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) {
     impl_->errors.push_back("glGetError: " + glErrorName(error));
+    outOfMemory = outOfMemory || error == GL_OUT_OF_MEMORY;
+  }
   if (impl_->errors.empty()) return;
   std::string message =
       std::string(operation) + ": OpenGL reported " + std::to_string(impl_->errors.size()) + " error(s):";
   for (const auto& error : impl_->errors) message += "\n  " + error;
   impl_->errors.clear();
-  if (impl_->errorPolicy == GlErrorPolicy::Throw) throw GlError(message);
+  if (impl_->errorPolicy == GlErrorPolicy::Throw || outOfMemory) throw GlError(message);
   std::cerr << "headlight: warning: " << message << "\n";
 }
 

@@ -179,11 +179,6 @@ std::vector<std::string_view> outputTargetNames() {
   return names;
 }
 
-std::size_t countNonFinite(const ImageF& image) {
-  return std::size_t(
-      std::count_if(image.pixels.begin(), image.pixels.end(), [](float v) { return !std::isfinite(v); }));
-}
-
 float tonemapAces(float x) {
   const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
   return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0f, 1.0f);

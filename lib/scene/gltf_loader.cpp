@@ -33,7 +33,9 @@
 #include <tiny_gltf.h>
 
 #include "headlight/error.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/scene_loader.hpp"
+#include "scene/gltf_prescan.hpp"
 
 namespace headlight {
 
@@ -98,28 +100,57 @@ bool isInside(const fs::path& path, const fs::path& folder) {
 
 std::string expandFilePath(const std::string& path, void*) { return path; }
 
+// tinygltf joins the asset folder and the URI even when the URI is absolute
+// ("/assets//data/x.png"); an absolute URI means itself.
+std::string effectivePath(const std::string& path, const FileAccess& access) {
+  if (path.rfind(access.uriPrefix, 0) == 0 && path.size() > access.uriPrefix.size() &&
+      path[access.uriPrefix.size()] == '/') {
+    return path.substr(access.uriPrefix.size());
+  }
+  return path;
+}
+
+// Records (and returns true for) a URI outside the asset folder while that is
+// not allowed, so that the error names the rule rather than "file not found".
+bool refuseOutside(const std::string& path, FileAccess& access) {
+  if (access.allowExternalPaths) {
+    return false;
+  }
+  const std::string target = effectivePath(path, access);
+  std::error_code canonicalError;
+  const fs::path resolved = fs::weakly_canonical(target, canonicalError);
+  if (!canonicalError && isInside(resolved, access.assetFolder)) {
+    return false;
+  }
+  const std::string uri = path.rfind(access.uriPrefix, 0) == 0 ? path.substr(access.uriPrefix.size()) : path;
+  if (access.refusal.empty()) {
+    access.refusal = "URI '" + uri + "' resolves to " + resolved.string() + ", outside the asset folder " +
+                     access.assetFolder.string() +
+                     "; pass --allow-external-paths (SceneLoadOptions::allowExternalPaths) to allow it";
+  }
+  return true;
+}
+
 bool fileExists(const std::string& path, void* userData) {
-  const auto& access = *static_cast<const FileAccess*>(userData);
+  auto& access = *static_cast<FileAccess*>(userData);
   // tinygltf also tries "./<uri>"; only the asset-relative candidate counts.
-  if (!access.allowExternalPaths && path.rfind(access.uriPrefix, 0) != 0) {
+  if (path.rfind(access.uriPrefix, 0) != 0) {
+    return false;
+  }
+  if (refuseOutside(path, access)) {
     return false;
   }
   std::error_code error;
-  return fs::is_regular_file(path, error);
+  return fs::is_regular_file(effectivePath(path, access), error);
 }
 
 bool readWholeFile(std::vector<unsigned char>* bytes, std::string* error, const std::string& path, void* userData) {
   auto& access = *static_cast<FileAccess*>(userData);
-  std::error_code canonicalError;
-  const fs::path resolved = fs::weakly_canonical(path, canonicalError);
-  if (!access.allowExternalPaths && (canonicalError || !isInside(resolved, access.assetFolder))) {
-    const std::string uri = path.rfind(access.uriPrefix, 0) == 0 ? path.substr(access.uriPrefix.size()) : path;
-    access.refusal = "URI '" + uri + "' resolves to " + resolved.string() + ", outside the asset folder " +
-                     access.assetFolder.string() + " (SceneLoadOptions::allowExternalPaths allows it)";
+  if (refuseOutside(path, access)) {
     *error = access.refusal;
     return false;
   }
-  std::ifstream file(path, std::ios::binary);
+  std::ifstream file(effectivePath(path, access), std::ios::binary);
   if (!file) {
     *error = "cannot open " + path;
     return false;
@@ -165,7 +196,10 @@ std::vector<std::uint8_t> expandToRgba(const std::vector<std::uint8_t>& pixels, 
   return rgba;
 }
 
-std::string decodeWithOiio(tinygltf::Image& image, const unsigned char* bytes, std::size_t size) {
+// `texelBudget`: texels still allowed (ResourceLimits::maxTexels); the size
+// in the header is checked against it before any pixel is decoded.
+std::string decodeWithOiio(tinygltf::Image& image, const unsigned char* bytes, std::size_t size,
+                           std::int64_t& texelBudget, bool& overBudget) {
   OIIO::Filesystem::IOMemReader reader(bytes, size);
   OIIO::ImageSpec config;
   // glTF colours are unassociated (straight) alpha; OIIO's PNG reader would
@@ -184,6 +218,14 @@ std::string decodeWithOiio(tinygltf::Image& image, const unsigned char* bytes, s
     return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", expected 1.." +
            std::to_string(kMaxImageSide) + " per side";
   }
+  const std::int64_t texels = std::int64_t(spec.width) * spec.height;
+  if (texels > texelBudget) {
+    overBudget = true;
+    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " (" + std::to_string(texels) +
+           " texels), more than the " + std::to_string(texelBudget) +
+           " texels --max-texels leaves for it; raise --max-texels";
+  }
+  texelBudget -= texels;
   const int channels = std::min(spec.nchannels, 4);
   const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
   std::vector<std::uint8_t> pixels(pixelCount * static_cast<std::size_t>(channels));
@@ -214,17 +256,26 @@ std::string checkImageBufferView(const tinygltf::Model& model, const tinygltf::I
   return {};
 }
 
-bool decodeImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string*, int, int,
-                 const unsigned char* bytes, int size, void* userData) {
+// tinygltf calls this while it parses; it only keeps the encoded bytes, so
+// that nothing is decoded before the whole file's structure has been checked
+// (GltfReader::readImages decodes them last).
+bool keepEncodedImage(tinygltf::Image* image, const int imageIndex, std::string* error, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* userData) {
   auto& decoding = *static_cast<ImageDecoding*>(userData);
   std::string problem;
   if (image->bufferView >= 0) {
     problem = checkImageBufferView(*decoding.model, *image);
   }
-  if (problem.empty()) {
-    problem = size > 0 ? decodeWithOiio(*image, bytes, static_cast<std::size_t>(size)) : "it is empty";
+  if (problem.empty() && size <= 0) {
+    problem = "it is empty";
   }
-  if (!problem.empty()) {
+  if (problem.empty()) {
+    image->image.assign(bytes, bytes + size);
+    image->width = image->height = -1;  // not decoded yet
+    image->component = 0;
+    return true;
+  }
+  {
     decoding.failure =
         "image " + std::to_string(imageIndex) + (image->name.empty() ? "" : " '" + image->name + "'") + ": " + problem;
     if (error != nullptr) {
@@ -391,12 +442,13 @@ using GeometryKey = std::tuple<int, int, int, int, int>;
 class GltfReader {
  public:
   // `warnings`: tinygltf's, quoted when an image turns out to be missing.
-  GltfReader(std::string file, tinygltf::Model& model, std::string warnings, Scene& scene)
-      : file_(std::move(file)), model_(model), warnings_(std::move(warnings)), scene_(scene) {}
+  GltfReader(std::string file, tinygltf::Model& model, std::string warnings, Scene& scene, const ResourceLimits& limits)
+      : file_(std::move(file)), model_(model), warnings_(std::move(warnings)), scene_(scene), limits_(limits) {}
 
+  // Structure first, images last: a file that is refused is refused before
+  // any image is decoded.
   void read() {
     checkRequiredExtensions();
-    readImages();
     for (std::size_t material = 0; material < model_.materials.size(); ++material) {
       scene_.materials.push_back(readMaterial(static_cast<int>(material)));
     }
@@ -405,10 +457,35 @@ class GltfReader {
     for (int root : rootNodes()) {
       traverse(root);
     }
+    readImages();
   }
 
  private:
   [[noreturn]] void fail(const std::string& message) const { throw SceneError(file_ + ": " + message); }
+  [[noreturn]] void failLimit(const std::string& message) const { throw LimitError(file_ + ": " + message); }
+
+  // Every vertex and triangle decoded counts against --max-triangles before
+  // its memory is allocated (3 vertices per allowed triangle at most).
+  void reserveVertices(std::size_t count, int accessorIndex, const std::string& user) {
+    const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles) * 3;
+    if (count > allowed - std::min<std::uint64_t>(allowed, decodedVertices_)) {
+      failLimit(user + " accessor " + std::to_string(accessorIndex) + " has " + std::to_string(count) +
+                " vertices, and with the " + std::to_string(decodedVertices_) + " before it that is more than the " +
+                std::to_string(allowed) + " (3 x --max-triangles " + std::to_string(limits_.maxTriangles) +
+                ") allowed; raise --max-triangles");
+    }
+    decodedVertices_ += count;
+  }
+
+  void reserveTriangles(std::size_t count, const std::string& primitiveName) {
+    const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles);
+    if (count > allowed - std::min<std::uint64_t>(allowed, decodedTriangles_)) {
+      failLimit(primitiveName + " has " + std::to_string(count) + " triangles, and with the " +
+                std::to_string(decodedTriangles_) + " before it that is more than --max-triangles " +
+                std::to_string(allowed) + "; raise --max-triangles");
+    }
+    decodedTriangles_ += count;
+  }
 
   template <typename Container>
   void checkIndex(int index, const Container& container, const std::string& user, const char* noun) const {
@@ -608,9 +685,10 @@ class GltfReader {
     return readFloats<N>(accessor);
   }
 
-  std::vector<glm::vec3> readPositions(int accessorIndex, const std::string& primitiveName) const {
-    std::vector<glm::vec3> positions =
-        readFloats<3>(checkedAccessor(accessorIndex, primitiveName + " POSITION", kPositionFormats));
+  std::vector<glm::vec3> readPositions(int accessorIndex, const std::string& primitiveName) {
+    const CheckedAccessor accessor = checkedAccessor(accessorIndex, primitiveName + " POSITION", kPositionFormats);
+    reserveVertices(accessor.count, accessorIndex, primitiveName + " POSITION");
+    std::vector<glm::vec3> positions = readFloats<3>(accessor);
     for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
       const glm::vec3& p = positions[vertex];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
@@ -626,15 +704,18 @@ class GltfReader {
   }
 
   std::vector<std::uint32_t> readTriangleIndices(int accessorIndex, const std::string& primitiveName,
-                                                 std::size_t vertexCount) const {
+                                                 std::size_t vertexCount) {
     std::vector<std::uint32_t> indices;
     if (accessorIndex < 0) {
+      reserveTriangles(vertexCount / 3, primitiveName);
       indices.resize(vertexCount);
       for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
         indices[vertex] = static_cast<std::uint32_t>(vertex);
       }
     } else {
-      indices = readIndices(checkedAccessor(accessorIndex, primitiveName + " indices", kIndexFormats));
+      const CheckedAccessor accessor = checkedAccessor(accessorIndex, primitiveName + " indices", kIndexFormats);
+      reserveTriangles(accessor.count / 3, primitiveName);
+      indices = readIndices(accessor);
       for (std::size_t position = 0; position < indices.size(); ++position) {
         if (indices[position] >= vertexCount) {
           fail(primitiveName + ": index " + std::to_string(position) + " of accessor " + std::to_string(accessorIndex) +
@@ -675,7 +756,7 @@ class GltfReader {
     }
   }
 
-  Primitive readGeometry(const tinygltf::Primitive& source, const std::string& primitiveName) const {
+  Primitive readGeometry(const tinygltf::Primitive& source, const std::string& primitiveName) {
     Primitive primitive;
     const int positionAccessor = attributeAccessor(source, "POSITION");
     if (positionAccessor < 0) {
@@ -768,12 +849,21 @@ class GltfReader {
   // ---- Materials and images
 
   void readImages() {
+    std::int64_t texelBudget = limits_.maxTexels;
     for (std::size_t index = 0; index < model_.images.size(); ++index) {
       tinygltf::Image& source = model_.images[index];
       // An external image tinygltf could not find is only a warning to it.
-      if (source.image.empty() || source.component != 4 || source.bits != 8) {
+      if (source.image.empty() || source.width != -1) {
         fail("image " + std::to_string(index) + (source.uri.empty() ? "" : " (uri '" + source.uri + "')") +
              " could not be loaded" + (warnings_.empty() ? "" : ": " + warnings_));
+      }
+      const std::vector<unsigned char> encoded = std::move(source.image);
+      bool overBudget = false;
+      const std::string problem = decodeWithOiio(source, encoded.data(), encoded.size(), texelBudget, overBudget);
+      if (!problem.empty()) {
+        const std::string message =
+            "image " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'") + ": " + problem;
+        overBudget ? failLimit(message) : fail(message);
       }
       ImageData image;
       image.name = !source.name.empty() ? source.name : source.uri;
@@ -1048,7 +1138,7 @@ class GltfReader {
 
   // ---- Nodes
 
-  glm::mat4 localTransform(int nodeIndex) const {
+  glm::dmat4 localTransform(int nodeIndex) const {
     const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
     const std::string name = "node " + std::to_string(nodeIndex);
     glm::dmat4 local(1.0);
@@ -1087,7 +1177,26 @@ class GltfReader {
         }
       }
     }
-    return glm::mat4(local);
+    return local;
+  }
+
+  // World transforms are composed in double and must stay where float
+  // rendering stays finite (kMaxWorldMagnitude): a translation of 1e39 or
+  // nested scales of 1e20 x 1e20 are finite doubles but inf or NaN as floats.
+  glm::mat4 checkedWorld(int nodeIndex, const glm::dmat4& world) const {
+    for (int column = 0; column < 4; ++column) {
+      for (int row = 0; row < 4; ++row) {
+        const double value = world[column][row];
+        if (!(std::abs(value) <= kMaxWorldMagnitude)) {
+          char text[32];
+          std::snprintf(text, sizeof text, "%g", value);
+          fail("node " + std::to_string(nodeIndex) + " has a world transform entry of " + text +
+               " (its own and its ancestors' transforms together), expected magnitude at most " +
+               std::to_string(static_cast<long long>(kMaxWorldMagnitude)) + " so that float rendering stays finite");
+        }
+      }
+    }
+    return glm::mat4(world);
   }
 
   // glTF nodes form trees: each node has at most one parent. Checking that
@@ -1104,6 +1213,26 @@ class GltfReader {
                " and node " + std::to_string(parent) + ", but glTF nodes must form trees");
         }
         recordedParent = static_cast<int>(parent);
+      }
+    }
+    // With one parent each, a cycle is a parent chain that comes back to
+    // itself; found here, before a scene can list a node of it as a root.
+    std::vector<char> state(model_.nodes.size(), 0);  // 0 unseen, 1 on this walk, 2 done
+    std::vector<int> walk;
+    for (std::size_t start = 0; start < model_.nodes.size(); ++start) {
+      walk.clear();
+      int node = static_cast<int>(start);
+      while (node != -1 && state[static_cast<std::size_t>(node)] == 0) {
+        state[static_cast<std::size_t>(node)] = 1;
+        walk.push_back(node);
+        node = parentOf_[static_cast<std::size_t>(node)];
+      }
+      if (node != -1 && state[static_cast<std::size_t>(node)] == 1) {
+        fail("node " + std::to_string(parentOf_[static_cast<std::size_t>(node)]) + " has child node " +
+             std::to_string(node) + ", which is also its ancestor: the node graph has a cycle");
+      }
+      for (int visited : walk) {
+        state[static_cast<std::size_t>(visited)] = 2;
       }
     }
   }
@@ -1124,8 +1253,18 @@ class GltfReader {
     }
     checkIndex(sceneIndex, model_.scenes, "the default scene", "scene");
     const std::string sceneName = "scene " + std::to_string(sceneIndex);
+    std::vector<char> listed(model_.nodes.size(), 0);
     for (int node : model_.scenes[static_cast<std::size_t>(sceneIndex)].nodes) {
       checkIndex(node, model_.nodes, sceneName, "node");
+      // glTF: a scene lists root nodes, each once; repeats would multiply
+      // the node's whole subtree.
+      if (listed[static_cast<std::size_t>(node)]++) {
+        fail(sceneName + " lists node " + std::to_string(node) + " more than once, but scene nodes must be unique");
+      }
+      if (parentOf_[static_cast<std::size_t>(node)] != -1) {
+        fail(sceneName + " lists node " + std::to_string(node) + " as a root, but it is a child of node " +
+             std::to_string(parentOf_[static_cast<std::size_t>(node)]) + "; scene nodes must be roots");
+      }
     }
     return model_.scenes[static_cast<std::size_t>(sceneIndex)].nodes;
   }
@@ -1146,7 +1285,13 @@ class GltfReader {
     const std::string nodeName = "node " + std::to_string(nodeIndex);
     if (node.mesh >= 0) {
       checkIndex(node.mesh, model_.meshes, nodeName, "mesh");
-      for (const PlacedPrimitive& placed : meshPrimitives(node.mesh)) {
+      const std::vector<PlacedPrimitive>& placedPrimitives = meshPrimitives(node.mesh);
+      if (scene_.instances.size() + placedPrimitives.size() > static_cast<std::uint64_t>(limits_.maxInstances)) {
+        failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
+                  std::to_string(scene_.instances.size() + placedPrimitives.size()) + ", more than --max-instances " +
+                  std::to_string(limits_.maxInstances) + "; raise --max-instances");
+      }
+      for (const PlacedPrimitive& placed : placedPrimitives) {
         scene_.instances.push_back({placed.geometry, worldFromNode, placed.material});
       }
     }
@@ -1164,13 +1309,13 @@ class GltfReader {
   void traverse(int root) {
     struct Frame {
       int node;
-      glm::mat4 worldFromNode;
+      glm::dmat4 worldFromNode;
       std::size_t nextChild;
     };
     std::vector<char> onPath(model_.nodes.size(), 0);
     std::vector<Frame> stack{{root, localTransform(root), 0}};
     onPath[static_cast<std::size_t>(root)] = 1;
-    visit(root, stack.back().worldFromNode);
+    visit(root, checkedWorld(root, stack.back().worldFromNode));
     while (!stack.empty()) {
       Frame& top = stack.back();
       const std::vector<int>& children = model_.nodes[static_cast<std::size_t>(top.node)].children;
@@ -1184,10 +1329,10 @@ class GltfReader {
         fail("node " + std::to_string(top.node) + " has child node " + std::to_string(child) +
              ", which is also its ancestor: the node graph has a cycle");
       }
-      const glm::mat4 worldFromChild = top.worldFromNode * localTransform(child);
+      const glm::dmat4 worldFromChild = top.worldFromNode * localTransform(child);
       onPath[static_cast<std::size_t>(child)] = 1;
       stack.push_back({child, worldFromChild, 0});  // invalidates `top`
-      visit(child, worldFromChild);
+      visit(child, checkedWorld(child, worldFromChild));
     }
   }
 
@@ -1196,6 +1341,9 @@ class GltfReader {
   tinygltf::Model& model_;
   std::string warnings_;
   Scene& scene_;
+  ResourceLimits limits_;
+  std::uint64_t decodedVertices_ = 0;
+  std::uint64_t decodedTriangles_ = 0;
   std::vector<tinygltf::Light> lights_;
   std::vector<int> parentOf_;
   std::map<int, std::vector<PlacedPrimitive>> meshCache_;
@@ -1240,7 +1388,7 @@ void parseWithTinygltf(tinygltf::Model& model, const std::vector<unsigned char>&
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, nullptr, &access});
   ImageDecoding decoding{&model, {}};
-  parser.SetImageLoader(&decodeImage, &decoding);
+  parser.SetImageLoader(&keepEncodedImage, &decoding);
   std::string errors;
   const std::string baseDir = access.assetFolder.string();
   const bool parsed =
@@ -1265,10 +1413,14 @@ void parseWithTinygltf(tinygltf::Model& model, const std::vector<unsigned char>&
 
 }  // namespace
 
-Scene loadGltf(const fs::path& path, const SceneLoadOptions& options) {
+Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const ResourceLimits& limits) {
   const std::string file = path.string();
   const std::string extension = lowercase(path.extension().string());
   const std::vector<unsigned char> bytes = readAssetBytes(path, file, extension);
+  // Before tinygltf: it recurses on nesting and lets some invalid values through.
+  const std::string_view json = gltf::jsonText(bytes, extension == ".glb", file);
+  gltf::checkNestingDepth(json, file);
+  gltf::checkStructure(json, file);
 
   FileAccess access;
   access.assetFolder = canonicalFolderOf(path);
@@ -1285,15 +1437,22 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options) {
   Scene scene;
   scene.source = file;
   scene.sourceHash = fingerprintHex(bytes.data(), bytes.size());
-  GltfReader(file, model, std::move(warnings), scene).read();
+  GltfReader(file, model, std::move(warnings), scene, limits).read();
+  checkSceneRanges(scene);
+  const std::uint64_t sceneBytes = estimateSceneBytes(scene);
+  if (sceneBytes > maxMemoryBytes(limits)) {
+    throw LimitError(file + ": the scene needs about " + std::to_string(sceneBytes >> 20) +
+                     " MiB, more than --max-memory allows (" + std::to_string(maxMemoryBytes(limits) >> 20) +
+                     " MiB); raise --max-memory");
+  }
   return scene;
 }
 
-Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options) {
+Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options, const ResourceLimits& limits) {
   if (nameOrPath.rfind(kBuiltinPrefix, 0) == 0) {
     return makeBuiltinScene(std::string_view(nameOrPath).substr(kBuiltinPrefix.size()));
   }
-  return loadGltf(nameOrPath, options);
+  return loadGltf(nameOrPath, options, limits);
 }
 
 }  // namespace headlight

@@ -45,4 +45,11 @@ class SettingsError : public Error {
   using Error::Error;
 };
 
-}  // namespace HEADLIGHT_PUBLIC
+// A scene or a render asks for more than a ResourceLimits allows (memory,
+// instances, triangles, texels). The message names the limit and its flag.
+class LimitError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace headlight

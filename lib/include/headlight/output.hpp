@@ -90,8 +90,9 @@ WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);
 float tonemapAces(float x);      // Narkowicz's fit of the ACES filmic curve
 float tonemapReinhard(float x);  // x / (1 + x)
 
-// The number of NaN and +-inf values in `image`.
-std::size_t countNonFinite(const ImageF& image);
+// NaN and inf are counted and refused (or clamped) per file by writeFrame;
+// headlight/finite.hpp checks a whole frame in memory (countNonFinite,
+// requireFinite) for callers that do not write files.
 
 // ---- frame sets (frame.json) ------------------------------------------------
 

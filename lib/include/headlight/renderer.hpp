@@ -16,6 +16,7 @@
 #include "headlight/context.hpp"
 #include "headlight/export.hpp"
 #include "headlight/frame.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/scene.hpp"
 #include "headlight/settings.hpp"
 
@@ -31,7 +32,14 @@ class Renderer {
 
   // Uploads the scene (a copy is kept for cameras, lights and bounds). A
   // scene without lights gets a default key light (a directional "sun").
+  // Throws SceneError for values where float rendering would not stay
+  // finite (checkSceneRanges) and LimitError for a scene over the limits.
   void setScene(Scene scene);
+
+  // What setScene and render may use (default: ResourceLimits{}, so
+  // --max-memory's auto). render() refuses an image size whose estimated
+  // memory (estimateFrameBytes) and the scene's do not fit, before allocating.
+  void setLimits(const ResourceLimits& limits);
   const Scene& scene() const;
 
   // Renders one frame of the scene. `camera` overrides settings.camera.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "headlight/export.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/scene.hpp"
 
 namespace headlight HEADLIGHT_PUBLIC {
@@ -19,11 +20,16 @@ struct SceneLoadOptions {
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
 // file. Throws SceneError naming the file, the element and the problem.
-Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options = {});
+// `limits` caps what the file may make the loader allocate (instances,
+// triangles, texels, memory); exceeding one throws LimitError.
+Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options = {}, const ResourceLimits& limits = {});
 
 // Reads a .gltf or .glb file. Every accessor, bufferView, index and image is
-// validated before it is read. Throws SceneError.
-Scene loadGltf(const std::filesystem::path& path, const SceneLoadOptions& options = {});
+// validated before it is read, the JSON's structure before anything is
+// decoded, and images last. Throws SceneError, or LimitError for a file that
+// asks for more than `limits` allow.
+Scene loadGltf(const std::filesystem::path& path, const SceneLoadOptions& options = {},
+               const ResourceLimits& limits = {});
 
 // The built-in scenes: "cornell" (the default) and "spheres". Throws
 // SceneError for an unknown name, listing the known ones.

@@ -1,0 +1,65 @@
+#pragma once
+// Resource limits: how much a scene file and a render may ask for before
+// anything is allocated. A file of a few kilobytes can otherwise claim
+// gigabytes (an accessor of count 2^31, a node tree listed 100,000 times,
+// 16384^2 textures); the loader and the renderer check these first and throw
+// LimitError naming the file, the element, the limit and the flag that raises it.
+//
+// Every field is a row of limitOptions() (the CLI's --max-memory, ...), with
+// in-class defaults; docs/RELIABILITY.md gives the measured costs behind them.
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "headlight/export.hpp"
+#include "headlight/options.hpp"
+#include "headlight/scene.hpp"
+
+namespace headlight HEADLIGHT_PUBLIC {
+
+struct ResourceLimits {
+  std::optional<std::int64_t> maxMemoryMiB;        // MiB, 64..2^30; auto: half of physical memory
+  std::int64_t maxInstances = 1'000'000;           // drawn mesh primitives (node x primitive), 1..2^31
+  std::int64_t maxTriangles = 10'000'000;          // decoded triangles, all primitives together, 1..2^31
+  std::int64_t maxTexels = std::int64_t(1) << 28;  // decoded texels, all images together (1 GiB as RGBA8)
+};
+
+// The rows: max-memory, max-instances, max-triangles, max-texels.
+std::span<const Option<ResourceLimits>> limitOptions();
+
+// Physical memory in bytes (sysconf), or 0 where it cannot be read.
+std::uint64_t physicalMemoryBytes();
+// maxMemoryMiB in bytes; auto is half of physical memory (8 GiB where unknown).
+std::uint64_t maxMemoryBytes(const ResourceLimits& limits);
+
+// Peak memory a render of width x height costs beyond the scene, in bytes:
+// kFrameBytesPerPixel per pixel (measured: docs/RELIABILITY.md) plus a fixed
+// base. An estimate for refusing sizes that cannot fit, not an accounting.
+inline constexpr std::uint64_t kFrameBytesPerPixel = 240;  // measured 227 (1024^2 to 2048^2), plus margin
+inline constexpr std::uint64_t kFrameBaseBytes = std::uint64_t(256)
+                                                 << 20;  // measured 245 MiB at 0 pixels (extrapolated)
+std::uint64_t estimateFrameBytes(int width, int height);
+
+// Throws LimitError when a width x height render plus `sceneBytes` would not
+// fit in maxMemoryBytes(limits); says the estimate and the flag to raise.
+void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const ResourceLimits& limits);
+
+// Where float rendering stays finite. Float holds 3.4e38; shading squares
+// distances and multiplies light by BRDF and area terms, so world
+// coordinates, transform entries, camera planes and extents stay within
+// 1e12, and light values (colour x intensity, emissive x strength, sky) too:
+// about 1e14 of headroom under float's range.
+inline constexpr double kMaxWorldMagnitude = 1e12;
+inline constexpr double kMaxLightValue = 1e12;
+
+// Throws SceneError "<scene.source>: <element> ..." for a value outside those
+// ranges or not finite: instance transforms and world bounds, cameras,
+// lights, emissive and base colour factors, the sky. loadGltf and
+// Renderer::setScene call it, so built and loaded scenes get the same rules.
+void checkSceneRanges(const Scene& scene);
+
+// Bytes the scene holds on the CPU and the GPU together (vertices, indices,
+// textures with mipmaps, instances); an estimate for --max-memory.
+std::uint64_t estimateSceneBytes(const Scene& scene);
+
+}  // namespace headlight

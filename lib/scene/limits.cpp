@@ -1,0 +1,206 @@
+#include "headlight/limits.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "headlight/error.hpp"
+
+namespace headlight {
+
+std::span<const Option<ResourceLimits>> limitOptions() {
+  using T = OptionType;
+  using L = ResourceLimits;
+  static const Option<L> rows[] = {
+      bindOption<L>(
+          {.name = "max-memory",
+           .type = T::Int,
+           .help = "MiB a render may use (scene, frame and textures); larger requests are refused up front",
+           .minimum = 64,
+           .maximum = double(std::int64_t(1) << 30),
+           .autoMeaning = "half of physical memory"},
+          [](auto& l) -> auto& { return l.maxMemoryMiB; }),
+      bindOption<L>(
+          {.name = "max-instances",
+           .type = T::Int,
+           .help = "most mesh primitives drawn (each node's use of each primitive counts)",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 31)},
+          [](auto& l) -> auto& { return l.maxInstances; }),
+      bindOption<L>(
+          {.name = "max-triangles",
+           .type = T::Int,
+           .help = "most triangles decoded from the scene file, all primitives together",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 31)},
+          [](auto& l) -> auto& { return l.maxTriangles; }),
+      bindOption<L>(
+          {.name = "max-texels",
+           .type = T::Int,
+           .help = "most texels decoded from the scene's images, all images together",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 34)},
+          [](auto& l) -> auto& { return l.maxTexels; }),
+  };
+  return rows;
+}
+
+std::uint64_t physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long pageSize = sysconf(_SC_PAGESIZE);
+  return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
+}
+
+std::uint64_t maxMemoryBytes(const ResourceLimits& limits) {
+  if (limits.maxMemoryMiB) return std::uint64_t(*limits.maxMemoryMiB) << 20;
+  const std::uint64_t physical = physicalMemoryBytes();
+  return physical > 0 ? physical / 2 : std::uint64_t(8) << 30;
+}
+
+std::uint64_t estimateFrameBytes(int width, int height) {
+  const std::uint64_t pixels = std::uint64_t(width > 0 ? width : 0) * std::uint64_t(height > 0 ? height : 0);
+  return kFrameBaseBytes + pixels * kFrameBytesPerPixel;
+}
+
+namespace {
+std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+}  // namespace
+
+void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const ResourceLimits& limits) {
+  const std::uint64_t frame = estimateFrameBytes(width, height);
+  const std::uint64_t limit = maxMemoryBytes(limits);
+  if (frame + sceneBytes > limit) {
+    throw LimitError("a " + std::to_string(width) + "x" + std::to_string(height) + " render needs about " +
+                     mib(frame + sceneBytes) + " (" + std::to_string(kFrameBytesPerPixel) + " bytes per pixel + " +
+                     mib(kFrameBaseBytes) + " + the scene's " + mib(sceneBytes) + "), more than --max-memory allows (" +
+                     mib(limit) + (limits.maxMemoryMiB ? "" : ", half of physical memory") +
+                     "); render smaller or raise --max-memory");
+  }
+}
+
+namespace {
+
+std::string number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+class RangeCheck {
+ public:
+  explicit RangeCheck(const Scene& scene) : scene_(scene) {}
+
+  void run() {
+    for (std::size_t index = 0; index < scene_.instances.size(); ++index) instance(index);
+    for (std::size_t index = 0; index < scene_.cameras.size(); ++index) camera(index);
+    for (std::size_t index = 0; index < scene_.lights.size(); ++index) light(index);
+    for (std::size_t index = 0; index < scene_.materials.size(); ++index) material(index);
+    const Sky& sky = scene_.sky;
+    for (const glm::vec3& radiance : {sky.zenith, sky.horizon, sky.ground}) {
+      lightValue(radiance * sky.intensity, "the sky", "radiance x intensity");
+    }
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& message) const { throw SceneError(scene_.source + ": " + message); }
+
+  void magnitude(double value, const std::string& element, const char* what) const {
+    if (!(std::abs(value) <= kMaxWorldMagnitude)) {
+      fail(element + " has " + what + " " + number(value) + ", expected a magnitude at most " +
+           number(kMaxWorldMagnitude) + " so that float rendering stays finite");
+    }
+  }
+
+  void matrix(const glm::mat4& m, const std::string& element, const char* what) const {
+    for (int column = 0; column < 4; ++column)
+      for (int row = 0; row < 4; ++row) magnitude(m[column][row], element, what);
+  }
+
+  void lightValue(const glm::vec3& value, const std::string& element, const char* what) const {
+    for (int channel = 0; channel < 3; ++channel) {
+      if (!(value[channel] >= 0.0f && value[channel] <= kMaxLightValue)) {
+        fail(element + " has " + what + " " + number(value[channel]) + " in channel " + std::to_string(channel) +
+             ", expected 0.." + number(kMaxLightValue) + " so that float rendering stays finite");
+      }
+    }
+  }
+
+  void instance(std::size_t index) const {
+    const Instance& instance = scene_.instances[index];
+    const std::string name = "instance " + std::to_string(index);
+    matrix(instance.worldFromLocal, name, "a world transform entry of");
+    if (instance.primitive < 0 || std::size_t(instance.primitive) >= scene_.primitives.size()) return;
+    const Bounds& bounds = scene_.primitives[std::size_t(instance.primitive)].bounds;
+    if (bounds.empty()) return;
+    const glm::dmat4 world(instance.worldFromLocal);
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::dvec3 local((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+                             (corner & 4) ? bounds.max.z : bounds.min.z);
+      const glm::dvec4 point = world * glm::dvec4(local, 1.0);
+      for (int axis = 0; axis < 3; ++axis)
+        magnitude(point[axis], name + " (primitive " + std::to_string(instance.primitive) + ")",
+                  "a world-space coordinate of");
+    }
+  }
+
+  void camera(std::size_t index) const {
+    const Camera& camera = scene_.cameras[index];
+    const std::string name = "camera " + std::to_string(index) + " '" + camera.name + "'";
+    matrix(camera.worldFromCamera, name, "a world transform entry of");
+    magnitude(camera.znear, name, "znear");
+    magnitude(camera.zfar, name, "zfar");
+    magnitude(camera.aspectRatio, name, "aspectRatio");
+    if (camera.projection == Camera::Projection::Perspective) {
+      if (!(camera.yfov > 0.0f && camera.yfov < 3.1415926f))
+        fail(name + " has yfov " + number(camera.yfov) + ", expected 0 < yfov < pi");
+    } else {
+      magnitude(camera.xmag, name, "xmag");
+      magnitude(camera.ymag, name, "ymag");
+    }
+  }
+
+  void light(std::size_t index) const {
+    const Light& light = scene_.lights[index];
+    const std::string name = "light " + std::to_string(index) + " '" + light.name + "'";
+    lightValue(light.color, name, "colour");
+    if (!(light.intensity >= 0.0f)) fail(name + " has intensity " + number(light.intensity) + ", expected >= 0");
+    lightValue(light.color * light.intensity, name, "colour x intensity");
+    magnitude(light.range, name, "range");
+    for (int axis = 0; axis < 3; ++axis) {
+      magnitude(light.position[axis], name, "a position coordinate of");
+      if (!std::isfinite(light.direction[axis])) fail(name + " has a non-finite direction");
+    }
+  }
+
+  void material(std::size_t index) const {
+    const Material& material = scene_.materials[index];
+    const std::string name = "material " + std::to_string(index) + " '" + material.name + "'";
+    lightValue(material.emissiveFactor, name, "emissive");
+    for (int channel = 0; channel < 4; ++channel) {
+      if (!std::isfinite(material.baseColorFactor[channel]))
+        fail(name + " has a non-finite baseColorFactor in channel " + std::to_string(channel));
+    }
+  }
+
+  const Scene& scene_;
+};
+
+}  // namespace
+
+void checkSceneRanges(const Scene& scene) { RangeCheck(scene).run(); }
+
+std::uint64_t estimateSceneBytes(const Scene& scene) {
+  std::uint64_t bytes = 0;
+  for (const Primitive& primitive : scene.primitives) {
+    bytes += primitive.positions.size() * sizeof(glm::vec3) + primitive.normals.size() * sizeof(glm::vec3) +
+             primitive.texcoords.size() * sizeof(glm::vec2) + primitive.tangents.size() * sizeof(glm::vec4) +
+             primitive.indices.size() * sizeof(std::uint32_t);
+  }
+  for (const ImageData& image : scene.images) bytes += image.rgba.size() * 4 / 3;  // with mipmaps on the GPU
+  bytes += scene.instances.size() * sizeof(Instance);
+  return bytes * 2;  // a CPU copy (the renderer keeps the scene) and the GPU's
+}
+
+}  // namespace headlight

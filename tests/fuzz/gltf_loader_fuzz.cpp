@@ -1,0 +1,41 @@
+// libFuzzer target for the glTF loader (issue 10). Each input is written to
+// a file (the loader reads paths) as .glb when it starts with the GLB magic,
+// else .gltf, and loaded with default limits. A SceneError or LimitError is
+// the expected answer to a bad file; anything else escaping, a crash or a
+// sanitizer report is a finding. Built and run by tools/fuzz.sh.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+
+namespace {
+std::string scratchPath(const char* extension) {
+  static const std::string base = "/tmp/headlight-fuzz-" + std::to_string(getpid());
+  return base + extension;
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+  const std::string path = scratchPath(binary ? ".glb" : ".gltf");
+  if (std::FILE* file = std::fopen(path.c_str(), "wb")) {
+    if (size > 0) std::fwrite(data, 1, size, file);
+    std::fclose(file);
+  } else {
+    return 0;
+  }
+  headlight::ResourceLimits limits;
+  limits.maxMemoryMiB = 512;  // a fuzzer process must stay small
+  limits.maxTexels = 1 << 22;
+  try {
+    (void)headlight::loadGltf(path, {}, limits);
+  } catch (const headlight::SceneError&) {
+  } catch (const headlight::LimitError&) {
+  }
+  return 0;
+}

@@ -1,0 +1,45 @@
+// Writes the fuzzer's seed corpus into the folder given: the hostile
+// suite's generated scenes (valid and mutated), as .gltf text and as GLB.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "hostile_inputs.hpp"
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: make-fuzz-seeds FOLDER\n";
+    return 2;
+  }
+  namespace hostile = headlight::test::hostile;
+  const std::filesystem::path folder = argv[1];
+  std::filesystem::create_directories(folder);
+  auto write = [&](const std::string& name, const std::string& bytes) {
+    std::ofstream(folder / name, std::ios::binary) << bytes;
+  };
+  nlohmann::json scene = hostile::triangleScene();
+  write("triangle.gltf", scene.dump());
+  const auto glb = hostile::glb(scene.dump(), {}, 2);
+  write("triangle.glb", std::string(glb.begin(), glb.end()));
+  write("light.gltf", hostile::withLight(scene, {1, 0.5, 0.25}, 10).dump());
+  nlohmann::json textured = scene;
+  textured["images"] = {{{"uri", hostile::kOnePixelPng}}};
+  textured["textures"] = {{{"source", 0}}};
+  textured["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  textured["meshes"][0]["primitives"][0]["material"] = 0;
+  write("textured.gltf", textured.dump());
+  nlohmann::json tree = scene;
+  tree["nodes"] = {
+      {{"children", {1, 2}}, {"scale", {2, 2, 2}}}, {{"mesh", 0}}, {{"mesh", 0}, {"translation", {1, 0, 0}}}};
+  tree["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+  tree["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 4}}});
+  tree["scenes"][0]["nodes"] = {0, 3};
+  write("tree.gltf", tree.dump());
+  // The positions in a GLB BIN chunk.
+  nlohmann::json binary = scene;
+  binary["buffers"][0].erase("uri");
+  const auto packed = hostile::glb(binary.dump(), hostile::trianglePositions(), 2);
+  write("binchunk.glb", std::string(packed.begin(), packed.end()));
+  std::cout << "seeds written to " << folder.string() << "\n";
+  return 0;
+}

@@ -1,0 +1,27 @@
+#pragma once
+// Generators of hostile glTF inputs, shared by the hostile suite and the
+// fuzzer's seed corpus (tests/fuzz/make_seeds.cpp): a small valid scene to
+// mutate, deep JSON, GLB containers. Nothing large is stored in the tree.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace headlight::test::hostile {
+
+// A 1x1 RGBA PNG as a data URI.
+inline constexpr const char* kOnePixelPng =
+    "data:image/"
+    "png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNkYPhfDwAChwGA60e6kgAAAABJRU5ErkJggg==";
+
+// Three float VEC3 positions of one triangle facing +Z (36 bytes).
+std::vector<unsigned char> trianglePositions();
+// A valid glTF 2.0 scene: one triangle in an embedded buffer, one node.
+nlohmann::json triangleScene();
+// `document` with a KHR_lights_punctual point light on a new root node.
+nlohmann::json withLight(nlohmann::json document, const std::vector<double>& color, double intensity);
+// "[[[...]]]" nested `depth` levels.
+std::string nestedArrays(int depth);
+// A GLB container of the JSON text (padded) and an optional BIN chunk.
+std::vector<unsigned char> glb(const std::string& json, const std::vector<unsigned char>& bin, std::uint32_t version);
+
+}  // namespace headlight::test::hostile

@@ -1,0 +1,266 @@
+// Hostile inputs (issue 10): files made to crash, exhaust or fool the
+// loader and the renderer. Each is generated here, run through the CLI and
+// must give exit 1, a message naming the file, the element and the rule, and
+// no output; the limits a user sets are checked through the library.
+#include <doctest/doctest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "headlight/error.hpp"
+#include "headlight/finite.hpp"
+#include "headlight/limits.hpp"
+#include "headlight/scene_loader.hpp"
+#include "hostile_inputs.hpp"
+#include "support/encoding.hpp"
+#include "support/process.hpp"
+#include "support/temp_folder.hpp"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace headlight;
+using namespace headlight::test;
+
+namespace {
+
+std::string quote(const fs::path& path) { return shellQuote(path.string()); }
+
+bool folderEmptyOrAbsent(const fs::path& folder) { return !fs::exists(folder) || fs::is_empty(folder); }
+
+// Runs `render` on the file and checks exit 1, the file named, each
+// fragment present and nothing written.
+void expectRefused(const fs::path& scene, const std::vector<std::string>& fragments, const std::string& extra = "") {
+  const fs::path out = scene.parent_path() / "out";
+  const ProcessResult run =
+      runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find(scene.string()) != std::string::npos);
+  for (const std::string& fragment : fragments) CHECK(run.output.find(fragment) != std::string::npos);
+  CHECK(folderEmptyOrAbsent(out));
+}
+
+fs::path writeGltf(const TempFolder& folder, const json& document, const std::string& name = "scene.gltf") {
+  return folder.write(name, document.dump());
+}
+
+}  // namespace
+
+TEST_SUITE("hostile") {
+  TEST_CASE("the generated base scene renders (so each refusal below is the mutation's)") {
+    TempFolder folder("hostile");
+    const fs::path scene = writeGltf(folder, hostile::triangleScene());
+    const ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
+  }
+
+  TEST_CASE("JSON nested 20,000 levels in extras or extensions is refused before tinygltf parses it") {
+    TempFolder folder("hostile");
+    for (const char* where : {"extras", "extensions"}) {
+      json document = hostile::triangleScene();
+      document["nodes"][0][where] = json::object();
+      std::string text = document.dump();
+      const std::string marker = std::string("\"") + where + "\":{}";
+      const auto at = text.find(marker);
+      REQUIRE(at != std::string::npos);
+      text.replace(at, marker.size(), std::string("\"") + where + "\":" + hostile::nestedArrays(20000));
+      CAPTURE(where);
+      expectRefused(folder.write(std::string(where) + ".gltf", text), {"nests deeper than 64 levels"});
+    }
+    // The same in a GLB's JSON chunk.
+    std::string text = hostile::triangleScene().dump();
+    text.insert(text.size() - 1, ",\"extras\":" + hostile::nestedArrays(20000));
+    expectRefused(folder.write("deep.glb", hostile::glb(text, {}, 2)), {"nests deeper than 64 levels"});
+  }
+
+  TEST_CASE("transforms, light colours and cameras that overflow float are refused, naming the element") {
+    TempFolder folder("hostile");
+    {
+      json document = hostile::triangleScene();
+      document["nodes"][0]["translation"] = {1e39, 0, 0};
+      expectRefused(writeGltf(folder, document, "translation.gltf"), {"node 0", "world transform entry", "1e+39"});
+    }
+    {
+      json document = hostile::triangleScene();  // nested 1e20 x 1e20: each node alone is already too large
+      document["nodes"] = json::array(
+          {{{"scale", {1e20, 1e20, 1e20}}, {"children", {1}}}, {{"scale", {1e20, 1e20, 1e20}}, {"mesh", 0}}});
+      expectRefused(writeGltf(folder, document, "scales.gltf"), {"node 0", "world transform entry"});
+    }
+    {
+      json document = hostile::triangleScene();  // 1e6 x 1e6 per node: only the product is too large
+      document["nodes"] =
+          json::array({{{"scale", {1e7, 1e7, 1e7}}, {"children", {1}}}, {{"scale", {1e7, 1e7, 1e7}}, {"mesh", 0}}});
+      expectRefused(writeGltf(folder, document, "product.gltf"), {"node 1", "its own and its ancestors'"});
+    }
+    {
+      json document = hostile::withLight(hostile::triangleScene(), {1e39, 1, 1}, 1.0);
+      expectRefused(writeGltf(folder, document, "light.gltf"), {"light 0", "colour", "channel 0"});
+    }
+    {
+      json document = hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 1e30);
+      expectRefused(writeGltf(folder, document, "intensity.gltf"), {"light 0", "colour x intensity"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}}}}};
+      document["nodes"].push_back({{"camera", 0}, {"scale", {1e20, 1e20, 1e20}}, {"translation", {0, 0, 3}}});
+      document["scenes"][0]["nodes"].push_back(1);
+      expectRefused(writeGltf(folder, document, "camera.gltf"), {"node 1", "world transform entry"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["nodes"][0]["scale"] = {1e19, 1e19, 1e19};
+      expectRefused(writeGltf(folder, document, "nocamera.gltf"), {"node 0", "world transform entry"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["cameras"] = {
+          {{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.1}, {"zfar", 1e39}}}}};
+      document["nodes"].push_back({{"camera", 0}, {"translation", {0, 0, 3}}});
+      document["scenes"][0]["nodes"].push_back(1);
+      expectRefused(writeGltf(folder, document, "zfar.gltf"), {"camera 0", "zfar"});
+    }
+  }
+
+  TEST_CASE("small files that ask for huge allocations are refused before allocating") {
+    TempFolder folder("hostile");
+    {
+      json document = hostile::triangleScene();
+      document["accessors"][0].erase("bufferView");
+      document["accessors"][0]["count"] = std::int64_t(1) << 31;
+      expectRefused(writeGltf(folder, document, "count31.gltf"), {"accessor 0", "--max-triangles"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["accessors"][0].erase("bufferView");
+      document["accessors"][0]["count"] = 3 * (std::int64_t(1) << 24);
+      expectRefused(writeGltf(folder, document, "count24.gltf"), {"accessor 0", "--max-triangles"});
+    }
+    {
+      json document = hostile::triangleScene();  // a 1,000-node chain, its root listed 100,000 times
+      document["nodes"] = json::array();
+      for (int node = 0; node < 1000; ++node) {
+        json entry = {{"mesh", 0}};
+        if (node + 1 < 1000) entry["children"] = {node + 1};
+        document["nodes"].push_back(entry);
+      }
+      document["scenes"][0]["nodes"] = std::vector<int>(100000, 0);
+      expectRefused(writeGltf(folder, document, "roots.gltf"), {"scene 0", "lists node 0 more than once"});
+    }
+    {
+      // 2,000 images that cannot be decoded and one structural error: the
+      // structural error is reported, so no image was decoded before it.
+      json document = hostile::triangleScene();
+      document["images"] = json::array();
+      for (int image = 0; image < 2000; ++image) {
+        document["images"].push_back({{"uri", "data:image/png;base64,AAAA"}});
+      }
+      document["meshes"][0]["primitives"][0]["mode"] = 1;
+      expectRefused(writeGltf(folder, document, "images.gltf"), {"mesh 0 primitive 0", "only TRIANGLES"});
+    }
+  }
+
+  TEST_CASE("invalid values tinygltf would accept are refused, naming the rule") {
+    TempFolder folder("hostile");
+    {
+      json document = hostile::triangleScene();
+      document["asset"]["version"] = "3.0";
+      expectRefused(writeGltf(folder, document, "version.gltf"), {"asset.version", "\"3.0\"", "glTF 2.x"});
+    }
+    expectRefused(folder.write("v1.glb", hostile::glb(hostile::triangleScene().dump(), {}, 1)),
+                  {"GLB header version is 1", "expected 2"});
+    {
+      json document = hostile::triangleScene();
+      document["bufferViews"][0]["byteOffset"] = -4;
+      expectRefused(writeGltf(folder, document, "viewoffset.gltf"),
+                    {"bufferView 0 byteOffset is -4", "expected an integer"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["accessors"][0]["byteOffset"] = -4;
+      expectRefused(writeGltf(folder, document, "accoffset.gltf"), {"accessor 0 byteOffset is -4"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["accessors"][0]["byteOffset"] = "12";
+      expectRefused(writeGltf(folder, document, "stringoffset.gltf"), {"accessor 0 byteOffset is \"12\" (a string)"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["bufferViews"][0]["byteStride"] = -12;
+      expectRefused(writeGltf(folder, document, "stride.gltf"), {"bufferView 0 byteStride is -12"});
+    }
+    {
+      json document = hostile::triangleScene();
+      document["accessors"][0]["bufferView"] = -5;
+      expectRefused(writeGltf(folder, document, "negindex.gltf"), {"accessor 0 bufferView is -5"});
+    }
+  }
+
+  TEST_CASE("absolute URIs: refused naming the rule, and loaded with --allow-external-paths") {
+    TempFolder folder("hostile");
+    TempFolder elsewhere("hostile-external");
+    const fs::path buffer = elsewhere.write("triangle.bin", hostile::trianglePositions());
+    json document = hostile::triangleScene();
+    document["buffers"][0]["uri"] = buffer.string();
+    const fs::path scene = writeGltf(folder, document);
+    expectRefused(scene, {"outside the asset folder", "pass --allow-external-paths"});
+
+    const ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --allow-external-paths --width 32 --height 24 --out " +
+                     quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
+  }
+
+  TEST_CASE("limits a user sets: triangles, instances and texels") {
+    TempFolder folder("hostile");
+    const fs::path scene = writeGltf(folder, hostile::triangleScene());
+    ResourceLimits limits;
+    CHECK_NOTHROW(loadGltf(scene, {}, limits));
+    limits.maxTriangles = 0;  // below the row's minimum, but the struct takes it: no triangle fits
+    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("--max-triangles"), LimitError);
+    limits = {};
+    limits.maxInstances = 0;
+    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("--max-instances"), LimitError);
+
+    json textured = hostile::triangleScene();
+    textured["images"] = {{{"uri", hostile::kOnePixelPng}}, {{"uri", hostile::kOnePixelPng}}};
+    const fs::path texturedScene = writeGltf(folder, textured, "textured.gltf");
+    limits = {};
+    CHECK(loadGltf(texturedScene, {}, limits).images.size() == 2);
+    limits.maxTexels = 1;
+    CHECK_THROWS_WITH_AS(loadGltf(texturedScene, {}, limits), doctest::Contains("image 1"), LimitError);
+
+    limits = {};
+    limits.maxMemoryMiB = 64;
+    CHECK_NOTHROW(checkFrameFits(64, 64, 0, ResourceLimits{}));
+    CHECK_THROWS_WITH_AS(checkFrameFits(8192, 8192, 0, limits), doctest::Contains("--max-memory"), LimitError);
+  }
+
+  TEST_CASE("finite checks count, name and clamp non-finite values") {
+    Frame frame;
+    frame.sceneSource = "test.gltf";
+    frame.depth = ImageF{2, 1, {"depth.Z"}, {1.0f, std::numeric_limits<float>::quiet_NaN()}};
+    frame.lit = ImageF{1, 1, {"R", "G", "B", "A"}, {std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 1.0f}};
+    const std::vector<TargetNonFinite> counts = countNonFinite(frame);
+    REQUIRE(counts.size() == 2);
+    CHECK(counts[0].target == "depth");
+    CHECK(counts[0].count == 1);
+    CHECK(counts[0].firstX == 1);
+    CHECK(counts[0].firstChannel == "depth.Z");
+    CHECK(counts[1].count == 1);
+    CHECK_THROWS_WITH_AS(requireFinite(frame), doctest::Contains("depth 1 of 2 (first at 1,0 depth.Z)"),
+                         NonFiniteError);
+    CHECK(clampNonFinite(frame) == 2);
+    CHECK_NOTHROW(requireFinite(frame));
+  }
+}
