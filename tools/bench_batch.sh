@@ -7,7 +7,7 @@
 #   tools/bench_batch.sh            # from the source root, after ninja -C build
 #   RUNS=3 VIEWS=20 tools/bench_batch.sh   # quicker, noisier
 #
-# Needs: hyperfine, f3d, xvfb-run (Debian packages; tools/debian-packages.txt).
+# Needs: hyperfine, f3d, xvfb-run (Debian packages; tools/debian-packages-bench.txt).
 set -euo pipefail
 HEADLIGHT=${HEADLIGHT:-build/headlight}
 RUNS=${RUNS:-7}
