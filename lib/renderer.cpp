@@ -111,7 +111,7 @@ struct Renderer::Impl {
 
   // Which targets a frame needs besides the G-buffer, direct light and lit.
   struct TargetNeeds {
-    bool directDiffuse;  // SSGI on with the radiance method
+    bool directDiffuse;  // SSGI on with the radiance or bitmask method
     bool ssgi;           // SSGI on
     bool ssgiRaw;        // SSGI on with the blur
     int ssgiDownsample;  // the raw SSGI's divisor
@@ -250,8 +250,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.shadowMapSize = 0;
   // The default settings' variants, so the first frame times shading, not compiling.
   const RenderSettings defaults;
-  impl.directLight.prepare(DirectLightPass::variantFor(
-      impl.gpuScene->hasEmissive, countShadowCasters(impl.scene.lights), defaults.ssgi.method == SsgiMethod::Radiance));
+  impl.directLight.prepare(DirectLightPass::variantFor(impl.gpuScene->hasEmissive,
+                                                       countShadowCasters(impl.scene.lights),
+                                                       defaults.ssgi.method != SsgiMethod::Hemisphere));
   impl.ssgi.prepare(defaults.ssgi.method);
   impl.composite.prepare(true);
   impl.context.checkErrors("uploading " + impl.scene.source);
@@ -267,6 +268,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
   if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
   if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
+  if (!used.ssgi.thickness) used.ssgi.thickness = SsgiSettings::kAutoThicknessFraction * *used.ssgi.radius;
   if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
   if (!used.lighting.skyIntensity) used.lighting.skyIntensity = impl_->scene.sky.intensity;
   if (!used.ssgi.indirectStrength)
@@ -296,13 +298,16 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   ssgiInputs.intensity = used.ssgi.intensity;
   ssgiInputs.indirectStrength = *used.ssgi.indirectStrength;
   ssgiInputs.downsample = ssgiDivisor(used.ssgi.resolution);
+  ssgiInputs.sliceCount = used.ssgi.sliceCount;
+  ssgiInputs.stepCount = used.ssgi.stepCount;
+  ssgiInputs.thicknessWorld = *used.ssgi.thickness;
   const bool shadows = used.lighting.shadows;
   const int shadowMapSize = *used.lighting.shadowMapSize;
   const float skyIntensity = *used.lighting.skyIntensity;
   const float pcfRadius = used.lighting.pcfRadius;
 
   impl.ensureTargets(used.width, used.height,
-                     {ssgiOn && ssgiInputs.method == SsgiMethod::Radiance, ssgiOn, ssgiBlur, ssgiInputs.downsample});
+                     {ssgiOn && ssgiInputs.method != SsgiMethod::Hemisphere, ssgiOn, ssgiBlur, ssgiInputs.downsample});
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 

@@ -124,7 +124,8 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   CHECK(message({"--bogus"}).find("unknown option '--bogus'") != std::string::npos);
   CHECK(message({"--width"}) == "--width needs a value (N)");
   CHECK(message({"--backend", "vulkan"}).find("expected one of auto, egl, osmesa") != std::string::npos);
-  CHECK(message({"--ssgi-method", "bitmask"}) == "--ssgi-method: expected one of hemisphere, radiance, got 'bitmask'");
+  CHECK(message({"--ssgi-method", "horizon"}) ==
+        "--ssgi-method: expected one of hemisphere, radiance, bitmask, got 'horizon'");
   CHECK(message({"--reference-samples", "8"}).find("unknown option") != std::string::npos);  // reference only
   CHECK(message({"a.glb", "b.glb"}).find("more than one scene") != std::string::npos);
   CHECK(message({"--no-ssgi=1"}) == "--no-ssgi takes no value");

@@ -11,7 +11,7 @@ namespace headlight {
 namespace {
 
 // Choice names, in the order of the enums' enumerators.
-constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance"};
+constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance", "bitmask"};
 constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
 constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
 constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
@@ -48,7 +48,9 @@ const std::vector<Row>& table() {
       row(
           {.name = "ssgi-method",
            .type = T::Choice,
-           .help = "SSGI indirect term: the seed's occluder albedo (hemisphere) or occluders' direct light (radiance)",
+           .help =
+               "SSGI method: the seed's kernel with occluder albedo (hemisphere), the same kernel gathering occluders' "
+               "direct light (radiance), or screen-space slices with a visibility bitmask (bitmask)",
            .choices = kSsgiMethodNames},
           [](auto& s) -> auto& { return s.ssgi.method; }),
       row(
@@ -58,6 +60,27 @@ const std::vector<Row>& table() {
            .minimum = 1,
            .maximum = gpu::kMaxKernelSamples},
           [](auto& s) -> auto& { return s.ssgi.sampleCount; }),
+      row(
+          {.name = "ssgi-slices",
+           .type = T::Int,
+           .help = "bitmask SSGI: screen-space directions per pixel (each also marched the opposite way)",
+           .minimum = 1,
+           .maximum = 32},
+          [](auto& s) -> auto& { return s.ssgi.sliceCount; }),
+      row(
+          {.name = "ssgi-steps",
+           .type = T::Int,
+           .help = "bitmask SSGI: depth samples per direction out to the radius's footprint on screen",
+           .minimum = 1,
+           .maximum = 64},
+          [](auto& s) -> auto& { return s.ssgi.stepCount; }),
+      row(
+          {.name = "ssgi-thickness",
+           .type = T::Float,
+           .help = "bitmask SSGI: how deep every visible surface is taken to be, world units",
+           .maximum = 1e9,
+           .autoMeaning = "half the SSGI radius"},
+          [](auto& s) -> auto& { return s.ssgi.thickness; }),
       row(
           {.name = "ssgi-radius",
            .type = T::Float,

@@ -19,6 +19,7 @@ namespace headlight {
 enum class SsgiMethod {
   Hemisphere,  // the seed's: indirect = occluders' albedo x range weight (not light)
   Radiance,    // the same occlusion test, gathering the occluders' direct Lambertian radiance
+  Bitmask,     // screen-space slices with a 32-sector visibility mask (docs/ACCURACY.md §3.3)
 };
 
 // The resolution the SSGI pass runs at; below full, the blur pass is also a
@@ -44,9 +45,16 @@ struct SsgiSettings {
   unsigned seed = 1;  // kernel and noise random seed (fixed: renders are repeatable)
   bool blur = true;   // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
   SsgiResolution resolution = SsgiResolution::Full;
+  // The bitmask method's: directions per pixel, depth samples per direction
+  // and side, and the depth assumed behind every visible surface (world
+  // units; auto: kAutoThicknessFraction x radius).
+  int sliceCount = 2;
+  int stepCount = 8;
+  std::optional<float> thickness;
 
   // The seed's ratio of bias to radius (0.025 / 0.5).
   static constexpr float kAutoBiasFraction = 0.05f;
+  static constexpr float kAutoThicknessFraction = 0.5f;
 };
 
 struct LightingSettings {
@@ -75,7 +83,7 @@ struct RenderSettings {
 // The one table: every user-settable field of RenderSettings, in help order.
 std::span<const Option<RenderSettings>> settingOptions();
 
-std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance" (the table's choice names)
+std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance", "bitmask" (the table's choice names)
 
 // Every setting as text, by row name ("ssgi-radius" -> "0.52"): what the EXR
 // metadata records (as headlight:setting:<name>) and bench rows carry.

@@ -1,0 +1,33 @@
+#include "passes/ssgi_bitmask.hpp"
+
+#include "shared_layout.h"
+
+namespace headlight {
+
+SsgiBitmaskPass::SsgiBitmaskPass()
+    : program_(buildFullscreenProgram("ssgi_bitmask.frag")),
+      block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
+
+void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& output) {
+  gpu::SsgiBitmaskBlock block{};
+  block.radiusWorld = inputs.radiusWorld;
+  block.thicknessWorld = inputs.thicknessWorld;
+  block.intensity = inputs.intensity;
+  block.indirectStrength = inputs.indirectStrength;
+  block.sliceCount = inputs.sliceCount;
+  block.stepCount = inputs.stepCount;
+  block.downsample = inputs.downsample;
+  block.frameIndex = inputs.frameIndex;
+  block_.update(block);
+  block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
+  const GBuffer& gbuffer = inputs.gbuffer;
+  gbuffer.depth.bind(gpu::kUnitGbufferDepth);
+  gbuffer.normal.bind(gpu::kUnitGbufferNormal);
+  gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
+  gbuffer.material.bind(gpu::kUnitGbufferMaterial);
+  inputs.directDiffuse.bind(gpu::kUnitDirectDiffuse);
+  // Background pixels are discarded and keep the clear value: open, no light.
+  draw_.draw("SSGI bitmask", program_, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+}
+
+}  // namespace headlight
