@@ -8,6 +8,7 @@
 #include <chrono>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
@@ -65,6 +66,28 @@ Light defaultKeyLight() {
   light.intensity = 3.0f;
   light.castsShadows = true;
   return light;
+}
+
+// The bitmask SSGI's auto thickness: how deep the scene's objects typically
+// are behind what the camera sees, taken as 2/3 of the median over
+// instances of the smallest side of their world bounds (2/3: a sphere's mean
+// depth over its outline is 2/3 of its diameter). Flat instances (a side under 1e-3 of the scene's diagonal:
+// walls, floors) say nothing about depth and are left out. Held within
+// [kAutoThicknessFraction / 10, 1] x the radius, and
+// kAutoThicknessFraction x radius when every instance is flat.
+float autoThickness(const Scene& scene, float diagonal, float radius) {
+  std::vector<float> depths;
+  for (const Instance& instance : scene.instances) {
+    const Bounds bounds = scene.primitives[std::size_t(instance.primitive)].bounds.transformed(instance.worldFromLocal);
+    if (bounds.empty()) continue;
+    const glm::vec3 size = bounds.max - bounds.min;
+    const float smallest = std::min({size.x, size.y, size.z});
+    if (smallest > 1e-3f * diagonal) depths.push_back(smallest);
+  }
+  if (depths.empty()) return SsgiSettings::kAutoThicknessFraction * radius;
+  std::nth_element(depths.begin(), depths.begin() + std::ptrdiff_t(depths.size() / 2), depths.end());
+  return std::clamp(depths[depths.size() / 2] * (2.0f / 3.0f), 0.1f * SsgiSettings::kAutoThicknessFraction * radius,
+                    radius);
 }
 
 gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
@@ -268,7 +291,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
   if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
   if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
-  if (!used.ssgi.thickness) used.ssgi.thickness = SsgiSettings::kAutoThicknessFraction * *used.ssgi.radius;
+  if (!used.ssgi.thickness) used.ssgi.thickness = autoThickness(impl_->scene, diagonal, *used.ssgi.radius);
   if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
   if (!used.lighting.skyIntensity) used.lighting.skyIntensity = impl_->scene.sky.intensity;
   if (!used.ssgi.indirectStrength)

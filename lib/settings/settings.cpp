@@ -79,7 +79,8 @@ const std::vector<Row>& table() {
            .type = T::Float,
            .help = "bitmask SSGI: how deep every visible surface is taken to be, world units",
            .maximum = 1e9,
-           .autoMeaning = "half the SSGI radius"},
+           .autoMeaning = "2/3 of the median over objects of their bounds' smallest side, flat ones left out, within "
+                          "0.05..1 x the radius (half the radius if all are flat)"},
           [](auto& s) -> auto& { return s.ssgi.thickness; }),
       row(
           {.name = "ssgi-radius",

@@ -47,9 +47,9 @@ struct SsgiSettings {
   SsgiResolution resolution = SsgiResolution::Full;
   // The bitmask method's: directions per pixel, depth samples per direction
   // and side, and the depth assumed behind every visible surface (world
-  // units; auto: kAutoThicknessFraction x radius).
+  // units; auto: the scene's objects' typical depth, Renderer::resolve).
   int sliceCount = 2;
-  int stepCount = 8;
+  int stepCount = 16;
   std::optional<float> thickness;
 
   // The seed's ratio of bias to radius (0.025 / 0.5).
