@@ -119,7 +119,7 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, 8)
   int sliceCount;           // screen-space directions per pixel (each with its opposite)
   int stepCount;            // depth samples per direction
   int downsample;           // resolution divisor of the SSGI target: 1, 2 or 4
-  int frameIndex;           // rotates slice directions and step jitter between accumulated frames
+  int rotationIndex;        // the seed + the accumulated frame's index: rotates slice directions and step jitter
 HL_BLOCK_END(bitmask)
 
 // SSGI blur pass.

@@ -45,10 +45,13 @@ vec3 viewPositionAt(ivec2 pixel, float depth) {
 // lie in the slice's plane; a pixel centre up to half a pixel off it would
 // put an open plane's own points above its horizon at grazing angles.
 // A grazing floor moves far in depth over half a pixel: the meeting point
-// may be many pixels' lateral size away. Where the plane is within 0.6 degrees
-// of edge-on to the ray, or the meeting point is more than 32 pixels' size
-// from the centre's point, the pixel centre's point is kept.
-vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal) {
+// may be many pixels' lateral size away. Where it is more than 32 pixels'
+// size from the centre's point (a curved surface seen edge-on), the pixel
+// centre's point is kept. Where the plane is within 0.6 degrees of edge-on
+// to the ray, no point is known: `known` is false and the sample is
+// skipped (such a surface covers next to nothing on screen).
+vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal, out bool known) {
+  known = true;
   const vec3 centre = viewPositionAt(pixel, depth);
   const vec2 ndc = windowPoint * frame.viewport.zw * 2.0 - 1.0;
   const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
@@ -56,13 +59,19 @@ vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal) 
   vec3 onRay;
   if (orthographic()) {
     const vec2 xy = (ndc - vec2(frame.projection[3][0], frame.projection[3][1])) / scale;
-    if (abs(pixelNormal.z) < 0.01) return centre;
+    if (abs(pixelNormal.z) < 0.01) {
+      known = false;
+      return centre;
+    }
     onRay = vec3(xy, centre.z - dot(pixelNormal.xy, xy - centre.xy) / pixelNormal.z);
   } else {
     // The view-space point of the ray at z = -1.
     const vec3 direction = vec3((ndc + vec2(frame.projection[2][0], frame.projection[2][1])) / scale, -1.0);
     const float facing = dot(pixelNormal, direction);
-    if (abs(facing) < 0.01 * length(direction)) return centre;
+    if (abs(facing) < 0.01 * length(direction)) {
+      known = false;
+      return centre;
+    }
     onRay = direction * (dot(pixelNormal, centre) / facing);
   }
   return distance(onRay, centre) < 32.0 * pixelSize ? onRay : centre;
@@ -99,10 +108,10 @@ void main() {
   const float radiusPixels = radius * pixelsPerUnit;
 
   const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
-  // Accumulated frames turn both by irrational steps (R2 sequence).
-  const float frameIndex = float(bitmask.frameIndex);
-  const float rotation = fract((float(bayer) + 0.5) / 16.0 + 0.7548777 * frameIndex);
-  const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + 0.5698403 * frameIndex);
+  // The seed and accumulated frames turn both by irrational steps (R2 sequence).
+  const float rotationIndex = float(bitmask.rotationIndex);
+  const float rotation = fract((float(bayer) + 0.5) / 16.0 + 0.7548777 * rotationIndex);
+  const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + 0.5698403 * rotationIndex);
 
   const int sliceCount = bitmask.sliceCount, stepCount = bitmask.stepCount;
   float visibleSum = 0.0, totalSum = 0.0;
@@ -146,7 +155,9 @@ void main() {
         const float sampleDepth = texelFetch(gbufferDepth, samplePixel, 0).r;
         if (sampleDepth >= 1.0) continue;  // background never occludes
         const vec3 sampleNormal = mat3(frame.view) * texelFetch(gbufferNormal, samplePixel, 0).xyz;
-        const vec3 front = surfaceOnRay(samplePoint, samplePixel, sampleDepth, sampleNormal);
+        bool known;
+        const vec3 front = surfaceOnRay(samplePoint, samplePixel, sampleDepth, sampleNormal, known);
+        if (!known) continue;
         const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
         // The slab front..back, cut to the sphere of radius R about the point.
         const vec3 offsetFront = front - position;

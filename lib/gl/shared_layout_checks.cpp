@@ -22,7 +22,7 @@ static_assert(offsetof(SsgiBlock, downsample) == kMaxKernelSamples * 16 + 20);
 static_assert(sizeof(SsgiBitmaskBlock) == 32);
 static_assert(offsetof(SsgiBitmaskBlock, indirectStrength) == 12);
 static_assert(offsetof(SsgiBitmaskBlock, sliceCount) == 16);
-static_assert(offsetof(SsgiBitmaskBlock, frameIndex) == 28);
+static_assert(offsetof(SsgiBitmaskBlock, rotationIndex) == 28);
 static_assert(sizeof(LightingBlock) == 32);
 static_assert(offsetof(LightingBlock, pcfRadius) == 8);
 static_assert(offsetof(LightingBlock, shadowNormalOffset) == 12);

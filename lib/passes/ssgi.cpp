@@ -83,7 +83,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
     bitmaskInputs.sliceCount = inputs.sliceCount;
     bitmaskInputs.stepCount = inputs.stepCount;
     bitmaskInputs.downsample = inputs.downsample;
-    bitmaskInputs.frameIndex = inputs.frameIndex;
+    bitmaskInputs.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
     bitmask_->run(bitmaskInputs, output);
     return;
   }

@@ -17,7 +17,7 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& ou
   block.sliceCount = inputs.sliceCount;
   block.stepCount = inputs.stepCount;
   block.downsample = inputs.downsample;
-  block.frameIndex = inputs.frameIndex;
+  block.rotationIndex = inputs.rotationIndex;
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   const GBuffer& gbuffer = inputs.gbuffer;

@@ -23,7 +23,7 @@ struct SsgiBitmaskInputs {
   int sliceCount = 0;                // directions per pixel, >= 1
   int stepCount = 0;                 // depth samples per direction and side, >= 1
   int downsample = 1;                // 1, 2 or 4
-  int frameIndex = 0;                // rotates slices and step jitter for accumulation, >= 0
+  int rotationIndex = 0;             // rotates slices and step jitter (the seed + the frame index), >= 0
 };
 
 class SsgiBitmaskPass {
