@@ -255,10 +255,13 @@ TEST_CASE("SSGI at half and quarter resolution, upsampled by the blur, stays clo
           difference += std::abs(full.ssgi.at(x, y, 0) - reduced.ssgi.at(x, y, 0));
           ++count;
         }
-    // Measured 0.012 (half) and 0.023 (quarter) mean AO difference on llvmpipe; the
-    // bound leaves room for other rasterisers.
+    // Measured mean AO difference on llvmpipe, the default (bitmask) method:
+    // 0.029 (half) and 0.070 (quarter: a 4x4 noise tile then spans 16 pixels
+    // and the upsample averages 2 of them across a 4x4 raw footprint); the
+    // hemisphere method's were 0.012 and 0.023. The bounds leave room for
+    // other rasterisers.
     MESSAGE("mean AO difference " << difference / count);
-    CHECK(difference / count < 0.04);
+    CHECK(difference / count < (divisor == 2 ? 0.04 : 0.09));
   }
   settings.ssgi.blur = false;
   CHECK_THROWS_AS(renderer.render(settings), SettingsError);  // the blur is the upsample

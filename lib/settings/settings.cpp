@@ -198,24 +198,27 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi = defaults.ssgi;
     settings.lighting = defaults.lighting;
   } else if (preset == "fast") {
-    // On the bench's front for lit error at about half the seed's time
-    // (docs/BENCHMARKS.md): the radiance method, 16 samples, SSGI at half
-    // resolution.
-    settings.ssgi.method = SsgiMethod::Radiance;
-    settings.ssgi.sampleCount = 16;
+    // The bitmask method's cheapest point on the bench's front within the
+    // AO target (docs/BENCHMARKS.md): 1 slice of 8 steps at half resolution.
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.sliceCount = 1;
+    settings.ssgi.stepCount = 8;
     settings.ssgi.resolution = SsgiResolution::Half;
     settings.ssgi.blur = true;
     settings.lighting.shadowMapSize = 1024;
     settings.lighting.pcfRadius = 1.0f;
   } else if (preset == "high") {
-    settings.ssgi.method = SsgiMethod::Radiance;
-    settings.ssgi.sampleCount = 64;
-    settings.ssgi.resolution = SsgiResolution::Full;
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.sliceCount = 4;
+    settings.ssgi.stepCount = 24;
     settings.lighting.shadowMapSize = 4096;
     settings.lighting.pcfRadius = 2.0f;
   } else if (preset == "seed") {
-    // The seed spec's numbers, for scenes of the size it was written for.
+    // The seed spec's method and numbers, for scenes of the size it was
+    // written for.
     settings.ssgi = defaults.ssgi;
+    settings.ssgi.method = SsgiMethod::Hemisphere;
+    settings.ssgi.sampleCount = 64;
     settings.ssgi.radius = 0.5f;
     settings.ssgi.bias = 0.025f;
   } else {

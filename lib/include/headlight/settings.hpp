@@ -29,7 +29,7 @@ int ssgiDivisor(SsgiResolution resolution);  // 1, 2, 4
 
 struct SsgiSettings {
   bool enabled = true;
-  SsgiMethod method = SsgiMethod::Hemisphere;
+  SsgiMethod method = SsgiMethod::Bitmask;  // the seed's was Hemisphere (--preset seed)
   int sampleCount = 64;  // kernel samples per pixel (the seed's 64; at most the shader's kMaxKernelSamples)
   // World units. Auto: radiusFraction x the scene's bounding-box diagonal.
   std::optional<float> radius;
@@ -92,9 +92,11 @@ std::map<std::string, std::string> settingsAsText(const RenderSettings& settings
 // an error, so a typo in a settings file is not silently ignored).
 void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values);
 
-// Named presets: "fast" (radiance, 16 samples, SSGI at half resolution),
-// "default", "high" (radiance, 64 samples, larger shadow maps), "seed" (the
-// seed spec's fixed radius 0.5 and bias 0.025). Throws SettingsError for an unknown name.
+// Named presets: "fast" (bitmask, 1 slice of 8 steps, SSGI at half
+// resolution), "default" (bitmask, 2 slices of 16 steps), "high" (bitmask,
+// 4 slices of 24 steps, larger shadow maps), "seed" (the seed spec's method
+// and constants: hemisphere, 64 samples, radius 0.5, bias 0.025). Throws
+// SettingsError for an unknown name.
 void applyPreset(RenderSettings& settings, std::string_view preset);
 std::span<const std::string_view> presetNames();
 
