@@ -107,6 +107,13 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   const auto seed = parseRenderArgs({"--preset", "seed"});
   CHECK(seed.settings.ssgi.radius == 0.5f);
   CHECK(seed.settings.ssgi.bias == 0.025f);
+  // The seed's method and constants, whatever the default has become.
+  CHECK(seed.settings.ssgi.method == SsgiMethod::Hemisphere);
+  CHECK(seed.settings.ssgi.sampleCount == 64);
+  CHECK(seed.settings.ssgi.intensity == 1.0f);
+  CHECK(seed.settings.ssgi.resolution == SsgiResolution::Full);
+  CHECK(parseRenderArgs({}).settings.ssgi.method == SsgiMethod::Bitmask);
+  CHECK(parseRenderArgs({"--preset", "fast"}).settings.ssgi.sliceCount == 1);
   CHECK(parseRenderArgs({"--preset", "fast", "--ssgi-samples", "8"}).settings.ssgi.sampleCount == 8);
 
   auto message = [](std::vector<std::string> args) {
