@@ -343,7 +343,15 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera) {
   if (ssgiOn) {
     ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
-    timer.run("ssgi", [&] { impl.ssgi.run(ssgiInputs, ssgiOutput); });
+    // Accumulated bitmask frames: a running mean of rotated slice sets.
+    const int ssgiFrames = ssgiInputs.method == SsgiMethod::Bitmask ? used.ssgi.frames : 1;
+    timer.run("ssgi", [&] {
+      for (int index = 0; index < ssgiFrames; ++index) {
+        ssgiInputs.frameIndex = index;
+        ssgiInputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
+        impl.ssgi.run(ssgiInputs, ssgiOutput);
+      }
+    });
     const SsgiBlurInputs blurInputs{impl.gbuffer, impl.ssgiRaw, ssgiInputs.radiusWorld, ssgiInputs.downsample};
     if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, impl.ssgiTarget); });
   }

@@ -84,6 +84,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
     bitmaskInputs.stepCount = inputs.stepCount;
     bitmaskInputs.downsample = inputs.downsample;
     bitmaskInputs.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
+    bitmaskInputs.accumulateWeight = inputs.accumulateWeight;
     bitmask_->run(bitmaskInputs, output);
     return;
   }

@@ -45,10 +45,11 @@ struct SsgiInputs {
   float indirectStrength = 0.0f;  // scale of the indirect term, >= 0
   int downsample = 1;             // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
   // The bitmask method's own (the others ignore them).
-  int sliceCount = 0;           // screen-space directions per pixel, >= 1
-  int stepCount = 0;            // depth samples per direction and side, >= 1
-  float thicknessWorld = 0.0f;  // assumed depth behind each depth sample, world units, >= 0
-  int frameIndex = 0;           // rotates the slices and step jitter between accumulated frames
+  int sliceCount = 0;             // screen-space directions per pixel, >= 1
+  int stepCount = 0;              // depth samples per direction and side, >= 1
+  float thicknessWorld = 0.0f;    // assumed depth behind each depth sample, world units, >= 0
+  int frameIndex = 0;             // rotates the slices and step jitter between accumulated frames
+  float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in with this weight (SsgiBitmaskInputs)
 };
 
 // Variants: one per kernel method (ssgi.frag); the bitmask method is its

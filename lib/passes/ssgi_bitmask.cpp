@@ -26,6 +26,16 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& ou
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse.bind(gpu::kUnitDirectDiffuse);
+  if (inputs.accumulateWeight > 0.0f) {
+    // A running mean: background pixels are discarded and keep what the
+    // first frame cleared them to.
+    glEnable(GL_BLEND);
+    glBlendColor(0.0f, 0.0f, 0.0f, inputs.accumulateWeight);
+    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+    draw_.draw("SSGI bitmask (accumulating)", program_, output);
+    glDisable(GL_BLEND);
+    return;
+  }
   // Background pixels are discarded and keep the clear value: open, no light.
   draw_.draw("SSGI bitmask", program_, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }

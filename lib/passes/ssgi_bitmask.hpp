@@ -24,6 +24,9 @@ struct SsgiBitmaskInputs {
   int stepCount = 0;                 // depth samples per direction and side, >= 1
   int downsample = 1;                // 1, 2 or 4
   int rotationIndex = 0;             // rotates slices and step jitter (the seed + the frame index), >= 0
+  // 0: `output` is overwritten. In (0, 1]: the result is blended in as
+  // output = (1 - w) output + w result (frame k of an accumulation: 1 / (k + 1)).
+  float accumulateWeight = 0.0f;
 };
 
 class SsgiBitmaskPass {

@@ -83,6 +83,13 @@ const std::vector<Row>& table() {
                           "0.05..1 x the radius (half the radius if all are flat)"},
           [](auto& s) -> auto& { return s.ssgi.thickness; }),
       row(
+          {.name = "ssgi-frames",
+           .type = T::Int,
+           .help = "bitmask SSGI: frames averaged, each with rotated slices and jittered steps",
+           .minimum = 1,
+           .maximum = 256},
+          [](auto& s) -> auto& { return s.ssgi.frames; }),
+      row(
           {.name = "ssgi-radius",
            .type = T::Float,
            .help = "SSGI radius in world units",

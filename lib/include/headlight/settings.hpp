@@ -51,6 +51,9 @@ struct SsgiSettings {
   int sliceCount = 2;
   int stepCount = 16;
   std::optional<float> thickness;
+  // Bitmask frames averaged, each with rotated slices and jittered steps
+  // (with a still camera, exact temporal accumulation).
+  int frames = 1;
 
   // The seed's ratio of bias to radius (0.025 / 0.5).
   static constexpr float kAutoBiasFraction = 0.05f;
