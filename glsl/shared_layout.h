@@ -57,6 +57,7 @@ HL_CONST(int, kUnitOcclusionTexture, 15)
 HL_CONST(int, kUnitEmissiveTexture, 16)
 HL_CONST(int, kUnitDirect, 17)
 HL_CONST(int, kUnitDirectDiffuse, 18)
+HL_CONST(int, kUnitGbufferDepth, 19)
 
 // The SSGI kernel never has more samples than this (the seed's count).
 HL_CONST(int, kMaxKernelSamples, 64)
@@ -108,6 +109,18 @@ HL_BLOCK_BEGIN(SsgiBlock, 3)
   int pad0;
   int pad1;
 HL_BLOCK_END(ssgi)
+
+// The `bitmask` SSGI method (lib/passes/ssgi_bitmask.hpp documents the ranges).
+HL_BLOCK_BEGIN(SsgiBitmaskBlock, 8)
+  float radiusWorld;        // R: occluders count within this distance of the shaded point, world units (> 0)
+  float thicknessWorld;     // each depth-buffer sample is taken as this deep behind its visible surface, world units
+  float intensity;          // AO = 1 - intensity * (1 - visible fraction)
+  float indirectStrength;   // scale of the indirect term
+  int sliceCount;           // screen-space directions per pixel (each with its opposite)
+  int stepCount;            // depth samples per direction
+  int downsample;           // resolution divisor of the SSGI target: 1, 2 or 4
+  int rotationIndex;        // the seed + the accumulated frame's index: rotates slice directions and step jitter
+HL_BLOCK_END(bitmask)
 
 // SSGI blur pass.
 HL_BLOCK_BEGIN(SsgiBlurBlock, 7)

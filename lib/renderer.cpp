@@ -8,6 +8,7 @@
 #include <chrono>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
@@ -67,6 +68,28 @@ Light defaultKeyLight() {
   return light;
 }
 
+// The bitmask SSGI's auto thickness: how deep the scene's objects typically
+// are behind what the camera sees, taken as 2/3 of the median over
+// instances of the smallest side of their world bounds (2/3: a sphere's mean
+// depth over its outline is 2/3 of its diameter). Flat instances (a side under 1e-3 of the scene's diagonal:
+// walls, floors) say nothing about depth and are left out. Held within
+// [kAutoThicknessFraction / 10, 1] x the radius, and
+// kAutoThicknessFraction x radius when every instance is flat.
+float autoThickness(const Scene& scene, float diagonal, float radius) {
+  std::vector<float> depths;
+  for (const Instance& instance : scene.instances) {
+    const Bounds bounds = scene.primitives[std::size_t(instance.primitive)].bounds.transformed(instance.worldFromLocal);
+    if (bounds.empty()) continue;
+    const glm::vec3 size = bounds.max - bounds.min;
+    const float smallest = std::min({size.x, size.y, size.z});
+    if (smallest > 1e-3f * diagonal) depths.push_back(smallest);
+  }
+  if (depths.empty()) return SsgiSettings::kAutoThicknessFraction * radius;
+  std::nth_element(depths.begin(), depths.begin() + std::ptrdiff_t(depths.size() / 2), depths.end());
+  return std::clamp(depths[depths.size() / 2] * (2.0f / 3.0f), 0.1f * SsgiSettings::kAutoThicknessFraction * radius,
+                    radius);
+}
+
 gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   gpu::FrameBlock block{};
   block.view = view.view;
@@ -121,7 +144,7 @@ struct Renderer::Impl {
 
   // Which targets a frame needs besides the G-buffer, direct light and lit.
   struct TargetNeeds {
-    bool directDiffuse;  // SSGI on with the radiance method
+    bool directDiffuse;  // SSGI on with the radiance or bitmask method
     bool ssgi;           // SSGI on
     bool ssgiRaw;        // SSGI on with the blur
     int ssgiDownsample;  // the raw SSGI's divisor
@@ -284,8 +307,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.shadowMapSize = 0;
   // The default settings' variants, so the first frame times shading, not compiling.
   const RenderSettings defaults;
-  impl.directLight.prepare(DirectLightPass::variantFor(
-      impl.gpuScene->hasEmissive, countShadowCasters(impl.scene.lights), defaults.ssgi.method == SsgiMethod::Radiance));
+  impl.directLight.prepare(DirectLightPass::variantFor(impl.gpuScene->hasEmissive,
+                                                       countShadowCasters(impl.scene.lights),
+                                                       defaults.ssgi.method != SsgiMethod::Hemisphere));
   impl.ssgi.prepare(defaults.ssgi.method);
   impl.composite.prepare(true);
   impl.context.checkErrors("uploading " + impl.scene.source);
@@ -301,6 +325,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
   if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
   if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
+  if (!used.ssgi.thickness) used.ssgi.thickness = autoThickness(impl_->scene, diagonal, *used.ssgi.radius);
   if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
   if (!used.lighting.skyIntensity) used.lighting.skyIntensity = impl_->scene.sky.intensity;
   if (!used.ssgi.indirectStrength)
@@ -333,13 +358,16 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   ssgiInputs.intensity = used.ssgi.intensity;
   ssgiInputs.indirectStrength = *used.ssgi.indirectStrength;
   ssgiInputs.downsample = ssgiDivisor(used.ssgi.resolution);
+  ssgiInputs.sliceCount = used.ssgi.sliceCount;
+  ssgiInputs.stepCount = used.ssgi.stepCount;
+  ssgiInputs.thicknessWorld = *used.ssgi.thickness;
   const bool shadows = used.lighting.shadows;
   const int shadowMapSize = *used.lighting.shadowMapSize;
   const float skyIntensity = *used.lighting.skyIntensity;
   const float pcfRadius = used.lighting.pcfRadius;
 
   impl.ensureTargets(used.width, used.height,
-                     {ssgiOn && ssgiInputs.method == SsgiMethod::Radiance, ssgiOn, ssgiBlur, ssgiInputs.downsample});
+                     {ssgiOn && ssgiInputs.method != SsgiMethod::Hemisphere, ssgiOn, ssgiBlur, ssgiInputs.downsample});
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
@@ -360,7 +388,15 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   if (runSsgi) {
     ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
-    timer.run("ssgi", [&] { impl.ssgi.run(ssgiInputs, ssgiOutput); });
+    // Accumulated bitmask frames: a running mean of rotated slice sets.
+    const int ssgiFrames = ssgiInputs.method == SsgiMethod::Bitmask ? used.ssgi.frames : 1;
+    timer.run("ssgi", [&] {
+      for (int index = 0; index < ssgiFrames; ++index) {
+        ssgiInputs.frameIndex = index;
+        ssgiInputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
+        impl.ssgi.run(ssgiInputs, ssgiOutput);
+      }
+    });
     const SsgiBlurInputs blurInputs{impl.gbuffer, impl.ssgiRaw, ssgiInputs.radiusWorld, ssgiInputs.downsample};
     if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, impl.ssgiTarget); });
   }

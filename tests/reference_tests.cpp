@@ -17,6 +17,7 @@
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_builder.hpp"
+#include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
 #include "support/images.hpp"
@@ -242,6 +243,43 @@ TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("r
   // is in range.
   const ReferenceImages near = traceReference(scene, frame, referenceSettings(256, 5e-4f));
   for (float value : near.ao.pixels) CHECK(value == 1.0f);
+}
+
+TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::test_suite("reference")) {
+  // Pixels centred on the Cornell box's floor-back wall edge (z = -1, y = 0)
+  // and on the corner scene's edge: p + eps n still lies in the wall's
+  // plane, where float rounding used to decide whether rays into the wall
+  // hit it (AO 1.0 or 0.38 measured). The limit from the floor's side is
+  // 0.5 for any radius (the wall fills the half with direction.z < 0); the
+  // edges' far ends are 100 away (corner) and 1 away (Cornell: the side
+  // walls, which lie beyond R = 0.05 and the R = 1e6 case is not run there).
+  const Scene corner = cornerScene();
+  const Scene cornell = makeBuiltinScene("cornell");
+  struct Case {
+    const Scene* scene;
+    glm::vec3 position;
+    float radius;
+  };
+  const Case cases[] = {{&corner, {0.3f, 0.0f, 0.0f}, 1e6f},
+                        {&corner, {-7.25f, 0.0f, 0.0f}, 0.5f},
+                        {&cornell, {0.1f, 0.0f, -1.0f}, 0.05f},
+                        {&cornell, {-0.4f, 0.0f, -1.0f}, 0.05f}};
+  for (const Case& c : cases) {
+    ShadingPoint point;
+    point.position = c.position;
+    Frame frame = uniformFrame(4, 4, point);
+    // A camera in front of the edge, above the floor, as a render has it.
+    frame.view.position = c.position + glm::vec3(0.0f, 1.0f, 3.0f);
+    frame.view.view = glm::lookAt(frame.view.position, c.position, glm::vec3(0, 1, 0));
+    const ReferenceSettings settings = referenceSettings(4096, c.radius);
+    if (skipWithoutEmbree(*c.scene, frame, settings)) return;
+    const ReferenceImages result = traceReference(*c.scene, frame, settings);
+    const double standardError = meanStandardError(result.aoMeanStandardError, 16);
+    CAPTURE(c.position.x);
+    CAPTURE(standardError);
+    for (float value : result.ao.pixels) CHECK(std::abs(value - 0.5) < 0.05);  // 4096 rays: SE 0.0078 per pixel
+    CHECK(std::abs(mean(result.ao, 0) - 0.5) < 4.0 * standardError + 1e-3);
+  }
 }
 
 TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * doctest::test_suite("reference")) {

@@ -107,6 +107,13 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   const auto seed = parseRenderArgs({"--preset", "seed"});
   CHECK(seed.settings.ssgi.radius == 0.5f);
   CHECK(seed.settings.ssgi.bias == 0.025f);
+  // The seed's method and constants, whatever the default has become.
+  CHECK(seed.settings.ssgi.method == SsgiMethod::Hemisphere);
+  CHECK(seed.settings.ssgi.sampleCount == 64);
+  CHECK(seed.settings.ssgi.intensity == 1.0f);
+  CHECK(seed.settings.ssgi.resolution == SsgiResolution::Full);
+  CHECK(parseRenderArgs({}).settings.ssgi.method == SsgiMethod::Bitmask);
+  CHECK(parseRenderArgs({"--preset", "fast"}).settings.ssgi.sliceCount == 1);
   CHECK(parseRenderArgs({"--preset", "fast", "--ssgi-samples", "8"}).settings.ssgi.sampleCount == 8);
 
   auto message = [](std::vector<std::string> args) {
@@ -124,7 +131,8 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   CHECK(message({"--bogus"}).find("unknown option '--bogus'") != std::string::npos);
   CHECK(message({"--width"}) == "--width needs a value (N)");
   CHECK(message({"--backend", "vulkan"}).find("expected one of auto, egl, osmesa") != std::string::npos);
-  CHECK(message({"--ssgi-method", "bitmask"}) == "--ssgi-method: expected one of hemisphere, radiance, got 'bitmask'");
+  CHECK(message({"--ssgi-method", "horizon"}) ==
+        "--ssgi-method: expected one of hemisphere, radiance, bitmask, got 'horizon'");
   CHECK(message({"--reference-samples", "8"}).find("unknown option") != std::string::npos);  // reference only
   CHECK(parseRenderArgs({"a.glb", "b.glb", "jobs.jsonl"}).scenes.size() == 2);  // a batch
   CHECK(parseRenderArgs({"a.glb", "b.glb", "jobs.jsonl"}).jobFiles.size() == 1);

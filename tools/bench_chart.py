@@ -20,7 +20,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
            ("indirect_rmse", "indirect RMSE vs reference (within R)"),
            ("lit_rel_rmse", "lit relative RMSE vs lit_ref (no R)")]
-MARKERS = {"hemisphere": "o", "radiance": "s"}
+MARKERS = {"hemisphere": "o", "radiance": "s", "bitmask": "^"}
+COLOURS = {"hemisphere": "C0", "radiance": "C1", "bitmask": "C2"}
 SIZES = {"full": 26, "half": 12, "quarter": 6}  # SSGI resolution: full-resolution points are the largest
 # Columns are the setting table's row names (bench.csv has one per setting).
 METHOD, BLUR, RESOLUTION = "ssgi-method", "ssgi-blur", "ssgi-resolution"
@@ -102,11 +103,17 @@ def main():
                     ax.scatter([p[0] for p, _ in chosen], [p[1] for p, _ in chosen], marker=marker,
                                s=[SIZES.get(r[RESOLUTION], 10) for _, r in chosen],
                                facecolors=None if fill == "full" else "none",
-                               edgecolors="C0" if method == "hemisphere" else "C1",
-                               c=None if fill == "none" else ("C0" if method == "hemisphere" else "C1"),
+                               edgecolors=COLOURS[method],
+                               c=None if fill == "none" else COLOURS[method],
                                label=f"{method}, blur {blur}", alpha=0.8)
             front = pareto(points)
             ax.plot([points[i][0] for i in front], [points[i][1] for i in front], "k-", lw=1, label="Pareto front")
+            # The bitmask method's own front beside the kernel methods' (both fronts).
+            kernel = [i for i, r in enumerate(group) if r[METHOD] != "bitmask"]
+            if len(kernel) < len(group):
+                kernel_front = [kernel[i] for i in pareto([points[i] for i in kernel])]
+                ax.plot([points[i][0] for i in kernel_front], [points[i][1] for i in kernel_front], "k:", lw=1,
+                        label="front without bitmask")
             for p, r in zip(points, group):
                 if r["seed_default"] == "1":
                     ax.scatter([p[0]], [p[1]], marker="*", s=220, c="red", zorder=5, label="seed default")

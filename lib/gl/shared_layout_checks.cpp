@@ -19,6 +19,10 @@ static_assert(offsetof(SsgiBlock, radiusWorld) == kMaxKernelSamples * 16);
 static_assert(offsetof(SsgiBlock, indirectStrength) == kMaxKernelSamples * 16 + 12);
 static_assert(offsetof(SsgiBlock, sampleCount) == kMaxKernelSamples * 16 + 16);
 static_assert(offsetof(SsgiBlock, downsample) == kMaxKernelSamples * 16 + 20);
+static_assert(sizeof(SsgiBitmaskBlock) == 32);
+static_assert(offsetof(SsgiBitmaskBlock, indirectStrength) == 12);
+static_assert(offsetof(SsgiBitmaskBlock, sliceCount) == 16);
+static_assert(offsetof(SsgiBitmaskBlock, rotationIndex) == 28);
 static_assert(sizeof(LightingBlock) == 32);
 static_assert(offsetof(LightingBlock, pcfRadius) == 8);
 static_assert(offsetof(LightingBlock, shadowNormalOffset) == 12);
@@ -47,13 +51,28 @@ constexpr bool allDistinct(std::initializer_list<int> values) {
       if (*a == *b) return false;
   return true;
 }
-static_assert(allDistinct({kUnitGbufferPosition, kUnitGbufferNormal, kUnitGbufferAlbedo, kUnitGbufferMaterial,
-                           kUnitGbufferEmissive, kUnitSsgiNoise, kUnitSsgi, kUnitBrdfLut, kUnitSkyPrefiltered,
-                           kUnitSkyIrradiance, kUnitShadowMaps2D, kUnitShadowMapsCube, kUnitBaseColorTexture,
-                           kUnitMetallicRoughnessTexture, kUnitNormalTexture, kUnitOcclusionTexture,
-                           kUnitEmissiveTexture, kUnitDirect, kUnitDirectDiffuse}));
+static_assert(allDistinct({kUnitGbufferPosition,
+                           kUnitGbufferNormal,
+                           kUnitGbufferAlbedo,
+                           kUnitGbufferMaterial,
+                           kUnitGbufferEmissive,
+                           kUnitSsgiNoise,
+                           kUnitSsgi,
+                           kUnitBrdfLut,
+                           kUnitSkyPrefiltered,
+                           kUnitSkyIrradiance,
+                           kUnitShadowMaps2D,
+                           kUnitShadowMapsCube,
+                           kUnitBaseColorTexture,
+                           kUnitMetallicRoughnessTexture,
+                           kUnitNormalTexture,
+                           kUnitOcclusionTexture,
+                           kUnitEmissiveTexture,
+                           kUnitDirect,
+                           kUnitDirectDiffuse,
+                           kUnitGbufferDepth}));
 static_assert(allDistinct({FrameBlock::kBinding, ObjectBlock::kBinding, MaterialBlock::kBinding, SsgiBlock::kBinding,
-                           LightingBlock::kBinding, ShadowBlock::kBinding, SkyBlock::kBinding,
-                           SsgiBlurBlock::kBinding}));
+                           LightingBlock::kBinding, ShadowBlock::kBinding, SkyBlock::kBinding, SsgiBlurBlock::kBinding,
+                           SsgiBitmaskBlock::kBinding}));
 
 }  // namespace headlight::gpu

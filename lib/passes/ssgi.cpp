@@ -63,7 +63,31 @@ void SsgiPass::updateKernel(int sampleCount, unsigned seed) {
   kernelSeed_ = seed;
 }
 
+void SsgiPass::prepare(SsgiMethod method) {
+  if (method == SsgiMethod::Bitmask) {
+    if (!bitmask_) bitmask_.emplace();
+  } else {
+    FullscreenPass::prepare(method);
+  }
+}
+
 void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
+  if (inputs.method == SsgiMethod::Bitmask) {
+    if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
+    prepare(SsgiMethod::Bitmask);
+    SsgiBitmaskInputs bitmaskInputs{inputs.gbuffer, *inputs.directDiffuse};
+    bitmaskInputs.radiusWorld = inputs.radiusWorld;
+    bitmaskInputs.thicknessWorld = inputs.thicknessWorld;
+    bitmaskInputs.intensity = inputs.intensity;
+    bitmaskInputs.indirectStrength = inputs.indirectStrength;
+    bitmaskInputs.sliceCount = inputs.sliceCount;
+    bitmaskInputs.stepCount = inputs.stepCount;
+    bitmaskInputs.downsample = inputs.downsample;
+    bitmaskInputs.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
+    bitmaskInputs.accumulateWeight = inputs.accumulateWeight;
+    bitmask_->run(bitmaskInputs, output);
+    return;
+  }
   updateKernel(inputs.sampleCount, inputs.seed);
   block_.radiusWorld = inputs.radiusWorld;
   block_.biasWorld = inputs.biasWorld;

@@ -7,6 +7,7 @@
 // `hemisphere` method) or its direct Lambertian radiance (`radiance`,
 // docs/ACCURACY.md). Output GL_RGBA16F: R = AO (1 = open), GBA = indirect.
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,6 +16,7 @@
 #include "headlight/settings.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "passes/ssgi_bitmask.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -33,7 +35,7 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 // renderer fills them from the frame's settings.
 struct SsgiInputs {
   const GBuffer& gbuffer;            // position, normal, albedo; material for the radiance method
-  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by radiance, ignored by hemisphere
+  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by radiance and bitmask
   SsgiMethod method = SsgiMethod::Hemisphere;
   int sampleCount = 0;            // kernel samples, 1..gpu::kMaxKernelSamples
   unsigned seed = 0;              // kernel and noise
@@ -42,12 +44,21 @@ struct SsgiInputs {
   float intensity = 0.0f;         // AO = 1 - intensity * mean occlusion, >= 0
   float indirectStrength = 0.0f;  // scale of the indirect term, >= 0
   int downsample = 1;             // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+  // The bitmask method's own (the others ignore them).
+  int sliceCount = 0;             // screen-space directions per pixel, >= 1
+  int stepCount = 0;              // depth samples per direction and side, >= 1
+  float thicknessWorld = 0.0f;    // assumed depth behind each depth sample, world units, >= 0
+  int frameIndex = 0;             // rotates the slices and step jitter between accumulated frames
+  float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in with this weight (SsgiBitmaskInputs)
 };
 
-// Variants: one per method.
+// Variants: one per kernel method (ssgi.frag); the bitmask method is its
+// own pass (ssgi_bitmask.frag), built on first use.
 class SsgiPass : public FullscreenPass<SsgiMethod> {
  public:
   SsgiPass();
+  // Builds `method`'s program ahead of its first frame.
+  void prepare(SsgiMethod method);
   // Reads `inputs` and the frame block; writes `output` (GL_RGBA16F, the
   // size SsgiInputs::downsample says).
   void run(const SsgiInputs& inputs, const gl::Texture& output);
@@ -58,6 +69,7 @@ class SsgiPass : public FullscreenPass<SsgiMethod> {
   gl::Buffer blockBuffer_;
   gl::Texture noise_;
   unsigned kernelSeed_ = 0;  // with block_.sampleCount, what the kernel and noise were made from
+  std::optional<SsgiBitmaskPass> bitmask_;
 };
 
 }  // namespace headlight

@@ -425,8 +425,7 @@ class Tracer {
     for (int i = 0; i < n; ++i) {
       const float xi0 = random.uniform(), xi1 = random.uniform();
       const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
-      RTCRayHit rayHit = makeRayHit(origin, direction, std::numeric_limits<float>::infinity());
-      rtcIntersect1(in_.rtcScene, &context_, &rayHit);
+      RTCRayHit rayHit = traceFromSurface(origin, direction, view);
       if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         ++open;
         skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
@@ -482,6 +481,40 @@ class Tracer {
     rayHit.ray.flags = 0;
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rayHit;
+  }
+
+  // The first surface along `direction` from a shading point's offset origin
+  // `origin` (p + eps n), robust where that origin lies on another surface's
+  // plane (a pixel centred on a crease: p + eps n is still on the adjacent
+  // wall, and float rounding decided whether rays into the wall hit it).
+  // The ray starts eps behind the origin, so a surface through the origin
+  // is met at t = eps (to rounding) whichever way the ray crosses it.
+  // Surfaces met before that (behind the origin) are passed, as before;
+  // those after are hits. One met within 10% of eps of the origin is a hit
+  // only when the ray enters it from the side that faces the camera
+  // (`toEye`, the view direction at p): that side is the free one, since the
+  // camera sees p past it. Met from its hidden side it is a surface the
+  // origin sits on, and the ray goes on (as a path tracer skips the
+  // primitive it starts on). `rayHit.ray.tfar` is returned from the origin.
+  RTCRayHit traceFromSurface(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& toEye) {
+    const float epsilon = in_.epsilon;
+    const glm::vec3 start = origin - direction * epsilon;
+    RTCRayHit rayHit = makeRayHit(start, direction, std::numeric_limits<float>::infinity());
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      rtcIntersect1(in_.rtcScene, &context_, &rayHit);
+      if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      const float t = rayHit.ray.tfar;
+      if (t > 1.1f * epsilon) break;
+      if (t >= 0.9f * epsilon) {
+        const glm::vec3 faceNormal(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
+        const float towardEye = glm::dot(faceNormal, toEye), along = glm::dot(faceNormal, direction);
+        if (towardEye * along < 0.0f || towardEye == 0.0f) break;  // entered from the eye's side
+      }
+      rayHit = makeRayHit(start, direction, std::numeric_limits<float>::infinity());
+      rayHit.ray.tnear = std::nextafter(t, std::numeric_limits<float>::infinity());
+    }
+    if (rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID) rayHit.ray.tfar = std::max(rayHit.ray.tfar - epsilon, 0.0f);
     return rayHit;
   }
 

@@ -11,7 +11,7 @@ namespace headlight {
 namespace {
 
 // Choice names, in the order of the enums' enumerators.
-constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance"};
+constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance", "bitmask"};
 constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
 constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
 constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
@@ -48,7 +48,9 @@ const std::vector<Row>& table() {
       row(
           {.name = "ssgi-method",
            .type = T::Choice,
-           .help = "SSGI indirect term: the seed's occluder albedo (hemisphere) or occluders' direct light (radiance)",
+           .help =
+               "SSGI method: the seed's kernel with occluder albedo (hemisphere), the same kernel gathering occluders' "
+               "direct light (radiance), or screen-space slices with a visibility bitmask (bitmask)",
            .choices = kSsgiMethodNames},
           [](auto& s) -> auto& { return s.ssgi.method; }),
       row(
@@ -58,6 +60,35 @@ const std::vector<Row>& table() {
            .minimum = 1,
            .maximum = gpu::kMaxKernelSamples},
           [](auto& s) -> auto& { return s.ssgi.sampleCount; }),
+      row(
+          {.name = "ssgi-slices",
+           .type = T::Int,
+           .help = "bitmask SSGI: screen-space directions per pixel (each also marched the opposite way)",
+           .minimum = 1,
+           .maximum = 32},
+          [](auto& s) -> auto& { return s.ssgi.sliceCount; }),
+      row(
+          {.name = "ssgi-steps",
+           .type = T::Int,
+           .help = "bitmask SSGI: depth samples per direction out to the radius's footprint on screen",
+           .minimum = 1,
+           .maximum = 64},
+          [](auto& s) -> auto& { return s.ssgi.stepCount; }),
+      row(
+          {.name = "ssgi-thickness",
+           .type = T::Float,
+           .help = "bitmask SSGI: how deep every visible surface is taken to be, world units",
+           .maximum = 1e9,
+           .autoMeaning = "2/3 of the median over objects of their bounds' smallest side, flat ones left out, within "
+                          "0.05..1 x the radius (half the radius if all are flat)"},
+          [](auto& s) -> auto& { return s.ssgi.thickness; }),
+      row(
+          {.name = "ssgi-frames",
+           .type = T::Int,
+           .help = "bitmask SSGI: frames averaged, each with rotated slices and jittered steps",
+           .minimum = 1,
+           .maximum = 256},
+          [](auto& s) -> auto& { return s.ssgi.frames; }),
       row(
           {.name = "ssgi-radius",
            .type = T::Float,
@@ -174,24 +205,27 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi = defaults.ssgi;
     settings.lighting = defaults.lighting;
   } else if (preset == "fast") {
-    // On the bench's front for lit error at about half the seed's time
-    // (docs/BENCHMARKS.md): the radiance method, 16 samples, SSGI at half
-    // resolution.
-    settings.ssgi.method = SsgiMethod::Radiance;
-    settings.ssgi.sampleCount = 16;
+    // The bitmask method's cheapest point on the bench's front within the
+    // AO target (docs/BENCHMARKS.md): 1 slice of 8 steps at half resolution.
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.sliceCount = 1;
+    settings.ssgi.stepCount = 8;
     settings.ssgi.resolution = SsgiResolution::Half;
     settings.ssgi.blur = true;
     settings.lighting.shadowMapSize = 1024;
     settings.lighting.pcfRadius = 1.0f;
   } else if (preset == "high") {
-    settings.ssgi.method = SsgiMethod::Radiance;
-    settings.ssgi.sampleCount = 64;
-    settings.ssgi.resolution = SsgiResolution::Full;
+    settings.ssgi = defaults.ssgi;
+    settings.ssgi.sliceCount = 4;
+    settings.ssgi.stepCount = 24;
     settings.lighting.shadowMapSize = 4096;
     settings.lighting.pcfRadius = 2.0f;
   } else if (preset == "seed") {
-    // The seed spec's numbers, for scenes of the size it was written for.
+    // The seed spec's method and numbers, for scenes of the size it was
+    // written for.
     settings.ssgi = defaults.ssgi;
+    settings.ssgi.method = SsgiMethod::Hemisphere;
+    settings.ssgi.sampleCount = 64;
     settings.ssgi.radius = 0.5f;
     settings.ssgi.bias = 0.025f;
   } else {

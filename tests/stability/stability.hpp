@@ -126,7 +126,7 @@ struct CaseEntry {
 };
 // Every case in the order of docs/STABILITY.md.
 const std::vector<CaseEntry>& allCases();
-constexpr SsgiMethod kMethods[] = {SsgiMethod::Hemisphere, SsgiMethod::Radiance};
+constexpr SsgiMethod kMethods[] = {SsgiMethod::Hemisphere, SsgiMethod::Radiance, SsgiMethod::Bitmask};
 
 // Count of NaN or infinite floats over every target of `frame`.
 long long nonFiniteCount(const Frame& frame);

@@ -20,6 +20,7 @@ namespace headlight HEADLIGHT_PUBLIC {
 enum class SsgiMethod {
   Hemisphere,  // the seed's: indirect = occluders' albedo x range weight (not light)
   Radiance,    // the same occlusion test, gathering the occluders' direct Lambertian radiance
+  Bitmask,     // screen-space slices with a 32-sector visibility mask (docs/ACCURACY.md §3.3)
 };
 
 // The resolution the SSGI pass runs at; below full, the blur pass is also a
@@ -29,7 +30,7 @@ int ssgiDivisor(SsgiResolution resolution);  // 1, 2, 4
 
 struct SsgiSettings {
   bool enabled = true;
-  SsgiMethod method = SsgiMethod::Hemisphere;
+  SsgiMethod method = SsgiMethod::Bitmask;  // the seed's was Hemisphere (--preset seed)
   int sampleCount = 64;  // kernel samples per pixel (the seed's 64; at most the shader's kMaxKernelSamples)
   // World units. Auto: radiusFraction x the scene's bounding-box diagonal.
   std::optional<float> radius;
@@ -45,9 +46,19 @@ struct SsgiSettings {
   unsigned seed = 1;  // kernel and noise random seed (fixed: renders are repeatable)
   bool blur = true;   // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
   SsgiResolution resolution = SsgiResolution::Full;
+  // The bitmask method's: directions per pixel, depth samples per direction
+  // and side, and the depth assumed behind every visible surface (world
+  // units; auto: the scene's objects' typical depth, Renderer::resolve).
+  int sliceCount = 2;
+  int stepCount = 16;
+  std::optional<float> thickness;
+  // Bitmask frames averaged, each with rotated slices and jittered steps
+  // (with a still camera, exact temporal accumulation).
+  int frames = 1;
 
   // The seed's ratio of bias to radius (0.025 / 0.5).
   static constexpr float kAutoBiasFraction = 0.05f;
+  static constexpr float kAutoThicknessFraction = 0.5f;
 };
 
 struct LightingSettings {
@@ -76,7 +87,7 @@ struct RenderSettings {
 // The one table: every user-settable field of RenderSettings, in help order.
 std::span<const Option<RenderSettings>> settingOptions();
 
-std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance" (the table's choice names)
+std::string_view ssgiMethodName(SsgiMethod method);  // "hemisphere", "radiance", "bitmask" (the table's choice names)
 
 // Every setting as text, by row name ("ssgi-radius" -> "0.52"): what the EXR
 // metadata records (as headlight:setting:<name>) and bench rows carry.
@@ -85,9 +96,11 @@ std::map<std::string, std::string> settingsAsText(const RenderSettings& settings
 // an error, so a typo in a settings file is not silently ignored).
 void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values);
 
-// Named presets: "fast" (radiance, 16 samples, SSGI at half resolution),
-// "default", "high" (radiance, 64 samples, larger shadow maps), "seed" (the
-// seed spec's fixed radius 0.5 and bias 0.025). Throws SettingsError for an unknown name.
+// Named presets: "fast" (bitmask, 1 slice of 8 steps, SSGI at half
+// resolution), "default" (bitmask, 2 slices of 16 steps), "high" (bitmask,
+// 4 slices of 24 steps, larger shadow maps), "seed" (the seed spec's method
+// and constants: hemisphere, 64 samples, radius 0.5, bias 0.025). Throws
+// SettingsError for an unknown name.
 void applyPreset(RenderSettings& settings, std::string_view preset);
 std::span<const std::string_view> presetNames();
 

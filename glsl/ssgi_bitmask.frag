@@ -1,0 +1,212 @@
+// SSGI, the `bitmask` method (lib/passes/ssgi_bitmask.hpp; docs/ACCURACY.md
+// §3.3 has the formulas). Per pixel, `sliceCount` screen-space directions
+// (each with its opposite) are marched out to R's footprint on screen; every
+// depth sample is a slab from its visible surface to `thicknessWorld`
+// behind it, and the part of that slab within R of the shaded point marks
+// the sectors of the slice it covers in a 32-bit mask. The sectors split the
+// slice's half of the normal hemisphere into 32 equal angles; each carries
+// its exact cosine-weighted solid angle, so the visible sum is the reference's
+// ao_R (cosine-weighted fraction of the hemisphere open within R). Sectors a
+// sample newly covers gather that sample's direct Lambertian light.
+// Reads the G-buffer's depth (linearised here), not the position target.
+#include "shared_layout.h"
+
+layout(binding = kUnitGbufferDepth) uniform sampler2D gbufferDepth;
+layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
+layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
+layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
+
+layout(location = 0) out vec4 outSsgi;
+
+const float kPi = 3.14159265358979;
+const int kSectors = 32;
+
+bool orthographic() { return frame.cameraPosition.w > 0.5; }
+
+// The view-space point at `pixel`'s centre whose depth-buffer value is
+// `depth`: the inverse of glm::perspective / glm::ortho (GL's -1..1 depth).
+vec3 viewPositionAt(ivec2 pixel, float depth) {
+  const float near = frame.nearFar.x, far = frame.nearFar.y;
+  const vec2 ndc = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
+  const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
+  if (orthographic()) {
+    const float z = -(near + depth * (far - near));
+    return vec3((ndc - vec2(frame.projection[3][0], frame.projection[3][1])) / scale, z);
+  }
+  const float z = -2.0 * near * far / (far + near - (2.0 * depth - 1.0) * (far - near));
+  // clip.xy = scale * xy + projection[2].xy * z, clip.w = -z.
+  return vec3((ndc * -z - vec2(frame.projection[2][0], frame.projection[2][1]) * z) / scale, z);
+}
+
+// The surface point on the view ray through `windowPoint` (pixels, not
+// necessarily a centre), from the depth and normal of the pixel it falls in:
+// that pixel's tangent plane met by the exact ray. The slice's samples then
+// lie in the slice's plane; a pixel centre up to half a pixel off it would
+// put an open plane's own points above its horizon at grazing angles.
+// A grazing floor moves far in depth over half a pixel: the meeting point
+// may be many pixels' lateral size away. Where it is more than 32 pixels'
+// size from the centre's point (a curved surface seen edge-on), the pixel
+// centre's point is kept. Where the plane is within 0.6 degrees of edge-on
+// to the ray, no point is known: `known` is false and the sample is
+// skipped (such a surface covers next to nothing on screen).
+vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal, out bool known) {
+  known = true;
+  const vec3 centre = viewPositionAt(pixel, depth);
+  const vec2 ndc = windowPoint * frame.viewport.zw * 2.0 - 1.0;
+  const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
+  const float pixelSize = 2.0 * frame.viewport.w / scale.y * (orthographic() ? 1.0 : -centre.z);
+  vec3 onRay;
+  if (orthographic()) {
+    const vec2 xy = (ndc - vec2(frame.projection[3][0], frame.projection[3][1])) / scale;
+    if (abs(pixelNormal.z) < 0.01) {
+      known = false;
+      return centre;
+    }
+    onRay = vec3(xy, centre.z - dot(pixelNormal.xy, xy - centre.xy) / pixelNormal.z);
+  } else {
+    // The view-space point of the ray at z = -1.
+    const vec3 direction = vec3((ndc + vec2(frame.projection[2][0], frame.projection[2][1])) / scale, -1.0);
+    const float facing = dot(pixelNormal, direction);
+    if (abs(facing) < 0.01 * length(direction)) {
+      known = false;
+      return centre;
+    }
+    onRay = direction * (dot(pixelNormal, centre) / facing);
+  }
+  return distance(onRay, centre) < 32.0 * pixelSize ? onRay : centre;
+}
+
+// The cosine-weighted measure of the slice's angles between 0 (the view
+// direction) and theta, signed like theta: integral from 0 to theta of
+// cos(t - n) |sin t| dt, where n is the normal's angle in the slice and
+// |sin t| the polar Jacobian (Jimenez et al. 2016, eq. 10's antiderivative).
+float sliceMeasure(float theta, float n, float sinN, float cosN) {
+  const float magnitude = 0.25 * (cosN - cos(2.0 * theta - n)) + 0.5 * theta * sinN;
+  return theta >= 0.0 ? magnitude : -magnitude;
+}
+
+// A 4x4 Bayer matrix: the 16 pixels of a tile (what the blur averages) get
+// 16 stratified rotations.
+const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+
+void main() {
+  const int divisor = bitmask.downsample;
+  const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
+  const ivec2 size = ivec2(frame.viewport.xy);
+  const ivec2 pixel = min(outputPixel * divisor + divisor / 2, size - 1);
+  const float depth = texelFetch(gbufferDepth, pixel, 0).r;
+  if (depth >= 1.0) discard;  // background: keeps the cleared (1, 0, 0, 0)
+
+  const vec3 position = viewPositionAt(pixel, depth);
+  const vec3 normal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
+  const vec3 toEye = orthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-position);
+  const float radius = bitmask.radiusWorld;
+  // R's footprint on screen, in pixels, at the shaded point's depth.
+  const float pixelsPerUnit =
+      0.5 * frame.viewport.y * frame.projection[1][1] / (orthographic() ? 1.0 : max(-position.z, 1e-30));
+  const float radiusPixels = radius * pixelsPerUnit;
+
+  const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
+  // The seed and accumulated frames turn both by irrational steps (R2 sequence).
+  const float rotationIndex = float(bitmask.rotationIndex);
+  const float rotation = fract((float(bayer) + 0.5) / 16.0 + 0.7548777 * rotationIndex);
+  const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + 0.5698403 * rotationIndex);
+
+  const int sliceCount = bitmask.sliceCount, stepCount = bitmask.stepCount;
+  float visibleSum = 0.0, totalSum = 0.0;
+  vec3 indirect = vec3(0.0);
+  for (int s = 0; s < sliceCount; ++s) {
+    const float phi = (float(s) + rotation) * kPi / float(sliceCount);
+    const vec2 direction = vec2(cos(phi), sin(phi));  // on screen
+    // The slice: the plane through the eye's ray to the point and the
+    // screen direction; `side` is its unit vector perpendicular to toEye.
+    const vec3 side = normalize(vec3(direction, 0.0) - toEye * dot(vec3(direction, 0.0), toEye));
+    const vec3 axis = cross(side, toEye);
+    const vec3 projectedNormal = normal - axis * dot(normal, axis);
+    const float projectedLength = length(projectedNormal);
+    if (projectedLength < 1e-4) continue;  // the normal is the slice's axis: it holds no solid angle
+    const float n = clamp(atan(dot(projectedNormal, side), dot(projectedNormal, toEye)), -0.5 * kPi, 0.5 * kPi);
+    const float sinN = sin(n), cosN = cos(n);
+    const float lowest = n - 0.5 * kPi;  // the hemisphere's edge on the -side
+    const float sectorAngle = kPi / float(kSectors);
+    float weights[kSectors];
+    float boundary = sliceMeasure(lowest, n, sinN, cosN);
+    const float first = boundary;
+    for (int k = 0; k < kSectors; ++k) {
+      const float next = sliceMeasure(lowest + float(k + 1) * sectorAngle, n, sinN, cosN);
+      weights[k] = max(next - boundary, 0.0);
+      boundary = next;
+    }
+    const float total = boundary - first;  // = cos(n) + n sin(n)
+
+    uint occupied = 0u;
+    for (int sign = -1; sign <= 1; sign += 2) {
+      const vec2 stepDirection = direction * float(sign);
+      for (int j = 0; j < stepCount; ++j) {
+        const float u = (float(j) + jitter) / float(stepCount);
+        // Quadratic spacing crowds steps near the point; the first is at
+        // least a pixel away, the last reaches R's footprint.
+        const float offset = 1.0 + u * u * max(radiusPixels - 1.0, 0.0);
+        const vec2 samplePoint = vec2(pixel) + 0.5 + stepDirection * offset;
+        // The screen edge ends the march: off screen is taken as open.
+        if (any(lessThan(samplePoint, vec2(0.0))) || any(greaterThanEqual(samplePoint, frame.viewport.xy))) break;
+        const ivec2 samplePixel = ivec2(samplePoint);
+        const float sampleDepth = texelFetch(gbufferDepth, samplePixel, 0).r;
+        if (sampleDepth >= 1.0) continue;  // background never occludes
+        const vec3 sampleNormal = mat3(frame.view) * texelFetch(gbufferNormal, samplePixel, 0).xyz;
+        bool known;
+        const vec3 front = surfaceOnRay(samplePoint, samplePixel, sampleDepth, sampleNormal, known);
+        if (!known) continue;
+        const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
+        // The slab front..back, cut to the sphere of radius R about the point.
+        const vec3 offsetFront = front - position;
+        const vec3 span = awayFromEye * bitmask.thicknessWorld;
+        const float a = dot(span, span), b = dot(offsetFront, span), c = dot(offsetFront, offsetFront) - radius * radius;
+        float t0 = 0.0, t1 = 1.0;
+        if (a < 1e-30) {
+          if (c > 0.0) continue;
+        } else {
+          const float discriminant = b * b - a * c;
+          if (discriminant < 0.0) continue;
+          const float root = sqrt(discriminant);
+          t0 = max((-b - root) / a, 0.0);
+          t1 = min((-b + root) / a, 1.0);
+          if (t0 > t1) continue;
+        }
+        const vec3 nearPoint = offsetFront + span * t0, farPoint = offsetFront + span * t1;
+        const float thetaNear = atan(dot(nearPoint, side), dot(nearPoint, toEye));
+        const float thetaFar = atan(dot(farPoint, side), dot(farPoint, toEye));
+        const float sectorLow = (min(thetaNear, thetaFar) - lowest) / sectorAngle;
+        const float sectorHigh = (max(thetaNear, thetaFar) - lowest) / sectorAngle;
+        // Sectors more than half covered.
+        const int firstSector = clamp(int(floor(sectorLow + 0.5)), 0, kSectors);
+        const int endSector = clamp(int(floor(sectorHigh + 0.5)), 0, kSectors);
+        if (endSector <= firstSector) continue;
+        const int count = endSector - firstSector;
+        const uint mask = count >= 32 ? 0xffffffffu : ((1u << uint(count)) - 1u) << uint(firstSector);
+        const uint fresh = mask & ~occupied;
+        if (fresh == 0u) continue;
+        occupied |= mask;
+        float weight = 0.0;
+        for (uint bits = fresh; bits != 0u; bits &= bits - 1u) weight += weights[findLSB(bits)];
+        // Only a surface facing the point sends it light.
+        if (dot(sampleNormal, offsetFront) < 0.0)
+          indirect += (projectedLength * weight) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+      }
+    }
+    float occludedWeight = 0.0;
+    for (uint bits = occupied; bits != 0u; bits &= bits - 1u) occludedWeight += weights[findLSB(bits)];
+    visibleSum += projectedLength * max(total - occludedWeight, 0.0);
+    totalSum += projectedLength * total;
+  }
+  // The ratio of the slices' visible to total cosine-weighted measure: an
+  // open plane is exactly 1 at any slice count.
+  const float visibility = totalSum > 0.0 ? clamp(visibleSum / totalSum, 0.0, 1.0) : 1.0;
+  const float ambientOcclusion = clamp(1.0 - bitmask.intensity * (1.0 - visibility), 0.0, 1.0);
+  // A Lambertian receiver: (1 - metallic) albedo / pi * integral(L cos) over
+  // the occluded directions; the sums above are that integral over pi.
+  const vec3 receiver = (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
+  const vec3 gathered = totalSum > 0.0 ? indirect / totalSum : vec3(0.0);
+  outSsgi = vec4(ambientOcclusion, gathered * receiver * bitmask.indirectStrength);
+}

@@ -1,0 +1,43 @@
+#include "passes/ssgi_bitmask.hpp"
+
+#include "shared_layout.h"
+
+namespace headlight {
+
+SsgiBitmaskPass::SsgiBitmaskPass()
+    : program_(buildFullscreenProgram("ssgi_bitmask.frag")),
+      block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
+
+void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& output) {
+  gpu::SsgiBitmaskBlock block{};
+  block.radiusWorld = inputs.radiusWorld;
+  block.thicknessWorld = inputs.thicknessWorld;
+  block.intensity = inputs.intensity;
+  block.indirectStrength = inputs.indirectStrength;
+  block.sliceCount = inputs.sliceCount;
+  block.stepCount = inputs.stepCount;
+  block.downsample = inputs.downsample;
+  block.rotationIndex = inputs.rotationIndex;
+  block_.update(block);
+  block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
+  const GBuffer& gbuffer = inputs.gbuffer;
+  gbuffer.depth.bind(gpu::kUnitGbufferDepth);
+  gbuffer.normal.bind(gpu::kUnitGbufferNormal);
+  gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
+  gbuffer.material.bind(gpu::kUnitGbufferMaterial);
+  inputs.directDiffuse.bind(gpu::kUnitDirectDiffuse);
+  if (inputs.accumulateWeight > 0.0f) {
+    // A running mean: background pixels are discarded and keep what the
+    // first frame cleared them to.
+    glEnable(GL_BLEND);
+    glBlendColor(0.0f, 0.0f, 0.0f, inputs.accumulateWeight);
+    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+    draw_.draw("SSGI bitmask (accumulating)", program_, output);
+    glDisable(GL_BLEND);
+    return;
+  }
+  // Background pixels are discarded and keep the clear value: open, no light.
+  draw_.draw("SSGI bitmask", program_, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+}
+
+}  // namespace headlight
