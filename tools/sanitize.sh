@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The unit, gl, cli, stability and hostile suites again, in an ASan + UBSan
+# build of the same sources (a second build folder beside the first). Run by
+# `meson test` as the `sanitize` suite (tests/meson.build), so the README's
+# test command and CI run it; by hand:
+#
+#   tools/sanitize.sh [BUILD_DIR]        # default build-sanitize
+#
+# Only Headlight's code is instrumented; Mesa, LLVM and OpenImageIO are not.
+# LeakSanitizer's suppressions (tests/sanitize/lsan.supp) name Mesa's own
+# leaks, each with its reason. UBSan findings stop the test (no recovery).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-build-sanitize}
+if [[ ! -f "$out/build.ninja" ]]; then
+  # debugoptimized: -O2 keeps llvmpipe-bound suites within their timeouts.
+  # No Python module or install test: they load the library into python3,
+  # which is not built with the sanitizer runtime.
+  meson setup "$out" -Dbuildtype=debugoptimized -Db_sanitize=address,undefined -Db_lundef=false \
+    -Dpython=disabled >/dev/null
+fi
+ninja -C "$out" headlight tests/unit-tests tests/gl-tests tests/cli-tests tests/stability-tests tests/hostile-tests
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:strict_string_checks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+export LSAN_OPTIONS="suppressions=$PWD/tests/sanitize/lsan.supp:print_suppressions=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+exec meson test -C "$out" --no-rebuild --print-errorlogs --suite unit --suite gl --suite cli --suite stability \
+  --suite hostile --timeout-multiplier 3
