@@ -51,7 +51,7 @@ bool canMake(Backend backend) {
 
 }  // namespace
 
-TEST_CASE("an EGL and an OSMesa renderer on two threads at once render correct frames" *
+TEST_CASE("two EGL and two OSMesa renderers on four threads at once render correct frames" *
           doctest::test_suite("backends")) {
   if (!canMake(Backend::Egl) || !canMake(Backend::OSMesa)) {
     MESSAGE("needs both EGL and OSMesa");
@@ -60,7 +60,7 @@ TEST_CASE("an EGL and an OSMesa renderer on two threads at once render correct f
   constexpr int kCycles = 25;
   std::mutex mutex;
   std::vector<std::string> failures;
-  std::vector<float> firstLit[2];
+  std::vector<float> firstLit[4];
   auto work = [&](int index, Backend backend) {
     try {
       Context context(optionsFor(backend));
@@ -83,16 +83,19 @@ TEST_CASE("an EGL and an OSMesa renderer on two threads at once render correct f
       failures.push_back(std::string(backendName(backend)) + ": " + error.what());
     }
   };
-  std::thread egl(work, 0, Backend::Egl);
-  std::thread osmesa(work, 1, Backend::OSMesa);
-  egl.join();
-  osmesa.join();
+  // Same-backend renderers take turns (Context::lockBackend); EGL and OSMesa
+  // run at the same time.
+  std::thread threads[] = {std::thread(work, 0, Backend::Egl), std::thread(work, 1, Backend::OSMesa),
+                           std::thread(work, 2, Backend::Egl), std::thread(work, 3, Backend::OSMesa)};
+  for (std::thread& thread : threads) thread.join();
   for (const std::string& failure : failures) FAIL_CHECK(failure);
   REQUIRE(failures.empty());
   // Both are llvmpipe: the same picture (the cross-backend test's bound), and
   // a lit one: the middle of the Cornell box is not black.
   REQUIRE(firstLit[0].size() == 48u * 32u * 4u);
   REQUIRE(firstLit[0].size() == firstLit[1].size());
+  CHECK(firstLit[0] == firstLit[2]);  // EGL threads agree exactly
+  CHECK(firstLit[1] == firstLit[3]);  // OSMesa threads agree exactly
   float worst = 0;
   for (std::size_t i = 0; i < firstLit[0].size(); ++i)
     worst = std::max(worst, std::abs(firstLit[0][i] - firstLit[1][i]) / std::max(1.0f, std::abs(firstLit[0][i])));
