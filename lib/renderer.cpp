@@ -255,23 +255,28 @@ struct Renderer::Impl {
 // a GL call through another thread's context (or none) would crash or draw
 // into the wrong context.
 Renderer::Renderer(Context& context)
-    : impl_((context.requireCurrent("headlight::Renderer"), std::make_unique<Impl>(context))) {}
+    : impl_((context.requireCurrent("headlight::Renderer"), context.lockBackend(), std::make_unique<Impl>(context))) {}
 // The GL objects are deleted in their own context: a renderer destroyed on a
 // thread where another context is current makes its own current first (and
 // leaves it current); if that fails, the names are left to the context's
 // destruction rather than deleted in the wrong context.
 Renderer::~Renderer() {
-  if (!impl_ || impl_->context.isCurrent()) return;
-  try {
-    impl_->context.makeCurrent();
-  } catch (const ContextError&) {
-    gladSetCurrentGLContext(nullptr);  // deletions below become no-ops (gl/objects.cpp)
+  if (!impl_) return;
+  auto lock = impl_->context.lockBackend();
+  if (!impl_->context.isCurrent()) {
+    try {
+      impl_->context.makeCurrent();
+    } catch (const ContextError&) {
+      gladSetCurrentGLContext(nullptr);  // deletions below become no-ops (gl/objects.cpp)
+    }
   }
+  impl_.reset();  // under the lock
 }
 
 void Renderer::setScene(Scene scene) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::setScene");
+  auto lock = impl.context.lockBackend();
   impl.gbufferPass.reset();
   impl.gpuScene.reset();
   impl.gbuffer = GBuffer{};  // its emissive target depends on the scene
@@ -336,6 +341,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
 Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::render");
+  auto lock = impl.context.lockBackend();
   if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
   Frame frame;
   frame.settings = resolve(settings);

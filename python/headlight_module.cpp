@@ -28,18 +28,25 @@ namespace {
 
 // A context and the renderer made with it; the renderer goes first.
 struct PyRenderer {
-  Context context;
+  std::optional<Context> context;
   std::optional<Renderer> renderer;
 
-  explicit PyRenderer(const ContextOptions& options) : context(options) { renderer.emplace(context); }
+  explicit PyRenderer(const ContextOptions& options) {
+    context.emplace(options);
+    renderer.emplace(*context);
+  }
   ~PyRenderer() {
-    // ~Renderer makes the context current itself when it is not.
+    // Destruction takes the backend lock (Context::lockBackend), which a
+    // render on another thread may hold while it waits for the GIL: give the
+    // GIL up first. ~Renderer makes the context current itself when it is not.
+    py::gil_scoped_release release;
     renderer.reset();
+    context.reset();
   }
   // A Python object may be used from any thread, one at a time (the GIL
   // orders the calls); the context follows it.
   void ensureCurrent() {
-    if (!context.isCurrent()) context.makeCurrent();
+    if (!context->isCurrent()) context->makeCurrent();
   }
 };
 
@@ -106,6 +113,10 @@ py::array imageArray(const ImageF& image, py::handle owner) {
 PYBIND11_MODULE(headlight, m) {
   m.doc() = "Headlight: a headless deferred renderer (OpenGL 4.5 via EGL or OSMesa) with numpy outputs";
   m.attr("__version__") = kVersion;
+  // numpy now, on the importing thread: pybind11 would otherwise import it
+  // lazily on the first array, which, on a worker thread while other threads
+  // render, hung (tools/thread_stress.py).
+  py::module_::import("numpy");
 
   // The library's exception classes, with its messages. SettingsError is a
   // ValueError too; the others are RuntimeErrors.
@@ -244,9 +255,9 @@ PYBIND11_MODULE(headlight, m) {
           "render(width=640, height=480, **settings) -> Frame; settings are settingOptions() rows "
           "('-' -> '_'), e.g. ssgi_samples=16, ssgi_radius=None (auto), shadows=False, preset='fast'")
       .def_property_readonly("backend",
-                             [](PyRenderer& self) { return std::string(backendName(self.context.backend())); })
-      .def_property_readonly("device", [](PyRenderer& self) { return self.context.description(); })
-      .def_property_readonly("gl_renderer", [](PyRenderer& self) { return self.context.renderer(); });
+                             [](PyRenderer& self) { return std::string(backendName(self.context->backend())); })
+      .def_property_readonly("device", [](PyRenderer& self) { return self.context->description(); })
+      .def_property_readonly("gl_renderer", [](PyRenderer& self) { return self.context->renderer(); });
 
   m.def(
       "settings",

@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <iostream>
+#include <mutex>
 
 #include "context/backend.hpp"
 #include "context/hex_code.hpp"
@@ -43,6 +44,11 @@ void loadGlEntryPoints(const detail::PlatformContext& platform, GladGLContext& t
   };
   if (gladLoadGLContextUserPtr(&table, load, const_cast<detail::PlatformContext*>(&platform)) == 0)
     throw ContextError("gladLoadGLContext: could not load OpenGL entry points from " + platform.description());
+}
+
+std::mutex& backendMutex(Backend backend) {
+  static std::mutex egl, osmesa;
+  return backend == Backend::OSMesa ? osmesa : egl;
 }
 
 std::string glString(GLenum name) {
@@ -101,10 +107,12 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   impl_->errorPolicy = options.errorPolicy;
   auto& attempts = impl_->attempts;
   if (options.backend == Backend::Auto || options.backend == Backend::Egl) {
+    std::lock_guard lock(backendMutex(Backend::Egl));
     impl_->platform = detail::createEglContext(options.eglDevice, options.eglDeviceName, attempts);
     impl_->backend = Backend::Egl;
   }
   if (!impl_->platform && (options.backend == Backend::Auto || options.backend == Backend::OSMesa)) {
+    std::lock_guard lock(backendMutex(Backend::OSMesa));
     impl_->platform = detail::createOSMesaContext(attempts);
     impl_->backend = Backend::OSMesa;
   }
@@ -114,6 +122,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
+  auto lock = lockBackend();
   loadGlEntryPoints(*impl_->platform, impl_->gl);
   gladSetCurrentGLContext(&impl_->gl);
   try {
@@ -138,7 +147,11 @@ Context::~Context() {
   if (!impl_) return;  // moved from
   if (gladGetCurrentGLContext() == &impl_->gl) gladSetCurrentGLContext(nullptr);
   // The platform context is destroyed (made not current first) by its own destructor.
+  auto lock = lockBackend();
+  impl_->platform.reset();
 }
+
+std::unique_lock<std::mutex> Context::lockBackend() const { return std::unique_lock(backendMutex(impl_->backend)); }
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 

@@ -43,3 +43,16 @@ echo "$(ls "$include"/headlight/*.hpp | wc -l) public headers compile alone; the
 # 2. The example, built and run against the installed library.
 "$@" -std=c++20 "$source/examples/embed.cpp" $flags -o "$dest/embed"
 LD_LIBRARY_PATH="$dest$libdir" "$dest/embed"
+
+# 3. The Python module, where one was built: imported from where it was
+# installed, by the interpreter it was built for.
+module=$(find "$dest" -name 'headlight.cpython-*.so' | head -n 1)
+if [ -n "$module" ]; then
+  PYTHONPATH=$(dirname "$module") /usr/bin/python3 -c '
+import headlight
+r = headlight.Renderer()
+r.set_scene("builtin:cornell")
+lit = r.render(width=32, height=24, ssgi_samples=4)["lit"]
+assert lit.shape == (24, 32, 4) and lit[12, 16, 3] == 1.0, lit[12, 16]
+print("installed Python module:", headlight.__file__)'
+fi

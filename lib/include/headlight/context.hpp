@@ -11,6 +11,7 @@
 // thread, stop using it on the first and call makeCurrent() on the second.
 // docs/EMBEDDING.md has the rules.
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -71,6 +72,14 @@ class Context {
   bool isCurrent() const;
   // Throws ContextError naming `operation` unless isCurrent().
   void requireCurrent(std::string_view operation) const;
+
+  // One lock per backend, held by every Renderer call that touches the GL
+  // (and by context creation and destruction): Mesa 22.3's llvmpipe crashed
+  // inside the driver when two contexts of the same backend drew at the same
+  // time on different threads (docs/EMBEDDING.md, "Threads"). Renderers of
+  // one backend on several threads are therefore safe but take turns; an EGL
+  // and an OSMesa renderer still run at the same time.
+  [[nodiscard]] std::unique_lock<std::mutex> lockBackend() const;
 
   // Reports the GL errors collected since the last call (KHR_debug messages
   // of type ERROR, plus glGetError), naming `operation`. Under
