@@ -89,6 +89,25 @@ TEST_CASE("a bad --width is a usage error (exit 2) naming the flag, and no outpu
   fs::remove_all(folder);
 }
 
+TEST_CASE("--device takes an EGL device index or name; an unknown name is exit 1 listing the devices") {
+  const fs::path folder = freshFolder("device");
+  const Run named = runHeadlight(
+      "render --backend egl --device EGL_MESA_device_software --width 16 --height 16 "
+      "--verbose --out " +
+      quote((folder / "named").string()));
+  INFO(named.output);
+  CHECK(named.exitCode == 0);
+  CHECK(named.output.find("backend: egl") != std::string::npos);
+  const Run unknown = runHeadlight("render --backend egl --device no-such-gpu --width 16 --height 16 --out " +
+                                   quote((folder / "unknown").string()));
+  INFO(unknown.output);
+  CHECK(unknown.exitCode == 1);
+  CHECK(unknown.output.find("no-such-gpu") != std::string::npos);
+  CHECK(unknown.output.find("EGL_MESA_device_software") != std::string::npos);  // the devices it has
+  CHECK_FALSE(fs::exists(folder / "unknown"));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no output") {
   const fs::path folder = freshFolder("nocontext");
   const Run run = runHeadlight("render --backend egl --device 99 --out " + quote((folder / "out").string()));

@@ -1,6 +1,7 @@
 #include "cli_options.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <sstream>
 
 #include "bench_command.hpp"
@@ -164,13 +165,23 @@ std::vector<Option<Command>> commonCommandOptions() {
           [](C& c, const OptionValue& v) { c.context.backend = parseBackend(text(v)); },
           [](const C& c) { return OptionValue(std::string(backendName(c.context.backend))); }),
       actionOption<C>({.name = "device",
-                       .type = T::Int,
-                       .help = "EGL device index (EGL_EXT_device_enumeration)",
-                       .maximum = 1 << 16,
-                       .autoMeaning = "the first that works"},
+                       .type = T::Text,
+                       .help = "EGL device: an index (EGL_EXT_device_enumeration) or a name (DRM or render node "
+                               "file, driver, renderer or extension, e.g. EGL_MESA_device_software); auto: the "
+                               "first that works",
+                       .valueName = "auto|N|NAME"},
                       [](C& c, const OptionValue& v) {
-                        if (std::holds_alternative<std::int64_t>(v))
-                          c.context.eglDevice = int(std::get<std::int64_t>(v));
+                        const std::string& device = std::get<std::string>(v);
+                        int index = 0;
+                        const auto [end, error] = std::from_chars(device.data(), device.data() + device.size(), index);
+                        if (device == "auto") {
+                          c.context.eglDevice = -1;
+                          c.context.eglDeviceName.clear();
+                        } else if (error == std::errc() && end == device.data() + device.size() && index >= 0) {
+                          c.context.eglDevice = index;
+                        } else {
+                          c.context.eglDeviceName = device;
+                        }
                       }),
       actionOption<C>({.name = "strict", .type = T::Switch, .help = "treat OpenGL errors as fatal (default: warn)"},
                       [](C& c, const OptionValue&) { c.context.errorPolicy = GlErrorPolicy::Throw; }),
