@@ -46,5 +46,9 @@ dirs=("$out/corpus")
 # One worker; findings (crash-*, leak-*, timeout-*) land in $out/. A finding
 # exits 1: libFuzzer's own default (77) would read as "skipped" to meson.
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+# Function names in reports (and for the suppressions) need a symbolizer;
+# Debian's clang-14 puts llvm-14's beside it, not on PATH.
+[[ -z "${ASAN_SYMBOLIZER_PATH:-}" && -x /usr/lib/llvm-14/bin/llvm-symbolizer ]] &&
+  export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
 exec "$out/gltf-loader-fuzz" -error_exitcode=1 -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=20 \
   -artifact_prefix="$out/" -print_final_stats=1 "${dirs[@]}"
