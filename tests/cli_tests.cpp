@@ -198,3 +198,34 @@ TEST_CASE("--help, --version and unknown commands") {
   CHECK(runHeadlight("paint").exitCode == 2);
   CHECK(runHeadlight("").exitCode == 2);
 }
+
+// OpenImageIO is loaded on first use (lib/image_io/image_module.hpp): the
+// dynamic loader's own log (LD_DEBUG=libs) shows whether a command loaded it.
+TEST_CASE("--version, --help and a usage error do not load OpenImageIO; a render does") {
+  auto loadsOiio = [](const std::string& args) {
+    const Run run = headlight::test::runCommand("LD_DEBUG=libs " + quote(HEADLIGHT_EXE) + " " + args);
+    INFO(args);
+    REQUIRE(run.output.find("calling init") != std::string::npos);  // LD_DEBUG took effect
+    return run.output.find("libOpenImageIO.so") != std::string::npos;
+  };
+  CHECK_FALSE(loadsOiio("--version"));
+  CHECK_FALSE(loadsOiio("render --help"));
+  CHECK_FALSE(loadsOiio("render --width 0"));
+  const fs::path out = freshFolder("module-loaded") / "out";
+  CHECK(loadsOiio("render --width 16 --height 16 --quiet --out " + quote(out.string())));
+  CHECK(fs::exists(out / "frame.json"));
+  fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("a missing image module is exit 1 naming the path and the remedy, and no output") {
+  const fs::path folder = freshFolder("no-module");
+  const std::string missing = (folder / "nowhere" / "libheadlight-image-io.so").string();
+  const Run run = headlight::test::runCommand("HEADLIGHT_IMAGE_MODULE=" + quote(missing) + " " + quote(HEADLIGHT_EXE) +
+                                              " render --width 16 --height 16 --out " + quote((folder / "out").string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find(missing) != std::string::npos);
+  CHECK(run.output.find("HEADLIGHT_IMAGE_MODULE") != std::string::npos);
+  CHECK(folderEmpty(folder / "out"));
+  fs::remove_all(folder);
+}

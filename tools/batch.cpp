@@ -470,6 +470,9 @@ int runRenderBatch(const RenderCommand& command) {
         renderer.emplace(*context);
         renderer->setLimits(command.limits);
         rendererName = context->renderer();
+        // OpenImageIO loads on the other core while this one compiles
+        // shaders and renders.
+        preloadImageIo();
       }
       if (currentScene != job.scene) {
         if (verbose) {

@@ -29,7 +29,7 @@ flags=(-std=c++20 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-saniti
 # Only what the loader needs: no GL, no context.
 sources=(lib/scene/gltf_loader.cpp lib/scene/gltf_prescan.cpp lib/scene/limits.cpp lib/scene/scene.cpp
          lib/scene/shapes.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp lib/settings/options.cpp
-         tests/fuzz/gltf_loader_fuzz.cpp)
+         lib/output/fingerprint.cpp lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
 objects=()
 for source in "${sources[@]}"; do
   object="$out/obj/$(basename "$source" .cpp).o"
@@ -38,7 +38,7 @@ for source in "${sources[@]}"; do
   fi
   objects+=("$object")
 done
-"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" $(pkg-config --libs OpenImageIO) -ltinygltf \
+"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" $(pkg-config --libs OpenImageIO libxxhash) -ltinygltf \
   -o "$out/gltf-loader-fuzz"
 [[ -n "$maker" ]] && "$maker" "$seeds"
 dirs=("$out/corpus")

@@ -2,8 +2,6 @@
 
 #include <unistd.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -72,36 +70,6 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
     fs::remove(temporary, ignored);
     throw;
   }
-}
-
-void writePixelsAtomically(const fs::path& path, const void* pixels, OIIO::TypeDesc pixelType,
-                           const OIIO::ImageSpec& spec, const char* format) {
-  writeAtomically(path, [&](const fs::path& temporary) {
-    auto output = OIIO::ImageOutput::create(format);
-    if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-    errno = 0;
-    const bool ok = output->open(temporary.string(), spec) && output->write_image(pixelType, pixels);
-    const int openWriteErrno = errno;
-    const bool closed = output->close();
-    const int savedErrno = ok ? errno : openWriteErrno;
-    if (!ok || !closed)
-      throw IoError(path.string() + ": writing failed: " + writeFailureReason(path, output->geterror(), savedErrno));
-  });
-}
-
-void writeImageAtomically(const fs::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec,
-                          const char* format) {
-  writeAtomically(path, [&](const fs::path& temporary) {
-    auto output = OIIO::ImageOutput::create(format);
-    if (!output) throw IoError(path.string() + ": OpenImageIO has no " + format + " writer: " + OIIO::geterror());
-    errno = 0;
-    const bool ok = output->open(temporary.string(), spec) && buffer.write(output.get());
-    const int openWriteErrno = errno;
-    const bool closed = output->close();
-    const int savedErrno = ok ? errno : openWriteErrno;
-    if (!ok || !closed)
-      throw IoError(path.string() + ": writing failed: " + writeFailureReason(path, output->geterror(), savedErrno));
-  });
 }
 
 void writeTextAtomically(const fs::path& path, std::string_view text) {

@@ -10,8 +10,6 @@
 #include <string>
 #include <string_view>
 
-#include <OpenImageIO/imagebuf.h>
-
 namespace headlight::detail {
 
 // Calls `write` with the temporary path, then renames it to `path`. On any
@@ -19,16 +17,6 @@ namespace headlight::detail {
 // rename is an IoError naming `path`.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& temporary)>& write);
-
-// `buffer` written with `spec` (its format decides the pixel type) by
-// OpenImageIO's writer named `format` ("openexr", "png"). Throws IoError.
-void writeImageAtomically(const std::filesystem::path& path, const OIIO::ImageBuf& buffer, const OIIO::ImageSpec& spec,
-                          const char* format);
-
-// `pixels` (of `pixelType`, interleaved, rows top first) written with
-// `spec` by the writer named `format`, without an ImageBuf copy.
-void writePixelsAtomically(const std::filesystem::path& path, const void* pixels, OIIO::TypeDesc pixelType,
-                           const OIIO::ImageSpec& spec, const char* format);
 
 // A text file. Throws IoError.
 void writeTextAtomically(const std::filesystem::path& path, std::string_view text);

@@ -4,12 +4,9 @@
 
 #include <signal.h>
 
-#include <OpenImageIO/hash.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "headlight/error.hpp"
@@ -22,12 +19,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
 constexpr int kManifestVersion = 1;
-
-std::string hex64(std::uint64_t value) {
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
-  return text;
-}
 
 json manifestJson(const Frame& frame, const OutputOptions& options, bool complete) {
   const std::map<std::string, std::string> settings = settingsAsText(frame.settings);
@@ -69,17 +60,6 @@ bool parseTemporaryName(const std::string& name, std::string& host, long& pid) {
 }
 
 }  // namespace
-
-std::string textFingerprint(std::string_view text) {
-  return hex64(OIIO::farmhash::Fingerprint64(text.data(), text.size()));
-}
-
-std::string fileFingerprint(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path.string() + ": cannot read to hash it");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return textFingerprint(bytes);
-}
 
 std::size_t removeStaleTemporaries(const fs::path& folder) {
   static const std::string ourHost = detail::temporaryHostTag();

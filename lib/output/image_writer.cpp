@@ -14,6 +14,7 @@
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
 #include "output/atomic_file.hpp"
+#include "output/atomic_image.hpp"
 #include "output/frame_set.hpp"
 
 namespace headlight {
@@ -21,7 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::string_view kCompressionNames[] = {"none", "rle", "zips", "zip", "piz"};
 // Half's largest finite value: a clamped +inf must stay finite once stored.
 constexpr float kHalfMax = 65504.0f;
 
@@ -168,23 +168,6 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
 }
 
 }  // namespace
-
-std::span<const std::string_view> exrCompressionNames() { return kCompressionNames; }
-std::string_view exrCompressionName(ExrCompression compression) { return kCompressionNames[int(compression)]; }
-
-std::vector<std::string_view> outputTargetNames() {
-  std::vector<std::string_view> names;
-  for (const FrameTarget& target : frameTargets()) names.push_back(target.name);
-  names.push_back("preview");
-  return names;
-}
-
-float tonemapAces(float x) {
-  const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
-  return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0f, 1.0f);
-}
-
-float tonemapReinhard(float x) { return x / (1.0f + x); }
 
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
                      const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy nonFinite) {

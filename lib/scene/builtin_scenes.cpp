@@ -1,7 +1,6 @@
 // The built-in scenes, described as tables of surfaces and placements fed to
 // three small geometry generators (quad, box, UV sphere). They need no files,
 // so tests and first runs always have something to render.
-#include <OpenImageIO/hash.h>
 
 #include <array>
 #include <cmath>
@@ -11,6 +10,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "headlight/output.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
@@ -23,13 +23,6 @@ namespace {
 // Bumped whenever a built-in scene's content changes, so that anything keyed
 // on Scene::sourceHash (caches, EXR metadata) sees a different scene.
 constexpr const char* kBuiltinVersion = "v1";
-
-std::string fingerprintHex(const std::string& text) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx",
-                static_cast<unsigned long long>(OIIO::farmhash::Fingerprint64(text.data(), text.size())));
-  return hex;
-}
 
 // The classic Cornell box, resized to x -1..1, y 0..2, z -1..1 and open at
 // +Z for the camera. Colours are the usual reflectances of the original.
@@ -217,7 +210,7 @@ Scene makeBuiltinScene(std::string_view name) {
     if (name == builtin.name) {
       Scene scene = builtin.make();
       scene.source = "builtin:" + std::string(name);
-      scene.sourceHash = fingerprintHex(scene.source + ":" + kBuiltinVersion);
+      scene.sourceHash = textFingerprint(scene.source + ":" + kBuiltinVersion);
       return scene;
     }
   }

@@ -1,5 +1,5 @@
 // glTF 2.0 (.gltf, .glb) to Scene, through tinygltf for the JSON and the
-// buffers and OpenImageIO for the images.
+// buffers and OpenImageIO (in the image module) for the images.
 //
 // tinygltf parses, but it trusts the file: it does not check that an accessor
 // stays inside its bufferView, that indices stay inside the vertex count, or
@@ -7,10 +7,6 @@
 // it reads, and every failure is a SceneError that starts with the file name
 // and names the glTF element, so a malformed file is a message, never a
 // crash or a silently wrong picture.
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/hash.h>
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -34,7 +30,9 @@
 
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
+#include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
+#include "image_io/texture_decode.hpp"
 #include "scene/gltf_prescan.hpp"
 
 namespace headlight {
@@ -53,13 +51,6 @@ constexpr int kMaxImageSide = 16384;
 // cannot be drawn correctly, so it is refused rather than drawn wrongly.
 constexpr std::array<std::string_view, 2> kSupportedExtensions{"KHR_lights_punctual",
                                                                "KHR_materials_emissive_strength"};
-
-std::string fingerprintHex(const void* bytes, std::size_t size) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx",
-                static_cast<unsigned long long>(OIIO::farmhash::Fingerprint64(static_cast<const char*>(bytes), size)));
-  return hex;
-}
 
 // tinygltf's messages are newline-separated lines; a SceneError is one line.
 std::string oneLine(std::string text) {
@@ -165,82 +156,6 @@ struct ImageDecoding {
   const tinygltf::Model* model = nullptr;  // the model tinygltf is filling
   std::string failure;                     // set when an image is refused
 };
-
-// OpenImageIO picks its reader by file extension; embedded images have none,
-// so the signature bytes name the format.
-std::string formatHintName(const unsigned char* bytes, std::size_t size) {
-  auto startsWith = [&](std::string_view magic, std::size_t at = 0) {
-    return size >= at + magic.size() && std::memcmp(bytes + at, magic.data(), magic.size()) == 0;
-  };
-  if (startsWith("\x89PNG")) return "embedded.png";
-  if (startsWith("\xFF\xD8\xFF")) return "embedded.jpg";
-  if (startsWith("GIF8")) return "embedded.gif";
-  if (startsWith("BM")) return "embedded.bmp";
-  if (startsWith("RIFF") && startsWith("WEBP", 8)) return "embedded.webp";
-  return "embedded.png";
-}
-
-// Any 1..4 channel image becomes RGBA: grey is copied to RGB, and a missing
-// alpha is opaque.
-std::vector<std::uint8_t> expandToRgba(const std::vector<std::uint8_t>& pixels, int channels, std::size_t pixelCount) {
-  std::vector<std::uint8_t> rgba(pixelCount * 4);
-  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
-    const std::uint8_t* in = &pixels[pixel * static_cast<std::size_t>(channels)];
-    std::uint8_t* out = &rgba[pixel * 4];
-    const bool grey = channels <= 2;
-    out[0] = in[0];
-    out[1] = grey ? in[0] : in[1];
-    out[2] = grey ? in[0] : in[2];
-    out[3] = channels == 2 ? in[1] : channels == 4 ? in[3] : 255;
-  }
-  return rgba;
-}
-
-// `texelBudget`: texels still allowed (ResourceLimits::maxTexels); the size
-// in the header is checked against it before any pixel is decoded.
-std::string decodeWithOiio(tinygltf::Image& image, const unsigned char* bytes, std::size_t size,
-                           std::int64_t& texelBudget, bool& overBudget) {
-  OIIO::Filesystem::IOMemReader reader(bytes, size);
-  OIIO::ImageSpec config;
-  // glTF colours are unassociated (straight) alpha; OIIO's PNG reader would
-  // otherwise premultiply them.
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  // OIIO 2.4 ignores open()'s ioproxy argument whenever a config is given;
-  // the proxy must travel inside the config instead.
-  void* proxy = &reader;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto input = OIIO::ImageInput::open(formatHintName(bytes, size), &config);
-  if (!input) {
-    return "OpenImageIO cannot decode it: " + oneLine(OIIO::geterror());
-  }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.width > kMaxImageSide || spec.height > kMaxImageSide) {
-    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", expected 1.." +
-           std::to_string(kMaxImageSide) + " per side";
-  }
-  const std::int64_t texels = std::int64_t(spec.width) * spec.height;
-  if (texels > texelBudget) {
-    overBudget = true;
-    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " (" + std::to_string(texels) +
-           " texels), more than the " + std::to_string(texelBudget) +
-           " texels --max-texels leaves for it; raise --max-texels";
-  }
-  texelBudget -= texels;
-  const int channels = std::min(spec.nchannels, 4);
-  const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
-  std::vector<std::uint8_t> pixels(pixelCount * static_cast<std::size_t>(channels));
-  // OIIO returns rows top first, which is what ImageData promises.
-  if (channels < 1 || !input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data())) {
-    return "OpenImageIO failed reading its pixels: " + oneLine(input->geterror());
-  }
-  image.width = spec.width;
-  image.height = spec.height;
-  image.component = 4;
-  image.bits = 8;
-  image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image.image = expandToRgba(pixels, channels, pixelCount);
-  return {};
-}
 
 // tinygltf passes an image stored in a bufferView as a pointer into the
 // buffer without checking the view's range, so the range is checked here,
@@ -849,7 +764,7 @@ class GltfReader {
   // ---- Materials and images
 
   void readImages() {
-    std::int64_t texelBudget = limits_.maxTexels;
+    detail::TextureDecodeLimits decodeLimits{kMaxImageSide, limits_.maxTexels};
     for (std::size_t index = 0; index < model_.images.size(); ++index) {
       tinygltf::Image& source = model_.images[index];
       // An external image tinygltf could not find is only a warning to it.
@@ -859,7 +774,9 @@ class GltfReader {
       }
       const std::vector<unsigned char> encoded = std::move(source.image);
       bool overBudget = false;
-      const std::string problem = decodeWithOiio(source, encoded.data(), encoded.size(), texelBudget, overBudget);
+      detail::DecodedTexture decoded;
+      const std::string problem =
+          detail::decodeTexture(encoded.data(), encoded.size(), decodeLimits, decoded, overBudget);
       if (!problem.empty()) {
         const std::string message =
             "image " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'") + ": " + problem;
@@ -867,9 +784,9 @@ class GltfReader {
       }
       ImageData image;
       image.name = !source.name.empty() ? source.name : source.uri;
-      image.width = source.width;
-      image.height = source.height;
-      image.rgba = std::move(source.image);
+      image.width = decoded.width;
+      image.height = decoded.height;
+      image.rgba = std::move(decoded.rgba);
       scene_.images.push_back(std::move(image));
     }
   }
@@ -1436,7 +1353,7 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
 
   Scene scene;
   scene.source = file;
-  scene.sourceHash = fingerprintHex(bytes.data(), bytes.size());
+  scene.sourceHash = textFingerprint(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   GltfReader(file, model, std::move(warnings), scene, limits).read();
   checkSceneRanges(scene);
   const std::uint64_t sceneBytes = estimateSceneBytes(scene);

@@ -5,7 +5,8 @@
 #     header, and fails if any of them pulls in glad, EGL, OSMesa, GL,
 #     tinygltf, Embree or OpenImageIO (compiler's dependency list, -M);
 #  2. builds examples/embed.cpp with `pkg-config --cflags --libs headlight`
-#     and runs it (it renders builtin:cornell into memory and checks a pixel).
+#     and runs it (it renders builtin:cornell into memory and checks a pixel);
+#  3. imports the Python module; 4. renders and diffs with the installed CLI.
 # Usage: install_and_consume.sh BUILD_DIR SOURCE_DIR PREFIX LIBDIR CXX...
 set -eu
 build="$1"; source="$2"; prefix="$3"; libdir="$4"; shift 4
@@ -56,3 +57,12 @@ lit = r.render(width=32, height=24, ssgi_samples=4)["lit"]
 assert lit.shape == (24, 32, 4) and lit[12, 16, 3] == 1.0, lit[12, 16]
 print("installed Python module:", headlight.__file__)'
 fi
+
+# 4. The installed CLI writes and diffs images: the image module
+# (OpenImageIO, loaded on first use) is found from the binary's own place,
+# ../<libdir>/headlight/, wherever the tree was copied.
+bindir="$dest$prefix/bin"
+test -f "$dest$libdir/headlight/libheadlight-image-io.so" || { echo "no image module under $dest$libdir/headlight"; exit 1; }
+"$bindir/headlight" render builtin:cornell --width 16 --height 16 --out "$dest/out" --quiet
+"$bindir/headlight" diff "$dest/out/lit.exr" "$dest/out/lit.exr" --quiet
+echo "installed CLI wrote $(ls "$dest/out" | wc -l) files and diffed one"

@@ -75,6 +75,13 @@ WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesys
                      const ExrAttributes& extra = {}, ExrCompression compression = ExrCompression::Zip,
                      NonFinitePolicy nonFinite = NonFinitePolicy::Error);
 
+// Image files are written and read by OpenImageIO, which this library loads
+// on first use (its ~260 libraries cost about 0.3 s of CPU on a 2-core
+// machine). This starts that load on a background thread and returns at
+// once; call it after the Context exists (glibc serialises library loading,
+// and EGL loads its driver when the context is made). Optional.
+void preloadImageIo();
+
 // Every EXR records each render setting as used (auto values resolved) as
 // the string attribute headlight:setting:<row name> (settingsAsText).
 inline constexpr std::string_view kSettingAttributePrefix = "headlight:setting:";
@@ -100,7 +107,7 @@ inline constexpr std::string_view kManifestName = "frame.json";
 
 struct ManifestFile {
   std::string name;  // file name in the folder
-  std::string hash;  // 16 hex digits: farmhash Fingerprint64 of the bytes
+  std::string hash;  // 16 hex digits: XXH3-64 of the bytes (textFingerprint)
   std::size_t bytes = 0;
 };
 
@@ -135,7 +142,8 @@ FrameSetCheck checkFrameSet(const std::filesystem::path& folder);
 // runs (left by a killed writer). Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::filesystem::path& folder);
 
-// Fingerprint64 of a file's bytes as 16 hex digits. Throws IoError.
+// XXH3-64 (libxxhash) of a file's bytes, or of a text, as 16 hex digits. Stable across
+// runs and machines. fileFingerprint throws IoError.
 std::string fileFingerprint(const std::filesystem::path& path);
 std::string textFingerprint(std::string_view text);
 

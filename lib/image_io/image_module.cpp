@@ -1,0 +1,120 @@
+// Finding and loading the image module, and the forwarders that stand in
+// for its functions in the library and the CLI (image_module.hpp).
+#include "image_io/image_module.hpp"
+
+#include <dlfcn.h>
+
+#include <cstdlib>
+#include <future>
+#include <mutex>
+#include <vector>
+
+#include "headlight/error.hpp"
+
+namespace headlight::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The folder of the binary (executable, libheadlight.so or the Python
+// module) that holds this function.
+fs::path ownFolder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&ownFolder), &info) == 0 || !info.dli_fname) return {};
+  std::error_code error;
+  const fs::path self = fs::canonical(info.dli_fname, error);
+  return error ? fs::path(info.dli_fname).parent_path() : self.parent_path();
+}
+
+std::vector<fs::path> candidatePaths() {
+  if (const char* explicitPath = std::getenv("HEADLIGHT_IMAGE_MODULE"); explicitPath && *explicitPath)
+    return {explicitPath};
+  const fs::path own = ownFolder();
+  const fs::path libdir = HEADLIGHT_INSTALL_LIBDIR;  // relative to the prefix, e.g. lib/x86_64-linux-gnu
+  return {own / kImageModuleFile, own / "headlight" / kImageModuleFile, own.parent_path() / kImageModuleFile,
+          own.parent_path() / libdir / "headlight" / kImageModuleFile,
+          fs::path(HEADLIGHT_INSTALL_PREFIX) / libdir / "headlight" / kImageModuleFile};
+}
+
+const ImageModuleTable* loadImageModule() {
+  std::string tried;
+  for (const fs::path& path : candidatePaths()) {
+    std::error_code error;
+    if (!fs::exists(path, error)) {
+      tried += "\n  " + path.string() + ": not there";
+      continue;
+    }
+    // RTLD_LOCAL: OpenImageIO's symbols stay out of the global scope, where
+    // they could bind to an embedding application's own copy.
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) throw IoError(path.string() + ": cannot load the image module: " + dlerror());
+    const auto entry = reinterpret_cast<ImageModuleEntry>(dlsym(handle, kImageModuleEntry));
+    if (!entry) throw IoError(path.string() + ": not a Headlight image module (no " + kImageModuleEntry + ")");
+    const ImageModuleTable* table = entry();
+    if (table->abi != kImageModuleAbi || table->tableSize != sizeof(ImageModuleTable))
+      throw IoError(path.string() + ": image module from another build (interface " + std::to_string(table->abi) +
+                    ", this build needs " + std::to_string(kImageModuleAbi) + ")");
+    return table;  // never unloaded: OpenImageIO keeps threads and caches
+  }
+  throw IoError(std::string("cannot write or read images: the image module ") + kImageModuleFile +
+                " (OpenImageIO) was not found; looked at:" + tried + "\n  (set HEADLIGHT_IMAGE_MODULE to its path)");
+}
+
+std::mutex loadMutex;
+std::shared_future<const ImageModuleTable*> loading;  // guarded by loadMutex
+
+std::shared_future<const ImageModuleTable*> startLoading() {
+  const std::lock_guard<std::mutex> lock(loadMutex);
+  if (!loading.valid()) loading = std::async(std::launch::async, loadImageModule).share();
+  return loading;
+}
+
+}  // namespace
+
+const ImageModuleTable& imageModule() { return *startLoading().get(); }
+
+std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureDecodeLimits& limits,
+                          DecodedTexture& texture, bool& overBudget) {
+  return imageModule().decodeTexture(bytes, size, limits, texture, overBudget);
+}
+
+}  // namespace headlight::detail
+
+namespace headlight {
+
+using detail::imageModule;
+
+void preloadImageIo() { detail::startLoading(); }
+
+std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::path& outDir,
+                                    const OutputOptions& options) {
+  return imageModule().writeFrame(frame, outDir, options);
+}
+
+WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat,
+                     const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy nonFinite) {
+  return imageModule().writeExr(frame, image, path, halfFloat, extra, compression, nonFinite);
+}
+
+WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path) {
+  return imageModule().writePreview(frame, path);
+}
+
+std::map<std::string, std::string> readSettingAttributes(const std::filesystem::path& exr) {
+  return imageModule().readSettingAttributes(exr);
+}
+
+DiffResult diffImages(const std::filesystem::path& a, const std::filesystem::path& b, const DiffOptions& options) {
+  return imageModule().diffImages(a, b, options);
+}
+
+DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesystem::path& b,
+                              const DiffOptions& options) {
+  return imageModule().diffDirectories(a, b, options);
+}
+
+std::vector<std::filesystem::path> writeDiffImages(const DiffResult& result, const std::filesystem::path& exrPath) {
+  return imageModule().writeDiffImages(result, exrPath);
+}
+
+}  // namespace headlight

@@ -1,0 +1,92 @@
+// glTF images through OpenImageIO (lib/image_io/texture_decode.hpp).
+#include "image_io/texture_decode.hpp"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+
+namespace headlight::detail {
+namespace {
+
+// OpenImageIO's messages are newline-separated lines; ours are one line.
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (std::string::size_type newline; (newline = text.find('\n')) != std::string::npos;)
+    text.replace(newline, 1, "; ");
+  return text;
+}
+
+// OpenImageIO picks its reader by file extension; embedded images have none,
+// so the signature bytes name the format.
+std::string formatHintName(const unsigned char* bytes, std::size_t size) {
+  auto startsWith = [&](std::string_view magic, std::size_t at = 0) {
+    return size >= at + magic.size() && std::memcmp(bytes + at, magic.data(), magic.size()) == 0;
+  };
+  if (startsWith("\x89PNG")) return "embedded.png";
+  if (startsWith("\xFF\xD8\xFF")) return "embedded.jpg";
+  if (startsWith("GIF8")) return "embedded.gif";
+  if (startsWith("BM")) return "embedded.bmp";
+  if (startsWith("RIFF") && startsWith("WEBP", 8)) return "embedded.webp";
+  return "embedded.png";
+}
+
+// Any 1..4 channel image becomes RGBA: grey is copied to RGB, and a missing
+// alpha is opaque.
+std::vector<std::uint8_t> expandToRgba(const std::vector<std::uint8_t>& pixels, int channels, std::size_t pixelCount) {
+  std::vector<std::uint8_t> rgba(pixelCount * 4);
+  for (std::size_t pixel = 0; pixel < pixelCount; ++pixel) {
+    const std::uint8_t* in = &pixels[pixel * static_cast<std::size_t>(channels)];
+    std::uint8_t* out = &rgba[pixel * 4];
+    const bool grey = channels <= 2;
+    out[0] = in[0];
+    out[1] = grey ? in[0] : in[1];
+    out[2] = grey ? in[0] : in[2];
+    out[3] = channels == 2 ? in[1] : channels == 4 ? in[3] : 255;
+  }
+  return rgba;
+}
+
+}  // namespace
+
+std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureDecodeLimits& limits,
+                          DecodedTexture& texture, bool& overBudget) {
+  OIIO::Filesystem::IOMemReader reader(bytes, size);
+  OIIO::ImageSpec config;
+  // glTF colours are unassociated (straight) alpha; OIIO's PNG reader would
+  // otherwise premultiply them.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  // OIIO 2.4 ignores open()'s ioproxy argument whenever a config is given;
+  // the proxy must travel inside the config instead.
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto input = OIIO::ImageInput::open(formatHintName(bytes, size), &config);
+  if (!input) return "OpenImageIO cannot decode it: " + oneLine(OIIO::geterror());
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.width > limits.maxSide || spec.height > limits.maxSide) {
+    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", expected 1.." +
+           std::to_string(limits.maxSide) + " per side";
+  }
+  const std::int64_t texels = std::int64_t(spec.width) * spec.height;
+  if (texels > limits.texelBudget) {
+    overBudget = true;
+    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " (" + std::to_string(texels) +
+           " texels), more than the " + std::to_string(limits.texelBudget) +
+           " texels --max-texels leaves for it; raise --max-texels";
+  }
+  limits.texelBudget -= texels;
+  const int channels = std::min(spec.nchannels, 4);
+  const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
+  std::vector<std::uint8_t> pixels(pixelCount * static_cast<std::size_t>(std::max(channels, 0)));
+  // OIIO returns rows top first, which is what ImageData promises.
+  if (channels < 1 || !input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, pixels.data()))
+    return "OpenImageIO failed reading its pixels: " + oneLine(input->geterror());
+  texture.width = spec.width;
+  texture.height = spec.height;
+  texture.rgba = expandToRgba(pixels, channels, pixelCount);
+  return {};
+}
+
+}  // namespace headlight::detail
