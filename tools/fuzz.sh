@@ -24,7 +24,7 @@ if ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { r
   echo "skipping: $cxx cannot link -fsanitize=fuzzer (Debian: libclang-rt-14-dev)"; exit 77
 fi
 mkdir -p "$out/obj" "$out/corpus"
-flags=(-std=c++20 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+flags=(-std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
        -Ilib/include -Ilib -Iglsl -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0)
 # Only what the loader needs: no GL, no context.
 sources=(lib/scene/gltf_loader.cpp lib/scene/gltf_prescan.cpp lib/scene/limits.cpp lib/scene/scene.cpp
