@@ -498,6 +498,8 @@ int runRenderBatch(const RenderCommand& command) {
           total += time.milliseconds;
         }
         std::fprintf(stderr, "pass %-10s %9.2f ms\n", "total", total);
+        for (const SkippedWork& skipped : frame->skipped)
+          std::fprintf(stderr, "skipped %-10s %s\n", skipped.work.c_str(), skipped.reason.c_str());
       }
       cache.release(job.scene);
       if (single) {
