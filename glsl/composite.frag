@@ -1,7 +1,8 @@
 // Composite (lib/passes/composite.hpp): direct light + image-based ambient,
 // occluded by the material's and the SSGI's AO, + SSGI's indirect term:
 //   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_ao + ssgi_indirect
-// Background pixels show the sky, alpha 0.
+// Background pixels show the sky, alpha 0. Without HAS_SKY (sky intensity
+// 0) the sky term is left out: what it would add is exactly 0.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -46,6 +47,10 @@ vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
   return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * ssgi.r + ssgi.gba;
 }
 
+#ifndef HAS_SKY
+vec3 ambientLightWithoutSky(vec4 ssgi) { return ssgi.gba; }
+#endif
+
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
@@ -56,7 +61,11 @@ void main() {
     const vec4 viewFar = inverse(frame.projection) * clip;
     const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
     const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
+#ifdef HAS_SKY
     outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
+#else
+    outRadiance = vec4(0.0);
+#endif
     return;
   }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
@@ -66,6 +75,10 @@ void main() {
   const vec4 ssgi = vec4(1.0, 0.0, 0.0, 0.0);
 #endif
   const float materialOcclusion = texelFetch(gbufferMaterial, pixel, 0).z;
+#ifdef HAS_SKY
   const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, ssgi);
+#else
+  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLightWithoutSky(ssgi);
+#endif
   outRadiance = vec4(radiance, 1.0);
 }

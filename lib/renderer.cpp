@@ -107,7 +107,76 @@ struct TargetWanted {
   bool operator()(std::string_view name) const {
     return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
   }
+  // Named in the list itself, not just included in "all".
+  bool named(std::string_view name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
 };
+
+// What decides which work a frame needs: the scene, the resolved settings
+// and the targets asked for.
+struct FrameFacts {
+  bool wantLit = true;
+  bool wantSsgi = true;
+  bool ssgiOn = true;
+  bool ssgiReadsDirect = true;  // the radiance and bitmask methods gather the occluders' direct light
+  bool shadowsOn = true;        // --shadows
+  bool shadowCasters = true;    // a light of the scene casts shadows
+  bool skyLit = true;           // sky intensity > 0
+  bool sceneEmits = true;       // a material has a non-zero emissiveFactor
+};
+
+bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
+bool directNeeded(const FrameFacts& f) { return f.wantLit || (ssgiRuns(f) && f.ssgiReadsDirect); }
+
+// Work a frame can leave out, each named in --verbose.
+enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Count };
+constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive"};
+static_assert(std::size(kWorkNames) == std::size_t(Work::Count));
+
+// The one table of what a frame skips and why: work runs unless a row says
+// it is not needed, and the first row that applies is the reason given.
+// Every output stays what the full frame would give: shadow maps without a
+// shadow-casting light would be read by no light; the sky term with sky
+// intensity 0 adds exactly 0 (and its tables are then not made); a scene
+// with no emission has no emissive target (asked for by name, it is written
+// as zeros).
+struct SkipRule {
+  Work work;
+  std::string_view reason;
+  bool (*applies)(const FrameFacts&);
+};
+constexpr SkipRule kSkipRules[] = {
+    {Work::Shadows, "--no-shadows", [](const FrameFacts& f) { return !f.shadowsOn; }},
+    {Work::Shadows, "no light casts shadows", [](const FrameFacts& f) { return !f.shadowCasters; }},
+    {Work::Shadows, "no direct light is drawn (only G-buffer targets asked for)",
+     [](const FrameFacts& f) { return !directNeeded(f); }},
+    {Work::Direct, "only G-buffer targets asked for", [](const FrameFacts& f) { return !directNeeded(f); }},
+    {Work::Ssgi, "--no-ssgi", [](const FrameFacts& f) { return !f.ssgiOn; }},
+    {Work::Ssgi, "neither ssgi nor lit asked for", [](const FrameFacts& f) { return !ssgiRuns(f); }},
+    {Work::Composite, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
+    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)", [](const FrameFacts& f) { return !f.skyLit; }},
+    {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
+    {Work::Emissive, "no material emits (no emissive target, no emission term)",
+     [](const FrameFacts& f) { return !f.sceneEmits; }},
+};
+
+struct FramePlan {
+  std::optional<std::string_view> skipReason[std::size_t(Work::Count)];
+  bool runs(Work work) const { return !skipReason[std::size_t(work)]; }
+  std::vector<SkippedWork> skipped() const {
+    std::vector<SkippedWork> list;
+    for (std::size_t w = 0; w < std::size_t(Work::Count); ++w)
+      if (skipReason[w]) list.push_back({std::string(kWorkNames[w]), std::string(*skipReason[w])});
+    return list;
+  }
+};
+
+FramePlan planFrame(const FrameFacts& facts) {
+  FramePlan plan;
+  for (const SkipRule& rule : kSkipRules)
+    if (!plan.skipReason[std::size_t(rule.work)] && rule.applies(facts))
+      plan.skipReason[std::size_t(rule.work)] = rule.reason;
+  return plan;
+}
 
 }  // namespace
 
@@ -148,6 +217,7 @@ struct Renderer::Impl {
     bool ssgi;           // SSGI on
     bool ssgiRaw;        // SSGI on with the blur
     int ssgiDownsample;  // the raw SSGI's divisor
+    bool emissive;       // the G-buffer's emissive target (the scene emits)
   };
 
   // Targets follow the image size; the SSGI ones exist only while SSGI (and
@@ -160,7 +230,8 @@ struct Renderer::Impl {
       else if (texture.width() != w || texture.height() != h)
         texture = gl::Texture::create2D(format, w, h);
     };
-    if (gbuffer.width != width || gbuffer.height != height) gbuffer = makeGBuffer(width, height, gpuScene->hasEmissive);
+    if (gbuffer.width != width || gbuffer.height != height || bool(gbuffer.emissive) != needs.emissive)
+      gbuffer = makeGBuffer(width, height, needs.emissive);
     // Direct light is internal (no frame target): half float holds HDR radiance.
     ensure(direct.towardEye, true, GL_RGBA16F);
     ensure(direct.diffuse, needs.directDiffuse, GL_RGBA16F);
@@ -173,10 +244,6 @@ struct Renderer::Impl {
   bool hasShadowCasters() const {
     return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.castsShadows; });
   }
-
-  // Shadow maps are (re)made when the size changes or shadows are turned
-  // on; with shadows off the lights read "no map" and nothing is allocated.
-  bool needsShadowPass(bool shadows, int size) const { return shadows && hasShadowCasters() && shadowMapSize != size; }
 
   // The light buffer: the scene's lights, each with its slot in the shadow
   // maps (none without slots).
@@ -243,6 +310,15 @@ struct Renderer::Impl {
   void readTargets(Frame& frame, bool withSsgi, const TargetWanted& wanted) const {
     for (const FrameTarget& target : frameTargets()) {
       const gl::Texture& source = sourceOf(target);
+      if (target.image == &Frame::emissive && !source && wanted.named(target.name)) {
+        // Asked for by name in a scene with no emission: what it would hold.
+        ImageF& zeros = frame.*target.image;
+        zeros.width = gbuffer.width;
+        zeros.height = gbuffer.height;
+        zeros.channels.assign(target.channels.begin(), target.channels.end());
+        zeros.pixels.assign(std::size_t(zeros.width) * std::size_t(zeros.height) * zeros.channels.size(), 0.0f);
+        continue;
+      }
       if (!source || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
       frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
                                 ? readViewDepth(source, frame.view, std::string(target.channels.front()))
@@ -304,7 +380,6 @@ void Renderer::Impl::loadScene(Scene newScene) {
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
   impl.gbufferPass.emplace(*impl.gpuScene);
-  impl.environment.updateSky(impl.scene.sky);
   // At least one element: a zero-sized buffer cannot be bound.
   impl.lightBuffer = gl::Buffer::create(std::max<std::size_t>(1, impl.scene.lights.size()) * sizeof(gpu::GpuLight));
   impl.uploadLights({});
@@ -316,7 +391,7 @@ void Renderer::Impl::loadScene(Scene newScene) {
                                                        countShadowCasters(impl.scene.lights),
                                                        defaults.ssgi.method != SsgiMethod::Hemisphere));
   impl.ssgi.prepare(defaults.ssgi.method);
-  impl.composite.prepare(true);
+  impl.composite.prepare({true, impl.scene.sky.intensity > 0.0f});
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
@@ -372,25 +447,39 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   const float skyIntensity = *used.lighting.skyIntensity;
   const float pcfRadius = used.lighting.pcfRadius;
 
-  impl.ensureTargets(used.width, used.height,
-                     {ssgiOn && ssgiInputs.method != SsgiMethod::Hemisphere, ssgiOn, ssgiBlur, ssgiInputs.downsample});
+  // Passes the scene, the settings or the wanted targets do not need are
+  // skipped (kSkipRules): the G-buffer targets alone need neither light nor
+  // SSGI; ssgi alone needs no composite; no shadow-casting light, no shadow maps.
+  const TargetWanted wanted{targets};
+  FrameFacts facts;
+  facts.wantLit = wanted("lit");
+  facts.wantSsgi = wanted("ssgi");
+  facts.ssgiOn = ssgiOn;
+  facts.ssgiReadsDirect = ssgiInputs.method != SsgiMethod::Hemisphere;
+  facts.shadowsOn = shadows;
+  facts.shadowCasters = impl.hasShadowCasters();
+  facts.skyLit = skyIntensity > 0.0f;
+  facts.sceneEmits = impl.gpuScene->hasEmissive;
+  const FramePlan plan = planFrame(facts);
+  frame.skipped = plan.skipped();
+  const bool runSsgi = plan.runs(Work::Ssgi);
+
+  impl.ensureTargets(
+      used.width, used.height,
+      {ssgiOn && facts.ssgiReadsDirect, ssgiOn, ssgiBlur, ssgiInputs.downsample, plan.runs(Work::Emissive)});
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
-  // Passes only unwanted targets need are skipped: the G-buffer targets
-  // alone need neither light nor SSGI; ssgi alone needs no composite.
-  const TargetWanted wanted{targets};
-  const bool wantLit = wanted("lit"), wantSsgi = ssgiOn && wanted("ssgi");
-  const bool runSsgi = ssgiOn && (wantLit || wantSsgi);
-  const bool runDirect = wantLit || (runSsgi && ssgiInputs.method == SsgiMethod::Radiance);
-
   PassTimer timer(impl.context);
+  // Shadow maps are (re)made when the size changes or shadows are turned
+  // on; with shadows off the lights read "no map" and nothing is allocated.
   if (!shadows) impl.dropShadows();
-  if (runDirect && impl.needsShadowPass(shadows, shadowMapSize))
+  if (plan.runs(Work::Shadows) && impl.shadowMapSize != shadowMapSize)
     timer.run("shadows", [&] { impl.renderShadows(shadowMapSize); });
   impl.bindLighting(skyIntensity, pcfRadius);
   timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
-  if (runDirect) timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
+  if (plan.runs(Work::Direct))
+    timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
   if (runSsgi) {
     ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
     const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
@@ -406,9 +495,13 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     const SsgiBlurInputs blurInputs{impl.gbuffer, impl.ssgiRaw, ssgiInputs.radiusWorld, ssgiInputs.downsample};
     if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, impl.ssgiTarget); });
   }
+  // The sky tables are made on the first frame that needs them (and again
+  // only when the sky's colours change).
+  if (plan.runs(Work::Sky) && !impl.environment.holds(impl.scene.sky))
+    timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky); });
   const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, ssgiOn ? &impl.ssgiTarget : nullptr,
-                                        impl.environment.tables()};
-  if (wantLit) timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
+                                        impl.environment.tables(), plan.runs(Work::Sky)};
+  if (plan.runs(Work::Composite)) timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
   timer.run("readback", [&] { impl.readTargets(frame, runSsgi, wanted); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 

@@ -354,3 +354,19 @@ TEST_CASE("every lossless EXR compression writes the same pixels") {
     CHECK(differing == 0);
   }
 }
+
+TEST_CASE("job lines: a settings file, overridden by the line's own settings, and a bad one named") {
+  const fs::path folder = test::freshFolder("job-settings-file");
+  const fs::path file = folder / "tuned.settings";
+  std::ofstream(file) << "ssgi-slices = 3\nssgi-steps = 5\n";
+  const std::string text = R"({"scene": "builtin:cornell", "out": "a", "settings_file": ")" + file.string() + "\"" +
+                           R"(, "settings": {"ssgi-steps": 9}})" + "\n" +
+                           R"({"scene": "builtin:cornell", "out": "b", "settings_file": "no-such.settings"})" + "\n";
+  const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
+  REQUIRE(jobs.size() == 2);
+  CHECK(jobs[0].error.empty());
+  CHECK(jobs[0].settings.ssgi.sliceCount == 3);
+  CHECK(jobs[0].settings.ssgi.stepCount == 9);
+  CHECK(jobs[1].error.find("no-such.settings: cannot read the settings file") != std::string::npos);
+  fs::remove_all(folder);
+}

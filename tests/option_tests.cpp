@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <set>
 
 #include "bench_command.hpp"
 #include "cli_options.hpp"
@@ -11,6 +12,7 @@
 #include "headlight/settings.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
+#include "tune_command.hpp"
 
 using namespace headlight;
 
@@ -169,4 +171,64 @@ TEST_CASE("bench sweeps any setting row; the product skips what the settings ref
   CHECK(usage({"--sweep", "bogus=1"}).find("unknown setting 'bogus'") != std::string::npos);
   CHECK(usage({"--sweep", "ssgi-samples"}).find("expected NAME=V1,V2") != std::string::npos);
   CHECK(usage({"--samples", "4"}).find("unknown option '--samples'") != std::string::npos);
+}
+
+TEST_CASE("a settings file round-trips every row it holds, and leaves the size and camera alone") {
+  RenderSettings tuned;
+  tuned.ssgi.sliceCount = 3;
+  tuned.ssgi.stepCount = 11;
+  tuned.ssgi.thickness = 0.123456789f;
+  tuned.ssgi.resolution = SsgiResolution::Half;
+  tuned.lighting.skyIntensity = 0.0f;
+  tuned.width = 999;
+  const std::string comments[] = {"tune: ao-rmse = 0.04"};
+  const std::string text = settingsFileText(tuned, comments);
+  CHECK(text.rfind("# tune: ao-rmse = 0.04\n", 0) == 0);
+  RenderSettings read;
+  read.width = 32;
+  applySettingsFileText(read, text, "t.settings");
+  CHECK(read.width == 32);
+  auto expected = settingsAsText(tuned), actual = settingsAsText(read);
+  expected.erase("width");
+  actual.erase("width");
+  CHECK(actual == expected);
+  CHECK(*read.ssgi.thickness == tuned.ssgi.thickness);  // 9 significant digits: exact
+}
+
+TEST_CASE("settings file lines: spaces, comments and CRLF are accepted; a bad line names file and line") {
+  RenderSettings settings;
+  applySettingsFileText(settings, "  # note\r\n\r\n ssgi-steps=9 \r\nssgi-blur = off\r\n", "w.settings");
+  CHECK(settings.ssgi.stepCount == 9);
+  CHECK(!settings.ssgi.blur);
+  CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 9\n= 3\n", "w.settings"),
+                       doctest::Contains("w.settings:2: expected NAME = VALUE"), SettingsError);
+  CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 99\n", "w.settings"),
+                       doctest::Contains("w.settings:1: --ssgi-steps"), SettingsError);
+}
+
+TEST_CASE("tune chooses the least frame time among the rows within the AO bound") {
+  std::vector<BenchRow> rows(4);
+  const double ms[] = {10, 20, 5, 40}, rmse[] = {0.08, 0.04, 0.06, 0.02};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].frameMs.median = ms[i];
+    rows[i].ao.rmse = rmse[i];
+  }
+  CHECK(cli::cheapestWithin(rows, 0.05) == std::optional<std::size_t>(1));
+  CHECK(cli::cheapestWithin(rows, 0.06) == std::optional<std::size_t>(2));  // the bound is inclusive
+  CHECK(cli::cheapestWithin(rows, 1.0) == std::optional<std::size_t>(2));
+  CHECK(!cli::cheapestWithin(rows, 0.01));
+}
+
+TEST_CASE("tune's default candidates are the bitmask method's, around the scene's auto thickness") {
+  const auto sweeps = cli::defaultTuneSweeps(0.4f);
+  const auto configs = cli::sweepConfigs(RenderSettings{}, sweeps, 128, 128);
+  // 3 slice counts x 4 step counts x 3 thicknesses x 2 resolutions x 2 frame counts.
+  CHECK(configs.size() == 3 * 4 * 3 * 2 * 2);
+  std::set<float> thicknesses;
+  for (const auto& config : configs) {
+    CHECK(config.settings.ssgi.method == SsgiMethod::Bitmask);
+    CHECK(config.settings.width == 128);
+    if (config.settings.ssgi.thickness) thicknesses.insert(*config.settings.ssgi.thickness);
+  }
+  CHECK(thicknesses == std::set<float>{0.2f, 0.8f});
 }

@@ -75,17 +75,25 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
     throw SettingsError(std::string("not valid JSON: ") + e.what());
   }
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + j.dump());
-  static const char* kKeys[] = {"scene", "out", "camera", "eye", "target", "up", "fov", "size", "settings"};
+  static const char* kKeys[] = {"scene", "out", "camera", "eye",           "target",
+                                "up",    "fov", "size",   "settings_file", "settings"};
   for (const auto& [key, value] : j.items())
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
       throw SettingsError("unknown key \"" + key +
-                          "\" (known: scene, out, camera, eye, target, up, fov, size, settings)");
+                          "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings)");
   if (!j.contains("scene") || !j["scene"].is_string() || j["scene"].get<std::string>().empty())
     throw SettingsError("\"scene\": expected a file path or builtin:NAME");
   job.scene = j["scene"].get<std::string>();
   if (!j.contains("out") || !j["out"].is_string() || j["out"].get<std::string>().empty())
     throw SettingsError("\"out\": expected the job's output folder");
   job.outDir = j["out"].get<std::string>();
+
+  // A settings file (headlight tune's) first: the line's own keys override it.
+  if (j.contains("settings_file")) {
+    if (!j["settings_file"].is_string() || j["settings_file"].get<std::string>().empty())
+      throw SettingsError("\"settings_file\": expected the path of a settings file");
+    applySettingsFile(job.settings, j["settings_file"].get<std::string>());
+  }
 
   // Everything a setting row can say goes through the one table.
   std::map<std::string, std::string> settings;
@@ -501,6 +509,8 @@ int runRenderBatch(const RenderCommand& command) {
           total += time.milliseconds;
         }
         std::fprintf(stderr, "pass %-10s %9.2f ms\n", "total", total);
+        for (const SkippedWork& skipped : frame->skipped)
+          std::fprintf(stderr, "skipped %-10s %s\n", skipped.work.c_str(), skipped.reason.c_str());
       }
       cache.release(job.scene);
       if (single) {

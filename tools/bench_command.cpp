@@ -41,19 +41,6 @@ std::pair<int, int> parseResolution(const std::string& text) {
           int(std::get<std::int64_t>(parseOptionValue(height.spec, text.substr(x + 1))))};
 }
 
-// "NAME=V1,V2,..." against the setting table: each value checked by the row.
-SettingSweep parseSweep(const std::string& text) {
-  const auto equals = text.find('=');
-  if (equals == std::string::npos || equals == 0)
-    throw SettingsError("--sweep: expected NAME=V1,V2,... (NAME a render setting), got '" + text + "'");
-  SettingSweep sweep{text.substr(0, equals), {}};
-  const Option<RenderSettings>& row = findOption(settingOptions(), sweep.name);
-  for (const std::string& value : splitList(text.substr(equals + 1), ','))
-    sweep.values.push_back(parseOptionValue(row.spec, value));
-  if (sweep.values.empty()) throw SettingsError("--sweep " + sweep.name + ": no values");
-  return sweep;
-}
-
 std::vector<Option<BenchCommand>> benchOptions() {
   using T = OptionType;
   using C = BenchCommand;
@@ -84,6 +71,7 @@ std::vector<Option<BenchCommand>> benchOptions() {
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
       [](auto& c) -> auto& { return c.chart; }));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  rows.push_back(settingsFileOption<C>(&C::base));
   for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
   return rows;
 }
@@ -97,18 +85,30 @@ std::string configLabel(const std::vector<std::pair<const Option<RenderSettings>
 
 }  // namespace
 
+SettingSweep parseSweep(const std::string& text) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw SettingsError("--sweep: expected NAME=V1,V2,... (NAME a render setting), got '" + text + "'");
+  SettingSweep sweep{text.substr(0, equals), {}};
+  const Option<RenderSettings>& row = findOption(settingOptions(), sweep.name);
+  for (const std::string& value : splitList(text.substr(equals + 1), ','))
+    sweep.values.push_back(parseOptionValue(row.spec, value));
+  if (sweep.values.empty()) throw SettingsError("--sweep " + sweep.name + ": no values");
+  return sweep;
+}
+
 std::vector<SettingSweep> defaultBenchSweeps() {
   return {parseSweep("ssgi-method=hemisphere,radiance"), parseSweep("ssgi-samples=4,8,16,32,64"),
           parseSweep("ssgi-radius-fraction=0.075,0.15,0.3"), parseSweep("ssgi-blur=on,off"),
           parseSweep("ssgi-resolution=full,half")};
 }
 
-std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, int height) {
-  const std::vector<SettingSweep> sweeps = command.sweeps.empty() ? defaultBenchSweeps() : command.sweeps;
+std::vector<BenchConfig> sweepConfigs(const RenderSettings& base, const std::vector<SettingSweep>& sweeps, int width,
+                                      int height) {
   std::vector<BenchConfig> configs;
   std::vector<std::size_t> index(sweeps.size(), 0);  // an odometer over the sweeps' values
   for (bool more = true; more;) {
-    BenchConfig config{command.base, "", false};
+    BenchConfig config{base, "", false};
     config.settings.width = width;
     config.settings.height = height;
     std::vector<std::pair<const Option<RenderSettings>*, OptionValue>> choice;
@@ -133,6 +133,12 @@ std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, in
       index[s] = 0;
     }
   }
+  return configs;
+}
+
+std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, int height) {
+  std::vector<BenchConfig> configs =
+      sweepConfigs(command.base, command.sweeps.empty() ? defaultBenchSweeps() : command.sweeps, width, height);
   // The seed spec's own numbers, whatever the scene's size: the point to beat.
   BenchConfig seed{RenderSettings{}, "preset=seed ssgi-blur=off", true};
   seed.settings.width = width;
@@ -162,11 +168,11 @@ double ssgiMilliseconds(const Frame& frame) {
 }
 
 // Times one configuration: `warmup` frames, then `repetitions` timed ones.
-Frame timeFrames(Renderer& renderer, const BenchConfig& config, const BenchCommand& command,
+Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOptions& options,
                  std::vector<double>& frameTimes, std::vector<double>& ssgiTimes) {
-  for (int i = 0; i < command.warmup; ++i) renderer.render(config.settings);
+  for (int i = 0; i < options.warmup; ++i) renderer.render(config.settings);
   Frame frame;
-  for (int i = 0; i < command.repetitions; ++i) {
+  for (int i = 0; i < options.repetitions; ++i) {
     frame = renderer.render(config.settings);
     frameTimes.push_back(frameMilliseconds(frame));
     ssgiTimes.push_back(ssgiMilliseconds(frame));
@@ -174,7 +180,7 @@ Frame timeFrames(Renderer& renderer, const BenchConfig& config, const BenchComma
   return frame;
 }
 
-BenchRow measure(const Frame& frame, const BenchConfig& config, const BenchCommand& command,
+BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options,
                  std::vector<double> frameTimes, std::vector<double> ssgiTimes, const ReferenceImages& reference) {
   BenchRow row;
   row.scene = frame.sceneSource;
@@ -183,7 +189,7 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const BenchComma
   row.label = config.label;
   row.settings = settingsAsText(frame.settings);
   row.seedDefault = config.seedDefault;
-  row.repetitions = command.repetitions;
+  row.repetitions = options.repetitions;
   row.frameMs = summarize(frameTimes);
   row.ssgiMs = summarize(ssgiTimes);
   row.ao = maskedError(frame.ssgi, 0, reference.ao, 0, frame.position);
@@ -228,6 +234,30 @@ std::string joinArgs(const std::vector<std::string>& args) {
 
 }  // namespace
 
+std::vector<BenchRow> measureConfigs(Renderer& renderer, const std::vector<BenchConfig>& configs,
+                                     const MeasureOptions& options, Progress& progress, std::size_t& done) {
+  const std::string sceneName = renderer.scene().source;
+  std::vector<BenchRow> rows;
+  // The reference depends on the radius the frame used (and the G-buffer,
+  // the same for every configuration of one camera and size).
+  std::map<float, ReferenceImages> references;
+  for (const BenchConfig& config : configs) {
+    progress.update(done, sceneName + " " + config.label);
+    std::vector<double> frameTimes, ssgiTimes;
+    const Frame frame = timeFrames(renderer, config, options, frameTimes, ssgiTimes);
+    const float radius = *frame.settings.ssgi.radius;
+    if (!references.count(radius)) {
+      progress.update(done, sceneName + " reference R=" + std::to_string(radius));
+      ReferenceSettings settings = options.reference;
+      settings.radius = radius;
+      references.emplace(radius, traceReference(renderer.scene(), frame, settings));
+    }
+    rows.push_back(measure(frame, config, options, frameTimes, ssgiTimes, references.at(radius)));
+    ++done;
+  }
+  return rows;
+}
+
 BenchCommand parseBenchArgs(const std::vector<std::string>& args) {
   BenchCommand command;
   const auto options = benchOptions();
@@ -270,27 +300,13 @@ int runBenchCommand(const std::vector<std::string>& args) {
   const std::size_t configsPerGroup = benchConfigs(command, 1, 1).size();
   Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !quiet, "configs");
   std::size_t done = 0;
+  const MeasureOptions measureOptions{command.repetitions, command.warmup, command.reference};
   for (const std::string& sceneName : command.scenes) {
     renderer.setScene(loadScene(sceneName));
-    for (const auto& [width, height] : command.resolutions) {
-      // The reference depends on the radius the frame used (and the
-      // G-buffer, the same for every configuration of one camera and size).
-      std::map<float, ReferenceImages> references;
-      for (const BenchConfig& config : benchConfigs(command, width, height)) {
-        progress.update(done, sceneName + " " + config.label);
-        std::vector<double> frameTimes, ssgiTimes;
-        const Frame frame = timeFrames(renderer, config, command, frameTimes, ssgiTimes);
-        const float radius = *frame.settings.ssgi.radius;
-        if (!references.count(radius)) {
-          progress.update(done, sceneName + " reference R=" + std::to_string(radius));
-          ReferenceSettings settings = command.reference;
-          settings.radius = radius;
-          references.emplace(radius, traceReference(renderer.scene(), frame, settings));
-        }
-        rows.push_back(measure(frame, config, command, frameTimes, ssgiTimes, references.at(radius)));
-        ++done;
-      }
-    }
+    for (const auto& [width, height] : command.resolutions)
+      for (BenchRow& row :
+           measureConfigs(renderer, benchConfigs(command, width, height), measureOptions, progress, done))
+        rows.push_back(std::move(row));
   }
   progress.finish();
   markParetoFronts(rows);

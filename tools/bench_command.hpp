@@ -9,9 +9,12 @@
 #include <vector>
 
 #include "cli_options.hpp"
+#include "headlight/bench.hpp"
 #include "headlight/context.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/renderer.hpp"
 #include "headlight/settings.hpp"
+#include "progress.hpp"
 
 namespace headlight::cli {
 
@@ -21,6 +24,9 @@ struct SettingSweep {
   std::string name;
   std::vector<OptionValue> values;
 };
+
+// "NAME=V1,V2,..." (a --sweep value): each value checked by the row NAME.
+SettingSweep parseSweep(const std::string& text);
 
 // What the bench sweeps when no --sweep is given: both methods, sample
 // counts, radii around the auto radius, blur and SSGI resolution.
@@ -45,15 +51,33 @@ struct BenchCommand {
 BenchCommand parseBenchArgs(const std::vector<std::string>& args);
 std::string benchHelp();
 
-// Every configuration of the command's sweep (cartesian product, in the
-// order given), skipping combinations the settings refuse (below full SSGI
-// resolution the blur cannot be off); then the seed preset.
 struct BenchConfig {
   RenderSettings settings;
   std::string label;
   bool seedDefault = false;
 };
+// Every combination of the sweeps' values on `base` at width x height
+// (cartesian product, in the order given), skipping combinations the
+// settings refuse (below full SSGI resolution the blur cannot be off).
+std::vector<BenchConfig> sweepConfigs(const RenderSettings& base, const std::vector<SettingSweep>& sweeps, int width,
+                                      int height);
+// The command's sweep (sweepConfigs), then the seed preset.
 std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, int height);
+
+// How each configuration is measured: untimed then timed frames, and the
+// reference's rays per pixel.
+struct MeasureOptions {
+  int repetitions = 5;
+  int warmup = 2;
+  ReferenceSettings reference;
+};
+// Times each configuration on the renderer's scene and measures its errors
+// against the reference, traced once per SSGI radius (the G-buffer is the
+// same for every configuration of one camera and size). `progress` is
+// advanced from `done`, which counts the configurations measured. Shared by
+// `bench` and `tune`.
+std::vector<BenchRow> measureConfigs(Renderer& renderer, const std::vector<BenchConfig>& configs,
+                                     const MeasureOptions& options, Progress& progress, std::size_t& done);
 
 // Runs the whole command; returns the exit code.
 int runBenchCommand(const std::vector<std::string>& args);

@@ -7,6 +7,7 @@
 #include "bench_command.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "tune_command.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -133,6 +134,7 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
                                   .help = "named settings; flags after it override it",
                                   .choices = presetNames()},
                                  [](C& c, const OptionValue& v) { applyPreset(c.settings, text(v)); }));
+  rows.push_back(settingsFileOption<C>(&C::settings));
   rows.push_back(bindOption<C>(
       {.name = "allow-external-paths",
        .type = T::Switch,
@@ -196,6 +198,7 @@ std::vector<Option<Command>> commonCommandOptions() {
 }
 template std::vector<Option<RenderCommand>> commonCommandOptions<RenderCommand>();
 template std::vector<Option<BenchCommand>> commonCommandOptions<BenchCommand>();
+template std::vector<Option<TuneCommand>> commonCommandOptions<TuneCommand>();
 
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind) {
   RenderCommand command;

@@ -52,6 +52,20 @@ struct RenderCommand {
 template <class Command>
 std::vector<Option<Command>> commonCommandOptions();
 
+// --settings FILE: applies a settings file (headlight tune writes them) to
+// the command's `member` settings where it stands on the command line: flags
+// after it override it, flags before it are overridden by it.
+template <class Command>
+Option<Command> settingsFileOption(RenderSettings Command::*member) {
+  return actionOption<Command>(
+      {.name = "settings",
+       .type = OptionType::Text,
+       .help = "apply a settings file (`name = value` lines, as `headlight tune` writes); flags after it "
+               "override it, flags before it are overridden by it",
+       .valueName = "FILE"},
+      [member](Command& c, const OptionValue& v) { applySettingsFile(c.*member, std::get<std::string>(v)); });
+}
+
 // Parses the arguments after "render" (or "reference"). Throws SettingsError
 // for a bad or unknown flag or value (the CLI maps it to exit code 2).
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind = CommandKind::Render);

@@ -18,6 +18,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
+#include "tune_command.hpp"
 
 namespace {
 
@@ -33,6 +34,7 @@ const char* kUsage =
     "  render [SCENE]     render a glTF file or builtin:<name> to EXRs (headlight render --help)\n"
     "  reference [SCENE]  ray-traced ground truth for the SSGI outputs (headlight reference --help)\n"
     "  bench [SCENE...]   time every SSGI setting and chart it against the reference (headlight bench --help)\n"
+    "  tune [SCENE]       the cheapest SSGI settings within an AO error, as a settings file (headlight tune --help)\n"
     "  diff A B           compare two EXRs or two render folders (headlight diff --help)\n\n"
     "options:\n"
     "  --help           this help\n"
@@ -125,6 +127,7 @@ int main(int argc, char** argv) {
     if (args[0] == "render") return runRender(rest);
     if (args[0] == "reference") return runReference(rest);
     if (args[0] == "bench") return cli::runBenchCommand(rest);
+    if (args[0] == "tune") return cli::runTuneCommand(rest);  // exit 3: no configuration meets the bound
     if (args[0] == "diff") return cli::runDiffCommand(rest);  // its own exit codes (docs/DIFF.md)
     std::cerr << "headlight: unknown command '" << args[0] << "'\n" << kUsage;
     return kExitUsage;

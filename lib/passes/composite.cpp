@@ -5,8 +5,11 @@
 namespace headlight {
 
 CompositePass::CompositePass()
-    : FullscreenPass("composite.frag", [](bool withSsgi) {
-        return withSsgi ? std::vector<std::string>{"HAS_SSGI"} : std::vector<std::string>{};
+    : FullscreenPass("composite.frag", [](const Variant& variant) {
+        std::vector<std::string> defines;
+        if (variant.ssgi) defines.emplace_back("HAS_SSGI");
+        if (variant.sky) defines.emplace_back("HAS_SKY");
+        return defines;
       }) {}
 
 void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output) {
@@ -16,10 +19,12 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
   inputs.gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.direct.bind(gpu::kUnitDirect);
   if (inputs.ssgi) inputs.ssgi->bind(gpu::kUnitSsgi);
-  inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
-  inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
-  inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
-  draw("composite", inputs.ssgi != nullptr, output);
+  if (inputs.sky) {
+    inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+    inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
+    inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
+  }
+  draw("composite", Variant{inputs.ssgi != nullptr, inputs.sky}, output);
 }
 
 }  // namespace headlight

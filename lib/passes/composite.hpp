@@ -17,11 +17,21 @@ struct CompositeInputs {
   const gl::Texture* ssgi;    // blurred SSGI; null with SSGI off (ambient then unoccluded but for
                               // the material's occlusion)
   const EnvironmentTables& environment;
+  bool sky = true;  // false: leave out the sky term (the renderer's rule: sky intensity 0)
 };
 
-// Variants: with SSGI (true) or without.
-class CompositePass : public FullscreenPass<bool> {
+// Variants: with SSGI or without (ambient then unoccluded but for the
+// material's occlusion); with the sky term or without (sky intensity 0: the
+// image-based ambient and the background are then exactly 0, and the sky
+// tables are not read).
+struct CompositeVariant {
+  bool ssgi, sky;
+  auto operator<=>(const CompositeVariant&) const = default;
+};
+
+class CompositePass : public FullscreenPass<CompositeVariant> {
  public:
+  using Variant = CompositeVariant;
   CompositePass();
   // The lighting block must be bound (sky intensity).
   void run(const CompositeInputs& inputs, const gl::Texture& output);

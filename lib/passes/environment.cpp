@@ -21,12 +21,15 @@ EnvironmentPass::EnvironmentPass()
   draw_.draw("BRDF table", brdfProgram_, tables_.brdfLut);
 }
 
-void EnvironmentPass::updateSky(const Sky& sky) {
+bool EnvironmentPass::holds(const Sky& sky) const {
   // Intensity is applied in the composite pass, so a changed intensity
   // needs no new table.
-  if (tabulatedSky_ && tabulatedSky_->zenith == sky.zenith && tabulatedSky_->horizon == sky.horizon &&
-      tabulatedSky_->ground == sky.ground)
-    return;
+  return tabulatedSky_ && tabulatedSky_->zenith == sky.zenith && tabulatedSky_->horizon == sky.horizon &&
+         tabulatedSky_->ground == sky.ground;
+}
+
+void EnvironmentPass::updateSky(const Sky& sky) {
+  if (holds(sky)) return;
   tabulatedSky_ = sky;
   gpu::SkyBlock block{glm::vec4(sky.zenith, 0.0f), glm::vec4(sky.horizon, 0.0f), glm::vec4(sky.ground, 0.0f)};
   skyBlock_.update(block);

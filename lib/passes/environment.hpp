@@ -24,8 +24,9 @@ struct EnvironmentTables {
 
 class EnvironmentPass {
  public:
-  EnvironmentPass();               // builds the programs and the BRDF table
-  void updateSky(const Sky& sky);  // recomputes the sky tables if the sky's colours changed
+  EnvironmentPass();                 // builds the programs and the BRDF table
+  void updateSky(const Sky& sky);    // recomputes the sky tables if the sky's colours changed
+  bool holds(const Sky& sky) const;  // the sky tables are this sky's (intensity aside)
   const EnvironmentTables& tables() const { return tables_; }
 
  private:

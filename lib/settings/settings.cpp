@@ -1,7 +1,12 @@
 #include "headlight/settings.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 #include "headlight/error.hpp"
@@ -197,6 +202,66 @@ void applySettingsText(RenderSettings& settings, const std::map<std::string, std
     const Row& option = findOption(settingOptions(), name);
     option.set(settings, parseOptionValue(option.spec, text));
   }
+}
+
+namespace {
+
+// The image's size and the view belong to each render, not to the scene's
+// model: a file tuned at 128 x 128 is meant for any size and camera.
+constexpr std::string_view kRowsNotInSettingsFiles[] = {"width", "height", "camera"};
+
+std::string_view trimmed(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+}  // namespace
+
+std::string settingsFileText(const RenderSettings& settings, std::span<const std::string> comments) {
+  std::string text;
+  for (const std::string& comment : comments) text += "# " + comment + "\n";
+  for (const Row& option : settingOptions()) {
+    if (std::find(std::begin(kRowsNotInSettingsFiles), std::end(kRowsNotInSettingsFiles), option.spec.name) !=
+        std::end(kRowsNotInSettingsFiles))
+      continue;
+    text += std::string(option.spec.name) + " = " + formatOptionValue(option.spec, option.get(settings)) + "\n";
+  }
+  return text;
+}
+
+void applySettingsFileText(RenderSettings& settings, std::string_view text, const std::string& name) {
+  std::map<std::string, int> seenOnLine;
+  int lineNumber = 0;
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view line = trimmed(text.substr(start, end - start));
+    start = end + 1;
+    ++lineNumber;
+    if (line.empty() || line.front() == '#') continue;
+    const std::string where = name + ":" + std::to_string(lineNumber) + ": ";
+    const auto equals = line.find('=');
+    const std::string key(trimmed(line.substr(0, equals == std::string_view::npos ? 0 : equals)));
+    if (equals == std::string_view::npos || key.empty())
+      throw SettingsError(where + "expected NAME = VALUE (NAME a render setting, as its flag without --), got '" +
+                          std::string(line) + "'");
+    if (const auto seen = seenOnLine.find(key); seen != seenOnLine.end())
+      throw SettingsError(where + "'" + key + "' is already set on line " + std::to_string(seen->second));
+    seenOnLine.emplace(key, lineNumber);
+    try {
+      applySettingsText(settings, {{key, std::string(trimmed(line.substr(equals + 1)))}});
+    } catch (const SettingsError& error) {
+      throw SettingsError(where + error.what());
+    }
+  }
+}
+
+void applySettingsFile(RenderSettings& settings, const std::filesystem::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw SettingsError(path.string() + ": cannot read the settings file: " + std::strerror(errno));
+  std::ostringstream text;
+  text << file.rdbuf();
+  applySettingsFileText(settings, text.str(), path.string());
 }
 
 void applyPreset(RenderSettings& settings, std::string_view preset) {

@@ -29,6 +29,13 @@ struct ImageF {
   }
 };
 
+// Work a frame left out because its scene, settings or wanted targets do not
+// need it (the renderer's one table of rules, lib/renderer.cpp).
+struct SkippedWork {
+  std::string work;    // "shadows", "direct", "ssgi", "composite", "sky", "emissive"
+  std::string reason;  // "no light casts shadows", "sky intensity 0", ...
+};
+
 struct PassTime {
   std::string pass;
   double milliseconds = 0;  // bounded by glFinish before and after
@@ -47,6 +54,7 @@ struct Frame {
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers
   std::vector<PassTime> timings;
+  std::vector<SkippedWork> skipped;  // in the table's order; what `--verbose` lists
   std::string glRenderer;
   std::string glVersion;
   std::string backend;      // "egl" or "osmesa", and which device

@@ -6,6 +6,7 @@
 // that table. A setting that may be "auto" is a std::optional: std::nullopt
 // is resolved from the scene or the image by Renderer::resolve, and a frame's
 // settings have every optional filled in.
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <span>
@@ -95,6 +96,21 @@ std::map<std::string, std::string> settingsAsText(const RenderSettings& settings
 // The inverse: applies each named value onto `settings` (unknown names are
 // an error, so a typo in a settings file is not silently ignored).
 void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values);
+
+// A settings file (`headlight tune` writes one, `render --settings FILE`
+// reads it): one `name = value` a line, names and values as the flags take
+// them (the table's rows, through applySettingsText); blank lines and lines
+// starting with '#' are ignored. settingsFileText writes every row but the
+// image's and the view's (width, height, camera: a render's, not the
+// scene's), after `comments`, each as a '#' line.
+std::string settingsFileText(const RenderSettings& settings, std::span<const std::string> comments = {});
+// Applies the file's lines in order. Throws SettingsError "NAME:LINE: ..."
+// for a malformed line, an unknown setting, a bad value or a setting given
+// twice; `name` is the file's name for the messages.
+void applySettingsFileText(RenderSettings& settings, std::string_view text, const std::string& name);
+// Reads `path`, then applySettingsFileText; SettingsError naming the file if
+// it cannot be read.
+void applySettingsFile(RenderSettings& settings, const std::filesystem::path& path);
 
 // Named presets: "fast" (bitmask, 1 slice of 8 steps, SSGI at half
 // resolution), "default" (bitmask, 2 slices of 16 steps), "high" (bitmask,

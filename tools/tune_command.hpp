@@ -1,0 +1,65 @@
+#pragma once
+// `headlight tune SCENE --max-ao-error E`: the scene's own speed/accuracy
+// front, measured at a small size against the ray-traced reference with the
+// bench's machinery (measureConfigs), and a settings file holding the
+// cheapest configuration whose AO RMSE is at most E (render --settings FILE).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_command.hpp"
+
+namespace headlight::cli {
+
+// Exit code when no configuration reaches the bound: nothing is written.
+constexpr int kExitTuneUnmet = 3;
+
+struct TuneCommand {
+  std::string scene = "builtin:cornell";
+  // --out FILE: the settings file to write (the member's name is the one
+  // commonCommandOptions binds --out to).
+  std::string outDir = "headlight.settings";
+  double maxAoError = 0;              // --max-ao-error E, required
+  RenderSettings base = smallBase();  // what every configuration starts from; 128 x 128
+  std::vector<SettingSweep> sweeps;   // empty: defaultTuneSweeps()
+  ReferenceSettings reference = tuneReference();
+  int repetitions = 2;  // timed frames per configuration
+  int warmup = 1;
+  Verbosity verbosity = Verbosity::Normal;
+  bool help = false;
+  ContextOptions context;
+
+  // 128 x 128: each configuration's frames take tens of milliseconds on
+  // llvmpipe, and the reference a few seconds (docs/BENCHMARKS.md, "tune").
+  static RenderSettings smallBase() {
+    RenderSettings settings;
+    settings.width = 128;
+    settings.height = 128;
+    return settings;
+  }
+  // 1024 rays: the reference's own AO noise (mean standard error about 0.01
+  // on the built-ins) adds under 0.001 to an RMSE of 0.05 (in quadrature).
+  static ReferenceSettings tuneReference() {
+    ReferenceSettings reference;
+    reference.samplesPerPixel = 1024;
+    return reference;
+  }
+};
+
+// Throws SettingsError for a bad flag or value, or a missing --max-ao-error.
+TuneCommand parseTuneArgs(const std::vector<std::string>& args);
+std::string tuneHelp();
+
+// The candidates when no --sweep is given: the bitmask method's slices,
+// steps, thickness (auto, and half and twice `autoThickness`, the scene's
+// resolved auto value), SSGI resolution and accumulated frames.
+std::vector<SettingSweep> defaultTuneSweeps(float autoThickness);
+
+// The row to write: the one with the least median frame time among those
+// whose AO RMSE is at most `maxAoError`; nullopt when none is.
+std::optional<std::size_t> cheapestWithin(const std::vector<BenchRow>& rows, double maxAoError);
+
+// Runs the whole command; returns the exit code.
+int runTuneCommand(const std::vector<std::string>& args);
+
+}  // namespace headlight::cli
