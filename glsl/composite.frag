@@ -2,7 +2,7 @@
 // occluded by the material's AO and the SSGI's sky visibility (at any
 // distance: the sky is infinitely far, so AO within R would let a closed
 // room see it), + SSGI's indirect term:
-//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect
+//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
 // Background pixels show the sky, alpha 0.
 #include "shared_layout.h"
 #include "sampling.glsl"
@@ -64,13 +64,16 @@ void main() {
   }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_SSGI
-  const vec3 indirect = texelFetch(ssgiTexture, pixel, 0).gba;
-  const float skyVisibility = texelFetch(ssgiSkyTexture, pixel, 0).r;
+  const vec4 sky = texelFetch(ssgiSkyTexture, pixel, 0);
+  // Light gathered within R and beyond it (the kernel methods: none beyond).
+  const vec3 indirect = texelFetch(ssgiTexture, pixel, 0).gba + sky.gba;
+  const float skyVisibility = sky.r;
 #else
   const vec3 indirect = vec3(0.0);
   const float skyVisibility = 1.0;
 #endif
   const float materialOcclusion = texelFetch(gbufferMaterial, pixel, 0).z;
-  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, skyVisibility, indirect);
+  const vec3 radiance =
+      texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, skyVisibility, indirect);
   outRadiance = vec4(radiance, 1.0);
 }

@@ -11,7 +11,9 @@
 // The sky visibility (the reference's sky_vis, ACCURACY.md §2.4) marks a
 // second mask with the same slabs uncut by R, plus `skyStepCount` samples per
 // side spaced geometrically from R's footprint out to the screen edge; their
-// slabs deepen with distance (skySlabDepth). What lies off screen, and what
+// slabs deepen with distance (skySlabDepth); sectors first covered there (or
+// by a slab's part beyond R) gather its light as indirect from beyond R,
+// composited beside the within-R indirect. What lies off screen, and what
 // the depth buffer hides behind the slabs, is taken as open: a scene seen
 // from outside it (the Cornell box's open front) is right there, one framed
 // from inside its walls is too light where the walls leave the screen.
@@ -122,6 +124,13 @@ float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
 }
 
+// The summed weights of the sectors in `bits`.
+float sectorWeight(uint bits, float weights[kSectors]) {
+  float sum = 0.0;
+  for (; bits != 0u; bits &= bits - 1u) sum += weights[findLSB(bits)];
+  return sum;
+}
+
 // A 4x4 Bayer matrix: the 16 pixels of a tile (what the blur averages) get
 // 16 stratified rotations.
 const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
@@ -152,7 +161,7 @@ void main() {
   const int sliceCount = bitmask.sliceCount, stepCount = bitmask.stepCount;
   const int skyStepCount = bitmask.skyStepCount;
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
-  vec3 indirect = vec3(0.0);
+  vec3 indirect = vec3(0.0), farIndirect = vec3(0.0);  // gathered within R, and beyond it
   for (int s = 0; s < sliceCount; ++s) {
     const float phi = (float(s) + rotation) * kPi / float(sliceCount);
     const vec2 direction = vec2(cos(phi), sin(phi));  // on screen
@@ -198,39 +207,50 @@ void main() {
         if (!known) continue;
         const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
         const vec3 offsetFront = front - position;
-        if (skyStepCount > 0)
-          skyOccupied |= sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side,
-                                        toEye, lowest);
+        // Only a surface facing the point sends it light.
+        const bool facing = dot(sampleNormal, offsetFront) < 0.0;
         // The slab front..back, cut to the sphere of radius R about the point.
         const vec3 span = awayFromEye * bitmask.thicknessWorld;
-        const float a = dot(span, span), b = dot(offsetFront, span), c = dot(offsetFront, offsetFront) - radius * radius;
+        const float a = dot(span, span), b = dot(offsetFront, span);
+        const float c = dot(offsetFront, offsetFront) - radius * radius;
         float t0 = 0.0, t1 = 1.0;
+        bool inRange;
         if (a < 1e-30) {
-          if (c > 0.0) continue;
+          inRange = c <= 0.0;
         } else {
           const float discriminant = b * b - a * c;
-          if (discriminant < 0.0) continue;
-          const float root = sqrt(discriminant);
-          t0 = max((-b - root) / a, 0.0);
-          t1 = min((-b + root) / a, 1.0);
-          if (t0 > t1) continue;
+          inRange = discriminant >= 0.0;
+          if (inRange) {
+            const float root = sqrt(discriminant);
+            t0 = max((-b - root) / a, 0.0);
+            t1 = min((-b + root) / a, 1.0);
+            inRange = t0 <= t1;
+          }
         }
-        const uint mask = sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest);
+        const uint mask =
+            inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest) : 0u;
         const uint fresh = mask & ~occupied;
-        if (fresh == 0u) continue;
         occupied |= mask;
-        float weight = 0.0;
-        for (uint bits = fresh; bits != 0u; bits &= bits - 1u) weight += weights[findLSB(bits)];
-        // Only a surface facing the point sends it light.
-        if (dot(sampleNormal, offsetFront) < 0.0)
-          indirect += (projectedLength * weight) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        if (fresh != 0u && facing)
+          indirect += (projectedLength * sectorWeight(fresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        if (skyStepCount == 0) continue;
+        // The same slab uncut, for the sky: sectors no nearer sample took
+        // gather its light as light from beyond R.
+        const uint skyMask =
+            sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+        const uint skyFresh = skyMask & ~(skyOccupied | occupied);
+        skyOccupied |= skyMask;
+        if (skyFresh != 0u && facing)
+          farIndirect +=
+              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
       }
       // Beyond R, for the sky: from R's footprint (at least a pixel) to the
       // screen edge along this side, in geometric steps (a far occluder
       // covers less angle, so the samples thin out with distance).
       if (skyStepCount == 0) continue;
       const vec2 origin = vec2(pixel) + 0.5;
-      const vec2 edge = vec2(stepDirection.x > 0.0 ? frame.viewport.x : 0.0, stepDirection.y > 0.0 ? frame.viewport.y : 0.0);
+      const vec2 edge =
+          vec2(stepDirection.x > 0.0 ? frame.viewport.x : 0.0, stepDirection.y > 0.0 ? frame.viewport.y : 0.0);
       const vec2 toEdge = abs(edge - origin) / max(abs(stepDirection), vec2(1e-6));
       const float edgeOffset = min(toEdge.x, toEdge.y);
       const float firstOffset = max(radiusPixels, 1.0);
@@ -248,8 +268,13 @@ void main() {
         if (!known) continue;
         const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
         const vec3 offsetFront = front - position;
-        skyOccupied |= sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye,
-                                      lowest);
+        const uint skyMask =
+            sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+        const uint skyFresh = skyMask & ~(skyOccupied | occupied);
+        skyOccupied |= skyMask;
+        if (skyFresh != 0u && dot(sampleNormal, offsetFront) < 0.0)
+          farIndirect +=
+              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
       }
     }
     float occludedWeight = 0.0;
@@ -272,5 +297,7 @@ void main() {
   const vec3 gathered = totalSum > 0.0 ? indirect / totalSum : vec3(0.0);
   outSsgi = vec4(ambientOcclusion, gathered * receiver * bitmask.indirectStrength);
   // With no sky steps the mask above is the within-R one: sky = AO.
-  outSky = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0), 0.0, 0.0, 0.0);
+  const vec3 farGathered = totalSum > 0.0 ? farIndirect / totalSum : vec3(0.0);
+  outSky = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
+                farGathered * receiver * bitmask.indirectStrength);
 }

@@ -27,7 +27,7 @@ void main() {
   const ivec2 rawSize = textureSize(rawSsgi, 0);
   const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);
-  float skySum = 0.0;
+  vec4 skySum = vec4(0.0);
   float weightSum = 0.0;
   for (int dy = -2; dy < 2; ++dy)
     for (int dx = -2; dx < 2; ++dx) {
@@ -40,12 +40,12 @@ void main() {
       const float depthWeight = exp(-abs(depth - centerDepth) / depthScale);
       const float weight = normalWeight * depthWeight;
       sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
-      skySum += texelFetch(rawSky, rawNeighbour, 0).r * weight;
+      skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
       weightSum += weight;
     }
   // At full resolution the centre has weight 1. Below it, a pixel on a
   // surface no raw texel nearby sampled (a thin strut) takes the nearest.
   const bool weighed = weightSum > 1e-4;
   outSsgi = weighed ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
-  outSky = vec4(weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0).r, 0.0, 0.0, 0.0);
+  outSky = weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0);
 }

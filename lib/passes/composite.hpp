@@ -2,7 +2,7 @@
 // The composite pass: direct light + image-based ambient from the procedural
 // sky (split-sum, tables from EnvironmentPass), occluded by the material's
 // occlusion and the SSGI's sky visibility, + the SSGI's indirect term:
-//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect
+//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
 // (the seed's ssgi_ao there: the hemisphere and radiance methods write their
 // AO within R as ssgi_sky, so their images are the seed's).
 // Output GL_RGBA16F linear radiance; background pixels get the sky, alpha 0.

@@ -6,7 +6,8 @@
 // defines it and indirect light gathered from the occluders' direct
 // Lambertian radiance. docs/ACCURACY.md §3.3 has the formulas.
 // The same slices, marched on beyond R to the screen edge with a few
-// geometrically spaced samples, give the sky visibility at any distance.
+// geometrically spaced samples, give the sky visibility at any distance and
+// the indirect light from beyond R (sectors only those samples cover).
 // Output: SsgiTextures, the same layout as the other methods.
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
