@@ -86,7 +86,8 @@ const std::vector<Row>& table() {
           {.name = "ssgi-sky-steps",
            .type = T::Int,
            .help = "bitmask SSGI: depth samples per direction beyond the radius, out to the screen edge, for the sky "
-                   "visibility that occludes ambient light (0: the AO within the radius occludes it)",
+                   "visibility that occludes ambient light and the light gathered from beyond the radius (0: neither; "
+                   "the AO within the radius occludes ambient light)",
            .maximum = 32},
           [](auto& s) -> auto& { return s.ssgi.skyStepCount; }),
       row(
