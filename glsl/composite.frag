@@ -1,6 +1,8 @@
 // Composite (lib/passes/composite.hpp): direct light + image-based ambient,
-// occluded by the material's and the SSGI's AO, + SSGI's indirect term:
-//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_ao + ssgi_indirect
+// occluded by the material's AO and the SSGI's sky visibility (at any
+// distance: the sky is infinitely far, so AO within R would let a closed
+// room see it), + SSGI's indirect term:
+//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
 // Background pixels show the sky, alpha 0. Without HAS_SKY (sky intensity
 // 0) the sky term is left out: what it would add is exactly 0.
 #include "shared_layout.h"
@@ -11,6 +13,7 @@
 layout(binding = kUnitDirect) uniform sampler2D directTexture;
 #ifdef HAS_SSGI
 layout(binding = kUnitSsgi) uniform sampler2D ssgiTexture;
+layout(binding = kUnitSsgiSky) uniform sampler2D ssgiSkyTexture;
 #endif
 layout(binding = kUnitBrdfLut) uniform sampler2D brdfLut;
 layout(binding = kUnitSkyPrefiltered) uniform sampler2D skyPrefiltered;
@@ -35,7 +38,7 @@ vec3 skyIrradianceOverPi(vec3 normal) {
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }
 
-vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
   const float size = float(kBrdfLutSize);
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
                                                tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
@@ -44,12 +47,8 @@ vec3 ambientLight(Surface surface, float materialOcclusion, vec4 ssgi) {
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
   const vec3 reflected = reflect(-surface.view, surface.normal);
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * ssgi.r + ssgi.gba;
+  return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
 }
-
-#ifndef HAS_SKY
-vec3 ambientLightWithoutSky(vec4 ssgi) { return ssgi.gba; }
-#endif
 
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -70,15 +69,20 @@ void main() {
   }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_SSGI
-  const vec4 ssgi = texelFetch(ssgiTexture, pixel, 0);
+  const vec4 sky = texelFetch(ssgiSkyTexture, pixel, 0);
+  // Light gathered within R and beyond it (the kernel methods: none beyond).
+  const vec3 indirect = texelFetch(ssgiTexture, pixel, 0).gba + sky.gba;
+  const float skyVisibility = sky.r;
 #else
-  const vec4 ssgi = vec4(1.0, 0.0, 0.0, 0.0);
+  const vec3 indirect = vec3(0.0);
+  const float skyVisibility = 1.0;
 #endif
   const float materialOcclusion = texelFetch(gbufferMaterial, pixel, 0).z;
 #ifdef HAS_SKY
-  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, ssgi);
+  const vec3 radiance =
+      texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, skyVisibility, indirect);
 #else
-  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + ambientLightWithoutSky(ssgi);
+  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + indirect;
 #endif
   outRadiance = vec4(radiance, 1.0);
 }

@@ -58,6 +58,7 @@ HL_CONST(int, kUnitEmissiveTexture, 16)
 HL_CONST(int, kUnitDirect, 17)
 HL_CONST(int, kUnitDirectDiffuse, 18)
 HL_CONST(int, kUnitGbufferDepth, 19)
+HL_CONST(int, kUnitSsgiSky, 20)
 
 // The SSGI kernel never has more samples than this (the seed's count).
 HL_CONST(int, kMaxKernelSamples, 64)
@@ -120,6 +121,10 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, 8)
   int stepCount;            // depth samples per direction
   int downsample;           // resolution divisor of the SSGI target: 1, 2 or 4
   int rotationIndex;        // the seed + the accumulated frame's index: rotates slice directions and step jitter
+  int skyStepCount;         // long-range depth samples per direction beyond R, for the sky visibility (0: none)
+  int pad0;
+  int pad1;
+  int pad2;
 HL_BLOCK_END(bitmask)
 
 // SSGI blur pass.

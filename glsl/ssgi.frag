@@ -18,6 +18,8 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 #endif
 
 layout(location = 0) out vec4 outSsgi;
+// This kernel sees no farther than R: its AO within R is its sky visibility.
+layout(location = 1) out vec4 outSky;
 
 void main() {
   // Below full resolution each output pixel shades the G-buffer pixel at
@@ -68,4 +70,5 @@ void main() {
   indirect *= (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
 #endif
   outSsgi = vec4(ambientOcclusion, indirect * (ssgi.indirectStrength / float(sampleCount)));
+  outSky = vec4(ambientOcclusion, 0.0, 0.0, 0.0);
 }

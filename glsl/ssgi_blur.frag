@@ -8,8 +8,10 @@
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitSsgi) uniform sampler2D rawSsgi;
+layout(binding = kUnitSsgiSky) uniform sampler2D rawSky;
 
 layout(location = 0) out vec4 outSsgi;
+layout(location = 1) out vec4 outSky;
 
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -25,6 +27,7 @@ void main() {
   const ivec2 rawSize = textureSize(rawSsgi, 0);
   const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);
+  vec4 skySum = vec4(0.0);
   float weightSum = 0.0;
   for (int dy = -2; dy < 2; ++dy)
     for (int dx = -2; dx < 2; ++dx) {
@@ -37,9 +40,12 @@ void main() {
       const float depthWeight = exp(-abs(depth - centerDepth) / depthScale);
       const float weight = normalWeight * depthWeight;
       sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
+      skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
       weightSum += weight;
     }
   // At full resolution the centre has weight 1. Below it, a pixel on a
   // surface no raw texel nearby sampled (a thin strut) takes the nearest.
-  outSsgi = weightSum > 1e-4 ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
+  const bool weighed = weightSum > 1e-4;
+  outSsgi = weighed ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
+  outSky = weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0);
 }

@@ -207,8 +207,10 @@ struct Renderer::Impl {
   // Per image size.
   GBuffer gbuffer;
   DirectLightTargets direct;
-  gl::Texture ssgiRaw;     // the SSGI pass's output, before the blur
-  gl::Texture ssgiTarget;  // what composite reads and ssgi.exr holds
+  // The SSGI pass's two outputs (SsgiTextures) before the blur, and after:
+  // what composite reads and ssgi.exr holds.
+  gl::Texture ssgiRaw, ssgiRawSky;
+  gl::Texture ssgiTarget, ssgiSkyTarget;
   gl::Texture litTarget;
 
   // Which targets a frame needs besides the G-buffer, direct light and lit.
@@ -237,7 +239,9 @@ struct Renderer::Impl {
     ensure(direct.diffuse, needs.directDiffuse, GL_RGBA16F);
     // The raw SSGI is what the blur turns into the ssgi target: the same format.
     ensure(ssgiRaw, needs.ssgiRaw, gl::targetFormat(&Frame::ssgi), needs.ssgiDownsample);
+    ensure(ssgiRawSky, needs.ssgiRaw, gl::targetFormat(&Frame::ssgi), needs.ssgiDownsample);
     ensure(ssgiTarget, needs.ssgi, gl::targetFormat(&Frame::ssgi));
+    ensure(ssgiSkyTarget, needs.ssgi, gl::targetFormat(&Frame::ssgi));
     ensure(litTarget, true, gl::targetFormat(&Frame::lit));
   }
 
@@ -294,23 +298,28 @@ struct Renderer::Impl {
     return fitted;
   }
 
-  // The GPU texture each frame target is read from; an empty texture (no
-  // emissive target, SSGI off) leaves the target empty.
-  const gl::Texture& sourceOf(const FrameTarget& target) const {
-    static const gl::Texture kNone;
-    const std::pair<ImageF Frame::*, const gl::Texture*> sources[] = {
-        {&Frame::position, &gbuffer.position}, {&Frame::normal, &gbuffer.normal}, {&Frame::albedo, &gbuffer.albedo},
-        {&Frame::material, &gbuffer.material}, {&Frame::depth, &gbuffer.depth},   {&Frame::emissive, &gbuffer.emissive},
-        {&Frame::ssgi, &ssgiTarget},           {&Frame::lit, &litTarget}};
-    for (const auto& [image, texture] : sources)
-      if (image == target.image) return *texture;
+  // The GPU textures each frame target is read from (several for a target
+  // of more than 4 channels); an empty first texture (no emissive target,
+  // SSGI off) leaves the target empty.
+  std::vector<const gl::Texture*> sourcesOf(const FrameTarget& target) const {
+    const std::pair<ImageF Frame::*, std::vector<const gl::Texture*>> sources[] = {
+        {&Frame::position, {&gbuffer.position}},
+        {&Frame::normal, {&gbuffer.normal}},
+        {&Frame::albedo, {&gbuffer.albedo}},
+        {&Frame::material, {&gbuffer.material}},
+        {&Frame::depth, {&gbuffer.depth}},
+        {&Frame::emissive, {&gbuffer.emissive}},
+        {&Frame::ssgi, {&ssgiTarget, &ssgiSkyTarget}},
+        {&Frame::lit, {&litTarget}}};
+    for (const auto& [image, textures] : sources)
+      if (image == target.image) return textures;
     throw GlError("renderer: no GPU source for frame target '" + std::string(target.name) + "'");
   }
 
   void readTargets(Frame& frame, bool withSsgi, const TargetWanted& wanted) const {
     for (const FrameTarget& target : frameTargets()) {
-      const gl::Texture& source = sourceOf(target);
-      if (target.image == &Frame::emissive && !source && wanted.named(target.name)) {
+      const std::vector<const gl::Texture*> sources = sourcesOf(target);
+      if (target.image == &Frame::emissive && !*sources.front() && wanted.named(target.name)) {
         // Asked for by name in a scene with no emission: what it would hold.
         ImageF& zeros = frame.*target.image;
         zeros.width = gbuffer.width;
@@ -319,10 +328,11 @@ struct Renderer::Impl {
         zeros.pixels.assign(std::size_t(zeros.width) * std::size_t(zeros.height) * zeros.channels.size(), 0.0f);
         continue;
       }
-      if (!source || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
+      if (!*sources.front() || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
+      const std::vector<std::string> channels(target.channels.begin(), target.channels.end());
       frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
-                                ? readViewDepth(source, frame.view, std::string(target.channels.front()))
-                                : readColor(source, {target.channels.begin(), target.channels.end()});
+                                ? readViewDepth(*sources.front(), frame.view, channels.front())
+                                : readColor(sources, channels);
     }
   }
 };
@@ -442,6 +452,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   ssgiInputs.sliceCount = used.ssgi.sliceCount;
   ssgiInputs.stepCount = used.ssgi.stepCount;
   ssgiInputs.thicknessWorld = *used.ssgi.thickness;
+  ssgiInputs.skyStepCount = used.ssgi.skyStepCount;
   const bool shadows = used.lighting.shadows;
   const int shadowMapSize = *used.lighting.shadowMapSize;
   const float skyIntensity = *used.lighting.skyIntensity;
@@ -482,7 +493,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
   if (runSsgi) {
     ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
-    const gl::Texture& ssgiOutput = ssgiBlur ? impl.ssgiRaw : impl.ssgiTarget;
+    const SsgiTextures ssgiOutput =
+        ssgiBlur ? SsgiTextures{impl.ssgiRaw, impl.ssgiRawSky} : SsgiTextures{impl.ssgiTarget, impl.ssgiSkyTarget};
     // Accumulated bitmask frames: a running mean of rotated slice sets.
     const int ssgiFrames = ssgiInputs.method == SsgiMethod::Bitmask ? used.ssgi.frames : 1;
     timer.run("ssgi", [&] {
@@ -492,14 +504,17 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
         impl.ssgi.run(ssgiInputs, ssgiOutput);
       }
     });
-    const SsgiBlurInputs blurInputs{impl.gbuffer, impl.ssgiRaw, ssgiInputs.radiusWorld, ssgiInputs.downsample};
-    if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, impl.ssgiTarget); });
+    const SsgiBlurInputs blurInputs{
+        impl.gbuffer, {impl.ssgiRaw, impl.ssgiRawSky}, ssgiInputs.radiusWorld, ssgiInputs.downsample};
+    if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, {impl.ssgiTarget, impl.ssgiSkyTarget}); });
   }
   // The sky tables are made on the first frame that needs them (and again
   // only when the sky's colours change).
   if (plan.runs(Work::Sky) && !impl.environment.holds(impl.scene.sky))
     timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky); });
-  const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, ssgiOn ? &impl.ssgiTarget : nullptr,
+  const std::optional<SsgiTextures> compositeSsgi =
+      ssgiOn ? std::optional<SsgiTextures>(SsgiTextures{impl.ssgiTarget, impl.ssgiSkyTarget}) : std::nullopt;
+  const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, compositeSsgi ? &*compositeSsgi : nullptr,
                                         impl.environment.tables(), plan.runs(Work::Sky)};
   if (plan.runs(Work::Composite)) timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
   timer.run("readback", [&] { impl.readTargets(frame, runSsgi, wanted); });

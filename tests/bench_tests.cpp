@@ -76,6 +76,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   rows[0].settings = {{"ssgi-method", "hemisphere"}, {"ssgi-samples", "64"}};
   rows[0].frameMs = {12.5, 12, 13};
   rows[0].ao.rmse = 0.1;
+  rows[0].sky.rmse = 0.375;
   rows[1].scene = "a, \"quoted\" scene";
   rows[1].label = "ssgi-method=radiance";
   rows[1].settings = {{"ssgi-method", "radiance"}};
@@ -89,6 +90,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   std::getline(csv, header);
   CHECK(header.find("frame_ms_median") != std::string::npos);
   CHECK(header.find("ao_rmse") != std::string::npos);
+  CHECK(header.find(",sky_rmse,sky_mae,") != std::string::npos);
   // One column per setting row, so a new setting reaches the CSV by itself.
   for (const Option<RenderSettings>& option : settingOptions())
     CHECK(header.find("," + std::string(option.spec.name) + ",") != std::string::npos);
@@ -101,6 +103,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   CHECK(json["rows"][1]["scene"] == "a, \"quoted\" scene");
   CHECK(json["rows"][1]["frame_ms"]["median"] == 7.25);
   CHECK(json["rows"][0]["ao"]["rmse"] == 0.1);
+  CHECK(json["rows"][0]["sky"]["rmse"] == 0.375);
   CHECK(json["rows"][0]["settings"]["ssgi-samples"] == "64");
   CHECK(json["rows"][1]["label"] == "ssgi-method=radiance");
   std::filesystem::remove_all(folder);

@@ -127,7 +127,7 @@ TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const std::pair<const char*, const char*> files[] = {
-      {"ao_ref.exr", "ao.Y"}, {"indirect_ref.exr", "indirectR.R"}, {"lit_ref.exr", "R"}};
+      {"ao_ref.exr", "ao.Y"}, {"ao_ref.exr", "sky.Y"}, {"indirect_ref.exr", "indirectR.R"}, {"lit_ref.exr", "R"}};
   for (const auto& [name, channel] : files) {
     CAPTURE(name);
     OIIO::ImageBuf image((out / name).string());

@@ -117,6 +117,14 @@ double mean(const ImageF& image, int channel) {
   return sum / double(image.width * image.height);
 }
 
+// One channel's values, pixel by pixel.
+std::vector<float> channelValues(const ImageF& image, int channel) {
+  std::vector<float> values;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) values.push_back(image.at(x, y, channel));
+  return values;
+}
+
 // The standard error of a mean over `pixels` independent pixels whose own
 // standard errors average `pixelStandardError`.
 double meanStandardError(double pixelStandardError, int pixels) {
@@ -204,12 +212,12 @@ TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctes
   if (skipWithoutEmbree(scene, frame, settings)) return;
 
   const ReferenceImages result = traceReference(scene, frame, settings);
-  REQUIRE(result.ao.channels == std::vector<std::string>{"ao.Y"});
+  REQUIRE(result.ao.channels == std::vector<std::string>{"ao.Y", "sky.Y"});
   REQUIRE(result.indirect.channels == std::vector<std::string>{"indirectR.R", "indirectR.G", "indirectR.B",
                                                                "indirect.R", "indirect.G", "indirect.B"});
   REQUIRE(result.lit.channels == std::vector<std::string>{"R", "G", "B", "A"});
   CHECK(result.samplesPerPixel == 256);
-  for (float value : result.ao.pixels) CHECK(value == 1.0f);
+  for (float value : result.ao.pixels) CHECK(value == 1.0f);  // AO and sky visibility
   for (float value : result.indirect.pixels) CHECK(value == 0.0f);
   CHECK(result.aoMeanStandardError == 0.0);
   CHECK(result.aoMaxStandardError == 0.0);
@@ -241,8 +249,12 @@ TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("r
 
   // Within a radius shorter than the point's distance to the wall, nothing
   // is in range.
-  const ReferenceImages near = traceReference(scene, frame, referenceSettings(256, 5e-4f));
-  for (float value : near.ao.pixels) CHECK(value == 1.0f);
+  // The sky visibility is the same rays' escapes: within 1e6 (the walls are
+  // 100 long) it is the AO, and it does not depend on R.
+  const ReferenceImages near = traceReference(scene, frame, referenceSettings(4096, 5e-4f));
+  for (float value : channelValues(near.ao, 0)) CHECK(value == 1.0f);
+  CHECK(channelValues(result.ao, 1) == channelValues(result.ao, 0));
+  CHECK(channelValues(near.ao, 1) == channelValues(result.ao, 1));
 }
 
 TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::test_suite("reference")) {
@@ -277,7 +289,8 @@ TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::t
     const double standardError = meanStandardError(result.aoMeanStandardError, 16);
     CAPTURE(c.position.x);
     CAPTURE(standardError);
-    for (float value : result.ao.pixels) CHECK(std::abs(value - 0.5) < 0.05);  // 4096 rays: SE 0.0078 per pixel
+    for (float value : channelValues(result.ao, 0))
+      CHECK(std::abs(value - 0.5) < 0.05);  // 4096 rays: SE 0.0078 per pixel
     CHECK(std::abs(mean(result.ao, 0) - 0.5) < 4.0 * standardError + 1e-3);
   }
 }
@@ -307,8 +320,10 @@ TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * d
   CHECK(std::abs(ao - expected) < 4.0 * standardError + 5e-4);
 
   // R shorter than the gap to the sphere (h - r = 0.5): nothing in range.
+  // The sky visibility sees the sphere at any R.
   const ReferenceImages outOfRange = traceReference(scene, frame, referenceSettings(1024, 0.4f));
-  for (float value : outOfRange.ao.pixels) CHECK(value == 1.0f);
+  for (float value : channelValues(outOfRange.ao, 0)) CHECK(value == 1.0f);
+  CHECK(std::abs(mean(outOfRange.ao, 1) - expected) < 4.0 * 2.0 * standardError + 5e-4);  // 1024 rays: twice the SE
 }
 
 TEST_CASE("reference: error falls as one over the square root of the samples" * doctest::test_suite("reference")) {
@@ -326,7 +341,7 @@ TEST_CASE("reference: error falls as one over the square root of the samples" * 
     int count = 0;
     for (unsigned seed : {7u, 8u}) {
       const ReferenceImages result = traceReference(scene, frame, referenceSettings(samples, 1e6f, seed));
-      for (float value : result.ao.pixels) {
+      for (float value : channelValues(result.ao, 0)) {
         sum += (value - 0.5) * (value - 0.5);
         ++count;
       }

@@ -193,6 +193,7 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOpt
   row.frameMs = summarize(frameTimes);
   row.ssgiMs = summarize(ssgiTimes);
   row.ao = maskedError(frame.ssgi, 0, reference.ao, 0, frame.position);
+  row.sky = maskedError(frame.ssgi, 4, reference.ao, 1, frame.position);  // sky.Y in both
   row.indirect = maskedColorError(frame.ssgi, 1, reference.indirect, 0, frame.position);
   row.lit = maskedColorError(frame.lit, 0, reference.lit, 0, frame.position);
   row.litSsim = maskedSsim(frame.lit, reference.lit, frame.position);

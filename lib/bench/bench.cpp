@@ -153,7 +153,7 @@ const char* kCsvHeaderStart = "scene,label,";
 const char* kCsvHeaderEnd =
     "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
-    "ao_rmse,ao_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
+    "ao_rmse,ao_mae,sky_rmse,sky_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
     "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
 
 std::string csvField(const std::string& text) {
@@ -178,10 +178,10 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
     }
     out << r.seedDefault << ',' << r.repetitions << ',' << r.frameMs.median << ',' << r.frameMs.minimum << ','
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
-        << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.indirect.rmse << ',' << r.indirect.relativeRmse << ','
-        << r.lit.relativeRmse << ',' << r.litSsim << ',' << r.referenceSamples << ',' << r.referenceAoStandardError
-        << ',' << r.paretoAo << ',' << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine)
-        << "\n";
+        << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
+        << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
+        << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ',' << csvField(r.renderer)
+        << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
   }
   detail::writeTextAtomically(path, out.str());
 }
@@ -205,6 +205,7 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
          {"frame_ms", summary(r.frameMs)},
          {"ssgi_ms", summary(r.ssgiMs)},
          {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
+         {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
          {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
          {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}}},
          {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},

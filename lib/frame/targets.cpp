@@ -33,7 +33,8 @@ constexpr std::string_view kAlbedoChannels[] = {"albedo.R", "albedo.G", "albedo.
 constexpr std::string_view kMaterialChannels[] = {"material.metallic", "material.roughness", "material.occlusion"};
 constexpr std::string_view kDepthChannels[] = {"depth.Z"};
 constexpr std::string_view kEmissiveChannels[] = {"emissive.R", "emissive.G", "emissive.B"};
-constexpr std::string_view kSsgiChannels[] = {"ao.Y", "indirect.R", "indirect.G", "indirect.B"};
+constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirect.G",    "indirect.B",
+                                              "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B"};
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 
 using M = DiffMetric;
@@ -65,9 +66,12 @@ const FrameTarget kTargets[] = {
      "emitted radiance, only for scenes that glow. HDR (emissiveStrength can be large): absolute below 1, relative "
      "above; half storage rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
     {"ssgi", &Frame::ssgi, kSsgiChannels, G::Rgba16F, E::Half, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
-     "AO and one-bounce indirect, 0..~1; absent with SSGI off. Seeded and repeatable on one driver, but one of 64 "
-     "kernel samples landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible "
-     "shade. 1 % of pixels: samples flip at every depth discontinuity."},
+     "AO within R, one-bounce indirect within R, sky visibility at any distance and indirect from beyond R, 0..~1; "
+     "absent with SSGI off. Two GPU textures (ao + indirect, then sky + indirectFar). Seeded and repeatable on one "
+     "driver, but one of 64 kernel samples "
+     "landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade, and sky.Y is "
+     "held to the same: its long-range samples flip the same way, one slab of a 32-sector mask moves it by ~1/32. "
+     "1 % of pixels: samples flip at every depth discontinuity."},
     {"lit", &Frame::lit, kLitChannels, G::Rgba16F, E::Half, M::RelativeToValue, thresholds(2e-3, 2e-2, 0.5, 2e-2),
      "linear HDR radiance, A = coverage: absolute below 1, relative above (a highlight of 50 may move by 1); half "
      "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},

@@ -1,6 +1,9 @@
 #include "gl/readback.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "headlight/error.hpp"
 
 namespace headlight {
 namespace {
@@ -42,6 +45,31 @@ ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels) 
   for (std::size_t p = 0, n = std::size_t(image.width) * std::size_t(image.height); p < n; ++p)
     for (std::size_t c = 0; c < count; ++c) image.pixels[p * count + c] = rgba[p * 4 + c];
   flipRows(image.pixels, image.width, image.height, int(count));
+  return image;
+}
+
+ImageF readColor(std::span<const gl::Texture* const> textures, const std::vector<std::string>& channels) {
+  if (textures.size() * 4 < channels.size() || textures.empty())
+    throw GlError("readColor: " + std::to_string(channels.size()) + " channels need " +
+                  std::to_string((channels.size() + 3) / 4) + " textures, got " + std::to_string(textures.size()));
+  ImageF image;
+  image.width = textures.front()->width();
+  image.height = textures.front()->height();
+  image.channels = channels;
+  const std::size_t count = channels.size(), pixels = std::size_t(image.width) * std::size_t(image.height);
+  image.pixels.resize(pixels * count);
+  for (std::size_t k = 0; k * 4 < count; ++k) {
+    const std::size_t first = k * 4, last = std::min(count, first + 4);
+    const ImageF part =
+        readColor(*textures[k], {channels.begin() + std::ptrdiff_t(first), channels.begin() + std::ptrdiff_t(last)});
+    if (part.width != image.width || part.height != image.height)
+      throw GlError("readColor: texture " + std::to_string(k) + " is " + std::to_string(part.width) + "x" +
+                    std::to_string(part.height) + ", texture 0 is " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height));
+    for (std::size_t p = 0; p < pixels; ++p)
+      for (std::size_t c = first; c < last; ++c)
+        image.pixels[p * count + c] = part.pixels[p * (last - first) + c - first];
+  }
   return image;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // GPU targets to ImageF: rows flipped from GL's bottom-up order to image
 // order (top row first), and depth turned into view-space depth.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@ namespace headlight {
 // Reads the first channels.size() components of a colour texture as floats.
 // sRGB textures come back decoded to linear.
 ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels);
+
+// Reads a target held in several textures of one size (headlight/targets.hpp:
+// channels 4k..4k+3 in textures[k]) as one image with all `channels`.
+ImageF readColor(std::span<const gl::Texture* const> textures, const std::vector<std::string>& channels);
 
 // Reads a depth texture and converts window depth to the distance along the
 // view direction (view-space -z), using view's projection and planes.

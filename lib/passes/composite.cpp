@@ -18,7 +18,10 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
   inputs.gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   inputs.gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.direct.bind(gpu::kUnitDirect);
-  if (inputs.ssgi) inputs.ssgi->bind(gpu::kUnitSsgi);
+  if (inputs.ssgi) {
+    inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
+    inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
+  }
   if (inputs.sky) {
     inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
     inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);

@@ -1,20 +1,23 @@
 #pragma once
 // The composite pass: direct light + image-based ambient from the procedural
 // sky (split-sum, tables from EnvironmentPass), occluded by the material's
-// occlusion and the SSGI's AO, + the SSGI's indirect term, as in the seed:
-//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_ao + ssgi_indirect
+// occlusion and the SSGI's sky visibility, + the SSGI's indirect term:
+//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
+// (the seed's ssgi_ao there: the hemisphere and radiance methods write their
+// AO within R as ssgi_sky, so their images are the seed's).
 // Output GL_RGBA16F linear radiance; background pixels get the sky, alpha 0.
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "passes/ssgi_textures.hpp"
 
 namespace headlight {
 
 struct CompositeInputs {
   const GBuffer& gbuffer;     // position, normal, albedo, material
   const gl::Texture& direct;  // DirectLightTargets::towardEye
-  const gl::Texture* ssgi;    // blurred SSGI; null with SSGI off (ambient then unoccluded but for
+  const SsgiTextures* ssgi;   // blurred SSGI; null with SSGI off (ambient then unoccluded but for
                               // the material's occlusion)
   const EnvironmentTables& environment;
   bool sky = true;  // false: leave out the sky term (the renderer's rule: sky intensity 0)

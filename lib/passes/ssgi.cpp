@@ -71,7 +71,7 @@ void SsgiPass::prepare(SsgiMethod method) {
   }
 }
 
-void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
+void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   if (inputs.method == SsgiMethod::Bitmask) {
     if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
     prepare(SsgiMethod::Bitmask);
@@ -82,6 +82,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
     bitmaskInputs.indirectStrength = inputs.indirectStrength;
     bitmaskInputs.sliceCount = inputs.sliceCount;
     bitmaskInputs.stepCount = inputs.stepCount;
+    bitmaskInputs.skyStepCount = inputs.skyStepCount;
     bitmaskInputs.downsample = inputs.downsample;
     bitmaskInputs.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
     bitmaskInputs.accumulateWeight = inputs.accumulateWeight;
@@ -109,7 +110,8 @@ void SsgiPass::run(const SsgiInputs& inputs, const gl::Texture& output) {
   }
   // Background pixels are discarded by the shader and keep the clear value:
   // open, no indirect light.
-  draw("SSGI", inputs.method, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
+  draw("SSGI", inputs.method, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 
 }  // namespace headlight

@@ -5,7 +5,8 @@
 // bias) and weighted by a range check; an occluding sample darkens ambient
 // occlusion and adds to the indirect term: its albedo (the seed's
 // `hemisphere` method) or its direct Lambertian radiance (`radiance`,
-// docs/ACCURACY.md). Output GL_RGBA16F: R = AO (1 = open), GBA = indirect.
+// docs/ACCURACY.md). Output: SsgiTextures; these kernels see no farther
+// than R, so they write their AO within R as the sky visibility.
 #include <array>
 #include <optional>
 #include <vector>
@@ -48,6 +49,7 @@ struct SsgiInputs {
   int sliceCount = 0;             // screen-space directions per pixel, >= 1
   int stepCount = 0;              // depth samples per direction and side, >= 1
   float thicknessWorld = 0.0f;    // assumed depth behind each depth sample, world units, >= 0
+  int skyStepCount = 0;           // long-range samples per direction for the sky visibility, >= 0
   int frameIndex = 0;             // rotates the slices and step jitter between accumulated frames
   float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in with this weight (SsgiBitmaskInputs)
 };
@@ -59,9 +61,9 @@ class SsgiPass : public FullscreenPass<SsgiMethod> {
   SsgiPass();
   // Builds `method`'s program ahead of its first frame.
   void prepare(SsgiMethod method);
-  // Reads `inputs` and the frame block; writes `output` (GL_RGBA16F, the
-  // size SsgiInputs::downsample says).
-  void run(const SsgiInputs& inputs, const gl::Texture& output);
+  // Reads `inputs` and the frame block; writes `output` (the size
+  // SsgiInputs::downsample says).
+  void run(const SsgiInputs& inputs, const SsgiTextures& output);
 
  private:
   void updateKernel(int sampleCount, unsigned seed);

@@ -8,7 +8,7 @@ SsgiBitmaskPass::SsgiBitmaskPass()
     : program_(buildFullscreenProgram("ssgi_bitmask.frag")),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
 
-void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& output) {
+void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const SsgiTextures& output) {
   gpu::SsgiBitmaskBlock block{};
   block.radiusWorld = inputs.radiusWorld;
   block.thicknessWorld = inputs.thicknessWorld;
@@ -18,6 +18,7 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& ou
   block.stepCount = inputs.stepCount;
   block.downsample = inputs.downsample;
   block.rotationIndex = inputs.rotationIndex;
+  block.skyStepCount = inputs.skyStepCount;
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   const GBuffer& gbuffer = inputs.gbuffer;
@@ -26,18 +27,19 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const gl::Texture& ou
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse.bind(gpu::kUnitDirectDiffuse);
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
   if (inputs.accumulateWeight > 0.0f) {
     // A running mean: background pixels are discarded and keep what the
     // first frame cleared them to.
     glEnable(GL_BLEND);
     glBlendColor(0.0f, 0.0f, 0.0f, inputs.accumulateWeight);
     glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
-    draw_.draw("SSGI bitmask (accumulating)", program_, output);
+    draw_.draw("SSGI bitmask (accumulating)", program_, outputs);
     glDisable(GL_BLEND);
     return;
   }
   // Background pixels are discarded and keep the clear value: open, no light.
-  draw_.draw("SSGI bitmask", program_, output, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  draw_.draw("SSGI bitmask", program_, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 
 }  // namespace headlight

@@ -5,11 +5,14 @@
 // slice with a thickness behind every depth sample, AO as the reference
 // defines it and indirect light gathered from the occluders' direct
 // Lambertian radiance. docs/ACCURACY.md §3.3 has the formulas.
-// Output GL_RGBA16F: R = AO (1 = open), GBA = indirect; the same layout as
-// the other methods, so the blur and composite read it unchanged.
+// The same slices, marched on beyond R to the screen edge with a few
+// geometrically spaced samples, give the sky visibility at any distance and
+// the indirect light from beyond R (sectors only those samples cover).
+// Output: SsgiTextures, the same layout as the other methods.
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "passes/ssgi_textures.hpp"
 
 namespace headlight {
 
@@ -22,6 +25,7 @@ struct SsgiBitmaskInputs {
   float indirectStrength = 0.0f;     // scale of the indirect term, >= 0
   int sliceCount = 0;                // directions per pixel, >= 1
   int stepCount = 0;                 // depth samples per direction and side, >= 1
+  int skyStepCount = 0;              // samples per direction and side beyond R, to the screen edge, >= 0
   int downsample = 1;                // 1, 2 or 4
   int rotationIndex = 0;             // rotates slices and step jitter (the seed + the frame index), >= 0
   // 0: `output` is overwritten. In (0, 1]: the result is blended in as
@@ -32,9 +36,9 @@ struct SsgiBitmaskInputs {
 class SsgiBitmaskPass {
  public:
   SsgiBitmaskPass();
-  // The frame block must be bound. Writes `output` (GL_RGBA16F, the
-  // G-buffer's size / downsample, rounded up).
-  void run(const SsgiBitmaskInputs& inputs, const gl::Texture& output);
+  // The frame block must be bound. Writes `output` (the G-buffer's size /
+  // downsample, rounded up).
+  void run(const SsgiBitmaskInputs& inputs, const SsgiTextures& output);
 
  private:
   gl::Program program_;

@@ -7,7 +7,7 @@ namespace headlight {
 SsgiBlurPass::SsgiBlurPass()
     : program_(buildFullscreenProgram("ssgi_blur.frag")), block_(gl::Buffer::create(sizeof(gpu::SsgiBlurBlock))) {}
 
-void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const gl::Texture& output) {
+void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output) {
   gpu::SsgiBlurBlock block{};
   block.ssgiRadiusWorld = inputs.ssgiRadiusWorld;
   block.ssgiDownsample = inputs.ssgiDownsample;
@@ -15,9 +15,11 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const gl::Texture& output) 
   block_.bindUniform(gpu::SsgiBlurBlock::kBinding);
   inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
   inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  inputs.rawSsgi.bind(gpu::kUnitSsgi);
+  inputs.rawSsgi.occlusion.bind(gpu::kUnitSsgi);
+  inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
   const glm::vec4 background(1.0f, 0.0f, 0.0f, 0.0f);  // as the SSGI pass leaves it
-  draw_.draw("SSGI blur", program_, output, background);
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
+  draw_.draw("SSGI blur", program_, outputs, background);
 }
 
 }  // namespace headlight

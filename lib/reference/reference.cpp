@@ -387,12 +387,12 @@ class Tracer {
   void tracePixel(int x, int y, const Outputs& out) {
     const Frame& frame = in_.frame;
     const std::size_t pixel = std::size_t(y) * std::size_t(frame.position.width) + std::size_t(x);
-    float* ao = &out.images.ao.pixels[pixel];
+    float* ao = &out.images.ao.pixels[pixel * 2];
     float* indirect = &out.images.indirect.pixels[pixel * 6];
     float* lit = &out.images.lit.pixels[pixel * 4];
     if (frame.position.at(x, y, 3) == 0.0f) {
       const glm::vec3 sky = skyRadiance(in_.scene.sky, backgroundRay(x, y)) * in_.skyIntensity;
-      ao[0] = 1.0f;
+      ao[0] = ao[1] = 1.0f;
       std::fill(indirect, indirect + 6, 0.0f);
       lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
       return;
@@ -420,7 +420,7 @@ class Tracer {
     const int n = in_.settings.samplesPerPixel;
     const float radius = in_.settings.radius;
     const glm::vec3 diffuseWeight = (1.0f - metallic) * albedo;
-    int open = 0;
+    int open = 0, escaped = 0;
     glm::dvec3 sum(0.0), sumSquares(0.0), sumWithinRadius(0.0), skySum(0.0);
     for (int i = 0; i < n; ++i) {
       const float xi0 = random.uniform(), xi1 = random.uniform();
@@ -428,6 +428,7 @@ class Tracer {
       RTCRayHit rayHit = traceFromSurface(origin, direction, view);
       if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         ++open;
+        ++escaped;
         skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
         continue;
       }
@@ -443,6 +444,7 @@ class Tracer {
     const glm::dvec3 indirectMean = sum / count;
     const glm::dvec3 indirectRMean = sumWithinRadius / count;
     ao[0] = float(aoValue);
+    ao[1] = float(double(escaped) / count);
     for (int c = 0; c < 3; ++c) {
       indirect[c] = float(indirectRMean[c]);
       indirect[3 + c] = float(indirectMean[c]);
@@ -725,7 +727,7 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
 
   ReferenceImages images;
   images.samplesPerPixel = settings.samplesPerPixel;
-  images.ao = makeImage(width, height, {"ao.Y"});
+  images.ao = makeImage(width, height, {"ao.Y", "sky.Y"});
   images.indirect =
       makeImage(width, height, {"indirectR.R", "indirectR.G", "indirectR.B", "indirect.R", "indirect.G", "indirect.B"});
   images.lit = makeImage(width, height, {"R", "G", "B", "A"});

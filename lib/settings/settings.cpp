@@ -88,6 +88,14 @@ const std::vector<Row>& table() {
                           "0.05..1 x the radius (half the radius if all are flat)"},
           [](auto& s) -> auto& { return s.ssgi.thickness; }),
       row(
+          {.name = "ssgi-sky-steps",
+           .type = T::Int,
+           .help = "bitmask SSGI: depth samples per direction beyond the radius, out to the screen edge, for the sky "
+                   "visibility that occludes ambient light and the light gathered from beyond the radius (0: neither; "
+                   "the AO within the radius occludes ambient light)",
+           .maximum = 32},
+          [](auto& s) -> auto& { return s.ssgi.skyStepCount; }),
+      row(
           {.name = "ssgi-frames",
            .type = T::Int,
            .help = "bitmask SSGI: frames averaged, each with rotated slices and jittered steps",

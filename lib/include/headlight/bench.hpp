@@ -61,6 +61,7 @@ struct BenchRow {
   Summary frameMs;           // passes of one frame (G-buffer to composite), shadows cached, readback excluded
   Summary ssgiMs;            // SSGI (+ blur)
   ErrorStats ao;             // vs ao_ref within R
+  ErrorStats sky;            // sky visibility (ssgi sky.Y) vs ao_ref's sky.Y, any distance
   ColorErrorStats indirect;  // vs indirect_ref within R
   ColorErrorStats lit;       // vs lit_ref
   double litSsim = 0;

@@ -48,7 +48,8 @@ struct Frame {
   ImageF material;  // material.metallic, material.roughness, material.occlusion
   ImageF depth;     // depth.Z: view-space depth (distance along -Z), far plane on background
   ImageF emissive;  // emissive.R/G/B; empty when the scene has no emissive material
-  ImageF ssgi;      // ao.Y, indirect.R/G/B; empty with SSGI off
+  ImageF
+      ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
 
   CameraView view;

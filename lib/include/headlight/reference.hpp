@@ -28,6 +28,8 @@ std::span<const Option<ReferenceSettings>> referenceOptions();
 struct ReferenceImages {
   // ao.Y: cosine-weighted fraction of the hemisphere with no geometry within
   // R (background counts as open); 1 on background pixels.
+  // sky.Y: cosine-weighted fraction of the hemisphere whose rays escape the
+  // scene (sky visibility at any distance, <= ao.Y); 1 on background pixels.
   ImageF ao;
   // indirectR.R/G/B: one-bounce indirect diffuse radiance gathered within R;
   // indirect.R/G/B: the same, unlimited distance. 0 on background.

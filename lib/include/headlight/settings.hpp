@@ -53,6 +53,11 @@ struct SsgiSettings {
   int sliceCount = 2;
   int stepCount = 16;
   std::optional<float> thickness;
+  // Bitmask: samples per direction and side beyond R, spaced geometrically
+  // out to the screen edge, for the sky visibility the ambient term is
+  // occluded by and the indirect light from beyond R (0: neither; the sky
+  // visibility is the AO within R, as the kernel methods have it).
+  int skyStepCount = 8;
   // Bitmask frames averaged, each with rotated slices and jittered steps
   // (with a still camera, exact temporal accumulation).
   int frames = 1;

@@ -50,7 +50,9 @@ enum class ExrStorage { Half, Float };
 struct FrameTarget {
   std::string_view name;                       // file stem (<name>.exr), and headlight diff's row name
   ImageF Frame::*image = nullptr;              // where a Frame keeps it; null for the diff fallback row
-  std::span<const std::string_view> channels;  // EXR channel names, in order
+  // EXR channel names, in order. More than 4 (ssgi): the GPU holds them in
+  // ceil(n / 4) textures of gpuFormat, channels 4k..4k+3 in texture k.
+  std::span<const std::string_view> channels;
   GpuFormat gpuFormat = GpuFormat::Rgba16F;
   ExrStorage storage = ExrStorage::Half;
   DiffMetric metric = DiffMetric::Absolute;
