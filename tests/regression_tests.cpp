@@ -84,13 +84,16 @@ bool compareGolden(const Golden& golden) {
   // --strict: a GL error fails the render instead of leaving a warning.
   const std::string command = "cd " + test::shellQuote(HEADLIGHT_SOURCE_DIR) + " && " +
                               test::shellQuote(HEADLIGHT_EXE) + " render " + golden.scene + " " + golden.flags +
-                              " --strict --quiet --out " + test::shellQuote(actual.string());
+                              " --strict --quiet --out " + test::shellQuote(actual.string()) +
+                              // The targets tools/update_goldens.sh writes: every EXR (emissive as
+                              // zeros where nothing emits), no preview.
+                              " --targets position,normal,albedo,material,depth,emissive,ssgi,lit";
   const test::ProcessResult run = test::runCommand(command);
   INFO(command);
   INFO(run.output);
   CHECK(run.exitCode == 0);
   if (run.exitCode != 0) return false;
-  // preview.png stays: the set's frame.json lists it, and diff reads only the targets.
+  // The same targets as the golden; frame.json makes both checked sets.
   const DirectoryDiff diff = diffDirectories(expected, actual);
   bool failed = diff.status > DiffStatus::Warn || diff.targets.empty();
   for (const DiffResult& target : diff.targets) {

@@ -15,7 +15,9 @@ sed 's/#.*//' reference_images/goldens.txt | while read -r name scene flags; do
   fresh="reference_images/.$name.new"
   rm -rf "$fresh"
   # shellcheck disable=SC2086  # flags are words on purpose
-  # Every EXR target, no preview; frame.json makes the golden a checked set.
+  # Every EXR target (emissive as zeros where nothing emits: named targets are
+  # always written), no preview; frame.json makes the golden a checked set.
+  # tests/regression_tests.cpp renders with the same list.
   build/headlight render "$scene" $flags --out "$fresh" --quiet --strict \
     --targets position,normal,albedo,material,depth,emissive,ssgi,lit
   if [ -d "reference_images/$name" ]; then
