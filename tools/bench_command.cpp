@@ -270,8 +270,6 @@ BenchCommand parseBenchArgs(const std::vector<std::string>& args) {
 
 std::string benchHelp() {
   const BenchCommand defaults;
-  const auto options = benchOptions();
-  const std::size_t settingsStart = options.size() - settingOptions().size();
   std::string help =
       "usage: headlight bench [SCENE...] [options]\n\n"
       "Times every SSGI configuration (median and spread of --repetitions frames after --warmup,\n"
@@ -280,10 +278,9 @@ std::string benchHelp() {
       "Scenes default to the built-ins. A configuration is the render settings below with one\n"
       "combination of the --sweep values, e.g. --sweep ssgi-samples=4,8,16 --sweep ssgi-method=radiance.\n"
       "The seed spec's settings (hemisphere, 64 samples, radius 0.5, bias 0.025, no blur) are always\n"
-      "measured too and marked in the chart. Exit codes: 0 ok, 1 runtime error, 2 usage error.\n\noptions:\n";
-  help += optionHelp<BenchCommand>(std::span(options).first(settingsStart), defaults);
-  help += "\nrender settings every configuration starts from (any of them can be swept):\n";
-  help += optionHelp<BenchCommand>(std::span(options).subspan(settingsStart), defaults);
+      "measured too and marked in the chart. Exit codes: 0 ok, 1 runtime error, 2 usage error.\n\n";
+  help += commandOptionsHelp(benchOptions(), defaults,
+                             "render settings every configuration starts from (any of them can be swept)");
   return help;
 }
 

@@ -241,14 +241,11 @@ std::string renderHelp(CommandKind kind) {
            "(docs/ACCURACY.md defines them).\n\n";
   out << "Built-in scenes:";
   for (const std::string& name : builtinSceneNames()) out << " builtin:" << name;
-  out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\noptions:\n";
+  out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\n";
   RenderCommand defaults;
   defaults.context.errorPolicy = GlErrorPolicy::Warn;
-  const auto rows = renderCommandOptions(kind);
-  const std::size_t settingsStart = rows.size() - settingOptions().size();
-  out << optionHelp<RenderCommand>(std::span(rows).first(settingsStart), defaults);
-  out << "\nrender settings (also recorded in every EXR's metadata as headlight:setting:NAME):\n";
-  out << optionHelp<RenderCommand>(std::span(rows).subspan(settingsStart), defaults);
+  out << commandOptionsHelp(renderCommandOptions(kind), defaults,
+                            "render settings (also recorded in every EXR's metadata as headlight:setting:NAME)");
   return out.str();
 }
 

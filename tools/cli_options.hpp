@@ -66,6 +66,17 @@ Option<Command> settingsFileOption(RenderSettings Command::*member) {
       [member](Command& c, const OptionValue& v) { applySettingsFile(c.*member, std::get<std::string>(v)); });
 }
 
+// The options part of a command's --help: its own rows under "options:",
+// then the render-setting rows (which every command's table ends with, from
+// settingOptions()) under `settingsHeading`.
+template <class Command>
+std::string commandOptionsHelp(const std::vector<Option<Command>>& rows, const Command& defaults,
+                               std::string_view settingsHeading) {
+  const std::size_t settingsStart = rows.size() - settingOptions().size();
+  return "options:\n" + optionHelp<Command>(std::span(rows).first(settingsStart), defaults) + "\n" +
+         std::string(settingsHeading) + ":\n" + optionHelp<Command>(std::span(rows).subspan(settingsStart), defaults);
+}
+
 // Parses the arguments after "render" (or "reference"). Throws SettingsError
 // for a bad or unknown flag or value (the CLI maps it to exit code 2).
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind = CommandKind::Render);

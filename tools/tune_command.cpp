@@ -119,8 +119,6 @@ TuneCommand parseTuneArgs(const std::vector<std::string>& args) {
 
 std::string tuneHelp() {
   TuneCommand defaults;
-  const auto options = tuneOptions();
-  const std::size_t settingsStart = options.size() - settingOptions().size();
   std::string help =
       "usage: headlight tune [SCENE] --max-ao-error E [options]\n\n"
       "Measures SCENE's own speed/accuracy front (default builtin:cornell): every candidate SSGI\n"
@@ -131,10 +129,10 @@ std::string tuneHelp() {
       "configuration whose AO RMSE is at most E, with its measured error and time as '# tune:' lines.\n"
       "Prints the front; a progress bar on stderr when it is a terminal.\n\n"
       "Exit codes: 0 written; 1 runtime error; 2 usage error; 3 no configuration reaches E: nothing is\n"
-      "written, and the message names the best AO RMSE reached.\n\noptions:\n";
-  help += optionHelp<TuneCommand>(std::span(options).first(settingsStart), defaults);
-  help += "\nrender settings every configuration starts from (the file keeps them, but width, height, camera):\n";
-  help += optionHelp<TuneCommand>(std::span(options).subspan(settingsStart), defaults);
+      "written, and the message names the best AO RMSE reached.\n\n";
+  help += commandOptionsHelp(tuneOptions(), defaults,
+                             "render settings every configuration starts from (the file keeps them, but width, "
+                             "height, camera)");
   return help;
 }
 
