@@ -176,11 +176,22 @@ void main() {
     const float sinN = sin(n), cosN = cos(n);
     const float lowest = n - 0.5 * kPi;  // the hemisphere's edge on the -side
     const float sectorAngle = kPi / float(kSectors);
+    // sliceMeasure at each sector's edge theta = lowest + k sectorAngle,
+    // where cos(2 theta - n) = -cos(n + 2 k sectorAngle): the angle sum with
+    // cos and sin of 2 k sectorAngle, turned on by a rotation per sector, so
+    // the table costs no cosine per pixel (llvmpipe's cos is dear).
+    const float turnCos = cos(2.0 * sectorAngle), turnSin = sin(2.0 * sectorAngle);
     float weights[kSectors];
     float boundary = sliceMeasure(lowest, n, sinN, cosN);
     const float first = boundary;
+    float edgeCos = 1.0, edgeSin = 0.0;  // of 2 k sectorAngle
     for (int k = 0; k < kSectors; ++k) {
-      const float next = sliceMeasure(lowest + float(k + 1) * sectorAngle, n, sinN, cosN);
+      const float turnedCos = edgeCos * turnCos - edgeSin * turnSin;
+      edgeSin = edgeSin * turnCos + edgeCos * turnSin;
+      edgeCos = turnedCos;
+      const float theta = lowest + float(k + 1) * sectorAngle;
+      const float magnitude = 0.25 * (cosN + (cosN * edgeCos - sinN * edgeSin)) + 0.5 * theta * sinN;
+      const float next = theta >= 0.0 ? magnitude : -magnitude;
       weights[k] = max(next - boundary, 0.0);
       boundary = next;
     }
