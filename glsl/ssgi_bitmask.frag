@@ -124,10 +124,20 @@ float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
 }
 
-// The summed weights of the sectors in `bits`.
-float sectorWeight(uint bits, float weights[kSectors]) {
+// The summed weights of the sectors in `bits`, from `edges` (sliceMeasure
+// at each sector's start, and the hemisphere's end last). sliceMeasure grows
+// monotonically over the hemisphere, so a run of set bits [start, end) weighs
+// exactly edges[end] - edges[start]: a mask from sectorsBetween, one run,
+// costs two reads instead of one a sector.
+float sectorWeight(uint bits, float edges[kSectors + 1]) {
   float sum = 0.0;
-  for (; bits != 0u; bits &= bits - 1u) sum += weights[findLSB(bits)];
+  while (bits != 0u) {
+    const int start = findLSB(bits);
+    const uint pastRun = bits + (1u << uint(start));  // the lowest run carried out
+    const int end = pastRun == 0u ? kSectors : findLSB(pastRun);
+    sum += max(edges[end] - edges[start], 0.0);
+    bits &= pastRun;
+  }
   return sum;
 }
 
@@ -181,9 +191,8 @@ void main() {
     // cos and sin of 2 k sectorAngle, turned on by a rotation per sector, so
     // the table costs no cosine per pixel (llvmpipe's cos is dear).
     const float turnCos = cos(2.0 * sectorAngle), turnSin = sin(2.0 * sectorAngle);
-    float weights[kSectors];
-    float boundary = sliceMeasure(lowest, n, sinN, cosN);
-    const float first = boundary;
+    float edges[kSectors + 1];
+    edges[0] = sliceMeasure(lowest, n, sinN, cosN);
     float edgeCos = 1.0, edgeSin = 0.0;  // of 2 k sectorAngle
     for (int k = 0; k < kSectors; ++k) {
       const float turnedCos = edgeCos * turnCos - edgeSin * turnSin;
@@ -191,11 +200,9 @@ void main() {
       edgeCos = turnedCos;
       const float theta = lowest + float(k + 1) * sectorAngle;
       const float magnitude = 0.25 * (cosN + (cosN * edgeCos - sinN * edgeSin)) + 0.5 * theta * sinN;
-      const float next = theta >= 0.0 ? magnitude : -magnitude;
-      weights[k] = max(next - boundary, 0.0);
-      boundary = next;
+      edges[k + 1] = theta >= 0.0 ? magnitude : -magnitude;
     }
-    const float total = boundary - first;  // = cos(n) + n sin(n)
+    const float total = edges[kSectors] - edges[0];  // = cos(n) + n sin(n)
 
     uint occupied = 0u;     // within R
     uint skyOccupied = 0u;  // at any distance
@@ -243,7 +250,7 @@ void main() {
         const uint fresh = mask & ~occupied;
         occupied |= mask;
         if (fresh != 0u && facing)
-          indirect += (projectedLength * sectorWeight(fresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+          indirect += (projectedLength * sectorWeight(fresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
         if (skyStepCount == 0) continue;
         // The same slab uncut, for the sky: sectors no nearer sample took
         // gather its light as light from beyond R.
@@ -253,7 +260,7 @@ void main() {
         skyOccupied |= skyMask;
         if (skyFresh != 0u && facing)
           farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
       }
       // Beyond R, for the sky: from R's footprint (at least a pixel) to the
       // screen edge along this side, in geometric steps (a far occluder
@@ -285,15 +292,12 @@ void main() {
         skyOccupied |= skyMask;
         if (skyFresh != 0u && dot(sampleNormal, offsetFront) < 0.0)
           farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
       }
     }
-    float occludedWeight = 0.0;
-    for (uint bits = occupied; bits != 0u; bits &= bits - 1u) occludedWeight += weights[findLSB(bits)];
-    visibleSum += projectedLength * max(total - occludedWeight, 0.0);
+    visibleSum += projectedLength * max(total - sectorWeight(occupied, edges), 0.0);
     // What is occluded within R is occluded from the sky too.
-    float skyOccludedWeight = 0.0;
-    for (uint bits = skyOccupied | occupied; bits != 0u; bits &= bits - 1u) skyOccludedWeight += weights[findLSB(bits)];
+    const float skyOccludedWeight = sectorWeight(skyOccupied | occupied, edges);
     skyVisibleSum += projectedLength * max(total - skyOccludedWeight, 0.0);
     totalSum += projectedLength * total;
   }
