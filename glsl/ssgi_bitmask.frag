@@ -249,18 +249,19 @@ void main() {
             inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest) : 0u;
         const uint fresh = mask & ~occupied;
         occupied |= mask;
-        if (fresh != 0u && facing)
-          indirect += (projectedLength * sectorWeight(fresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
-        if (skyStepCount == 0) continue;
         // The same slab uncut, for the sky: sectors no nearer sample took
         // gather its light as light from beyond R.
         const uint skyMask =
-            sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+            skyStepCount == 0
+                ? 0u
+                : sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
         const uint skyFresh = skyMask & ~(skyOccupied | occupied);
         skyOccupied |= skyMask;
-        if (skyFresh != 0u && facing)
-          farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        if (!facing || (fresh | skyFresh) == 0u) continue;
+        // One fetch of the sample's light serves both (llvmpipe calls out to fetch a texel).
+        const vec3 light = projectedLength * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        indirect += sectorWeight(fresh, edges) * light;
+        farIndirect += sectorWeight(skyFresh, edges) * light;
       }
       // Beyond R, for the sky: from R's footprint (at least a pixel) to the
       // screen edge along this side, in geometric steps (a far occluder
