@@ -251,10 +251,8 @@ void main() {
         occupied |= mask;
         // The same slab uncut, for the sky: sectors no nearer sample took
         // gather its light as light from beyond R.
-        const uint skyMask =
-            skyStepCount == 0
-                ? 0u
-                : sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+        const vec3 skySlabBack = offsetFront + awayFromEye * skySlabDepth(offsetFront);
+        const uint skyMask = skyStepCount == 0 ? 0u : sectorsBetween(offsetFront, skySlabBack, side, toEye, lowest);
         const uint skyFresh = skyMask & ~(skyOccupied | occupied);
         skyOccupied |= skyMask;
         if (!facing || (fresh | skyFresh) == 0u) continue;
