@@ -124,10 +124,20 @@ float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
 }
 
-// The summed weights of the sectors in `bits`.
-float sectorWeight(uint bits, float weights[kSectors]) {
+// The summed weights of the sectors in `bits`, from `edges` (sliceMeasure
+// at each sector's start, and the hemisphere's end last). sliceMeasure grows
+// monotonically over the hemisphere, so a run of set bits [start, end) weighs
+// exactly edges[end] - edges[start]: a mask from sectorsBetween, one run,
+// costs two reads instead of one a sector.
+float sectorWeight(uint bits, float edges[kSectors + 1]) {
   float sum = 0.0;
-  for (; bits != 0u; bits &= bits - 1u) sum += weights[findLSB(bits)];
+  while (bits != 0u) {
+    const int start = findLSB(bits);
+    const uint pastRun = bits + (1u << uint(start));  // the lowest run carried out
+    const int end = pastRun == 0u ? kSectors : findLSB(pastRun);
+    sum += max(edges[end] - edges[start], 0.0);
+    bits &= pastRun;
+  }
   return sum;
 }
 
@@ -176,15 +186,23 @@ void main() {
     const float sinN = sin(n), cosN = cos(n);
     const float lowest = n - 0.5 * kPi;  // the hemisphere's edge on the -side
     const float sectorAngle = kPi / float(kSectors);
-    float weights[kSectors];
-    float boundary = sliceMeasure(lowest, n, sinN, cosN);
-    const float first = boundary;
+    // sliceMeasure at each sector's edge theta = lowest + k sectorAngle,
+    // where cos(2 theta - n) = -cos(n + 2 k sectorAngle): the angle sum with
+    // cos and sin of 2 k sectorAngle, turned on by a rotation per sector, so
+    // the table costs no cosine per pixel (llvmpipe's cos is dear).
+    const float turnCos = cos(2.0 * sectorAngle), turnSin = sin(2.0 * sectorAngle);
+    float edges[kSectors + 1];
+    edges[0] = sliceMeasure(lowest, n, sinN, cosN);
+    float edgeCos = 1.0, edgeSin = 0.0;  // of 2 k sectorAngle
     for (int k = 0; k < kSectors; ++k) {
-      const float next = sliceMeasure(lowest + float(k + 1) * sectorAngle, n, sinN, cosN);
-      weights[k] = max(next - boundary, 0.0);
-      boundary = next;
+      const float turnedCos = edgeCos * turnCos - edgeSin * turnSin;
+      edgeSin = edgeSin * turnCos + edgeCos * turnSin;
+      edgeCos = turnedCos;
+      const float theta = lowest + float(k + 1) * sectorAngle;
+      const float magnitude = 0.25 * (cosN + (cosN * edgeCos - sinN * edgeSin)) + 0.5 * theta * sinN;
+      edges[k + 1] = theta >= 0.0 ? magnitude : -magnitude;
     }
-    const float total = boundary - first;  // = cos(n) + n sin(n)
+    const float total = edges[kSectors] - edges[0];  // = cos(n) + n sin(n)
 
     uint occupied = 0u;     // within R
     uint skyOccupied = 0u;  // at any distance
@@ -231,18 +249,17 @@ void main() {
             inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest) : 0u;
         const uint fresh = mask & ~occupied;
         occupied |= mask;
-        if (fresh != 0u && facing)
-          indirect += (projectedLength * sectorWeight(fresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
-        if (skyStepCount == 0) continue;
         // The same slab uncut, for the sky: sectors no nearer sample took
         // gather its light as light from beyond R.
-        const uint skyMask =
-            sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+        const vec3 skySlabBack = offsetFront + awayFromEye * skySlabDepth(offsetFront);
+        const uint skyMask = skyStepCount == 0 ? 0u : sectorsBetween(offsetFront, skySlabBack, side, toEye, lowest);
         const uint skyFresh = skyMask & ~(skyOccupied | occupied);
         skyOccupied |= skyMask;
-        if (skyFresh != 0u && facing)
-          farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        if (!facing || (fresh | skyFresh) == 0u) continue;
+        // One fetch of the sample's light serves both (llvmpipe calls out to fetch a texel).
+        const vec3 light = projectedLength * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        indirect += sectorWeight(fresh, edges) * light;
+        farIndirect += sectorWeight(skyFresh, edges) * light;
       }
       // Beyond R, for the sky: from R's footprint (at least a pixel) to the
       // screen edge along this side, in geometric steps (a far occluder
@@ -274,15 +291,12 @@ void main() {
         skyOccupied |= skyMask;
         if (skyFresh != 0u && dot(sampleNormal, offsetFront) < 0.0)
           farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, weights)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
       }
     }
-    float occludedWeight = 0.0;
-    for (uint bits = occupied; bits != 0u; bits &= bits - 1u) occludedWeight += weights[findLSB(bits)];
-    visibleSum += projectedLength * max(total - occludedWeight, 0.0);
+    visibleSum += projectedLength * max(total - sectorWeight(occupied, edges), 0.0);
     // What is occluded within R is occluded from the sky too.
-    float skyOccludedWeight = 0.0;
-    for (uint bits = skyOccupied | occupied; bits != 0u; bits &= bits - 1u) skyOccludedWeight += weights[findLSB(bits)];
+    const float skyOccludedWeight = sectorWeight(skyOccupied | occupied, edges);
     skyVisibleSum += projectedLength * max(total - skyOccludedWeight, 0.0);
     totalSum += projectedLength * total;
   }
