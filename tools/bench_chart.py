@@ -120,7 +120,8 @@ def main():
             ax.set_xscale("log")
             ax.set_xlabel("frame time, median (ms, log)")
             ax.set_ylabel(label)
-            ax.set_title(f"{scene} {width}x{height}")
+            # A file scene by its name alone: a path does not fit over a panel.
+            ax.set_title(f"{os.path.basename(scene)} {width}x{height}")
             ax.grid(True, which="both", alpha=0.3)
             if column == 0 and row_index == 0:
                 ax.legend(fontsize=7, title="marker size: SSGI resolution", title_fontsize=7)
