@@ -54,19 +54,10 @@ std::vector<Option<BenchCommand>> benchOptions() {
                                    for (const auto& item : splitList(std::get<std::string>(v), ','))
                                      c.resolutions.push_back(parseResolution(item));
                                  }));
-  rows.push_back(
-      actionOption<C>({.name = "sweep",
-                       .type = T::Text,
-                       .help = "sweep a render setting over values; repeat for a cartesian product (default: "
-                               "ssgi-method, ssgi-samples, ssgi-radius-fraction, ssgi-blur, ssgi-resolution)",
-                       .valueName = "NAME=V1,V2,..."},
-                      [](C& c, const OptionValue& v) { c.sweeps.push_back(parseSweep(std::get<std::string>(v))); }));
-  rows.push_back(bindOption<C>(
-      {.name = "repetitions", .type = T::Int, .help = "timed frames per configuration", .minimum = 1, .maximum = 1000},
-      [](auto& c) -> auto& { return c.repetitions; }));
-  rows.push_back(bindOption<C>(
-      {.name = "warmup", .type = T::Int, .help = "untimed frames first", .maximum = 1000},
-      [](auto& c) -> auto& { return c.warmup; }));
+  for (auto& row :
+       measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
+                             "ssgi-method, ssgi-samples, ssgi-radius-fraction, ssgi-blur, ssgi-resolution)"))
+    rows.push_back(std::move(row));
   rows.push_back(bindOption<C>(
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
       [](auto& c) -> auto& { return c.chart; }));

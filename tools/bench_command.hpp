@@ -28,6 +28,28 @@ struct SettingSweep {
 // "NAME=V1,V2,..." (a --sweep value): each value checked by the row NAME.
 SettingSweep parseSweep(const std::string& text);
 
+// --sweep (with `sweepHelp`, which must outlive the rows: a literal), --repetitions
+// and --warmup: how bench and tune choose and time configurations. `Command`
+// has sweeps, repetitions and warmup members.
+template <class Command>
+std::vector<Option<Command>> measurementOptions(std::string_view sweepHelp) {
+  std::vector<Option<Command>> rows;
+  rows.push_back(actionOption<Command>(
+      {.name = "sweep", .type = OptionType::Text, .help = sweepHelp, .valueName = "NAME=V1,V2,..."},
+      [](Command& c, const OptionValue& v) { c.sweeps.push_back(parseSweep(std::get<std::string>(v))); }));
+  rows.push_back(bindOption<Command>(
+      {.name = "repetitions",
+       .type = OptionType::Int,
+       .help = "timed frames per configuration",
+       .minimum = 1,
+       .maximum = 1000},
+      [](auto& c) -> auto& { return c.repetitions; }));
+  rows.push_back(bindOption<Command>(
+      {.name = "warmup", .type = OptionType::Int, .help = "untimed frames first", .maximum = 1000},
+      [](auto& c) -> auto& { return c.warmup; }));
+  return rows;
+}
+
 // What the bench sweeps when no --sweep is given: both methods, sample
 // counts, radii around the auto radius, blur and SSGI resolution.
 std::vector<SettingSweep> defaultBenchSweeps();

@@ -31,20 +31,10 @@ std::vector<Option<TuneCommand>> tuneOptions() {
        .minimum = 0,
        .maximum = 1},
       [](auto& c) -> auto& { return c.maxAoError; }));
-  rows.push_back(
-      actionOption<C>({.name = "sweep",
-                       .type = T::Text,
-                       .help = "candidates: sweep a render setting over values; repeat for a cartesian product "
-                               "(default: ssgi-slices, ssgi-steps, ssgi-thickness, ssgi-resolution, ssgi-frames of "
-                               "the bitmask method)",
-                       .valueName = "NAME=V1,V2,..."},
-                      [](C& c, const OptionValue& v) { c.sweeps.push_back(parseSweep(std::get<std::string>(v))); }));
-  rows.push_back(bindOption<C>(
-      {.name = "repetitions", .type = T::Int, .help = "timed frames per configuration", .minimum = 1, .maximum = 1000},
-      [](auto& c) -> auto& { return c.repetitions; }));
-  rows.push_back(bindOption<C>(
-      {.name = "warmup", .type = T::Int, .help = "untimed frames first", .maximum = 1000},
-      [](auto& c) -> auto& { return c.warmup; }));
+  for (auto& row : measurementOptions<C>("candidates: sweep a render setting over values; repeat for a cartesian "
+                                         "product (default: ssgi-slices, ssgi-steps, ssgi-thickness, ssgi-resolution, "
+                                         "ssgi-frames of the bitmask method)"))
+    rows.push_back(std::move(row));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
   rows.push_back(settingsFileOption<C>(&C::base));
   for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
