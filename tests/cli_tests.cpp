@@ -178,6 +178,22 @@ TEST_CASE("bench writes a CSV whose every row has a time and an error, and a cha
   OIIO::ImageBuf chart((out / "bench.png").string());
   CHECK(chart.read());
   CHECK(fs::file_size(out / "bench.svg") > 1000);
+  CHECK_FALSE(fs::exists(out / "frames.png"));  // no ssgi-frames sweep, no error-against-N chart
+  fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("bench sweeping ssgi-frames also charts the AO error against N" * doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  const fs::path out = freshFolder("bench-frames") / "out";
+  const Run run = runHeadlight(
+      "bench builtin:spheres --resolutions 32x24 --ssgi-method bitmask --sweep ssgi-frames=1,2,4 "
+      "--repetitions 1 --warmup 0 --reference-samples 16 --quiet --out " +
+      quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  OIIO::ImageBuf chart((out / "frames.png").string());
+  REQUIRE(chart.read());
+  CHECK(chart.spec().width >= 400);  // 7 x 4.5 inches at 110 dpi: 770 x 495
+  CHECK(fs::file_size(out / "frames.svg") > 1000);
   fs::remove_all(out.parent_path());
 }
 

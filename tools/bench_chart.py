@@ -24,7 +24,11 @@ MARKERS = {"hemisphere": "o", "radiance": "s", "bitmask": "^"}
 COLOURS = {"hemisphere": "C0", "radiance": "C1", "bitmask": "C2"}
 SIZES = {"full": 26, "half": 12, "quarter": 6}  # SSGI resolution: full-resolution points are the largest
 # Columns are the setting table's row names (bench.csv has one per setting).
-METHOD, BLUR, RESOLUTION = "ssgi-method", "ssgi-blur", "ssgi-resolution"
+METHOD, BLUR, RESOLUTION, FRAMES = "ssgi-method", "ssgi-blur", "ssgi-resolution", "ssgi-frames"
+# Columns that differ between two rows of one configuration: its label and its measurements.
+CHANGING = {"label", "frame_ms_median", "frame_ms_min", "frame_ms_max", "ssgi_ms_median", "ssgi_ms_min",
+            "ssgi_ms_max", "ao_rmse", "ao_mae", "sky_rmse", "sky_mae", "indirect_rmse", "indirect_rel_rmse",
+            "lit_rel_rmse", "lit_ssim", "pareto_ao", "repetitions", "seed_default"}
 
 
 def pareto(points):
@@ -83,6 +87,44 @@ def summary(rows, groups):
     return "\n".join(lines)
 
 
+def frames_chart(rows, out_dir):
+    """frames.png/svg when the bench swept ssgi-frames: AO RMSE against the
+    number of accumulated frames N, a line per scene and blur setting (the
+    other settings of a line held equal), N on a log axis."""
+    counts = sorted({int(r[FRAMES]) for r in rows if r.get(FRAMES)})
+    if len(counts) < 2:
+        return
+    lines = {}
+    for r in rows:
+        if r["seed_default"] == "1":
+            continue
+        key = tuple((k, v) for k, v in r.items() if k not in CHANGING and k != FRAMES)
+        lines.setdefault(key, []).append((int(r[FRAMES]), float(r["ao_rmse"]), r))
+    fig, ax = plt.subplots(figsize=(7.0, 4.5))
+    for points in lines.values():
+        if len(points) < 2:
+            continue
+        points.sort(key=lambda p: p[0])
+        r = points[0][2]
+        ax.plot([p[0] for p in points], [p[1] for p in points], marker="o" if r[BLUR] == "on" else "x",
+                linestyle="-" if r[BLUR] == "on" else "--",
+                label=f"{os.path.basename(r['scene'])} {r['width']}x{r['height']}, blur {r[BLUR]}")
+    ax.set_xscale("log", base=2)
+    ax.set_xticks(counts, [str(n) for n in counts])
+    ax.set_xlabel("frames accumulated, N (ssgi-frames)")
+    ax.set_ylabel("AO RMSE vs reference (within R)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.suptitle(f"headlight bench: AO error against N\n{rows[0]['renderer']}", fontsize=9)
+    fig.tight_layout()
+    for extension in ("png", "svg"):
+        path = os.path.join(out_dir, "frames." + extension)
+        tmp = os.path.join(out_dir, ".frames.tmp." + extension)
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+        print(path)
+
+
 def main():
     csv_path, out_dir = sys.argv[1], sys.argv[2]
     with open(csv_path, newline="") as f:
@@ -139,6 +181,7 @@ def main():
         fig.savefig(tmp, dpi=110)
         os.replace(tmp, path)
         print(path)
+    frames_chart(rows, out_dir)
 
 
 if __name__ == "__main__":
