@@ -45,8 +45,12 @@ const ImageModuleTable* loadImageModule() {
       continue;
     }
     // RTLD_LOCAL: OpenImageIO's symbols stay out of the global scope, where
-    // they could bind to an embedding application's own copy.
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // they could bind to an embedding application's own copy. RTLD_LAZY:
+    // functions bind on first call, as when linked; binding all of OpenImageIO's
+    // ~260 libraries now cost 42 ms more (hyperfine, dlopen alone: 319 against
+    // 277 ms). The module is linked with --no-undefined, so nothing is left
+    // to fail later.
+    void* handle = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!handle) throw IoError(path.string() + ": cannot load the image module: " + dlerror());
     const auto entry = reinterpret_cast<ImageModuleEntry>(dlsym(handle, kImageModuleEntry));
     if (!entry) throw IoError(path.string() + ": not a Headlight image module (no " + kImageModuleEntry + ")");
