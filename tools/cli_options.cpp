@@ -241,7 +241,8 @@ std::string renderHelp(CommandKind kind) {
            "(docs/ACCURACY.md defines them).\n\n";
   out << "Built-in scenes:";
   for (const std::string& name : builtinSceneNames()) out << " builtin:" << name;
-  out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O), 2 usage error.\n\n";
+  out << "\n\nExit codes: 0 ok, 1 runtime error (scene, GL, I/O, NaN/inf in a target; in a batch: any job "
+         "failed), 2 usage error.\n\n";
   RenderCommand defaults;
   defaults.context.errorPolicy = GlErrorPolicy::Warn;
   out << commandOptionsHelp(renderCommandOptions(kind), defaults,

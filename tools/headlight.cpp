@@ -31,7 +31,7 @@ constexpr int kExitUsage = 2;
 const char* kUsage =
     "usage: headlight <command> [options]\n\n"
     "commands:\n"
-    "  render [SCENE]     render a glTF file or builtin:<name> to EXRs (headlight render --help)\n"
+    "  render [SCENE...]  render glTF files or builtin:<name> to EXRs; batches, job files (headlight render --help)\n"
     "  reference [SCENE]  ray-traced ground truth for the SSGI outputs (headlight reference --help)\n"
     "  bench [SCENE...]   time every SSGI setting and chart it against the reference (headlight bench --help)\n"
     "  tune [SCENE]       the cheapest SSGI settings within an AO error, as a settings file (headlight tune --help)\n"
