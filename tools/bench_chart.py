@@ -87,6 +87,16 @@ def summary(rows, groups):
     return "\n".join(lines)
 
 
+def save_figure(fig, out_dir, stem):
+    """<stem>.png and <stem>.svg, each written to a temporary name and renamed."""
+    for extension in ("png", "svg"):
+        path = os.path.join(out_dir, stem + "." + extension)
+        tmp = os.path.join(out_dir, "." + stem + ".tmp." + extension)
+        fig.savefig(tmp, dpi=110)
+        os.replace(tmp, path)
+        print(path)
+
+
 def frames_chart(rows, out_dir):
     """frames.png/svg when the bench swept ssgi-frames: AO RMSE against the
     number of accumulated frames N, a line per scene and blur setting (the
@@ -117,12 +127,7 @@ def frames_chart(rows, out_dir):
     ax.legend(fontsize=7)
     fig.suptitle(f"headlight bench: AO error against N\n{rows[0]['renderer']}", fontsize=9)
     fig.tight_layout()
-    for extension in ("png", "svg"):
-        path = os.path.join(out_dir, "frames." + extension)
-        tmp = os.path.join(out_dir, ".frames.tmp." + extension)
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, path)
-        print(path)
+    save_figure(fig, out_dir, "frames")
 
 
 def main():
@@ -175,12 +180,7 @@ def main():
     renderer = rows[0]["renderer"] if rows else ""
     fig.suptitle(f"headlight bench: SSGI time against error\n{renderer}", fontsize=9)
     fig.tight_layout()
-    for extension in ("png", "svg"):
-        path = os.path.join(out_dir, "bench." + extension)
-        tmp = os.path.join(out_dir, ".bench.tmp." + extension)
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, path)
-        print(path)
+    save_figure(fig, out_dir, "bench")
     frames_chart(rows, out_dir)
 
 

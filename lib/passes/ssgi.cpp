@@ -73,20 +73,8 @@ void SsgiPass::prepare(SsgiMethod method) {
 
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   if (inputs.method == SsgiMethod::Bitmask) {
-    if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
     prepare(SsgiMethod::Bitmask);
-    SsgiBitmaskInputs bitmaskInputs{inputs.gbuffer, *inputs.directDiffuse};
-    bitmaskInputs.radiusWorld = inputs.radiusWorld;
-    bitmaskInputs.thicknessWorld = inputs.thicknessWorld;
-    bitmaskInputs.intensity = inputs.intensity;
-    bitmaskInputs.indirectStrength = inputs.indirectStrength;
-    bitmaskInputs.sliceCount = inputs.sliceCount;
-    bitmaskInputs.stepCount = inputs.stepCount;
-    bitmaskInputs.skyStepCount = inputs.skyStepCount;
-    bitmaskInputs.downsample = inputs.downsample;
-    bitmaskInputs.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
-    bitmaskInputs.accumulateWeight = inputs.accumulateWeight;
-    bitmask_->run(bitmaskInputs, output);
+    bitmask_->run(inputs, output);
     return;
   }
   updateKernel(inputs.sampleCount, inputs.seed);

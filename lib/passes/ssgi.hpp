@@ -51,7 +51,7 @@ struct SsgiInputs {
   float thicknessWorld = 0.0f;    // assumed depth behind each depth sample, world units, >= 0
   int skyStepCount = 0;           // long-range samples per direction for the sky visibility, >= 0
   int frameIndex = 0;             // rotates the slices and step jitter between accumulated frames
-  float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in with this weight (SsgiBitmaskInputs)
+  float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in as (1 - w) output + w result
 };
 
 // Variants: one per kernel method (ssgi.frag); the bitmask method is its

@@ -1,5 +1,7 @@
 #include "passes/ssgi_bitmask.hpp"
 
+#include "passes/ssgi.hpp"
+
 #include "shared_layout.h"
 
 namespace headlight {
@@ -8,7 +10,8 @@ SsgiBitmaskPass::SsgiBitmaskPass()
     : program_(buildFullscreenProgram("ssgi_bitmask.frag")),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
 
-void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const SsgiTextures& output) {
+void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
+  if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
   gpu::SsgiBitmaskBlock block{};
   block.radiusWorld = inputs.radiusWorld;
   block.thicknessWorld = inputs.thicknessWorld;
@@ -17,7 +20,8 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const SsgiTextures& o
   block.sliceCount = inputs.sliceCount;
   block.stepCount = inputs.stepCount;
   block.downsample = inputs.downsample;
-  block.rotationIndex = inputs.rotationIndex;
+  // The seed and the frame index together turn the slices and the step jitter.
+  block.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
   block.skyStepCount = inputs.skyStepCount;
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
@@ -26,7 +30,7 @@ void SsgiBitmaskPass::run(const SsgiBitmaskInputs& inputs, const SsgiTextures& o
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-  inputs.directDiffuse.bind(gpu::kUnitDirectDiffuse);
+  inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
   if (inputs.accumulateWeight > 0.0f) {
     // A running mean: background pixels are discarded and keep what the
