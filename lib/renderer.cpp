@@ -1,9 +1,12 @@
 // The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
-// direct light -> SSGI (-> blur) -> composite -> read back. Each pass is timed between glFinish calls
-// and checked for GL errors.
+// direct light -> SSGI (-> blur) -> composite -> read back. What runs, with
+// which shader variant and into which attachments, is the frame plan's
+// (frame/frame_plan.hpp); this file executes it. Each pass is timed between
+// glFinish calls and checked for GL errors.
 #include "headlight/renderer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <optional>
@@ -12,6 +15,8 @@
 
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
+#include "frame/frame_plan.hpp"
+#include "frame/resolve.hpp"
 #include "gl/target_formats.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
@@ -51,10 +56,6 @@ class PassTimer {
   std::vector<PassTime> times_;
 };
 
-int autoShadowMapSize(int width, int height) {
-  return std::clamp(int(std::bit_ceil(unsigned(std::max(width, height)))), 512, 2048);
-}
-
 // A scene with no light of its own gets one sun from above, in front and to
 // the left of the fitted camera's side (+Z), of about pi lux, so a white
 // Lambertian surface facing it reflects a radiance near 1.
@@ -68,28 +69,6 @@ Light defaultKeyLight() {
   return light;
 }
 
-// The bitmask SSGI's auto thickness: how deep the scene's objects typically
-// are behind what the camera sees, taken as 2/3 of the median over
-// instances of the smallest side of their world bounds (2/3: a sphere's mean
-// depth over its outline is 2/3 of its diameter). Flat instances (a side under 1e-3 of the scene's diagonal:
-// walls, floors) say nothing about depth and are left out. Held within
-// [kAutoThicknessFraction / 10, 1] x the radius, and
-// kAutoThicknessFraction x radius when every instance is flat.
-float autoThickness(const Scene& scene, float diagonal, float radius) {
-  std::vector<float> depths;
-  for (const Instance& instance : scene.instances) {
-    const Bounds bounds = scene.primitives[std::size_t(instance.primitive)].bounds.transformed(instance.worldFromLocal);
-    if (bounds.empty()) continue;
-    const glm::vec3 size = bounds.max - bounds.min;
-    const float smallest = std::min({size.x, size.y, size.z});
-    if (smallest > 1e-3f * diagonal) depths.push_back(smallest);
-  }
-  if (depths.empty()) return SsgiSettings::kAutoThicknessFraction * radius;
-  std::nth_element(depths.begin(), depths.begin() + std::ptrdiff_t(depths.size() / 2), depths.end());
-  return std::clamp(depths[depths.size() / 2] * (2.0f / 3.0f), 0.1f * SsgiSettings::kAutoThicknessFraction * radius,
-                    radius);
-}
-
 gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   gpu::FrameBlock block{};
   block.view = view.view;
@@ -99,83 +78,6 @@ gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   block.viewport = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
   block.nearFar = glm::vec4(view.nearPlane, view.farPlane, 0.0f, 0.0f);
   return block;
-}
-
-// Whether the caller asked for a frame target (an empty list: all).
-struct TargetWanted {
-  std::span<const std::string> names;
-  bool operator()(std::string_view name) const {
-    return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
-  }
-  // Named in the list itself, not just included in "all".
-  bool named(std::string_view name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
-};
-
-// What decides which work a frame needs: the scene, the resolved settings
-// and the targets asked for.
-struct FrameFacts {
-  bool wantLit = true;
-  bool wantSsgi = true;
-  bool ssgiOn = true;
-  bool ssgiReadsDirect = true;  // the radiance and bitmask methods gather the occluders' direct light
-  bool shadowsOn = true;        // --shadows
-  bool shadowCasters = true;    // a light of the scene casts shadows
-  bool skyLit = true;           // sky intensity > 0
-  bool sceneEmits = true;       // a material has a non-zero emissiveFactor
-};
-
-bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
-bool directNeeded(const FrameFacts& f) { return f.wantLit || (ssgiRuns(f) && f.ssgiReadsDirect); }
-
-// Work a frame can leave out, each named in --verbose.
-enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Count };
-constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive"};
-static_assert(std::size(kWorkNames) == std::size_t(Work::Count));
-
-// The one table of what a frame skips and why: work runs unless a row says
-// it is not needed, and the first row that applies is the reason given.
-// Every output stays what the full frame would give: shadow maps without a
-// shadow-casting light would be read by no light; the sky term with sky
-// intensity 0 adds exactly 0 (and its tables are then not made); a scene
-// with no emission has no emissive target (asked for by name, it is written
-// as zeros).
-struct SkipRule {
-  Work work;
-  std::string_view reason;
-  bool (*applies)(const FrameFacts&);
-};
-constexpr SkipRule kSkipRules[] = {
-    {Work::Shadows, "--no-shadows", [](const FrameFacts& f) { return !f.shadowsOn; }},
-    {Work::Shadows, "no light casts shadows", [](const FrameFacts& f) { return !f.shadowCasters; }},
-    {Work::Shadows, "no direct light is drawn (only G-buffer targets asked for)",
-     [](const FrameFacts& f) { return !directNeeded(f); }},
-    {Work::Direct, "only G-buffer targets asked for", [](const FrameFacts& f) { return !directNeeded(f); }},
-    {Work::Ssgi, "--no-ssgi", [](const FrameFacts& f) { return !f.ssgiOn; }},
-    {Work::Ssgi, "neither ssgi nor lit asked for", [](const FrameFacts& f) { return !ssgiRuns(f); }},
-    {Work::Composite, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
-    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)", [](const FrameFacts& f) { return !f.skyLit; }},
-    {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
-    {Work::Emissive, "no material emits (no emissive target, no emission term)",
-     [](const FrameFacts& f) { return !f.sceneEmits; }},
-};
-
-struct FramePlan {
-  std::optional<std::string_view> skipReason[std::size_t(Work::Count)];
-  bool runs(Work work) const { return !skipReason[std::size_t(work)]; }
-  std::vector<SkippedWork> skipped() const {
-    std::vector<SkippedWork> list;
-    for (std::size_t w = 0; w < std::size_t(Work::Count); ++w)
-      if (skipReason[w]) list.push_back({std::string(kWorkNames[w]), std::string(*skipReason[w])});
-    return list;
-  }
-};
-
-FramePlan planFrame(const FrameFacts& facts) {
-  FramePlan plan;
-  for (const SkipRule& rule : kSkipRules)
-    if (!plan.skipReason[std::size_t(rule.work)] && rule.applies(facts))
-      plan.skipReason[std::size_t(rule.work)] = rule.reason;
-  return plan;
 }
 
 }  // namespace
@@ -198,55 +100,56 @@ struct Renderer::Impl {
 
   // Per scene.
   Scene scene;
+  SceneSummary summary;
   std::optional<GpuScene> gpuScene;
   std::optional<GBufferPass> gbufferPass;
   gl::Buffer lightBuffer;  // scene.lights packed, with the shadow slots of shadowMaps
   ShadowMaps shadowMaps;   // kept across views: they do not depend on the camera
   int shadowMapSize = 0;   // what shadowMaps were made with; 0 = none yet
 
-  // Per image size.
-  GBuffer gbuffer;
-  DirectLightTargets direct;
-  // The SSGI pass's two outputs (SsgiTextures) before the blur, and after:
-  // what composite reads and ssgi.exr holds.
-  gl::Texture ssgiRaw, ssgiRawSky;
-  gl::Texture ssgiTarget, ssgiSkyTarget;
-  gl::Texture litTarget;
+  // Per image size: the plan's attachments (attachmentRows()), by Attachment.
+  std::array<gl::Texture, kAttachmentCount> textures;
+  int width = 0, height = 0;
 
-  // Which targets a frame needs besides the G-buffer, direct light and lit.
-  struct TargetNeeds {
-    bool directDiffuse;  // SSGI on with the radiance or bitmask method
-    bool ssgi;           // SSGI on
-    bool ssgiRaw;        // SSGI on with the blur
-    int ssgiDownsample;  // the raw SSGI's divisor
-    bool emissive;       // the G-buffer's emissive target (the scene emits)
-  };
+  const gl::Texture& texture(Attachment id) const { return textures[std::size_t(id)]; }
 
-  // Targets follow the image size; the SSGI ones exist only while SSGI (and
-  // its blur, or its radiance method) is on.
-  void ensureTargets(int width, int height, const TargetNeeds& needs) {
-    auto ensure = [&](gl::Texture& texture, bool wanted, GLenum format, int divisor = 1) {
+  // Allocates what the plan draws into and releases what it does not.
+  void ensureAttachments(const FramePlan& plan, int imageWidth, int imageHeight) {
+    width = imageWidth;
+    height = imageHeight;
+    for (const AttachmentRow& row : attachmentRows()) {
+      gl::Texture& texture = textures[std::size_t(row.id)];
+      const int divisor = row.ssgiResolution && plan.ssgi ? plan.ssgi->downsample : 1;
       const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
-      if (!wanted)
+      if (!plan.allocates(row.id))
         texture = gl::Texture();
       else if (texture.width() != w || texture.height() != h)
-        texture = gl::Texture::create2D(format, w, h);
-    };
-    if (gbuffer.width != width || gbuffer.height != height || bool(gbuffer.emissive) != needs.emissive)
-      gbuffer = makeGBuffer(width, height, needs.emissive);
-    // Direct light is internal (no frame target): half float holds HDR radiance.
-    ensure(direct.towardEye, true, GL_RGBA16F);
-    ensure(direct.diffuse, needs.directDiffuse, GL_RGBA16F);
-    // The raw SSGI is what the blur turns into the ssgi target: the same format.
-    ensure(ssgiRaw, needs.ssgiRaw, gl::targetFormat(&Frame::ssgi), needs.ssgiDownsample);
-    ensure(ssgiRawSky, needs.ssgiRaw, gl::targetFormat(&Frame::ssgi), needs.ssgiDownsample);
-    ensure(ssgiTarget, needs.ssgi, gl::targetFormat(&Frame::ssgi));
-    ensure(ssgiSkyTarget, needs.ssgi, gl::targetFormat(&Frame::ssgi));
-    ensure(litTarget, true, gl::targetFormat(&Frame::lit));
+        texture = gl::Texture::create2D(gl::internalFormat(row.format), w, h);
+    }
   }
 
-  bool hasShadowCasters() const {
-    return std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.castsShadows; });
+  // The G-buffer's attachments as the passes after it read them.
+  GBuffer gbuffer() const {
+    return {texture(Attachment::GbufferPosition), texture(Attachment::GbufferNormal),
+            texture(Attachment::GbufferAlbedo),   texture(Attachment::GbufferMaterial),
+            texture(Attachment::GbufferEmissive), texture(Attachment::GbufferDepth),
+            width,                                height};
+  }
+
+  // What the G-buffer pass draws into: its colour attachments by location.
+  GBufferTargets gbufferTargets(const GBufferVariant& variant) const {
+    GBufferTargets targets{{}, &texture(Attachment::GbufferDepth), width, height};
+    for (Attachment id : variant.colorAttachments) {
+      const auto location = std::size_t(attachmentRow(id).gbufferLocation);
+      if (targets.colors.size() <= location) targets.colors.resize(location + 1, nullptr);
+      targets.colors[location] = &texture(id);
+    }
+    return targets;
+  }
+
+  SsgiTextures ssgiOutput(bool raw) const {
+    return raw ? SsgiTextures{texture(Attachment::SsgiRaw), texture(Attachment::SsgiRawSky)}
+               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky)};
   }
 
   // The light buffer: the scene's lights, each with its slot in the shadow
@@ -289,7 +192,7 @@ struct Renderer::Impl {
     if (override) return *override;
     if (settings.camera) {
       if (std::size_t(*settings.camera) >= scene.cameras.size())
-        throw SettingsError("--camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
+        throw SettingsError("camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
                             std::to_string(scene.cameras.size()) + " camera(s)");
       return scene.cameras[std::size_t(*settings.camera)];
     }
@@ -298,42 +201,57 @@ struct Renderer::Impl {
     return fitted;
   }
 
-  // The GPU textures each frame target is read from (several for a target
-  // of more than 4 channels); an empty first texture (no emissive target,
-  // SSGI off) leaves the target empty.
-  std::vector<const gl::Texture*> sourcesOf(const FrameTarget& target) const {
-    const std::pair<ImageF Frame::*, std::vector<const gl::Texture*>> sources[] = {
-        {&Frame::position, {&gbuffer.position}},
-        {&Frame::normal, {&gbuffer.normal}},
-        {&Frame::albedo, {&gbuffer.albedo}},
-        {&Frame::material, {&gbuffer.material}},
-        {&Frame::depth, {&gbuffer.depth}},
-        {&Frame::emissive, {&gbuffer.emissive}},
-        {&Frame::ssgi, {&ssgiTarget, &ssgiSkyTarget}},
-        {&Frame::lit, {&litTarget}}};
-    for (const auto& [image, textures] : sources)
-      if (image == target.image) return textures;
-    throw GlError("renderer: no GPU source for frame target '" + std::string(target.name) + "'");
-  }
-
-  void readTargets(Frame& frame, bool withSsgi, const TargetWanted& wanted) const {
-    for (const FrameTarget& target : frameTargets()) {
-      const std::vector<const gl::Texture*> sources = sourcesOf(target);
-      if (target.image == &Frame::emissive && !*sources.front() && wanted.named(target.name)) {
-        // Asked for by name in a scene with no emission: what it would hold.
-        ImageF& zeros = frame.*target.image;
-        zeros.width = gbuffer.width;
-        zeros.height = gbuffer.height;
-        zeros.channels.assign(target.channels.begin(), target.channels.end());
-        zeros.pixels.assign(std::size_t(zeros.width) * std::size_t(zeros.height) * zeros.channels.size(), 0.0f);
+  // Reads each planned target from its attachments (depth as view depth; a
+  // target with no source as zeros of the image's size).
+  void readTargets(const FramePlan& plan, Frame& frame) const {
+    for (const TargetRead& read : plan.reads) {
+      const FrameTarget& target = *read.target;
+      ImageF& image = frame.*target.image;
+      const std::vector<std::string> channels(target.channels.begin(), target.channels.end());
+      if (read.sources.empty()) {
+        image.width = width;
+        image.height = height;
+        image.channels = channels;
+        image.pixels.assign(std::size_t(width) * std::size_t(height) * channels.size(), 0.0f);
         continue;
       }
-      if (!*sources.front() || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
-      const std::vector<std::string> channels(target.channels.begin(), target.channels.end());
-      frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
-                                ? readViewDepth(*sources.front(), frame.view, channels.front())
-                                : readColor(sources, channels);
+      std::vector<const gl::Texture*> sources;
+      for (Attachment id : read.sources) sources.push_back(&texture(id));
+      image = attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
+                  ? readViewDepth(*sources.front(), frame.view, channels.front())
+                  : readColor(sources, channels);
     }
+  }
+
+  void runSsgi(const FramePlan& plan, const RenderSettings& used, PassTimer& timer) {
+    const SsgiStep& step = *plan.ssgi;
+    const GBuffer gb = gbuffer();
+    SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr};
+    inputs.method = step.method->method;
+    inputs.sampleCount = used.ssgi.sampleCount;
+    inputs.seed = used.ssgi.seed;
+    inputs.radiusWorld = *used.ssgi.radius;
+    inputs.biasWorld = *used.ssgi.bias;
+    inputs.intensity = used.ssgi.intensity;
+    inputs.indirectStrength = *used.ssgi.indirectStrength;
+    inputs.downsample = step.downsample;
+    inputs.sliceCount = used.ssgi.sliceCount;
+    inputs.stepCount = used.ssgi.stepCount;
+    inputs.thicknessWorld = *used.ssgi.thickness;
+    inputs.skyStepCount = used.ssgi.skyStepCount;
+    const SsgiTextures output = ssgiOutput(step.blur);
+    // Accumulated frames: a running mean of rotated slice sets.
+    timer.run("ssgi", [&] {
+      for (int index = 0; index < step.frames; ++index) {
+        inputs.frameIndex = index;
+        inputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
+        ssgi.run(inputs, output);
+      }
+    });
+    if (step.blur)
+      timer.run("ssgi-blur", [&] {
+        ssgiBlur.run({gb, ssgiOutput(true), inputs.radiusWorld, step.downsample}, ssgiOutput(false));
+      });
   }
 };
 
@@ -365,7 +283,6 @@ void Renderer::setScene(Scene scene) {
   auto lock = impl.context.lockBackend();
   impl.gbufferPass.reset();
   impl.gpuScene.reset();
-  impl.gbuffer = GBuffer{};  // its emissive target depends on the scene
   try {
     impl.loadScene(std::move(scene));
   } catch (...) {
@@ -389,38 +306,26 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.scene = std::move(newScene);
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
-  impl.gbufferPass.emplace(*impl.gpuScene);
+  impl.summary = summarizeScene(impl.scene);
+  // The default settings' frame, planned and its programs built now, so
+  // that the first frame times shading, not compiling.
+  const FramePlan plan = planFrame(impl.summary, resolveSettings(RenderSettings{}, impl.scene), {});
+  impl.gbufferPass.emplace(*impl.gpuScene, plan.gbuffer);
   // At least one element: a zero-sized buffer cannot be bound.
   impl.lightBuffer = gl::Buffer::create(std::max<std::size_t>(1, impl.scene.lights.size()) * sizeof(gpu::GpuLight));
   impl.uploadLights({});
   impl.shadowMaps = ShadowMaps{};
   impl.shadowMapSize = 0;
-  // The default settings' variants, so the first frame times shading, not compiling.
-  const RenderSettings defaults;
-  impl.directLight.prepare(DirectLightPass::variantFor(impl.gpuScene->hasEmissive,
-                                                       countShadowCasters(impl.scene.lights),
-                                                       defaults.ssgi.method != SsgiMethod::Hemisphere));
-  impl.ssgi.prepare(defaults.ssgi.method);
-  impl.composite.prepare({true, impl.scene.sky.intensity > 0.0f});
+  if (plan.direct) impl.directLight.prepare(*plan.direct);
+  if (plan.ssgi) impl.ssgi.prepare(plan.ssgi->method->method);
+  if (plan.composite) impl.composite.prepare(*plan.composite);
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
 const Scene& Renderer::scene() const { return impl_->scene; }
 
 RenderSettings Renderer::resolve(const RenderSettings& settings) const {
-  settings.validate();
-  RenderSettings used = settings;
-  // An empty scene has no size; 1 keeps every derived value finite.
-  const float sceneRadius = impl_->scene.worldBounds().radius();
-  const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
-  if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
-  if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
-  if (!used.ssgi.thickness) used.ssgi.thickness = autoThickness(impl_->scene, diagonal, *used.ssgi.radius);
-  if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
-  if (!used.lighting.skyIntensity) used.lighting.skyIntensity = impl_->scene.sky.intensity;
-  if (!used.ssgi.indirectStrength)
-    used.ssgi.indirectStrength = used.ssgi.method == SsgiMethod::Hemisphere ? 0.5f : 1.0f;
-  return used;
+  return resolveSettings(settings, impl_->scene);
 }
 
 Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
@@ -437,87 +342,39 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   frame.view =
       makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);
 
-  // The resolved settings, copied into the plain values each pass takes.
-  const bool ssgiOn = used.ssgi.enabled;
-  const bool ssgiBlur = used.ssgi.enabled && used.ssgi.blur;
-  SsgiInputs ssgiInputs{impl.gbuffer, nullptr};
-  ssgiInputs.method = used.ssgi.method;
-  ssgiInputs.sampleCount = used.ssgi.sampleCount;
-  ssgiInputs.seed = used.ssgi.seed;
-  ssgiInputs.radiusWorld = *used.ssgi.radius;
-  ssgiInputs.biasWorld = *used.ssgi.bias;
-  ssgiInputs.intensity = used.ssgi.intensity;
-  ssgiInputs.indirectStrength = *used.ssgi.indirectStrength;
-  ssgiInputs.downsample = ssgiDivisor(used.ssgi.resolution);
-  ssgiInputs.sliceCount = used.ssgi.sliceCount;
-  ssgiInputs.stepCount = used.ssgi.stepCount;
-  ssgiInputs.thicknessWorld = *used.ssgi.thickness;
-  ssgiInputs.skyStepCount = used.ssgi.skyStepCount;
-  const bool shadows = used.lighting.shadows;
-  const int shadowMapSize = *used.lighting.shadowMapSize;
-  const float skyIntensity = *used.lighting.skyIntensity;
-  const float pcfRadius = used.lighting.pcfRadius;
-
-  // Passes the scene, the settings or the wanted targets do not need are
-  // skipped (kSkipRules): the G-buffer targets alone need neither light nor
-  // SSGI; ssgi alone needs no composite; no shadow-casting light, no shadow maps.
-  const TargetWanted wanted{targets};
-  FrameFacts facts;
-  facts.wantLit = wanted("lit");
-  facts.wantSsgi = wanted("ssgi");
-  facts.ssgiOn = ssgiOn;
-  facts.ssgiReadsDirect = ssgiInputs.method != SsgiMethod::Hemisphere;
-  facts.shadowsOn = shadows;
-  facts.shadowCasters = impl.hasShadowCasters();
-  facts.skyLit = skyIntensity > 0.0f;
-  facts.sceneEmits = impl.gpuScene->hasEmissive;
-  const FramePlan plan = planFrame(facts);
-  frame.skipped = plan.skipped();
-  const bool runSsgi = plan.runs(Work::Ssgi);
-
-  impl.ensureTargets(
-      used.width, used.height,
-      {ssgiOn && facts.ssgiReadsDirect, ssgiOn, ssgiBlur, ssgiInputs.downsample, plan.runs(Work::Emissive)});
+  const FramePlan plan = planFrame(impl.summary, used, targets);
+  frame.skipped = plan.skipped;
+  impl.ensureAttachments(plan, used.width, used.height);
   impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
   PassTimer timer(impl.context);
-  // Shadow maps are (re)made when the size changes or shadows are turned
-  // on; with shadows off the lights read "no map" and nothing is allocated.
-  if (!shadows) impl.dropShadows();
-  if (plan.runs(Work::Shadows) && impl.shadowMapSize != shadowMapSize)
-    timer.run("shadows", [&] { impl.renderShadows(shadowMapSize); });
-  impl.bindLighting(skyIntensity, pcfRadius);
-  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbuffer); });
-  if (plan.runs(Work::Direct))
-    timer.run("direct", [&] { impl.directLight.run({impl.gbuffer, impl.shadowMaps}, impl.direct); });
-  if (runSsgi) {
-    ssgiInputs.directDiffuse = impl.direct.diffuse ? &impl.direct.diffuse : nullptr;
-    const SsgiTextures ssgiOutput =
-        ssgiBlur ? SsgiTextures{impl.ssgiRaw, impl.ssgiRawSky} : SsgiTextures{impl.ssgiTarget, impl.ssgiSkyTarget};
-    // Accumulated bitmask frames: a running mean of rotated slice sets.
-    const int ssgiFrames = ssgiInputs.method == SsgiMethod::Bitmask ? used.ssgi.frames : 1;
-    timer.run("ssgi", [&] {
-      for (int index = 0; index < ssgiFrames; ++index) {
-        ssgiInputs.frameIndex = index;
-        ssgiInputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
-        impl.ssgi.run(ssgiInputs, ssgiOutput);
-      }
-    });
-    const SsgiBlurInputs blurInputs{
-        impl.gbuffer, {impl.ssgiRaw, impl.ssgiRawSky}, ssgiInputs.radiusWorld, ssgiInputs.downsample};
-    if (ssgiBlur) timer.run("ssgi-blur", [&] { impl.ssgiBlur.run(blurInputs, {impl.ssgiTarget, impl.ssgiSkyTarget}); });
+  // Shadow maps are kept across views and remade only when their size
+  // changes; with shadows off the lights read "no map".
+  if (plan.dropShadowMaps) impl.dropShadows();
+  if (plan.shadows && impl.shadowMapSize != plan.shadows->mapSize)
+    timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize); });
+  impl.bindLighting(*used.lighting.skyIntensity, used.lighting.pcfRadius);
+  timer.run("gbuffer",
+            [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
+  const GBuffer gbuffer = impl.gbuffer();
+  if (plan.direct) {
+    const DirectLightTargets direct{impl.texture(Attachment::DirectTowardEye),
+                                    plan.direct->diffuseTarget ? &impl.texture(Attachment::DirectDiffuse) : nullptr};
+    timer.run("direct", [&] { impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct); });
   }
+  if (plan.ssgi) impl.runSsgi(plan, used, timer);
   // The sky tables are made on the first frame that needs them (and again
   // only when the sky's colours change).
-  if (plan.runs(Work::Sky) && !impl.environment.holds(impl.scene.sky))
+  if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
     timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky); });
-  const std::optional<SsgiTextures> compositeSsgi =
-      ssgiOn ? std::optional<SsgiTextures>(SsgiTextures{impl.ssgiTarget, impl.ssgiSkyTarget}) : std::nullopt;
-  const CompositeInputs compositeInputs{impl.gbuffer, impl.direct.towardEye, compositeSsgi ? &*compositeSsgi : nullptr,
-                                        impl.environment.tables(), plan.runs(Work::Sky)};
-  if (plan.runs(Work::Composite)) timer.run("composite", [&] { impl.composite.run(compositeInputs, impl.litTarget); });
-  timer.run("readback", [&] { impl.readTargets(frame, runSsgi, wanted); });
+  if (plan.composite) {
+    const SsgiTextures ssgi = impl.ssgiOutput(false);
+    const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),
+                                 plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
+    timer.run("composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite); });
+  }
+  timer.run("readback", [&] { impl.readTargets(plan, frame); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
   frame.timings = timer.times();

@@ -12,22 +12,22 @@ CompositePass::CompositePass()
         return defines;
       }) {}
 
-void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output) {
+void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant) {
   inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
   inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   inputs.gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   inputs.gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.direct.bind(gpu::kUnitDirect);
-  if (inputs.ssgi) {
+  if (variant.ssgi) {
     inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
     inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
   }
-  if (inputs.sky) {
+  if (variant.sky) {
     inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
     inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
     inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
   }
-  draw("composite", Variant{inputs.ssgi != nullptr, inputs.sky}, output);
+  draw("composite", variant, output);
 }
 
 }  // namespace headlight

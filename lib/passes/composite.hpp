@@ -6,6 +6,7 @@
 // (the seed's ssgi_ao there: the hemisphere and radiance methods write their
 // AO within R as ssgi_sky, so their images are the seed's).
 // Output GL_RGBA16F linear radiance; background pixels get the sky, alpha 0.
+#include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
 #include "passes/fullscreen.hpp"
@@ -19,25 +20,19 @@ struct CompositeInputs {
   const gl::Texture& direct;  // DirectLightTargets::towardEye
   const SsgiTextures* ssgi;   // blurred SSGI; null with SSGI off (ambient then unoccluded but for
                               // the material's occlusion)
-  const EnvironmentTables& environment;
-  bool sky = true;  // false: leave out the sky term (the renderer's rule: sky intensity 0)
-};
-
-// Variants: with SSGI or without (ambient then unoccluded but for the
-// material's occlusion); with the sky term or without (sky intensity 0: the
-// image-based ambient and the background are then exactly 0, and the sky
-// tables are not read).
-struct CompositeVariant {
-  bool ssgi, sky;
-  auto operator<=>(const CompositeVariant&) const = default;
+  const EnvironmentTables& environment;  // read only by the variant with the sky term
 };
 
 class CompositePass : public FullscreenPass<CompositeVariant> {
  public:
+  // With SSGI or without (ambient then unoccluded but for the material's
+  // occlusion); with the sky term or without (sky intensity 0: the
+  // image-based ambient and the background are then exactly 0, and the sky
+  // tables are not read). The frame plan chooses.
   using Variant = CompositeVariant;
   CompositePass();
   // The lighting block must be bound (sky intensity).
-  void run(const CompositeInputs& inputs, const gl::Texture& output);
+  void run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant);
 };
 
 }  // namespace headlight

@@ -14,19 +14,19 @@ DirectLightPass::DirectLightPass()
         return defines;
       }) {}
 
-void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets) {
+void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets,
+                          const Variant& variant) {
   const GBuffer& gbuffer = inputs.gbuffer;
   const ShadowMaps& shadows = inputs.shadows;
   gbuffer.position.bind(gpu::kUnitGbufferPosition);
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-  if (gbuffer.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
-  if (shadows.planar) shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (shadows.cube) shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  const Variant variant = variantFor(bool(gbuffer.emissive), shadows.casters(), bool(targets.diffuse));
-  const gl::Texture* outputs[] = {&targets.towardEye, &targets.diffuse};
-  draw("direct light", variant, std::span(outputs, targets.diffuse ? 2 : 1), glm::vec4(0.0f));
+  if (variant.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
+  if (variant.planarShadows) shadows.planar.bind(gpu::kUnitShadowMaps2D);
+  if (variant.cubeShadows) shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  const gl::Texture* outputs[] = {&targets.towardEye, targets.diffuse};
+  draw("direct light", variant, std::span(outputs, variant.diffuseTarget ? 2 : 1), glm::vec4(0.0f));
 }
 
 }  // namespace headlight

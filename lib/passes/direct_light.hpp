@@ -5,6 +5,7 @@
 //   target 1 GL_RGBA16F  Lambertian radiance leaving the surface, for the SSGI
 //                        `radiance` method to gather; made only when asked
 // Background pixels stay 0.
+#include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
@@ -18,28 +19,17 @@ struct DirectLightInputs {
 };
 
 struct DirectLightTargets {
-  gl::Texture towardEye;  // always
-  gl::Texture diffuse;    // only for the SSGI radiance method; empty otherwise
-};
-
-struct DirectLightVariant {
-  bool emissive, planarShadows, cubeShadows, diffuseTarget;
-  auto operator<=>(const DirectLightVariant&) const = default;
+  const gl::Texture& towardEye;
+  const gl::Texture* diffuse;  // only for the SSGI methods that gather direct light (DirectLightVariant::diffuseTarget)
 };
 
 class DirectLightPass : public FullscreenPass<DirectLightVariant> {
  public:
-  using Variant = DirectLightVariant;
-  // The one rule for which program a frame uses, whether the frame is here
-  // (run) or predicted from the scene (the renderer's prepare).
-  static Variant variantFor(bool emissive, const ShadowCasters& casters, bool diffuseTarget) {
-    return {emissive, casters.planar > 0, casters.cube > 0, diffuseTarget};
-  }
-
+  using Variant = DirectLightVariant;  // the frame plan's choice
   DirectLightPass();
   // The lighting block (light count, PCF radius) and the light buffer must be
   // bound.
-  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets);
+  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant);
 };
 
 }  // namespace headlight

@@ -4,42 +4,13 @@
 #include <vector>
 
 #include "gl/shader_library.hpp"
-#include "gl/target_formats.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
 
-GBuffer makeGBuffer(int width, int height, bool withEmissive) {
-  GBuffer gbuffer;
-  gbuffer.width = width;
-  gbuffer.height = height;
-  gbuffer.position = gl::Texture::create2D(gl::targetFormat(&Frame::position), width, height);
-  gbuffer.normal = gl::Texture::create2D(gl::targetFormat(&Frame::normal), width, height);
-  gbuffer.albedo = gl::Texture::create2D(gl::targetFormat(&Frame::albedo), width, height);
-  gbuffer.material = gl::Texture::create2D(gl::targetFormat(&Frame::material), width, height);
-  gbuffer.depth = gl::Texture::create2D(gl::targetFormat(&Frame::depth), width, height);
-  gbuffer.framebuffer = gl::Framebuffer::create();
-  auto& fb = gbuffer.framebuffer;
-  fb.attach(GL_COLOR_ATTACHMENT0, gbuffer.position);
-  fb.attach(GL_COLOR_ATTACHMENT1, gbuffer.normal);
-  fb.attach(GL_COLOR_ATTACHMENT2, gbuffer.albedo);
-  fb.attach(GL_COLOR_ATTACHMENT3, gbuffer.material);
-  fb.attach(GL_DEPTH_ATTACHMENT, gbuffer.depth);
-  std::vector<GLenum> drawBuffers{GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                                  GL_COLOR_ATTACHMENT3};
-  if (withEmissive) {
-    gbuffer.emissive = gl::Texture::create2D(gl::targetFormat(&Frame::emissive), width, height);
-    fb.attach(GL_COLOR_ATTACHMENT4, gbuffer.emissive);
-    drawBuffers.push_back(GL_COLOR_ATTACHMENT4);
-  }
-  fb.setDrawBuffers(drawBuffers);
-  fb.checkComplete("G-buffer");
-  return gbuffer;
-}
-
 namespace {
 
-std::vector<std::string> definesFor(std::uint32_t features, bool emissiveTarget) {
+std::vector<std::string> definesFor(std::uint32_t features, const std::vector<std::string>& targetDefines) {
   static const std::pair<std::uint32_t, const char*> names[] = {
       {kFeatureTexcoords, "HAS_TEXCOORDS"},
       {kFeatureTangents, "HAS_TANGENTS"},
@@ -52,7 +23,7 @@ std::vector<std::string> definesFor(std::uint32_t features, bool emissiveTarget)
   std::vector<std::string> defines;
   for (const auto& [bit, name] : names)
     if (features & bit) defines.emplace_back(name);
-  if (emissiveTarget) defines.emplace_back("HAS_EMISSIVE_TARGET");
+  defines.insert(defines.end(), targetDefines.begin(), targetDefines.end());
   return defines;
 }
 
@@ -81,24 +52,35 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 
 }  // namespace
 
-GBufferPass::GBufferPass(const GpuScene& scene)
-    : programs_("gbuffer.vert", "gbuffer.frag", [emissiveTarget = scene.hasEmissive](std::uint32_t features) {
-        return definesFor(features, emissiveTarget);
-      }) {
+GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
+    : programs_("gbuffer.vert", "gbuffer.frag",
+                [](const ProgramKey& key) { return definesFor(key.features, key.targetDefines); }) {
   for (const GpuInstance& instance : scene.instances)
-    programs_.get(usableFeatures(scene.primitives[std::size_t(instance.primitive)],
-                                 scene.materials[std::size_t(instance.material)]));
+    programs_.get({usableFeatures(scene.primitives[std::size_t(instance.primitive)],
+                                  scene.materials[std::size_t(instance.material)]),
+                   variant.defines});
 }
 
-void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
-  target.framebuffer.bind();
-  glViewport(0, 0, target.width, target.height);
+void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant) {
+  // Attached every frame: the plan may change the set, and a size change
+  // replaces the textures.
+  std::vector<GLenum> drawBuffers;
+  for (std::size_t location = 0; location < targets.colors.size(); ++location) {
+    const GLenum attachment = GLenum(GL_COLOR_ATTACHMENT0 + location);
+    if (targets.colors[location]) framebuffer_.attach(attachment, *targets.colors[location]);
+    drawBuffers.push_back(targets.colors[location] ? attachment : GL_NONE);
+  }
+  framebuffer_.attach(GL_DEPTH_ATTACHMENT, *targets.depth);
+  framebuffer_.setDrawBuffers(drawBuffers);
+  framebuffer_.checkComplete("G-buffer");
+  framebuffer_.bind();
+  glViewport(0, 0, targets.width, targets.height);
   // Zero everywhere: position.a = 0 marks background for every later pass.
   const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (int attachment = 0; attachment < (target.emissive ? 5 : 4); ++attachment)
-    glClearNamedFramebufferfv(target.framebuffer.id(), GL_COLOR, attachment, zero);
+  for (std::size_t location = 0; location < targets.colors.size(); ++location)
+    if (targets.colors[location]) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, GLint(location), zero);
   const float farDepth = 1.0f;
-  glClearNamedFramebufferfv(target.framebuffer.id(), GL_DEPTH, 0, &farDepth);
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -109,7 +91,7 @@ void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(scene.instances[i].primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(scene.instances[i].material)];
     const std::uint32_t features = usableFeatures(primitive, material);
-    programs_.get(features).use();
+    programs_.get({features, variant.defines}).use();
     if (material.doubleSided)
       glDisable(GL_CULL_FACE);
     else
@@ -127,6 +109,10 @@ void GBufferPass::run(const GpuScene& scene, GBuffer& target) {
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
+  // Detached, so that a dropped attachment is not kept alive (gl/objects.hpp).
+  for (std::size_t location = 0; location < targets.colors.size(); ++location)
+    framebuffer_.detach(GLenum(GL_COLOR_ATTACHMENT0 + location));
+  framebuffer_.detach(GL_DEPTH_ATTACHMENT);
 }
 
 }  // namespace headlight

@@ -8,37 +8,59 @@
 //   RT3 GL_RGBA8        metallic, roughness, occlusion (glTF occlusion texture)
 //   RT4 GL_RGBA16F      emissive radiance, only if the scene has any
 //   depth GL_DEPTH_COMPONENT32F
+// The frame plan lists them (frame/frame_plan.cpp, kAttachmentRows); an
+// optional one is drawn only when its #define is set.
 #include <cstdint>
+#include <string>
+#include <vector>
 
+#include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/program_cache.hpp"
 #include "scene/gpu_scene.hpp"
 
 namespace headlight {
 
+// The G-buffer as the passes after it read it: the frame's attachments
+// (empty textures for those the plan did not allocate).
 struct GBuffer {
-  gl::Texture position;
-  gl::Texture normal;
-  gl::Texture albedo;
-  gl::Texture material;
-  gl::Texture emissive;  // empty unless the scene has emissive materials
-  gl::Texture depth;
-  gl::Framebuffer framebuffer;
+  const gl::Texture& position;
+  const gl::Texture& normal;
+  const gl::Texture& albedo;
+  const gl::Texture& material;
+  const gl::Texture& emissive;  // empty unless the scene has emissive materials
+  const gl::Texture& depth;
   int width = 0;
   int height = 0;
 };
 
-GBuffer makeGBuffer(int width, int height, bool withEmissive);
+// What the G-buffer pass draws into: colour targets by fragment-output
+// location (null: not drawn this frame), and depth.
+struct GBufferTargets {
+  std::vector<const gl::Texture*> colors;
+  const gl::Texture* depth = nullptr;
+  int width = 0;
+  int height = 0;
+};
 
 class GBufferPass {
  public:
-  // Builds one shader variant per feature combination the instances use.
-  explicit GBufferPass(const GpuScene& scene);
-  // Draws every instance; the frame block must be bound.
-  void run(const GpuScene& scene, GBuffer& target);
+  // Builds the programs the instances need for `variant` (the default frame's).
+  GBufferPass(const GpuScene& scene, const GBufferVariant& variant);
+  // Draws every instance into `targets`, the attachments `variant` lists;
+  // the frame block must be bound.
+  void run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant);
 
  private:
-  ProgramCache<std::uint32_t> programs_;  // keyed by GBufferFeature bits
+  // A program: the vertex and material features (GBufferFeature bits) and
+  // the optional targets' #defines.
+  struct ProgramKey {
+    std::uint32_t features;
+    std::vector<std::string> targetDefines;
+    auto operator<=>(const ProgramKey&) const = default;
+  };
+  ProgramCache<ProgramKey> programs_;
+  gl::Framebuffer framebuffer_ = gl::Framebuffer::create();
 };
 
 }  // namespace headlight

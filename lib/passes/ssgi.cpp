@@ -3,6 +3,7 @@
 #include <cmath>
 #include <random>
 
+#include "frame/frame_plan.hpp"
 #include "gl/shader_library.hpp"
 #include "headlight/error.hpp"
 #include "shared_layout.h"
@@ -46,8 +47,8 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed) {
 SsgiPass::SsgiPass()
     : FullscreenPass("ssgi.frag",
                      [](SsgiMethod method) {
-                       return method == SsgiMethod::Radiance ? std::vector<std::string>{"METHOD_RADIANCE"}
-                                                             : std::vector<std::string>{};
+                       const std::string_view define = ssgiMethodTraits(method).kernelDefine;
+                       return define.empty() ? std::vector<std::string>{} : std::vector<std::string>{std::string(define)};
                      }),
       blockBuffer_(gl::Buffer::create(sizeof(gpu::SsgiBlock))),
       noise_(gl::Texture::create2D(GL_RG16F, 4, 4)) {}
@@ -64,7 +65,7 @@ void SsgiPass::updateKernel(int sampleCount, unsigned seed) {
 }
 
 void SsgiPass::prepare(SsgiMethod method) {
-  if (method == SsgiMethod::Bitmask) {
+  if (ssgiMethodTraits(method).program == SsgiProgram::Bitmask) {
     if (!bitmask_) bitmask_.emplace();
   } else {
     FullscreenPass::prepare(method);
@@ -72,8 +73,9 @@ void SsgiPass::prepare(SsgiMethod method) {
 }
 
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
-  if (inputs.method == SsgiMethod::Bitmask) {
-    prepare(SsgiMethod::Bitmask);
+  const SsgiMethodTraits& method = ssgiMethodTraits(inputs.method);
+  if (method.program == SsgiProgram::Bitmask) {
+    prepare(inputs.method);
     bitmask_->run(inputs, output);
     return;
   }
@@ -91,7 +93,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   noise_.bind(gpu::kUnitSsgiNoise);
-  if (inputs.method == SsgiMethod::Radiance) {
+  if (method.readsDirectDiffuse) {
     if (inputs.directDiffuse == nullptr) throw GlError("SSGI radiance method: no direct-light diffuse target");
     gbuffer.material.bind(gpu::kUnitGbufferMaterial);
     inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);

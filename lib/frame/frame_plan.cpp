@@ -1,0 +1,222 @@
+#include "frame/frame_plan.hpp"
+
+#include <algorithm>
+
+namespace headlight {
+namespace {
+
+// ---- SSGI methods --------------------------------------------------------------
+
+// The hemisphere method's indirect term is albedo-weighted occlusion, not
+// radiance: 0.5 keeps it from doubling the ambient (the seed's value).
+constexpr SsgiMethodTraits kSsgiMethods[] = {
+    {SsgiMethod::Hemisphere, SsgiProgram::Kernel, "", false, false, false, 0.5f},
+    {SsgiMethod::Radiance, SsgiProgram::Kernel, "METHOD_RADIANCE", true, false, false, 1.0f},
+    {SsgiMethod::Bitmask, SsgiProgram::Bitmask, "", true, true, true, 1.0f},
+};
+
+// ---- Attachments -----------------------------------------------------------------
+
+using F = GpuFormat;
+// Formats of target-backed rows must match the target table's (a unit test
+// checks): the G-buffer's are the frame targets' own; direct light is
+// internal, and half float holds its HDR radiance.
+constexpr AttachmentRow kAttachmentRows[] = {
+    {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", false, &Frame::position},
+    {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", false, &Frame::normal},
+    {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", false, &Frame::albedo},
+    {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", false, &Frame::material},
+    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, 4, "HAS_EMISSIVE_TARGET", false,
+     &Frame::emissive},
+    {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", false, &Frame::depth},
+    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F},
+    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F},
+    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", true},
+    {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", true},
+    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi},
+    {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", false, &Frame::ssgi},
+    {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit},
+};
+static_assert(std::size(kAttachmentRows) == kAttachmentCount);
+
+// ---- What a frame skips ------------------------------------------------------------
+
+// What decides which work a frame needs: the scene, the resolved settings
+// and the targets asked for.
+struct FrameFacts {
+  bool wantLit = true;
+  bool wantSsgi = true;
+  bool ssgiOn = true;
+  bool ssgiReadsDirect = true;
+  bool shadowsOn = true;      // --shadows
+  bool shadowCasters = true;  // a light of the scene casts shadows
+  bool skyLit = true;         // sky intensity > 0
+  bool sceneEmits = true;     // a material has a non-zero emissiveFactor
+};
+
+bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
+bool directNeeded(const FrameFacts& f) { return f.wantLit || (ssgiRuns(f) && f.ssgiReadsDirect); }
+
+// Work a frame can leave out, each named in --verbose.
+enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Count };
+constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive"};
+static_assert(std::size(kWorkNames) == std::size_t(Work::Count));
+
+// The one table of what a frame skips and why: work runs unless a row says
+// it is not needed, and the first row that applies is the reason given.
+// Every output stays what the full frame would give: shadow maps without a
+// shadow-casting light would be read by no light; the sky term with sky
+// intensity 0 adds exactly 0 (and its tables are then not made); a scene
+// with no emission has no emissive target (asked for by name, it is written
+// as zeros).
+struct SkipRule {
+  Work work;
+  std::string_view reason;
+  bool (*applies)(const FrameFacts&);
+};
+constexpr SkipRule kSkipRules[] = {
+    {Work::Shadows, "setting shadows is off", [](const FrameFacts& f) { return !f.shadowsOn; }},
+    {Work::Shadows, "no light casts shadows", [](const FrameFacts& f) { return !f.shadowCasters; }},
+    {Work::Shadows, "no direct light is drawn (only G-buffer targets asked for)",
+     [](const FrameFacts& f) { return !directNeeded(f); }},
+    {Work::Direct, "only G-buffer targets asked for", [](const FrameFacts& f) { return !directNeeded(f); }},
+    {Work::Ssgi, "setting ssgi is off", [](const FrameFacts& f) { return !f.ssgiOn; }},
+    {Work::Ssgi, "neither ssgi nor lit asked for", [](const FrameFacts& f) { return !ssgiRuns(f); }},
+    {Work::Composite, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
+    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)", [](const FrameFacts& f) { return !f.skyLit; }},
+    {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
+    {Work::Emissive, "no material emits (no emissive target, no emission term)",
+     [](const FrameFacts& f) { return !f.sceneEmits; }},
+};
+
+struct SkipDecisions {
+  std::optional<std::string_view> reason[std::size_t(Work::Count)];
+  bool runs(Work work) const { return !reason[std::size_t(work)]; }
+};
+
+SkipDecisions decideSkips(const FrameFacts& facts) {
+  SkipDecisions decisions;
+  for (const SkipRule& rule : kSkipRules)
+    if (!decisions.reason[std::size_t(rule.work)] && rule.applies(facts))
+      decisions.reason[std::size_t(rule.work)] = rule.reason;
+  return decisions;
+}
+
+// Whether the caller asked for a frame target (an empty list: all).
+struct TargetWanted {
+  std::span<const std::string> names;
+  bool operator()(std::string_view name) const {
+    return names.empty() || std::find(names.begin(), names.end(), name) != names.end();
+  }
+  // Named in the list itself, not just included in "all".
+  bool named(std::string_view name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
+};
+
+// The attachments the planned passes draw into.
+void planAttachments(FramePlan& plan) {
+  auto allocate = [&](Attachment id) { plan.allocate[std::size_t(id)] = true; };
+  for (Attachment id : plan.gbuffer.colorAttachments) allocate(id);
+  allocate(Attachment::GbufferDepth);
+  if (plan.direct) {
+    allocate(Attachment::DirectTowardEye);
+    if (plan.direct->diffuseTarget) allocate(Attachment::DirectDiffuse);
+  }
+  if (plan.ssgi) {
+    allocate(Attachment::Ssgi);
+    allocate(Attachment::SsgiSky);
+    if (plan.ssgi->blur) {
+      allocate(Attachment::SsgiRaw);
+      allocate(Attachment::SsgiRawSky);
+    }
+  }
+  if (plan.composite) allocate(Attachment::Lit);
+}
+
+// Each wanted target is read from the allocated attachments that hold it.
+void planReads(FramePlan& plan, const TargetWanted& wanted) {
+  for (const FrameTarget& target : frameTargets()) {
+    if (!target.image || !wanted(target.name)) continue;
+    TargetRead read{&target, {}};
+    for (const AttachmentRow& row : kAttachmentRows)
+      if (row.target == target.image && plan.allocates(row.id)) read.sources.push_back(row.id);
+    // Asked for by name and drawn by nothing the scene needs (the emissive
+    // target of a scene without emission): what it would hold, zeros.
+    const bool zeros = read.sources.empty() && target.image == &Frame::emissive && wanted.named(target.name);
+    if (!read.sources.empty() || zeros) plan.reads.push_back(std::move(read));
+  }
+}
+
+}  // namespace
+
+SceneSummary summarizeScene(const Scene& scene) {
+  SceneSummary summary;
+  for (const Light& light : scene.lights)
+    if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
+  summary.emissive = scene.hasEmissive();
+  return summary;
+}
+
+const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method) {
+  for (const SsgiMethodTraits& traits : kSsgiMethods)
+    if (traits.method == method) return traits;
+  return kSsgiMethods[0];  // unreachable: every SsgiMethod has a row (unit-tested)
+}
+
+std::span<const AttachmentRow> attachmentRows() { return kAttachmentRows; }
+const AttachmentRow& attachmentRow(Attachment id) { return kAttachmentRows[std::size_t(id)]; }
+
+std::vector<std::string_view> FramePlan::passNames() const {
+  std::vector<std::string_view> names;
+  if (shadows) names.push_back("shadows");
+  names.push_back("gbuffer");
+  if (direct) names.push_back("direct");
+  if (ssgi) names.push_back("ssgi");
+  if (ssgi && ssgi->blur) names.push_back("ssgi-blur");
+  if (skyTables) names.push_back("sky");
+  if (composite) names.push_back("composite");
+  names.push_back("readback");
+  return names;
+}
+
+FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, std::span<const std::string> targets) {
+  const TargetWanted wanted{targets};
+  const SsgiMethodTraits& method = ssgiMethodTraits(settings.ssgi.method);
+  FrameFacts facts;
+  facts.wantLit = wanted("lit");
+  facts.wantSsgi = wanted("ssgi");
+  facts.ssgiOn = settings.ssgi.enabled;
+  facts.ssgiReadsDirect = method.readsDirectDiffuse;
+  facts.shadowsOn = settings.lighting.shadows;
+  facts.shadowCasters = scene.planarShadowCasters + scene.cubeShadowCasters > 0;
+  facts.skyLit = settings.lighting.skyIntensity.value_or(0.0f) > 0.0f;
+  facts.sceneEmits = scene.emissive;
+  const SkipDecisions skips = decideSkips(facts);
+
+  FramePlan plan;
+  for (std::size_t w = 0; w < std::size_t(Work::Count); ++w)
+    if (skips.reason[w]) plan.skipped.push_back({std::string(kWorkNames[w]), std::string(*skips.reason[w])});
+
+  plan.dropShadowMaps = !facts.shadowsOn;
+  if (skips.runs(Work::Shadows)) plan.shadows = ShadowStep{settings.lighting.shadowMapSize.value_or(0)};
+  for (const AttachmentRow& row : kAttachmentRows) {
+    if (row.gbufferLocation < 0) continue;
+    const bool optional = !row.gbufferDefine.empty();
+    if (row.id == Attachment::GbufferEmissive && !skips.runs(Work::Emissive)) continue;
+    plan.gbuffer.colorAttachments.push_back(row.id);
+    if (optional) plan.gbuffer.defines.emplace_back(row.gbufferDefine);
+  }
+  if (skips.runs(Work::Ssgi))
+    plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1,
+                         ssgiDivisor(settings.ssgi.resolution), settings.ssgi.blur};
+  if (skips.runs(Work::Direct))
+    plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
+                                     plan.shadows && scene.cubeShadowCasters > 0,
+                                     plan.ssgi && method.readsDirectDiffuse};
+  plan.skyTables = skips.runs(Work::Sky);
+  if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
+  planAttachments(plan);
+  planReads(plan, wanted);
+  return plan;
+}
+
+}  // namespace headlight

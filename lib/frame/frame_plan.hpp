@@ -1,0 +1,147 @@
+#pragma once
+// The frame plan: everything one frame does, decided in one place and
+// without GL. planFrame() turns (what the scene uses, the resolved settings,
+// the targets asked for) into the passes to run with their shader variants,
+// the attachments to allocate with their formats, the attachments each frame
+// target is read from, and the work left out with the reason. The renderer
+// (lib/renderer.cpp) executes the plan and decides nothing else.
+//
+// Adding an attachment that exists only when the scene uses a feature is one
+// row of kAttachmentRows (frame_plan.cpp) and one SceneSummary field; an SSGI
+// method is one row of the method table.
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "headlight/frame.hpp"
+#include "headlight/scene.hpp"
+#include "headlight/settings.hpp"
+#include "headlight/targets.hpp"
+
+namespace headlight {
+
+// What a plan needs to know of a scene; made once per setScene.
+struct SceneSummary {
+  int planarShadowCasters = 0;  // directional and spot lights that cast shadows
+  int cubeShadowCasters = 0;    // point lights that cast shadows
+  bool emissive = false;        // a material emits (emissiveFactor != 0)
+};
+// `scene.lights` as drawn: with the default key light when the file has none.
+SceneSummary summarizeScene(const Scene& scene);
+
+// ---- SSGI methods: one row each ------------------------------------------------
+
+// Which program draws a method: ssgi.frag's kernel (hemisphere, radiance) or
+// ssgi_bitmask.frag.
+enum class SsgiProgram { Kernel, Bitmask };
+
+struct SsgiMethodTraits {
+  SsgiMethod method;
+  SsgiProgram program;
+  std::string_view kernelDefine;  // ssgi.frag's #define for a kernel method ("" = none)
+  bool readsDirectDiffuse;        // gathers the occluders' direct light (the direct pass's diffuse target)
+  bool marchesBeyondRadius;       // ssgi-sky-steps applies
+  bool accumulatesFrames;         // ssgi-frames applies (a running mean of rotated frames)
+  float defaultIndirectStrength;  // ssgi-indirect-strength's auto value
+};
+const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method);
+
+// ---- Attachments -------------------------------------------------------------
+
+// Every texture a frame may draw into. The frame's textures are an array
+// indexed by this (lib/renderer.cpp).
+enum class Attachment {
+  GbufferPosition,
+  GbufferNormal,
+  GbufferAlbedo,
+  GbufferMaterial,
+  GbufferEmissive,
+  GbufferDepth,
+  DirectTowardEye,
+  DirectDiffuse,
+  SsgiRaw,  // the SSGI pass's output before the blur (its own resolution)
+  SsgiRawSky,
+  Ssgi,  // after the blur: what the composite reads and ssgi.exr holds
+  SsgiSky,
+  Lit,
+  Count
+};
+inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
+
+struct AttachmentRow {
+  Attachment id;
+  std::string_view name;  // in messages and --verbose
+  GpuFormat format;
+  // The G-buffer pass's colour attachment index (its fragment output's
+  // location); -1 for the depth attachment and for the other passes' targets.
+  int gbufferLocation = -1;
+  std::string_view gbufferDefine;  // gbuffer.frag's #define when the attachment is optional
+  bool ssgiResolution = false;     // sized by the SSGI divisor instead of the image
+  // The frame target it holds (several rows: channels 4k..4k+3 in the k-th);
+  // null for internal attachments.
+  ImageF Frame::*target = nullptr;
+};
+// Every attachment, in Attachment order.
+std::span<const AttachmentRow> attachmentRows();
+const AttachmentRow& attachmentRow(Attachment id);
+
+// ---- Passes and their variants -----------------------------------------------
+
+struct GBufferVariant {
+  std::vector<Attachment> colorAttachments;  // in location order; optional ones only when planned
+  std::vector<std::string> defines;          // the optional attachments' gbufferDefine
+};
+
+struct DirectLightVariant {
+  bool emissive, planarShadows, cubeShadows, diffuseTarget;
+  auto operator<=>(const DirectLightVariant&) const = default;
+};
+
+struct CompositeVariant {
+  bool ssgi, sky;
+  auto operator<=>(const CompositeVariant&) const = default;
+};
+
+struct ShadowStep {
+  int mapSize = 0;  // texels per side
+};
+
+struct SsgiStep {
+  const SsgiMethodTraits* method = nullptr;
+  int frames = 1;      // accumulated frames (1 unless the method accumulates)
+  int downsample = 1;  // the raw SSGI's divisor
+  bool blur = false;   // SsgiRaw -> Ssgi through the blur; else the pass writes Ssgi directly
+};
+
+// A frame target and where it comes from.
+struct TargetRead {
+  const FrameTarget* target = nullptr;
+  std::vector<Attachment> sources;  // empty: written as zeros (asked for by name, nothing draws it)
+};
+
+struct FramePlan {
+  // Passes in frame order; a pass that does not run has no value.
+  bool dropShadowMaps = false;  // shadows are off: the kept maps are released
+  std::optional<ShadowStep> shadows;
+  GBufferVariant gbuffer;
+  std::optional<DirectLightVariant> direct;
+  std::optional<SsgiStep> ssgi;
+  bool skyTables = false;  // the sky's prefiltered tables are (made if needed and) read
+  std::optional<CompositeVariant> composite;
+
+  std::array<bool, kAttachmentCount> allocate{};  // by Attachment
+  std::vector<TargetRead> reads;                  // the targets read back, in frameTargets() order
+  std::vector<SkippedWork> skipped;               // the work left out, and why (--verbose)
+
+  bool allocates(Attachment id) const { return allocate[std::size_t(id)]; }
+  std::vector<std::string_view> passNames() const;
+};
+
+// `settings` must be resolved (Renderer::resolve): every auto value set.
+// `targets` names the frame targets wanted (empty: all of them).
+FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, std::span<const std::string> targets);
+
+}  // namespace headlight

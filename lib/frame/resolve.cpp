@@ -1,0 +1,53 @@
+#include "frame/resolve.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <vector>
+
+#include "frame/frame_plan.hpp"
+
+namespace headlight {
+
+int autoShadowMapSize(int width, int height) {
+  return std::clamp(int(std::bit_ceil(unsigned(std::max(width, height)))), 512, 2048);
+}
+
+// How deep the scene's objects typically are behind what the camera sees,
+// taken as 2/3 of the median over instances of the smallest side of their
+// world bounds (2/3: a sphere's mean depth over its outline is 2/3 of its
+// diameter). Flat instances (a side under 1e-3 of the scene's diagonal:
+// walls, floors) say nothing about depth and are left out. Held within
+// [kAutoThicknessFraction / 10, 1] x the radius, and
+// kAutoThicknessFraction x radius when every instance is flat.
+float autoThickness(const Scene& scene, float diagonal, float radius) {
+  std::vector<float> depths;
+  for (const Instance& instance : scene.instances) {
+    const Bounds bounds = scene.primitives[std::size_t(instance.primitive)].bounds.transformed(instance.worldFromLocal);
+    if (bounds.empty()) continue;
+    const glm::vec3 size = bounds.max - bounds.min;
+    const float smallest = std::min({size.x, size.y, size.z});
+    if (smallest > 1e-3f * diagonal) depths.push_back(smallest);
+  }
+  if (depths.empty()) return SsgiSettings::kAutoThicknessFraction * radius;
+  std::nth_element(depths.begin(), depths.begin() + std::ptrdiff_t(depths.size() / 2), depths.end());
+  return std::clamp(depths[depths.size() / 2] * (2.0f / 3.0f), 0.1f * SsgiSettings::kAutoThicknessFraction * radius,
+                    radius);
+}
+
+RenderSettings resolveSettings(const RenderSettings& settings, const Scene& scene) {
+  settings.validate();
+  RenderSettings used = settings;
+  // An empty scene has no size; 1 keeps every derived value finite.
+  const float sceneRadius = scene.worldBounds().radius();
+  const float diagonal = sceneRadius > 0.0f ? 2.0f * sceneRadius : 1.0f;
+  if (!used.ssgi.radius) used.ssgi.radius = std::max(used.ssgi.radiusFraction * diagonal, 1e-30f);
+  if (!used.ssgi.bias) used.ssgi.bias = SsgiSettings::kAutoBiasFraction * *used.ssgi.radius;
+  if (!used.ssgi.thickness) used.ssgi.thickness = autoThickness(scene, diagonal, *used.ssgi.radius);
+  if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
+  if (!used.lighting.skyIntensity) used.lighting.skyIntensity = scene.sky.intensity;
+  if (!used.ssgi.indirectStrength)
+    used.ssgi.indirectStrength = ssgiMethodTraits(used.ssgi.method).defaultIndirectStrength;
+  return used;
+}
+
+}  // namespace headlight
