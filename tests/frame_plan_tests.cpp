@@ -1,0 +1,214 @@
+// The frame plan and resolve's auto values, without a GL context: what a
+// frame runs, allocates and reads back for a scene, its settings and the
+// targets asked for.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "frame/frame_plan.hpp"
+#include "frame/resolve.hpp"
+#include "headlight/scene_builder.hpp"
+#include "headlight/shapes.hpp"
+#include "headlight/targets.hpp"
+
+namespace headlight {
+namespace {
+
+SceneSummary litScene() {
+  SceneSummary scene;
+  scene.planarShadowCasters = 1;
+  return scene;
+}
+
+RenderSettings resolvedDefaults() {
+  RenderSettings settings;
+  settings.ssgi.radius = 0.5f;
+  settings.ssgi.bias = 0.025f;
+  settings.ssgi.thickness = 0.1f;
+  settings.ssgi.indirectStrength = 1.0f;
+  settings.lighting.shadowMapSize = 1024;
+  settings.lighting.skyIntensity = 1.0f;
+  return settings;
+}
+
+bool skips(const FramePlan& plan, std::string_view work, std::string_view reason = {}) {
+  return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
+    return skipped.work == work && skipped.reason.find(reason) != std::string::npos;
+  });
+}
+
+const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
+  for (const TargetRead& read : plan.reads)
+    if (read.target->name == name) return &read;
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("frame plan: the default frame runs every pass and reads every target it draws") {
+  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), {});
+  CHECK(plan.skipped.size() == 1);  // emissive: the scene has no emission
+  CHECK(skips(plan, "emissive", "no material emits"));
+  REQUIRE(plan.shadows);
+  CHECK(plan.shadows->mapSize == 1024);
+  REQUIRE(plan.direct);
+  CHECK(*plan.direct == DirectLightVariant{false, true, false, true});  // bitmask gathers direct light
+  REQUIRE(plan.ssgi);
+  CHECK(plan.ssgi->method->method == SsgiMethod::Bitmask);
+  CHECK(plan.ssgi->blur);
+  CHECK(plan.skyTables);
+  REQUIRE(plan.composite);
+  CHECK(*plan.composite == CompositeVariant{true, true});
+  CHECK(plan.passNames() ==
+        std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky", "composite",
+                                      "readback"});
+  CHECK(!plan.allocates(Attachment::GbufferEmissive));
+  CHECK(plan.allocates(Attachment::SsgiRaw));
+  CHECK(plan.gbuffer.defines.empty());
+  CHECK(readOf(plan, "emissive") == nullptr);  // not drawn, not named: not written
+  const TargetRead* ssgi = readOf(plan, "ssgi");
+  REQUIRE(ssgi);
+  CHECK(ssgi->sources == std::vector<Attachment>{Attachment::Ssgi, Attachment::SsgiSky});
+  for (const char* name : {"position", "normal", "albedo", "material", "depth", "lit"}) CHECK(readOf(plan, name));
+}
+
+TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its define and its target") {
+  SceneSummary scene = litScene();
+  scene.emissive = true;
+  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  CHECK(plan.allocates(Attachment::GbufferEmissive));
+  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET"});
+  CHECK(plan.direct->emissive);
+  REQUIRE(readOf(plan, "emissive"));
+  CHECK(readOf(plan, "emissive")->sources == std::vector<Attachment>{Attachment::GbufferEmissive});
+}
+
+TEST_CASE("frame plan: the emissive target asked for by name without emission is written as zeros") {
+  const std::vector<std::string> targets{"emissive"};
+  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  REQUIRE(readOf(plan, "emissive"));
+  CHECK(readOf(plan, "emissive")->sources.empty());
+  CHECK(plan.reads.size() == 1);
+}
+
+TEST_CASE("frame plan: G-buffer targets alone need neither light nor SSGI") {
+  const std::vector<std::string> targets{"normal", "depth"};
+  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  CHECK(!plan.shadows);
+  CHECK(!plan.direct);
+  CHECK(!plan.ssgi);
+  CHECK(!plan.composite);
+  CHECK(skips(plan, "direct", "only G-buffer targets"));
+  CHECK(skips(plan, "ssgi", "neither ssgi nor lit"));
+  for (Attachment id : {Attachment::DirectTowardEye, Attachment::DirectDiffuse, Attachment::Ssgi, Attachment::Lit})
+    CHECK(!plan.allocates(id));
+  CHECK(plan.reads.size() == 2);
+}
+
+TEST_CASE("frame plan: ssgi alone needs no composite, but the direct light it gathers") {
+  const std::vector<std::string> targets{"ssgi"};
+  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  CHECK(plan.ssgi);
+  REQUIRE(plan.direct);
+  CHECK(plan.direct->diffuseTarget);
+  CHECK(!plan.composite);
+  CHECK(!plan.skyTables);
+  CHECK(!plan.allocates(Attachment::Lit));
+}
+
+TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur attachments and the frames") {
+  RenderSettings settings = resolvedDefaults();
+  settings.ssgi.frames = 4;
+  settings.ssgi.method = SsgiMethod::Hemisphere;
+  FramePlan plan = planFrame(litScene(), settings, {});
+  CHECK(!plan.direct->diffuseTarget);
+  CHECK(!plan.allocates(Attachment::DirectDiffuse));
+  CHECK(plan.ssgi->frames == 1);  // the kernel methods do not accumulate
+  settings.ssgi.method = SsgiMethod::Bitmask;
+  CHECK(planFrame(litScene(), settings, {}).ssgi->frames == 4);
+  settings.ssgi.blur = false;
+  plan = planFrame(litScene(), settings, {});
+  CHECK(!plan.allocates(Attachment::SsgiRaw));
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "sky", "composite",
+                                                         "readback"});
+  settings.ssgi.enabled = false;
+  plan = planFrame(litScene(), settings, {});
+  CHECK(!plan.ssgi);
+  CHECK(!plan.direct->diffuseTarget);
+  CHECK(*plan.composite == CompositeVariant{false, true});
+  CHECK(skips(plan, "ssgi", "setting ssgi is off"));
+  CHECK(readOf(plan, "ssgi") == nullptr);
+}
+
+TEST_CASE("frame plan: no shadow caster, shadows off, sky intensity 0") {
+  RenderSettings settings = resolvedDefaults();
+  FramePlan plan = planFrame(SceneSummary{}, settings, {});
+  CHECK(!plan.shadows);
+  CHECK(!plan.dropShadowMaps);
+  CHECK(skips(plan, "shadows", "no light casts shadows"));
+  CHECK(!plan.direct->planarShadows);
+  settings.lighting.shadows = false;
+  plan = planFrame(litScene(), settings, {});
+  CHECK(plan.dropShadowMaps);
+  CHECK(skips(plan, "shadows", "setting shadows is off"));
+  CHECK(!plan.direct->planarShadows);
+  settings.lighting.skyIntensity = 0.0f;
+  plan = planFrame(litScene(), settings, {});
+  CHECK(!plan.skyTables);
+  CHECK(!plan.composite->sky);
+  CHECK(skips(plan, "sky", "sky intensity 0"));
+}
+
+TEST_CASE("frame plan: the attachment table agrees with the frame-target table and the SSGI table covers every method") {
+  for (std::size_t i = 0; i < kAttachmentCount; ++i) CHECK(std::size_t(attachmentRows()[i].id) == i);
+  for (const AttachmentRow& row : attachmentRows()) {
+    if (!row.target) continue;
+    const FrameTarget* target = nullptr;
+    for (const FrameTarget& candidate : frameTargets())
+      if (candidate.image == row.target) target = &candidate;
+    REQUIRE_MESSAGE(target, row.name);
+    CHECK_MESSAGE(target->gpuFormat == row.format, row.name);
+  }
+  // Every target a frame can have is held by some attachment.
+  for (const FrameTarget& target : frameTargets()) {
+    if (!target.image) continue;
+    const auto rows = attachmentRows();
+    CHECK_MESSAGE(std::any_of(rows.begin(), rows.end(), [&](const AttachmentRow& row) { return row.target == target.image; }),
+                  target.name);
+  }
+  // G-buffer locations are distinct.
+  std::vector<int> locations;
+  for (const AttachmentRow& row : attachmentRows())
+    if (row.gbufferLocation >= 0) locations.push_back(row.gbufferLocation);
+  std::sort(locations.begin(), locations.end());
+  CHECK(std::adjacent_find(locations.begin(), locations.end()) == locations.end());
+  for (SsgiMethod method : {SsgiMethod::Hemisphere, SsgiMethod::Radiance, SsgiMethod::Bitmask})
+    CHECK(ssgiMethodTraits(method).method == method);
+}
+
+TEST_CASE("resolve: auto values come from the scene and the image size") {
+  Scene scene;
+  addInstance(scene, makeBox(glm::vec3(2.0f)), addMaterial(scene, Material{}));
+  RenderSettings settings;
+  settings.width = 300;
+  settings.height = 200;
+  const RenderSettings used = resolveSettings(settings, scene);
+  const float diagonal = 2.0f * scene.worldBounds().radius();
+  CHECK(*used.ssgi.radius == doctest::Approx(settings.ssgi.radiusFraction * diagonal));
+  CHECK(*used.ssgi.bias == doctest::Approx(SsgiSettings::kAutoBiasFraction * *used.ssgi.radius));
+  CHECK(*used.lighting.shadowMapSize == 512);  // 300 -> 512, the floor
+  CHECK(autoShadowMapSize(1500, 10) == 2048);
+  CHECK(autoShadowMapSize(5000, 10) == 2048);  // held at 2048
+  CHECK(*used.lighting.skyIntensity == scene.sky.intensity);
+  CHECK(*used.ssgi.indirectStrength == 1.0f);
+  settings.ssgi.method = SsgiMethod::Hemisphere;
+  CHECK(*resolveSettings(settings, scene).ssgi.indirectStrength == 0.5f);
+  settings.ssgi.radius = 2.0f;  // a set value is kept
+  CHECK(*resolveSettings(settings, scene).ssgi.radius == 2.0f);
+  // A box 2 units deep: thickness 2/3 of its smallest side, held within the radius.
+  CHECK(*resolveSettings(settings, scene).ssgi.thickness == doctest::Approx(4.0f / 3.0f));
+}
+
+}  // namespace headlight
