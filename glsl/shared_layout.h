@@ -37,28 +37,64 @@ using mat4 = glm::mat4;
 #define HL_STORAGE_END(instance) } instance;
 #endif
 
-// Texture units. Each pass binds only the units it reads.
-HL_CONST(int, kUnitGbufferPosition, 0)
-HL_CONST(int, kUnitGbufferNormal, 1)
-HL_CONST(int, kUnitGbufferAlbedo, 2)
-HL_CONST(int, kUnitGbufferMaterial, 3)
-HL_CONST(int, kUnitGbufferEmissive, 4)
-HL_CONST(int, kUnitSsgiNoise, 5)
-HL_CONST(int, kUnitSsgi, 6)
-HL_CONST(int, kUnitBrdfLut, 7)
-HL_CONST(int, kUnitSkyPrefiltered, 8)
-HL_CONST(int, kUnitSkyIrradiance, 9)
-HL_CONST(int, kUnitShadowMaps2D, 10)
-HL_CONST(int, kUnitShadowMapsCube, 11)
-HL_CONST(int, kUnitBaseColorTexture, 12)
-HL_CONST(int, kUnitMetallicRoughnessTexture, 13)
-HL_CONST(int, kUnitNormalTexture, 14)
-HL_CONST(int, kUnitOcclusionTexture, 15)
-HL_CONST(int, kUnitEmissiveTexture, 16)
-HL_CONST(int, kUnitDirect, 17)
-HL_CONST(int, kUnitDirectDiffuse, 18)
-HL_CONST(int, kUnitGbufferDepth, 19)
-HL_CONST(int, kUnitSsgiSky, 20)
+// ---- The one list of units and bindings ----------------------------------------
+// Every texture unit, image unit, uniform-block binding and storage-block
+// binding is a row of one of these lists, and nowhere else: GLSL and C++ both
+// declare their constants from the rows, the distinctness checks
+// (lib/gl/shared_layout_checks.cpp) and the GL layout test
+// (tests/layout_gl_tests.cpp) walk them, so a new unit or block cannot be
+// left out of either. A block names its binding constant in HL_BLOCK_BEGIN:
+// a block without a row does not compile.
+
+// Texture units (X(name, unit)). Each pass binds only the units it reads.
+#define HL_TEXTURE_UNITS(X)                 \
+  X(kUnitGbufferPosition, 0)                \
+  X(kUnitGbufferNormal, 1)                  \
+  X(kUnitGbufferAlbedo, 2)                  \
+  X(kUnitGbufferMaterial, 3)                \
+  X(kUnitGbufferEmissive, 4)                \
+  X(kUnitSsgiNoise, 5)                      \
+  X(kUnitSsgi, 6)                           \
+  X(kUnitBrdfLut, 7)                        \
+  X(kUnitSkyPrefiltered, 8)                 \
+  X(kUnitSkyIrradiance, 9)                  \
+  X(kUnitShadowMaps2D, 10)                  \
+  X(kUnitShadowMapsCube, 11)                \
+  X(kUnitBaseColorTexture, 12)              \
+  X(kUnitMetallicRoughnessTexture, 13)      \
+  X(kUnitNormalTexture, 14)                 \
+  X(kUnitOcclusionTexture, 15)              \
+  X(kUnitEmissiveTexture, 16)               \
+  X(kUnitDirect, 17)                        \
+  X(kUnitDirectDiffuse, 18)                 \
+  X(kUnitGbufferDepth, 19)                  \
+  X(kUnitSsgiSky, 20)
+
+// Image units (X(name, unit)), for image load/store: none yet.
+#define HL_IMAGE_UNITS(X)
+
+// Uniform blocks (X(block, binding name, binding)): std140, below.
+#define HL_UNIFORM_BLOCKS(X)                \
+  X(FrameBlock, kBindingFrame, 0)           \
+  X(ObjectBlock, kBindingObject, 1)         \
+  X(MaterialBlock, kBindingMaterial, 2)     \
+  X(SsgiBlock, kBindingSsgi, 3)             \
+  X(LightingBlock, kBindingLighting, 4)     \
+  X(ShadowBlock, kBindingShadow, 5)         \
+  X(SkyBlock, kBindingSky, 6)               \
+  X(SsgiBlurBlock, kBindingSsgiBlur, 7)     \
+  X(SsgiBitmaskBlock, kBindingSsgiBitmask, 8)
+
+// Storage blocks (X(block, binding name, binding)): std430, below.
+#define HL_STORAGE_BLOCKS(X)                \
+  X(LightBuffer, kBindingLights, 0)
+
+#define HL_UNIT_CONST(name, unit) HL_CONST(int, name, unit)
+#define HL_BINDING_CONST(block, name, binding) HL_CONST(int, name, binding)
+HL_TEXTURE_UNITS(HL_UNIT_CONST)
+HL_IMAGE_UNITS(HL_UNIT_CONST)
+HL_UNIFORM_BLOCKS(HL_BINDING_CONST)
+HL_STORAGE_BLOCKS(HL_BINDING_CONST)
 
 // The SSGI kernel never has more samples than this (the seed's count).
 HL_CONST(int, kMaxKernelSamples, 64)
@@ -76,7 +112,7 @@ HL_CONST(int, kLightPoint, 1)
 HL_CONST(int, kLightSpot, 2)
 
 // Per view: everything a pass needs to go between spaces.
-HL_BLOCK_BEGIN(FrameBlock, 0)
+HL_BLOCK_BEGIN(FrameBlock, kBindingFrame)
   mat4 view;                // world -> view (camera looks down -Z)
   mat4 projection;          // view -> clip
   mat4 viewProjection;      // world -> clip
@@ -86,20 +122,20 @@ HL_BLOCK_BEGIN(FrameBlock, 0)
 HL_BLOCK_END(frame)
 
 // Per draw in the G-buffer and shadow passes.
-HL_BLOCK_BEGIN(ObjectBlock, 1)
+HL_BLOCK_BEGIN(ObjectBlock, kBindingObject)
   mat4 worldFromLocal;
   mat4 normalFromLocal;     // inverse transpose of worldFromLocal (upper 3x3 used)
 HL_BLOCK_END(object)
 
 // Per material in the G-buffer pass.
-HL_BLOCK_BEGIN(MaterialBlock, 2)
+HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
   vec4 baseColorFactor;     // linear RGBA
   vec4 emissiveFactor;      // linear RGB, w unused
   vec4 factors;             // metallic, roughness, normalScale, occlusionStrength
 HL_BLOCK_END(material)
 
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).
-HL_BLOCK_BEGIN(SsgiBlock, 3)
+HL_BLOCK_BEGIN(SsgiBlock, kBindingSsgi)
   vec4 kernel[kMaxKernelSamples];  // tangent space, z >= 0, |k| <= 1
   float radiusWorld;        // kernel radius, world units (> 0)
   float biasWorld;          // depth a sample must be behind a surface to count as occluded, world units
@@ -112,7 +148,7 @@ HL_BLOCK_BEGIN(SsgiBlock, 3)
 HL_BLOCK_END(ssgi)
 
 // The `bitmask` SSGI method (lib/passes/ssgi_bitmask.hpp documents the ranges).
-HL_BLOCK_BEGIN(SsgiBitmaskBlock, 8)
+HL_BLOCK_BEGIN(SsgiBitmaskBlock, kBindingSsgiBitmask)
   float radiusWorld;        // R: occluders count within this distance of the shaded point, world units (> 0)
   float thicknessWorld;     // each depth-buffer sample is taken as this deep behind its visible surface, world units
   float intensity;          // AO = 1 - intensity * (1 - visible fraction)
@@ -128,7 +164,7 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, 8)
 HL_BLOCK_END(bitmask)
 
 // SSGI blur pass.
-HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
+HL_BLOCK_BEGIN(SsgiBlurBlock, kBindingSsgiBlur)
   float ssgiRadiusWorld;    // depth differences are judged against it
   int ssgiDownsample;       // the raw SSGI's resolution divisor (1, 2, 4)
   float pad0;
@@ -136,7 +172,7 @@ HL_BLOCK_BEGIN(SsgiBlurBlock, 7)
 HL_BLOCK_END(blur)
 
 // Direct-light and composite passes.
-HL_BLOCK_BEGIN(LightingBlock, 4)
+HL_BLOCK_BEGIN(LightingBlock, kBindingLighting)
   float skyIntensity;       // scales the sky's radiance (ambient and background)
   int lightCount;           // entries of the light buffer
   float pcfRadius;          // shadow filter radius, shadow-map texels
@@ -148,13 +184,13 @@ HL_BLOCK_BEGIN(LightingBlock, 4)
 HL_BLOCK_END(lighting)
 
 // Shadow pass: one light view per draw batch.
-HL_BLOCK_BEGIN(ShadowBlock, 5)
+HL_BLOCK_BEGIN(ShadowBlock, kBindingShadow)
   mat4 lightViewProjection;
   vec4 lightPositionFar;    // point lights: world position and far distance; w = 0 otherwise
 HL_BLOCK_END(shadowView)
 
 // The procedural sky, for the passes that tabulate it once per scene.
-HL_BLOCK_BEGIN(SkyBlock, 6)
+HL_BLOCK_BEGIN(SkyBlock, kBindingSky)
   vec4 zenith;              // linear radiance straight up (rgb), w unused
   vec4 horizon;             // at the horizon
   vec4 ground;              // below the horizon
@@ -179,11 +215,11 @@ struct GpuLight {
   mat4 shadowViewProjection;  // world -> light clip (directional and spot)
 };
 #ifdef __cplusplus
-HL_STORAGE_BEGIN(LightBuffer, 0)
+HL_STORAGE_BEGIN(LightBuffer, kBindingLights)
   // The C++ side uploads a std::vector<GpuLight>; this struct only names the binding.
 HL_STORAGE_END(lights)
 #else
-HL_STORAGE_BEGIN(LightBuffer, 0)
+HL_STORAGE_BEGIN(LightBuffer, kBindingLights)
   GpuLight lightList[];
 HL_STORAGE_END(lights)
 #endif

@@ -45,35 +45,26 @@ static_assert(offsetof(GpuLight, shadowLayer) == 56);
 static_assert(offsetof(GpuLight, shadowTexelSize) == 64);
 static_assert(offsetof(GpuLight, shadowViewProjection) == 80);
 
-// Two passes' inputs must never share a unit, nor two blocks a binding.
+// Two passes' inputs must never share a unit, nor two blocks a binding:
+// checked over the lists themselves, so a new row is checked too.
 constexpr bool allDistinct(std::initializer_list<int> values) {
   for (const int* a = values.begin(); a != values.end(); ++a)
     for (const int* b = a + 1; b != values.end(); ++b)
       if (*a == *b) return false;
   return true;
 }
-static_assert(allDistinct({kUnitGbufferPosition,
-                           kUnitGbufferNormal,
-                           kUnitGbufferAlbedo,
-                           kUnitGbufferMaterial,
-                           kUnitGbufferEmissive,
-                           kUnitSsgiNoise,
-                           kUnitSsgi,
-                           kUnitBrdfLut,
-                           kUnitSkyPrefiltered,
-                           kUnitSkyIrradiance,
-                           kUnitShadowMaps2D,
-                           kUnitShadowMapsCube,
-                           kUnitBaseColorTexture,
-                           kUnitMetallicRoughnessTexture,
-                           kUnitNormalTexture,
-                           kUnitOcclusionTexture,
-                           kUnitEmissiveTexture,
-                           kUnitDirect,
-                           kUnitDirectDiffuse,
-                           kUnitGbufferDepth}));
-static_assert(allDistinct({FrameBlock::kBinding, ObjectBlock::kBinding, MaterialBlock::kBinding, SsgiBlock::kBinding,
-                           LightingBlock::kBinding, ShadowBlock::kBinding, SkyBlock::kBinding, SsgiBlurBlock::kBinding,
-                           SsgiBitmaskBlock::kBinding}));
+#define HL_UNIT_VALUE(name, unit) name,
+#define HL_BINDING_VALUE(block, name, binding) name,
+static_assert(allDistinct({HL_TEXTURE_UNITS(HL_UNIT_VALUE)}), "two texture units share a number");
+static_assert(allDistinct({HL_IMAGE_UNITS(HL_UNIT_VALUE)}), "two image units share a number");
+static_assert(allDistinct({HL_UNIFORM_BLOCKS(HL_BINDING_VALUE)}), "two uniform blocks share a binding");
+static_assert(allDistinct({HL_STORAGE_BLOCKS(HL_BINDING_VALUE)}), "two storage blocks share a binding");
+// Each block's kBinding is its row's.
+#define HL_BLOCK_BINDING_MATCHES(block, name, binding) static_assert(block::kBinding == binding);
+HL_UNIFORM_BLOCKS(HL_BLOCK_BINDING_MATCHES)
+HL_STORAGE_BLOCKS(HL_BLOCK_BINDING_MATCHES)
+#undef HL_UNIT_VALUE
+#undef HL_BINDING_VALUE
+#undef HL_BLOCK_BINDING_MATCHES
 
 }  // namespace headlight::gpu

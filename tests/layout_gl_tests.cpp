@@ -1,0 +1,157 @@
+// The shared layout (glsl/shared_layout.h) against what the GL linked:
+// walked from the header's own lists, so a new block or texture unit is
+// checked without a line here. Each uniform and storage block must be active
+// in one of the programs below with the C++ struct's size and its row's
+// binding; every sampler of every program must sit on a unit of the list.
+#include <doctest/doctest.h>
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gl/shader_library.hpp"
+#include "shared_layout.h"
+#include "support/gl.hpp"
+
+namespace headlight {
+namespace {
+
+using namespace headlight::test;
+
+// Every program the renderer builds, each with the #defines that make all
+// of its blocks and samplers active.
+struct ProgramSource {
+  std::vector<std::string_view> files;
+  std::vector<std::string> defines;
+};
+const std::vector<ProgramSource>& programSources() {
+  static const std::vector<ProgramSource> sources = {
+      {{"gbuffer.vert", "gbuffer.frag"},
+       {"HAS_TEXCOORDS", "HAS_TANGENTS", "HAS_BASE_COLOR_TEXTURE", "HAS_METALLIC_ROUGHNESS_TEXTURE",
+        "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET"}},
+      {{"shadow.vert", "shadow.frag"}, {}},
+      {{"fullscreen.vert", "direct_light.frag"},
+       {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "WRITE_DIFFUSE_RADIANCE"}},
+      {{"fullscreen.vert", "ssgi.frag"}, {"METHOD_RADIANCE"}},
+      {{"fullscreen.vert", "ssgi_bitmask.frag"}, {}},
+      {{"fullscreen.vert", "ssgi_blur.frag"}, {}},
+      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY"}},
+      {{"fullscreen.vert", "brdf_lut.frag"}, {}},
+      {{"fullscreen.vert", "sky_prefilter.frag"}, {}},
+      {{"fullscreen.vert", "sky_irradiance.frag"}, {}},
+  };
+  return sources;
+}
+
+struct LinkedProgram {
+  std::string name;
+  gl::Program program;
+};
+
+std::vector<LinkedProgram> linkAll() {
+  std::vector<LinkedProgram> programs;
+  for (const ProgramSource& source : programSources())
+    programs.push_back({std::string(source.files.back()), detail::buildProgram(source.files, source.defines)});
+  return programs;
+}
+
+struct BlockFacts {
+  GLint size = -1;
+  GLint binding = -1;
+};
+
+// The block's size and binding in the first program where it is active.
+std::optional<BlockFacts> findBlock(const std::vector<LinkedProgram>& programs, GLenum interface, const char* name) {
+  for (const LinkedProgram& linked : programs) {
+    const GLuint index = glGetProgramResourceIndex(linked.program.id(), interface, name);
+    if (index == GL_INVALID_INDEX) continue;
+    const GLenum properties[] = {GL_BUFFER_DATA_SIZE, GL_BUFFER_BINDING};
+    GLint values[2] = {-1, -1};
+    glGetProgramResourceiv(linked.program.id(), interface, index, 2, properties, 2, nullptr, values);
+    return BlockFacts{values[0], values[1]};
+  }
+  return std::nullopt;
+}
+
+bool isSampler(GLenum type) {
+  switch (type) {
+    case GL_SAMPLER_2D:
+    case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
+    case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_3D:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The unit each active sampler uniform of `program` is bound to.
+std::vector<std::pair<std::string, GLint>> samplerUnits(GLuint program) {
+  GLint count = 0;
+  glGetProgramInterfaceiv(program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+  std::vector<std::pair<std::string, GLint>> units;
+  for (GLint i = 0; i < count; ++i) {
+    const GLenum properties[] = {GL_TYPE, GL_LOCATION, GL_NAME_LENGTH};
+    GLint values[3] = {};
+    glGetProgramResourceiv(program, GL_UNIFORM, GLuint(i), 3, properties, 3, nullptr, values);
+    if (!isSampler(GLenum(values[0])) || values[1] < 0) continue;
+    std::string name(std::size_t(values[2]), '\0');
+    glGetProgramResourceName(program, GL_UNIFORM, GLuint(i), values[2], nullptr, name.data());
+    name.resize(name.size() - 1);  // the terminating NUL
+    GLint unit = -1;
+    glGetUniformiv(program, values[1], &unit);
+    units.emplace_back(name, unit);
+  }
+  return units;
+}
+
+}  // namespace
+
+TEST_CASE("shared layout: every listed block is linked with its C++ size and its row's binding") {
+  Context& context = sharedContext();
+  const std::vector<LinkedProgram> programs = linkAll();
+#define HL_CHECK_BLOCK(interface, block, name, value)                                                             \
+  {                                                                                                                 \
+    const std::optional<BlockFacts> facts = findBlock(programs, interface, #block);                                 \
+    INFO(#block);                                                                                                   \
+    REQUIRE_MESSAGE(facts, "no linked program has it active: add its pass's program to programSources()");         \
+    CHECK(facts->binding == value);                                                                                 \
+    if (interface == GL_UNIFORM_BLOCK) CHECK(facts->size == GLint(sizeof(gpu::block)));                             \
+  }
+#define HL_CHECK_UNIFORM_BLOCK(block, name, value) HL_CHECK_BLOCK(GL_UNIFORM_BLOCK, block, name, value)
+#define HL_CHECK_STORAGE_BLOCK(block, name, value) HL_CHECK_BLOCK(GL_SHADER_STORAGE_BLOCK, block, name, value)
+  HL_UNIFORM_BLOCKS(HL_CHECK_UNIFORM_BLOCK)
+  HL_STORAGE_BLOCKS(HL_CHECK_STORAGE_BLOCK)
+#undef HL_CHECK_BLOCK
+#undef HL_CHECK_UNIFORM_BLOCK
+#undef HL_CHECK_STORAGE_BLOCK
+  context.checkErrors("querying the linked blocks");
+}
+
+TEST_CASE("shared layout: every sampler sits on a listed unit, and every listed unit is read") {
+  Context& context = sharedContext();
+  const std::vector<LinkedProgram> programs = linkAll();
+#define HL_UNIT_VALUE(name, unit) unit,
+  const std::set<GLint> listed{HL_TEXTURE_UNITS(HL_UNIT_VALUE)};
+#undef HL_UNIT_VALUE
+  std::set<GLint> read;
+  for (const LinkedProgram& linked : programs) {
+    std::set<GLint> inProgram;
+    for (const auto& [sampler, unit] : samplerUnits(linked.program.id())) {
+      INFO(linked.name << ": " << sampler << " on unit " << unit);
+      CHECK(listed.count(unit) == 1);
+      CHECK(inProgram.insert(unit).second);  // two samplers of one program never share a unit
+      read.insert(unit);
+    }
+  }
+  CHECK(read == listed);
+  context.checkErrors("querying the linked samplers");
+}
+
+}  // namespace headlight
