@@ -20,9 +20,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "headlight/diff.hpp"
+#include "headlight/output.hpp"
+#include "headlight/settings.hpp"
 #include "regression_report.hpp"
 #include "support/assets.hpp"
 #include "support/process.hpp"
@@ -68,6 +72,35 @@ std::string rendererOf(const fs::path& exr) {
   return image.init_spec(exr.string(), 0, 0) ? image.spec().get_string_attribute("headlight:renderer") : "";
 }
 
+// Setting rows that change no EXR pixel (they shape preview.png only): a
+// golden need not agree on them.
+const std::set<std::string> kPreviewOnlySettings{"tonemap", "exposure"};
+
+// The golden holds pixels and the settings that made them: a row recorded
+// in both must agree (a changed default fails here, naming the row, before
+// the pixels are blamed); a row the golden predates must hold its default
+// (an "auto" default resolves per scene, so only its pixels are compared).
+// A new row at its default therefore needs no re-rendered golden.
+void checkSettings(const fs::path& goldenExr, const fs::path& actualExr) {
+  const std::map<std::string, std::string> golden = readSettingAttributes(goldenExr);
+  const std::map<std::string, std::string> actual = readSettingAttributes(actualExr);
+  const std::map<std::string, std::string> defaults = settingsAsText(RenderSettings{});
+  CHECK_MESSAGE(!actual.empty(), actualExr.string() << " records no settings");
+  for (const auto& [row, value] : actual) {
+    if (kPreviewOnlySettings.count(row)) continue;
+    const auto recorded = golden.find(row);
+    if (recorded != golden.end()) {
+      CHECK_MESSAGE(recorded->second == value, "setting " << row << ": golden " << recorded->second << ", render "
+                                                          << value << " (re-render with tools/update_goldens.sh "
+                                                          << "if the change is meant)");
+      continue;
+    }
+    const auto byDefault = defaults.find(row);
+    const bool isDefault = byDefault != defaults.end() && (byDefault->second == value || byDefault->second == "auto");
+    CHECK_MESSAGE(isDefault, "setting " << row << " = " << value << " is not its default, and the golden predates it");
+  }
+}
+
 struct Tally {
   int listed = 0;
   int skippedAbsent = 0;  // the scene file is not in this checkout
@@ -96,6 +129,7 @@ bool compareGolden(const Golden& golden) {
   // The same targets as the golden; frame.json makes both checked sets.
   const DirectoryDiff diff = diffDirectories(expected, actual);
   bool failed = diff.status > DiffStatus::Warn || diff.targets.empty();
+  if (!diff.targets.empty()) checkSettings(diff.targets.front().a, diff.targets.front().b);
   for (const DiffResult& target : diff.targets) {
     CAPTURE(target.target);
     const std::string goldenRenderer = rendererOf(target.a), actualRenderer = rendererOf(target.b);
