@@ -226,19 +226,9 @@ struct Renderer::Impl {
   void runSsgi(const FramePlan& plan, const RenderSettings& used, PassTimer& timer) {
     const SsgiStep& step = *plan.ssgi;
     const GBuffer gb = gbuffer();
-    SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr};
-    inputs.method = step.method->method;
-    inputs.sampleCount = used.ssgi.sampleCount;
-    inputs.seed = used.ssgi.seed;
-    inputs.radiusWorld = *used.ssgi.radius;
-    inputs.biasWorld = *used.ssgi.bias;
-    inputs.intensity = used.ssgi.intensity;
-    inputs.indirectStrength = *used.ssgi.indirectStrength;
+    SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr,
+                      used.ssgi};
     inputs.downsample = step.downsample;
-    inputs.sliceCount = used.ssgi.sliceCount;
-    inputs.stepCount = used.ssgi.stepCount;
-    inputs.thicknessWorld = *used.ssgi.thickness;
-    inputs.skyStepCount = used.ssgi.skyStepCount;
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.
     timer.run("ssgi", [&] {
@@ -250,7 +240,7 @@ struct Renderer::Impl {
     });
     if (step.blur)
       timer.run("ssgi-blur", [&] {
-        ssgiBlur.run({gb, ssgiOutput(true), inputs.radiusWorld, step.downsample}, ssgiOutput(false));
+        ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample}, ssgiOutput(false));
       });
   }
 };

@@ -73,17 +73,18 @@ void SsgiPass::prepare(SsgiMethod method) {
 }
 
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
-  const SsgiMethodTraits& method = ssgiMethodTraits(inputs.method);
+  const SsgiSettings& settings = inputs.settings;
+  const SsgiMethodTraits& method = ssgiMethodTraits(settings.method);
   if (method.program == SsgiProgram::Bitmask) {
-    prepare(inputs.method);
+    prepare(settings.method);
     bitmask_->run(inputs, output);
     return;
   }
-  updateKernel(inputs.sampleCount, inputs.seed);
-  block_.radiusWorld = inputs.radiusWorld;
-  block_.biasWorld = inputs.biasWorld;
-  block_.intensity = inputs.intensity;
-  block_.indirectStrength = inputs.indirectStrength;
+  updateKernel(settings.sampleCount, settings.seed);
+  block_.radiusWorld = *settings.radius;
+  block_.biasWorld = *settings.bias;
+  block_.intensity = settings.intensity;
+  block_.indirectStrength = *settings.indirectStrength;
   block_.downsample = inputs.downsample;
   blockBuffer_.update(block_);
   blockBuffer_.bindUniform(gpu::SsgiBlock::kBinding);
@@ -101,7 +102,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   // Background pixels are discarded by the shader and keep the clear value:
   // open, no indirect light.
   const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
-  draw("SSGI", inputs.method, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  draw("SSGI", settings.method, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 
 }  // namespace headlight

@@ -32,26 +32,17 @@ std::vector<glm::vec3> makeSsgiKernel(int sampleCount, unsigned seed);
 // normal, tiled every 4x4 pixels.
 std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 
-// Everything one SSGI frame reads. Values are resolved (no "auto"): the
-// renderer fills them from the frame's settings.
+// Everything one SSGI frame reads. The settings are the frame's resolved
+// ones (Renderer::resolve: no "auto" left); each method's pass fills its
+// block from them directly, so a setting that reaches a shader is its
+// settings row, its block field and the shader, with no copy in between.
 struct SsgiInputs {
-  const GBuffer& gbuffer;            // position, normal, albedo; material for the radiance method
-  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by radiance and bitmask
-  SsgiMethod method = SsgiMethod::Hemisphere;
-  int sampleCount = 0;            // kernel samples, 1..gpu::kMaxKernelSamples
-  unsigned seed = 0;              // kernel and noise
-  float radiusWorld = 0.0f;       // kernel radius, world units, > 0
-  float biasWorld = 0.0f;         // occlusion depth bias, world units, >= 0
-  float intensity = 0.0f;         // AO = 1 - intensity * mean occlusion, >= 0
-  float indirectStrength = 0.0f;  // scale of the indirect term, >= 0
-  int downsample = 1;             // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
-  // The bitmask method's own (the others ignore them).
-  int sliceCount = 0;             // screen-space directions per pixel, >= 1
-  int stepCount = 0;              // depth samples per direction and side, >= 1
-  float thicknessWorld = 0.0f;    // assumed depth behind each depth sample, world units, >= 0
-  int skyStepCount = 0;           // long-range samples per direction for the sky visibility, >= 0
-  int frameIndex = 0;             // rotates the slices and step jitter between accumulated frames
-  float accumulateWeight = 0.0f;  // 0: overwrite the output; else blend in as (1 - w) output + w result
+  const GBuffer& gbuffer;            // depth, normal, albedo, material; position for the kernel methods
+  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by the methods that gather direct light
+  const SsgiSettings& settings;      // resolved
+  int downsample = 1;                // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+  int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
+  float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result
 };
 
 // Variants: one per kernel method (ssgi.frag); the bitmask method is its

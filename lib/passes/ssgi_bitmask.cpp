@@ -12,17 +12,18 @@ SsgiBitmaskPass::SsgiBitmaskPass()
 
 void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
+  const SsgiSettings& settings = inputs.settings;
   gpu::SsgiBitmaskBlock block{};
-  block.radiusWorld = inputs.radiusWorld;
-  block.thicknessWorld = inputs.thicknessWorld;
-  block.intensity = inputs.intensity;
-  block.indirectStrength = inputs.indirectStrength;
-  block.sliceCount = inputs.sliceCount;
-  block.stepCount = inputs.stepCount;
+  block.radiusWorld = *settings.radius;
+  block.thicknessWorld = *settings.thickness;
+  block.intensity = settings.intensity;
+  block.indirectStrength = *settings.indirectStrength;
+  block.sliceCount = settings.sliceCount;
+  block.stepCount = settings.stepCount;
   block.downsample = inputs.downsample;
   // The seed and the frame index together turn the slices and the step jitter.
-  block.rotationIndex = int(inputs.seed % 65536u) + inputs.frameIndex;
-  block.skyStepCount = inputs.skyStepCount;
+  block.rotationIndex = int(settings.seed % 65536u) + inputs.frameIndex;
+  block.skyStepCount = settings.skyStepCount;
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   const GBuffer& gbuffer = inputs.gbuffer;
