@@ -111,6 +111,14 @@ HL_CONST(int, kLightDirectional, 0)
 HL_CONST(int, kLightPoint, 1)
 HL_CONST(int, kLightSpot, 2)
 
+// View-space z (negative in front of the camera) of a depth-buffer value
+// as NDC depth, ndc = 2 d - 1 (d in GL's default 0..1 range), for
+// perspective and orthographic projections alike:
+// (k.x + k.y ndc) / (k.z + k.w ndc). The coefficients k are computed once on
+// the CPU (viewZCoefficients, lib/gl/readback.hpp) and passed in
+// FrameBlock; the depth target's readback uses the same formula.
+#define HL_VIEW_Z_FROM_NDC_DEPTH(ndc, k) (((k).x + (k).y * (ndc)) / ((k).z + (k).w * (ndc)))
+
 // Per view: everything a pass needs to go between spaces.
 HL_BLOCK_BEGIN(FrameBlock, kBindingFrame)
   mat4 view;                // world -> view (camera looks down -Z)
@@ -118,7 +126,7 @@ HL_BLOCK_BEGIN(FrameBlock, kBindingFrame)
   mat4 viewProjection;      // world -> clip
   vec4 cameraPosition;      // xyz world; w = 1 for orthographic, 0 for perspective
   vec4 viewport;            // width, height, 1/width, 1/height (pixels)
-  vec4 nearFar;             // near, far (view-space distances), 0, 0
+  vec4 depthToViewZ;        // k: view-space z of NDC depth is HL_VIEW_Z_FROM_NDC_DEPTH(ndc, k) (viewZCoefficients)
 HL_BLOCK_END(frame)
 
 // Per draw in the G-buffer and shadow passes.

@@ -17,8 +17,11 @@
 // the depth buffer hides behind the slabs, is taken as open: a scene seen
 // from outside it (the Cornell box's open front) is right there, one framed
 // from inside its walls is too light where the walls leave the screen.
-// Reads the G-buffer's depth (linearised here), not the position target.
+// Reads the G-buffer's depth (linearised by the frame's coefficients), not
+// the position target. Its pure functions are in ssgi_common.glsl; what reads
+// textures is here.
 #include "shared_layout.h"
+#include "ssgi_common.glsl"
 
 layout(binding = kUnitGbufferDepth) uniform sampler2D gbufferDepth;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
@@ -29,26 +32,6 @@ layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 layout(location = 0) out vec4 outSsgi;
 layout(location = 1) out vec4 outSky;
 
-const float kPi = 3.14159265358979;
-const int kSectors = 32;
-
-bool orthographic() { return frame.cameraPosition.w > 0.5; }
-
-// The view-space point at `pixel`'s centre whose depth-buffer value is
-// `depth`: the inverse of glm::perspective / glm::ortho (GL's -1..1 depth).
-vec3 viewPositionAt(ivec2 pixel, float depth) {
-  const float near = frame.nearFar.x, far = frame.nearFar.y;
-  const vec2 ndc = (vec2(pixel) + 0.5) * frame.viewport.zw * 2.0 - 1.0;
-  const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
-  if (orthographic()) {
-    const float z = -(near + depth * (far - near));
-    return vec3((ndc - vec2(frame.projection[3][0], frame.projection[3][1])) / scale, z);
-  }
-  const float z = -2.0 * near * far / (far + near - (2.0 * depth - 1.0) * (far - near));
-  // clip.xy = scale * xy + projection[2].xy * z, clip.w = -z.
-  return vec3((ndc * -z - vec2(frame.projection[2][0], frame.projection[2][1]) * z) / scale, z);
-}
-
 // The surface point on the view ray through `windowPoint` (pixels, not
 // necessarily a centre), from the depth and normal of the pixel it falls in:
 // that pixel's tangent plane met by the exact ray. The slice's samples then
@@ -58,56 +41,45 @@ vec3 viewPositionAt(ivec2 pixel, float depth) {
 // may be many pixels' lateral size away. Where it is more than 32 pixels'
 // size from the centre's point (a curved surface seen edge-on), the pixel
 // centre's point is kept. Where the plane is within 0.6 degrees of edge-on
-// to the ray, no point is known: `known` is false and the sample is
-// skipped (such a surface covers next to nothing on screen).
+// to the ray (|cos| < 0.01), no point is known: `known` is false and the
+// sample is skipped (such a surface covers next to nothing on screen).
 vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal, out bool known) {
-  known = true;
   const vec3 centre = viewPositionAt(pixel, depth);
-  const vec2 ndc = windowPoint * frame.viewport.zw * 2.0 - 1.0;
+  vec3 origin, direction;
+  viewRayAt(windowPoint, origin, direction);
+  float t;
+  known = planeMeetsRay(origin, direction, centre, pixelNormal, 0.01, t);
+  if (!known) return centre;
+  const vec3 onRay = origin + direction * t;
   const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
-  const float pixelSize = 2.0 * frame.viewport.w / scale.y * (orthographic() ? 1.0 : -centre.z);
-  vec3 onRay;
-  if (orthographic()) {
-    const vec2 xy = (ndc - vec2(frame.projection[3][0], frame.projection[3][1])) / scale;
-    if (abs(pixelNormal.z) < 0.01) {
-      known = false;
-      return centre;
-    }
-    onRay = vec3(xy, centre.z - dot(pixelNormal.xy, xy - centre.xy) / pixelNormal.z);
-  } else {
-    // The view-space point of the ray at z = -1.
-    const vec3 direction = vec3((ndc + vec2(frame.projection[2][0], frame.projection[2][1])) / scale, -1.0);
-    const float facing = dot(pixelNormal, direction);
-    if (abs(facing) < 0.01 * length(direction)) {
-      known = false;
-      return centre;
-    }
-    onRay = direction * (dot(pixelNormal, centre) / facing);
-  }
+  const float pixelSize = 2.0 * frame.viewport.w / scale.y * (orthographicView() ? 1.0 : -centre.z);
   return distance(onRay, centre) < 32.0 * pixelSize ? onRay : centre;
 }
 
-// The cosine-weighted measure of the slice's angles between 0 (the view
-// direction) and theta, signed like theta: integral from 0 to theta of
-// cos(t - n) |sin t| dt, where n is the normal's angle in the slice and
-// |sin t| the polar Jacobian (Jimenez et al. 2016, eq. 10's antiderivative).
-float sliceMeasure(float theta, float n, float sinN, float cosN) {
-  const float magnitude = 0.25 * (cosN - cos(2.0 * theta - n)) + 0.5 * theta * sinN;
-  return theta >= 0.0 ? magnitude : -magnitude;
-}
-
-// The sectors more than half covered by the angles, in the slice, of the
-// offsets `a` and `b` from the shaded point (both on one side of the eye's
-// ray through it, so the angles do not wrap round).
-uint sectorsBetween(vec3 a, vec3 b, vec3 side, vec3 toEye, float lowest) {
-  const float sectorAngle = kPi / float(kSectors);
-  const float thetaA = atan(dot(a, side), dot(a, toEye));
-  const float thetaB = atan(dot(b, side), dot(b, toEye));
-  const int firstSector = clamp(int(floor((min(thetaA, thetaB) - lowest) / sectorAngle + 0.5)), 0, kSectors);
-  const int endSector = clamp(int(floor((max(thetaA, thetaB) - lowest) / sectorAngle + 0.5)), 0, kSectors);
-  if (endSector <= firstSector) return 0u;
-  const int count = endSector - firstSector;
-  return count >= 32 ? 0xffffffffu : ((1u << uint(count)) - 1u) << uint(firstSector);
+// One depth sample of either march: the surface it shows, as an offset from
+// the shaded point.
+struct MarchPoint {
+  ivec2 pixel;
+  vec3 normal;       // view space, as stored (unit)
+  vec3 offsetFront;  // the visible surface minus the shaded point, view space
+  vec3 awayFromEye;  // unit: the way the slab behind the surface extends
+};
+const int kMarchSurface = 0;    // a surface to test
+const int kMarchSkip = 1;       // background, or a surface seen edge-on: nothing here
+const int kMarchOffScreen = 2;  // the screen edge ends the march: off screen is taken as open
+int marchPoint(vec2 samplePoint, vec3 position, out MarchPoint point) {
+  if (any(lessThan(samplePoint, vec2(0.0))) || any(greaterThanEqual(samplePoint, frame.viewport.xy)))
+    return kMarchOffScreen;
+  point.pixel = ivec2(samplePoint);
+  const float sampleDepth = texelFetch(gbufferDepth, point.pixel, 0).r;
+  if (sampleDepth >= 1.0) return kMarchSkip;  // background never occludes
+  point.normal = mat3(frame.view) * texelFetch(gbufferNormal, point.pixel, 0).xyz;
+  bool known;
+  const vec3 front = surfaceOnRay(samplePoint, point.pixel, sampleDepth, point.normal, known);
+  if (!known) return kMarchSkip;
+  point.awayFromEye = orthographicView() ? vec3(0.0, 0.0, -1.0) : normalize(front);
+  point.offsetFront = front - position;
+  return kMarchSurface;
 }
 
 // How deep a surface is taken to be behind what the depth buffer shows, for
@@ -124,23 +96,6 @@ float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
 }
 
-// The summed weights of the sectors in `bits`, from `edges` (sliceMeasure
-// at each sector's start, and the hemisphere's end last). sliceMeasure grows
-// monotonically over the hemisphere, so a run of set bits [start, end) weighs
-// exactly edges[end] - edges[start]: a mask from sectorsBetween, one run,
-// costs two reads instead of one a sector.
-float sectorWeight(uint bits, float edges[kSectors + 1]) {
-  float sum = 0.0;
-  while (bits != 0u) {
-    const int start = findLSB(bits);
-    const uint pastRun = bits + (1u << uint(start));  // the lowest run carried out
-    const int end = pastRun == 0u ? kSectors : findLSB(pastRun);
-    sum += max(edges[end] - edges[start], 0.0);
-    bits &= pastRun;
-  }
-  return sum;
-}
-
 // A 4x4 Bayer matrix: the 16 pixels of a tile (what the blur averages) get
 // 16 stratified rotations.
 const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
@@ -155,11 +110,11 @@ void main() {
 
   const vec3 position = viewPositionAt(pixel, depth);
   const vec3 normal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
-  const vec3 toEye = orthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-position);
+  const vec3 toEye = orthographicView() ? vec3(0.0, 0.0, 1.0) : normalize(-position);
   const float radius = bitmask.radiusWorld;
   // R's footprint on screen, in pixels, at the shaded point's depth.
   const float pixelsPerUnit =
-      0.5 * frame.viewport.y * frame.projection[1][1] / (orthographic() ? 1.0 : max(-position.z, 1e-30));
+      0.5 * frame.viewport.y * frame.projection[1][1] / (orthographicView() ? 1.0 : max(-position.z, 1e-30));
   const float radiusPixels = radius * pixelsPerUnit;
 
   const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
@@ -213,51 +168,30 @@ void main() {
         // Quadratic spacing crowds steps near the point; the first is at
         // least a pixel away, the last reaches R's footprint.
         const float offset = 1.0 + u * u * max(radiusPixels - 1.0, 0.0);
-        const vec2 samplePoint = vec2(pixel) + 0.5 + stepDirection * offset;
-        // The screen edge ends the march: off screen is taken as open.
-        if (any(lessThan(samplePoint, vec2(0.0))) || any(greaterThanEqual(samplePoint, frame.viewport.xy))) break;
-        const ivec2 samplePixel = ivec2(samplePoint);
-        const float sampleDepth = texelFetch(gbufferDepth, samplePixel, 0).r;
-        if (sampleDepth >= 1.0) continue;  // background never occludes
-        const vec3 sampleNormal = mat3(frame.view) * texelFetch(gbufferNormal, samplePixel, 0).xyz;
-        bool known;
-        const vec3 front = surfaceOnRay(samplePoint, samplePixel, sampleDepth, sampleNormal, known);
-        if (!known) continue;
-        const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
-        const vec3 offsetFront = front - position;
+        MarchPoint point;
+        const int found = marchPoint(vec2(pixel) + 0.5 + stepDirection * offset, position, point);
+        if (found == kMarchOffScreen) break;
+        if (found == kMarchSkip) continue;
+        const vec3 offsetFront = point.offsetFront;
         // Only a surface facing the point sends it light.
-        const bool facing = dot(sampleNormal, offsetFront) < 0.0;
+        const bool facing = dot(point.normal, offsetFront) < 0.0;
         // The slab front..back, cut to the sphere of radius R about the point.
-        const vec3 span = awayFromEye * bitmask.thicknessWorld;
-        const float a = dot(span, span), b = dot(offsetFront, span);
-        const float c = dot(offsetFront, offsetFront) - radius * radius;
-        float t0 = 0.0, t1 = 1.0;
-        bool inRange;
-        if (a < 1e-30) {
-          inRange = c <= 0.0;
-        } else {
-          const float discriminant = b * b - a * c;
-          inRange = discriminant >= 0.0;
-          if (inRange) {
-            const float root = sqrt(discriminant);
-            t0 = max((-b - root) / a, 0.0);
-            t1 = min((-b + root) / a, 1.0);
-            inRange = t0 <= t1;
-          }
-        }
+        const vec3 span = point.awayFromEye * bitmask.thicknessWorld;
+        float t0, t1;
+        const bool inRange = slabWithinRadius(offsetFront, offsetFront + span, radius, t0, t1);
         const uint mask =
             inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest) : 0u;
         const uint fresh = mask & ~occupied;
         occupied |= mask;
         // The same slab uncut, for the sky: sectors no nearer sample took
         // gather its light as light from beyond R.
-        const vec3 skySlabBack = offsetFront + awayFromEye * skySlabDepth(offsetFront);
+        const vec3 skySlabBack = offsetFront + point.awayFromEye * skySlabDepth(offsetFront);
         const uint skyMask = skyStepCount == 0 ? 0u : sectorsBetween(offsetFront, skySlabBack, side, toEye, lowest);
         const uint skyFresh = skyMask & ~(skyOccupied | occupied);
         skyOccupied |= skyMask;
         if (!facing || (fresh | skyFresh) == 0u) continue;
         // One fetch of the sample's light serves both (llvmpipe calls out to fetch a texel).
-        const vec3 light = projectedLength * texelFetch(directDiffuse, samplePixel, 0).rgb;
+        const vec3 light = projectedLength * texelFetch(directDiffuse, point.pixel, 0).rgb;
         indirect += sectorWeight(fresh, edges) * light;
         farIndirect += sectorWeight(skyFresh, edges) * light;
       }
@@ -274,24 +208,18 @@ void main() {
       if (edgeOffset <= firstOffset) continue;
       for (int k = 0; k < skyStepCount; ++k) {
         const float offset = firstOffset * pow(edgeOffset / firstOffset, (float(k) + jitter) / float(skyStepCount));
-        const vec2 samplePoint = origin + stepDirection * offset;
-        if (any(lessThan(samplePoint, vec2(0.0))) || any(greaterThanEqual(samplePoint, frame.viewport.xy))) break;
-        const ivec2 samplePixel = ivec2(samplePoint);
-        const float sampleDepth = texelFetch(gbufferDepth, samplePixel, 0).r;
-        if (sampleDepth >= 1.0) continue;  // the sky itself
-        const vec3 sampleNormal = mat3(frame.view) * texelFetch(gbufferNormal, samplePixel, 0).xyz;
-        bool known;
-        const vec3 front = surfaceOnRay(samplePoint, samplePixel, sampleDepth, sampleNormal, known);
-        if (!known) continue;
-        const vec3 awayFromEye = orthographic() ? vec3(0.0, 0.0, -1.0) : normalize(front);
-        const vec3 offsetFront = front - position;
-        const uint skyMask =
-            sectorsBetween(offsetFront, offsetFront + awayFromEye * skySlabDepth(offsetFront), side, toEye, lowest);
+        MarchPoint point;
+        const int found = marchPoint(origin + stepDirection * offset, position, point);
+        if (found == kMarchOffScreen) break;
+        if (found == kMarchSkip) continue;  // the sky itself, or a surface seen edge-on
+        const vec3 offsetFront = point.offsetFront;
+        const uint skyMask = sectorsBetween(offsetFront, offsetFront + point.awayFromEye * skySlabDepth(offsetFront),
+                                            side, toEye, lowest);
         const uint skyFresh = skyMask & ~(skyOccupied | occupied);
         skyOccupied |= skyMask;
-        if (skyFresh != 0u && dot(sampleNormal, offsetFront) < 0.0)
+        if (skyFresh != 0u && dot(point.normal, offsetFront) < 0.0)
           farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, samplePixel, 0).rgb;
+              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, point.pixel, 0).rgb;
       }
     }
     visibleSum += projectedLength * max(total - sectorWeight(occupied, edges), 0.0);

@@ -76,7 +76,7 @@ gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
   block.viewProjection = view.projection * view.view;
   block.cameraPosition = glm::vec4(view.position, view.orthographic ? 1.0f : 0.0f);
   block.viewport = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
-  block.nearFar = glm::vec4(view.nearPlane, view.farPlane, 0.0f, 0.0f);
+  block.depthToViewZ = glm::vec4(viewZCoefficients(view));
   return block;
 }
 

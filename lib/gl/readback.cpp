@@ -1,5 +1,7 @@
 #include "gl/readback.hpp"
 
+#include "shared_layout.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -73,6 +75,15 @@ ImageF readColor(std::span<const gl::Texture* const> textures, const std::vector
   return image;
 }
 
+glm::dvec4 viewZCoefficients(const CameraView& view) {
+  const double n = view.nearPlane, f = view.farPlane;
+  // In NDC depth ndc = 2d - 1: orthographic z = -(n + (ndc + 1) / 2 (f - n)),
+  // perspective z = -2nf / (f + n - ndc (f - n)), each term as the shaders
+  // computed it before the coefficients were shared (the same rounding).
+  return view.orthographic ? glm::dvec4(-0.5 * (f + n), -0.5 * (f - n), 1.0, 0.0)
+                           : glm::dvec4(-2.0 * n * f, 0.0, f + n, -(f - n));
+}
+
 ImageF readViewDepth(const gl::Texture& depth, const CameraView& view, std::string channel) {
   ImageF image;
   image.width = depth.width();
@@ -82,12 +93,8 @@ ImageF readViewDepth(const gl::Texture& depth, const CameraView& view, std::stri
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(image.pixels.size() * sizeof(float)),
                     image.pixels.data());
-  const double n = view.nearPlane, f = view.farPlane;
-  for (float& d : image.pixels) {
-    const double ndc = 2.0 * double(d) - 1.0;
-    // Inverse of glm::perspective / glm::ortho's depth mapping.
-    d = float(view.orthographic ? n + double(d) * (f - n) : 2.0 * n * f / (f + n - ndc * (f - n)));
-  }
+  const glm::dvec4 k = viewZCoefficients(view);
+  for (float& d : image.pixels) d = float(-HL_VIEW_Z_FROM_NDC_DEPTH(2.0 * double(d) - 1.0, k));
   flipRows(image.pixels, image.width, image.height, 1);
   return image;
 }

@@ -10,7 +10,7 @@ namespace headlight::gpu {
 static_assert(sizeof(FrameBlock) == 3 * 64 + 3 * 16);
 static_assert(offsetof(FrameBlock, projection) == 64);
 static_assert(offsetof(FrameBlock, cameraPosition) == 192);
-static_assert(offsetof(FrameBlock, nearFar) == 224);
+static_assert(offsetof(FrameBlock, depthToViewZ) == 224);
 static_assert(sizeof(ObjectBlock) == 128);
 static_assert(sizeof(MaterialBlock) == 48);
 static_assert(offsetof(MaterialBlock, factors) == 32);
