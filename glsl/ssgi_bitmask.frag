@@ -100,6 +100,95 @@ float skySlabDepth(vec3 offsetFront) {
 // 16 stratified rotations.
 const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
 
+// A slice through the shaded point: the plane through the eye's ray to the
+// point and a screen direction, and what its marches have found so far.
+struct Slice {
+  vec2 direction;         // on screen, unit
+  vec3 side;              // in the slice, unit, perpendicular to toEye
+  vec3 toEye;             // unit, from the point
+  float lowest;           // the normal hemisphere's edge on the -side, as an angle from toEye
+  float projectedLength;  // the normal's length projected into the slice: the slice's weight
+  uint occupied;          // sectors covered within R
+  uint skyOccupied;       // sectors covered at any distance
+  vec3 indirect;          // light gathered within R (weighted by projectedLength)
+  vec3 farIndirect;       // light gathered beyond R (weighted by projectedLength)
+};
+
+// Marches one side of the slice out to R's footprint (`radiusPixels`) in
+// `stepCount` quadratically spaced steps: each depth sample's slab, cut to
+// R, marks the sectors it covers; sectors it newly covers gather its light.
+// The same slab uncut marks the sky's mask, and sectors that only it covers
+// gather light as light from beyond R.
+void marchWithinRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDirection, ivec2 pixel, vec3 position,
+                       float radiusPixels, float jitter) {
+  const int stepCount = bitmask.stepCount;
+  for (int j = 0; j < stepCount; ++j) {
+    const float u = (float(j) + jitter) / float(stepCount);
+    // Quadratic spacing crowds steps near the point; the first is at
+    // least a pixel away, the last reaches R's footprint.
+    const float offset = 1.0 + u * u * max(radiusPixels - 1.0, 0.0);
+    MarchPoint point;
+    const int found = marchPoint(vec2(pixel) + 0.5 + stepDirection * offset, position, point);
+    if (found == kMarchOffScreen) break;
+    if (found == kMarchSkip) continue;
+    const vec3 offsetFront = point.offsetFront;
+    // Only a surface facing the point sends it light.
+    const bool facing = dot(point.normal, offsetFront) < 0.0;
+    // The slab front..back, cut to the sphere of radius R about the point.
+    const vec3 span = point.awayFromEye * bitmask.thicknessWorld;
+    float t0, t1;
+    const bool inRange = slabWithinRadius(offsetFront, offsetFront + span, bitmask.radiusWorld, t0, t1);
+    const uint mask = inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, slice.side,
+                                               slice.toEye, slice.lowest)
+                              : 0u;
+    const uint fresh = mask & ~slice.occupied;
+    slice.occupied |= mask;
+    // The same slab uncut, for the sky: sectors no nearer sample took
+    // gather its light as light from beyond R.
+    const vec3 skySlabBack = offsetFront + point.awayFromEye * skySlabDepth(offsetFront);
+    const uint skyMask =
+        bitmask.skyStepCount == 0 ? 0u : sectorsBetween(offsetFront, skySlabBack, slice.side, slice.toEye, slice.lowest);
+    const uint skyFresh = skyMask & ~(slice.skyOccupied | slice.occupied);
+    slice.skyOccupied |= skyMask;
+    if (!facing || (fresh | skyFresh) == 0u) continue;
+    // One fetch of the sample's light serves both (llvmpipe calls out to fetch a texel).
+    const vec3 light = slice.projectedLength * texelFetch(directDiffuse, point.pixel, 0).rgb;
+    slice.indirect += sectorWeight(fresh, edges) * light;
+    slice.farIndirect += sectorWeight(skyFresh, edges) * light;
+  }
+}
+
+// Beyond R, for the sky: from R's footprint (at least a pixel) to the
+// screen edge along this side, in geometric steps (a far occluder covers
+// less angle, so the samples thin out with distance).
+void marchBeyondRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDirection, ivec2 pixel, vec3 position,
+                       float radiusPixels, float jitter) {
+  const int skyStepCount = bitmask.skyStepCount;
+  if (skyStepCount == 0) return;
+  const vec2 origin = vec2(pixel) + 0.5;
+  const vec2 edge =
+      vec2(stepDirection.x > 0.0 ? frame.viewport.x : 0.0, stepDirection.y > 0.0 ? frame.viewport.y : 0.0);
+  const vec2 toEdge = abs(edge - origin) / max(abs(stepDirection), vec2(1e-6));
+  const float edgeOffset = min(toEdge.x, toEdge.y);
+  const float firstOffset = max(radiusPixels, 1.0);
+  if (edgeOffset <= firstOffset) return;
+  for (int k = 0; k < skyStepCount; ++k) {
+    const float offset = firstOffset * pow(edgeOffset / firstOffset, (float(k) + jitter) / float(skyStepCount));
+    MarchPoint point;
+    const int found = marchPoint(origin + stepDirection * offset, position, point);
+    if (found == kMarchOffScreen) break;
+    if (found == kMarchSkip) continue;  // the sky itself, or a surface seen edge-on
+    const vec3 offsetFront = point.offsetFront;
+    const uint skyMask = sectorsBetween(offsetFront, offsetFront + point.awayFromEye * skySlabDepth(offsetFront),
+                                        slice.side, slice.toEye, slice.lowest);
+    const uint skyFresh = skyMask & ~(slice.skyOccupied | slice.occupied);
+    slice.skyOccupied |= skyMask;
+    if (skyFresh != 0u && dot(point.normal, offsetFront) < 0.0)
+      slice.farIndirect +=
+          (slice.projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, point.pixel, 0).rgb;
+  }
+}
+
 void main() {
   const int divisor = bitmask.downsample;
   const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
@@ -111,11 +200,10 @@ void main() {
   const vec3 position = viewPositionAt(pixel, depth);
   const vec3 normal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
   const vec3 toEye = orthographicView() ? vec3(0.0, 0.0, 1.0) : normalize(-position);
-  const float radius = bitmask.radiusWorld;
   // R's footprint on screen, in pixels, at the shaded point's depth.
   const float pixelsPerUnit =
       0.5 * frame.viewport.y * frame.projection[1][1] / (orthographicView() ? 1.0 : max(-position.z, 1e-30));
-  const float radiusPixels = radius * pixelsPerUnit;
+  const float radiusPixels = bitmask.radiusWorld * pixelsPerUnit;
 
   const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
   // The seed and accumulated frames turn both by irrational steps (R2 sequence).
@@ -123,110 +211,40 @@ void main() {
   const float rotation = fract((float(bayer) + 0.5) / 16.0 + 0.7548777 * rotationIndex);
   const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + 0.5698403 * rotationIndex);
 
-  const int sliceCount = bitmask.sliceCount, stepCount = bitmask.stepCount;
-  const int skyStepCount = bitmask.skyStepCount;
+  const int sliceCount = bitmask.sliceCount;
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
   vec3 indirect = vec3(0.0), farIndirect = vec3(0.0);  // gathered within R, and beyond it
   for (int s = 0; s < sliceCount; ++s) {
     const float phi = (float(s) + rotation) * kPi / float(sliceCount);
-    const vec2 direction = vec2(cos(phi), sin(phi));  // on screen
-    // The slice: the plane through the eye's ray to the point and the
-    // screen direction; `side` is its unit vector perpendicular to toEye.
-    const vec3 side = normalize(vec3(direction, 0.0) - toEye * dot(vec3(direction, 0.0), toEye));
-    const vec3 axis = cross(side, toEye);
+    Slice slice;
+    slice.direction = vec2(cos(phi), sin(phi));
+    slice.toEye = toEye;
+    slice.side = normalize(vec3(slice.direction, 0.0) - toEye * dot(vec3(slice.direction, 0.0), toEye));
+    const vec3 axis = cross(slice.side, toEye);
     const vec3 projectedNormal = normal - axis * dot(normal, axis);
-    const float projectedLength = length(projectedNormal);
-    if (projectedLength < 1e-4) continue;  // the normal is the slice's axis: it holds no solid angle
-    const float n = clamp(atan(dot(projectedNormal, side), dot(projectedNormal, toEye)), -0.5 * kPi, 0.5 * kPi);
-    const float sinN = sin(n), cosN = cos(n);
-    const float lowest = n - 0.5 * kPi;  // the hemisphere's edge on the -side
-    const float sectorAngle = kPi / float(kSectors);
-    // sliceMeasure at each sector's edge theta = lowest + k sectorAngle,
-    // where cos(2 theta - n) = -cos(n + 2 k sectorAngle): the angle sum with
-    // cos and sin of 2 k sectorAngle, turned on by a rotation per sector, so
-    // the table costs no cosine per pixel (llvmpipe's cos is dear).
-    const float turnCos = cos(2.0 * sectorAngle), turnSin = sin(2.0 * sectorAngle);
+    slice.projectedLength = length(projectedNormal);
+    if (slice.projectedLength < 1e-4) continue;  // the normal is the slice's axis: it holds no solid angle
+    const float n = clamp(atan(dot(projectedNormal, slice.side), dot(projectedNormal, toEye)), -0.5 * kPi, 0.5 * kPi);
+    slice.lowest = n - 0.5 * kPi;
     float edges[kSectors + 1];
-    edges[0] = sliceMeasure(lowest, n, sinN, cosN);
-    float edgeCos = 1.0, edgeSin = 0.0;  // of 2 k sectorAngle
-    for (int k = 0; k < kSectors; ++k) {
-      const float turnedCos = edgeCos * turnCos - edgeSin * turnSin;
-      edgeSin = edgeSin * turnCos + edgeCos * turnSin;
-      edgeCos = turnedCos;
-      const float theta = lowest + float(k + 1) * sectorAngle;
-      const float magnitude = 0.25 * (cosN + (cosN * edgeCos - sinN * edgeSin)) + 0.5 * theta * sinN;
-      edges[k + 1] = theta >= 0.0 ? magnitude : -magnitude;
-    }
+    sliceEdges(n, edges);
     const float total = edges[kSectors] - edges[0];  // = cos(n) + n sin(n)
-
-    uint occupied = 0u;     // within R
-    uint skyOccupied = 0u;  // at any distance
+    slice.occupied = 0u;
+    slice.skyOccupied = 0u;
+    slice.indirect = vec3(0.0);
+    slice.farIndirect = vec3(0.0);
     for (int sign = -1; sign <= 1; sign += 2) {
-      const vec2 stepDirection = direction * float(sign);
-      for (int j = 0; j < stepCount; ++j) {
-        const float u = (float(j) + jitter) / float(stepCount);
-        // Quadratic spacing crowds steps near the point; the first is at
-        // least a pixel away, the last reaches R's footprint.
-        const float offset = 1.0 + u * u * max(radiusPixels - 1.0, 0.0);
-        MarchPoint point;
-        const int found = marchPoint(vec2(pixel) + 0.5 + stepDirection * offset, position, point);
-        if (found == kMarchOffScreen) break;
-        if (found == kMarchSkip) continue;
-        const vec3 offsetFront = point.offsetFront;
-        // Only a surface facing the point sends it light.
-        const bool facing = dot(point.normal, offsetFront) < 0.0;
-        // The slab front..back, cut to the sphere of radius R about the point.
-        const vec3 span = point.awayFromEye * bitmask.thicknessWorld;
-        float t0, t1;
-        const bool inRange = slabWithinRadius(offsetFront, offsetFront + span, radius, t0, t1);
-        const uint mask =
-            inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, side, toEye, lowest) : 0u;
-        const uint fresh = mask & ~occupied;
-        occupied |= mask;
-        // The same slab uncut, for the sky: sectors no nearer sample took
-        // gather its light as light from beyond R.
-        const vec3 skySlabBack = offsetFront + point.awayFromEye * skySlabDepth(offsetFront);
-        const uint skyMask = skyStepCount == 0 ? 0u : sectorsBetween(offsetFront, skySlabBack, side, toEye, lowest);
-        const uint skyFresh = skyMask & ~(skyOccupied | occupied);
-        skyOccupied |= skyMask;
-        if (!facing || (fresh | skyFresh) == 0u) continue;
-        // One fetch of the sample's light serves both (llvmpipe calls out to fetch a texel).
-        const vec3 light = projectedLength * texelFetch(directDiffuse, point.pixel, 0).rgb;
-        indirect += sectorWeight(fresh, edges) * light;
-        farIndirect += sectorWeight(skyFresh, edges) * light;
-      }
-      // Beyond R, for the sky: from R's footprint (at least a pixel) to the
-      // screen edge along this side, in geometric steps (a far occluder
-      // covers less angle, so the samples thin out with distance).
-      if (skyStepCount == 0) continue;
-      const vec2 origin = vec2(pixel) + 0.5;
-      const vec2 edge =
-          vec2(stepDirection.x > 0.0 ? frame.viewport.x : 0.0, stepDirection.y > 0.0 ? frame.viewport.y : 0.0);
-      const vec2 toEdge = abs(edge - origin) / max(abs(stepDirection), vec2(1e-6));
-      const float edgeOffset = min(toEdge.x, toEdge.y);
-      const float firstOffset = max(radiusPixels, 1.0);
-      if (edgeOffset <= firstOffset) continue;
-      for (int k = 0; k < skyStepCount; ++k) {
-        const float offset = firstOffset * pow(edgeOffset / firstOffset, (float(k) + jitter) / float(skyStepCount));
-        MarchPoint point;
-        const int found = marchPoint(origin + stepDirection * offset, position, point);
-        if (found == kMarchOffScreen) break;
-        if (found == kMarchSkip) continue;  // the sky itself, or a surface seen edge-on
-        const vec3 offsetFront = point.offsetFront;
-        const uint skyMask = sectorsBetween(offsetFront, offsetFront + point.awayFromEye * skySlabDepth(offsetFront),
-                                            side, toEye, lowest);
-        const uint skyFresh = skyMask & ~(skyOccupied | occupied);
-        skyOccupied |= skyMask;
-        if (skyFresh != 0u && dot(point.normal, offsetFront) < 0.0)
-          farIndirect +=
-              (projectedLength * sectorWeight(skyFresh, edges)) * texelFetch(directDiffuse, point.pixel, 0).rgb;
-      }
+      const vec2 stepDirection = slice.direction * float(sign);
+      marchWithinRadius(slice, edges, stepDirection, pixel, position, radiusPixels, jitter);
+      marchBeyondRadius(slice, edges, stepDirection, pixel, position, radiusPixels, jitter);
     }
-    visibleSum += projectedLength * max(total - sectorWeight(occupied, edges), 0.0);
+    indirect += slice.indirect;
+    farIndirect += slice.farIndirect;
+    visibleSum += slice.projectedLength * max(total - sectorWeight(slice.occupied, edges), 0.0);
     // What is occluded within R is occluded from the sky too.
-    const float skyOccludedWeight = sectorWeight(skyOccupied | occupied, edges);
-    skyVisibleSum += projectedLength * max(total - skyOccludedWeight, 0.0);
-    totalSum += projectedLength * total;
+    const float skyOccludedWeight = sectorWeight(slice.skyOccupied | slice.occupied, edges);
+    skyVisibleSum += slice.projectedLength * max(total - skyOccludedWeight, 0.0);
+    totalSum += slice.projectedLength * total;
   }
   // The ratio of the slices' visible to total cosine-weighted measure: an
   // open plane is exactly 1 at any slice count.

@@ -112,6 +112,28 @@ float sliceMeasure(float theta, float n, float sinN, float cosN) {
   return theta >= 0.0 ? magnitude : -magnitude;
 }
 
+// sliceMeasure at each sector's edge theta = lowest + k sectorAngle (lowest
+// = n - pi/2, the hemisphere's edge), where cos(2 theta - n) =
+// -cos(n + 2 k sectorAngle): the angle sum with cos and sin of
+// 2 k sectorAngle, turned on by a rotation per sector, so the table costs no
+// cosine per sector (llvmpipe's cos is dear).
+void sliceEdges(float n, out float edges[kSectors + 1]) {
+  const float sinN = sin(n), cosN = cos(n);
+  const float lowest = n - 0.5 * kPi;
+  const float sectorAngle = kPi / float(kSectors);
+  const float turnCos = cos(2.0 * sectorAngle), turnSin = sin(2.0 * sectorAngle);
+  edges[0] = sliceMeasure(lowest, n, sinN, cosN);
+  float edgeCos = 1.0, edgeSin = 0.0;  // of 2 k sectorAngle
+  for (int k = 0; k < kSectors; ++k) {
+    const float turnedCos = edgeCos * turnCos - edgeSin * turnSin;
+    edgeSin = edgeSin * turnCos + edgeCos * turnSin;
+    edgeCos = turnedCos;
+    const float theta = lowest + float(k + 1) * sectorAngle;
+    const float magnitude = 0.25 * (cosN + (cosN * edgeCos - sinN * edgeSin)) + 0.5 * theta * sinN;
+    edges[k + 1] = theta >= 0.0 ? magnitude : -magnitude;
+  }
+}
+
 // The sectors more than half covered by the angles, in the slice, of the
 // offsets `a` and `b` from the shaded point (both on one side of the eye's
 // ray through it, so the angles do not wrap round).
