@@ -459,6 +459,26 @@ TEST_CASE("a GL error is reported as GlError naming the operation") {
   CHECK_NOTHROW(context.checkErrors("after the error was reported"));
 }
 
+// gl_main.cpp runs takeGlErrors on the shared context after every case and
+// fails the case when it reports anything. These two cases show that the
+// check sees a provoked error, and that a case which leaves one is failed.
+TEST_CASE("the end-of-case check reports a provoked GL error once, then nothing") {
+  Context& context = sharedContext();
+  glBindTexture(GL_TEXTURE_2D, 987654);  // GL_INVALID_OPERATION, as above
+  const std::string errors = takeGlErrors(context);
+  CHECK(errors.find("GL_INVALID_OPERATION") != std::string::npos);
+  CHECK(errors.find("the end of the test case") != std::string::npos);
+  CHECK(takeGlErrors(context).empty());
+}
+
+TEST_CASE("a case that leaves a GL error pending is failed by the end-of-case check" * doctest::should_fail()) {
+  // No assertion here fails: only gl_main.cpp's check can fail this case,
+  // and should_fail turns that failure into a pass (and its absence into a
+  // failure). The check clears the error, so the next case starts clean.
+  glBindTexture(GL_TEXTURE_2D, 987654);
+  CHECK(sharedContext().pendingErrorCount() >= 1);
+}
+
 TEST_CASE("SSGI off: no ssgi target, and the image SSGI would give with no occlusion and no bounce") {
   RenderSettings settings = smallSettings(64, 64);
   settings.ssgi.intensity = 0.0f;         // AO 1 everywhere
