@@ -19,7 +19,9 @@
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
+#include "reference/sampler_enums.hpp"
 #include "reference/shading.hpp"
+#include "reference/texture_sampler.hpp"
 #include "support/images.hpp"
 
 using namespace headlight;
@@ -131,15 +133,61 @@ double meanStandardError(double pixelStandardError, int pixels) {
   return pixelStandardError / std::sqrt(double(pixels));
 }
 
-// Without Embree, the case checks the refusal and stops.
-bool skipWithoutEmbree(const Scene& scene, const Frame& frame, const ReferenceSettings& settings) {
-  if (referenceAvailable()) return false;
-  CHECK_THROWS_WITH_AS(traceReference(scene, frame, settings),
-                       "headlight was built without Embree (meson -Dembree=enabled)", Error);
-  return true;
-}
+// Cases that trace need Embree; without it they are skipped (and counted as
+// such), and the refusal has a case of its own below.
+const auto kNeedsEmbree = doctest::skip(!HEADLIGHT_HAS_EMBREE);
 
 }  // namespace
+
+TEST_CASE("referenceAvailable says whether this build has Embree" * doctest::test_suite("reference")) {
+  CHECK(referenceAvailable() == bool(HEADLIGHT_HAS_EMBREE));
+}
+
+TEST_CASE("without Embree, traceReference refuses and names the build option" * doctest::test_suite("reference") *
+          doctest::skip(HEADLIGHT_HAS_EMBREE)) {
+  const Frame frame = uniformFrame(2, 2, ShadingPoint{});
+  CHECK_THROWS_WITH_AS(traceReference(emptyScene(), frame, referenceSettings(16, 1.0f)),
+                       "headlight was built without Embree (meson -Dembree=enabled)", Error);
+}
+
+// ---- The CPU texture sampler (reference/texture_sampler.hpp) ---------------------
+
+TEST_CASE("wrapTexel repeats, clamps and mirrors as the GL sampler does" * doctest::test_suite("reference")) {
+  using namespace reference;
+  // A 4-texel axis, texel indices -5..8.
+  const int repeat[] = {3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0};
+  const int clamp[] = {0, 0, 0, 0, 0, 0, 1, 2, 3, 3, 3, 3, 3, 3};
+  const int mirror[] = {3, 3, 2, 1, 0, 0, 1, 2, 3, 3, 2, 1, 0, 0};
+  for (int i = -5; i <= 8; ++i) {
+    CAPTURE(i);
+    CHECK(wrapTexel(i, 4, kGlRepeat) == repeat[i + 5]);
+    CHECK(wrapTexel(i, 4, kGlClampToEdge) == clamp[i + 5]);
+    CHECK(wrapTexel(i, 4, kGlMirroredRepeat) == mirror[i + 5]);
+  }
+}
+
+TEST_CASE("sampleTexture filters bilinearly or nearest, and decodes sRGB before filtering" *
+          doctest::test_suite("reference")) {
+  using namespace reference;
+  // A 2x1 image: black, then white (sRGB code 188 on the right: linear 0.5029).
+  Scene scene;
+  scene.images.push_back(ImageData{"two texels", 2, 1, {0, 0, 0, 255, 188, 188, 188, 255}});
+  TextureRef ref;
+  ref.image = 0;
+  ref.wrapS = ref.wrapT = kGlClampToEdge;
+  ref.magFilter = kGlLinear;
+  // Texel centres at u = 0.25 and 0.75; halfway between, the mean.
+  CHECK(sampleTexture(scene, ref, {0.25f, 0.5f}, false).r == doctest::Approx(0.0f));
+  CHECK(sampleTexture(scene, ref, {0.5f, 0.5f}, false).r == doctest::Approx(188.0f / 255.0f / 2.0f));
+  CHECK(sampleTexture(scene, ref, {0.5f, 0.5f}, true).r == doctest::Approx(0.5029f / 2.0f).epsilon(1e-3));
+  CHECK(sampleTexture(scene, ref, {0.5f, 0.5f}, true).a == doctest::Approx(1.0f));  // alpha is never sRGB
+  // Repeat: left of the first centre blends with the last texel.
+  ref.wrapS = kGlRepeat;
+  CHECK(sampleTexture(scene, ref, {0.0f, 0.5f}, false).r == doctest::Approx(188.0f / 255.0f / 2.0f));
+  ref.magFilter = kGlNearest;
+  CHECK(sampleTexture(scene, ref, {0.49f, 0.5f}, false).r == 0.0f);
+  CHECK(sampleTexture(scene, ref, {0.51f, 0.5f}, false).r == doctest::Approx(188.0f / 255.0f));
+}
 
 // ---- CPU ports of the GLSL (reference/shading.hpp) ------------------------------
 // Values worked out by hand the way glsl/sampling.glsl computes them, so
@@ -204,13 +252,12 @@ TEST_CASE("importanceSampleGgx is sampling.glsl's, without a clamp" * doctest::t
       }
 }
 
-TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctest::test_suite("reference")) {
+TEST_CASE("reference: an open plane is unoccluded and receives nothing" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
   Scene scene = emptyScene();
   add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
   const Frame frame = uniformFrame(4, 4, ShadingPoint{});
   const ReferenceSettings settings = referenceSettings(256, 1e6f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   REQUIRE(result.ao.channels == std::vector<std::string>{"ao.Y", "sky.Y"});
   REQUIRE(result.indirect.channels == std::vector<std::string>{"indirectR.R", "indirectR.G", "indirectR.B",
@@ -225,7 +272,7 @@ TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctes
   CHECK(result.lit.at(0, 0, 3) == 1.0f);
 }
 
-TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("reference")) {
+TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("reference") * kNeedsEmbree) {
   // A point on the floor 1 mm in front of the wall: the wall covers the half
   // of the hemisphere with direction.z < 0, which is half of the cosine
   // weight by symmetry. Systematic error: rays that pass the wall's edge
@@ -235,8 +282,6 @@ TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("r
   point.position = {0.0f, 0.0f, 1e-3f};
   const Frame frame = uniformFrame(8, 8, point);
   const ReferenceSettings settings = referenceSettings(4096, 1e6f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   const double ao = mean(result.ao, 0);
   const double standardError = meanStandardError(result.aoMeanStandardError, 64);
@@ -257,7 +302,7 @@ TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("r
   CHECK(channelValues(near.ao, 1) == channelValues(result.ao, 1));
 }
 
-TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::test_suite("reference")) {
+TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::test_suite("reference") * kNeedsEmbree) {
   // Pixels centred on the Cornell box's floor-back wall edge (z = -1, y = 0)
   // and on the corner scene's edge: p + eps n still lies in the wall's
   // plane, where float rounding used to decide whether rays into the wall
@@ -284,7 +329,6 @@ TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::t
     frame.view.position = c.position + glm::vec3(0.0f, 1.0f, 3.0f);
     frame.view.view = glm::lookAt(frame.view.position, c.position, glm::vec3(0, 1, 0));
     const ReferenceSettings settings = referenceSettings(4096, c.radius);
-    if (skipWithoutEmbree(*c.scene, frame, settings)) return;
     const ReferenceImages result = traceReference(*c.scene, frame, settings);
     const double standardError = meanStandardError(result.aoMeanStandardError, 16);
     CAPTURE(c.position.x);
@@ -295,7 +339,8 @@ TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::t
   }
 }
 
-TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * doctest::test_suite("reference")) {
+TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
   // A sphere of radius r centred h above the point subtends a cone of
   // half-angle asin(r / h) around the normal, whose cosine-weighted
   // fraction of the hemisphere is sin^2 = (r / h)^2. The 128 x 64 UV sphere
@@ -309,8 +354,6 @@ TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * d
   add(scene, makeUvSphere(kRadius, 128, 64, {0, kHeight, 0}), lambert(glm::vec3(0.5f)));
   const Frame frame = uniformFrame(8, 8, ShadingPoint{});
   const ReferenceSettings settings = referenceSettings(4096, 1e6f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   const double expected = 1.0 - double(kRadius * kRadius) / double(kHeight * kHeight);
   const double ao = mean(result.ao, 0);
@@ -326,7 +369,8 @@ TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * d
   CHECK(std::abs(mean(outOfRange.ao, 1) - expected) < 4.0 * 2.0 * standardError + 5e-4);  // 1024 rays: twice the SE
 }
 
-TEST_CASE("reference: error falls as one over the square root of the samples" * doctest::test_suite("reference")) {
+TEST_CASE("reference: error falls as one over the square root of the samples" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
   // RMS of AO - 0.5 over 64 pixels x 2 seeds in the corner: 16 times the
   // rays should divide it by sqrt(16) = 4. With 128 pixels the RMS itself is
   // known to about 6%, so the ratio lands within 4 +- 1 nearly always.
@@ -334,8 +378,6 @@ TEST_CASE("reference: error falls as one over the square root of the samples" * 
   ShadingPoint point;
   point.position = {0.0f, 0.0f, 1e-3f};
   const Frame frame = uniformFrame(8, 8, point);
-  if (skipWithoutEmbree(scene, frame, referenceSettings(256, 1e6f))) return;
-
   auto rmsError = [&](int samples) {
     double sum = 0;
     int count = 0;
@@ -357,7 +399,7 @@ TEST_CASE("reference: error falls as one over the square root of the samples" * 
   CHECK(coarse == doctest::Approx(std::sqrt(0.25 / 255.0)).epsilon(0.25));
 }
 
-TEST_CASE("reference: one bounce from an emissive wall" * doctest::test_suite("reference")) {
+TEST_CASE("reference: one bounce from an emissive wall" * doctest::test_suite("reference") * kNeedsEmbree) {
   // The corner's wall (black, emission 1) fills half of the cosine-weighted
   // hemisphere, so the floor point receives irradiance / pi = 0.5 and
   // reflects albedo x 0.5 (metallic 0). No lights, no sky.
@@ -367,8 +409,6 @@ TEST_CASE("reference: one bounce from an emissive wall" * doctest::test_suite("r
   point.albedo = {0.5f, 0.25f, 1.0f};
   const Frame frame = uniformFrame(8, 8, point);
   const ReferenceSettings settings = referenceSettings(4096, 1e6f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   // The per-channel standard error scales with the albedo; the reported one
   // is the mean over channels, so scale it by albedo / mean albedo.
@@ -392,7 +432,7 @@ TEST_CASE("reference: one bounce from an emissive wall" * doctest::test_suite("r
   CHECK(mean(near.indirect, 3) > 0.2);
 }
 
-TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::test_suite("reference")) {
+TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::test_suite("reference") * kNeedsEmbree) {
   // A sun straight down on a plane seen from straight above: N = V = L = H.
   // With roughness 1 (alpha 1): D = 1 / pi, Vis = 0.5 / (1 + 1) = 0.25,
   // F = f0 = 0.04, so L = ((1 - 0.04) albedo / pi + 0.25 x 0.04 / pi) E.
@@ -407,8 +447,6 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   frame.view.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
   frame.view.position = {0.0f, 5.0f, 0.0f};
   const ReferenceSettings settings = referenceSettings(64, 1.0f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const float expected = (0.96f * 0.5f + 0.25f * 0.04f) / kPi * 3.0f;
   const ReferenceImages lit = traceReference(scene, frame, settings);
   for (int c = 0; c < 3; ++c) CHECK(lit.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
@@ -425,7 +463,8 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   for (int c = 0; c < 3; ++c) CHECK(unshadowed.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
 }
 
-TEST_CASE("reference: a white surface under a uniform open sky reflects the sky" * doctest::test_suite("reference")) {
+TEST_CASE("reference: a white surface under a uniform open sky reflects the sky" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
   // The furnace test: albedo 1, metallic 0, nothing blocking, constant sky
   // radiance c x intensity. Diffuse (1 - specular albedo) c plus specular
   // (specular albedo) c is c, whatever the samples' estimate of the
@@ -439,14 +478,13 @@ TEST_CASE("reference: a white surface under a uniform open sky reflects the sky"
   Frame frame = uniformFrame(2, 2, point, 2.0f);
   frame.view.position = {0.0f, 1.0f, 2.0f};  // 27 degrees above the horizon
   const ReferenceSettings settings = referenceSettings(256, 1.0f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   for (int c = 0; c < 3; ++c)
     CHECK(result.lit.at(0, 0, c) == doctest::Approx(2.0f * scene.sky.zenith[c]).epsilon(1e-4));
 }
 
-TEST_CASE("reference: background pixels show the sky through the pixel" * doctest::test_suite("reference")) {
+TEST_CASE("reference: background pixels show the sky through the pixel" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
   // Two rows, camera looking down -Z: the top row looks up, the bottom one
   // down, by half the vertical half-angle (rows are top first, as in Frame).
   Scene scene = emptyScene();
@@ -454,8 +492,6 @@ TEST_CASE("reference: background pixels show the sky through the pixel" * doctes
   const Frame frame = syntheticFrame(
       1, 2, [](int, int) { return ShadingPoint{{}, {}, {}, 0, 1, false}; }, 1.5f);
   const ReferenceSettings settings = referenceSettings(16, 1.0f);
-  if (skipWithoutEmbree(scene, frame, settings)) return;
-
   const ReferenceImages result = traceReference(scene, frame, settings);
   const float tangent = std::tan(0.4f) * 0.5f;  // yfov 0.8, pixel centres at +-half the half-height
   for (int y = 0; y < 2; ++y) {
@@ -470,7 +506,7 @@ TEST_CASE("reference: background pixels show the sky through the pixel" * doctes
   CHECK(result.lit.at(0, 0, 2) != result.lit.at(0, 1, 2));
 }
 
-TEST_CASE("reference: results do not depend on the thread count" * doctest::test_suite("reference")) {
+TEST_CASE("reference: results do not depend on the thread count" * doctest::test_suite("reference") * kNeedsEmbree) {
   Scene scene = cornerScene(lambert(glm::vec3(0.7f, 0.2f, 0.1f), glm::vec3(0.3f)));
   Light lamp;
   lamp.position = {0.3f, 0.8f, 0.5f};
@@ -501,8 +537,6 @@ TEST_CASE("reference: results do not depend on the thread count" * doctest::test
   two.threads = 2;
   ReferenceSettings three = one;
   three.threads = 3;
-  if (skipWithoutEmbree(scene, frame, one)) return;
-
   const ReferenceImages a = traceReference(scene, frame, one);
   for (const ReferenceSettings& settings : {two, three}) {
     const ReferenceImages b = traceReference(scene, frame, settings);
@@ -520,11 +554,9 @@ TEST_CASE("reference: results do not depend on the thread count" * doctest::test
   CHECK(traceReference(scene, frame, otherSeed).ao.pixels != a.ao.pixels);
 }
 
-TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite("reference")) {
+TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite("reference") * kNeedsEmbree) {
   const Scene scene = cornerScene();
   const Frame frame = uniformFrame(2, 2, ShadingPoint{});
-  if (skipWithoutEmbree(scene, frame, referenceSettings(16, 1.0f))) return;
-
   CHECK_THROWS_WITH_AS(traceReference(scene, frame, referenceSettings(0, 1.0f)),
                        "--reference-samples: must be in 1..1048576, got 0", SettingsError);
   CHECK_THROWS_AS(traceReference(scene, frame, referenceSettings(1048577, 1.0f)), SettingsError);

@@ -313,7 +313,6 @@ TEST_CASE("an unknown built-in scene names the known ones") {
 TEST_CASE("MetalRoughSpheresNoTextures loads with shared geometry" *
           doctest::skip(!test::exists(test::metalRoughSpheresGltf()))) {
   const fs::path path = test::metalRoughSpheresGltf();
-  const fs::path folder = path.parent_path();
   const Scene scene = loadGltf(path);
   // 102 nodes carry meshes; four label meshes have several primitives, so
   // there are 123 (node, primitive) instances. The 98 sphere meshes differ
@@ -333,16 +332,16 @@ TEST_CASE("MetalRoughSpheresNoTextures loads with shared geometry" *
   CHECK(size.y == doctest::Approx(0.0075).epsilon(0.01));
   CHECK(size.z == doctest::Approx(0.0037).epsilon(0.01));
   checkWellFormed(scene);
+}
 
-  const fs::path anchor = folder / "anchor_metalrough.gltf";
-  if (fs::exists(anchor)) {
-    const Scene anchored = loadGltf(anchor);
-    REQUIRE(anchored.cameras.size() == 1);
-    REQUIRE(anchored.lights.size() == 1);
-    CHECK(anchored.lights[0].type == Light::Type::Directional);
-    CHECK(glm::length(anchored.lights[0].direction) == doctest::Approx(1.0f));
-    CHECK(anchored.cameras[0].zfar > anchored.cameras[0].znear);
-  }
+TEST_CASE("MetalRoughSpheresNoTextures' anchor file adds one camera and one directional light" *
+          doctest::skip(!test::exists(test::metalRoughSpheresGltf().parent_path() / "anchor_metalrough.gltf"))) {
+  const Scene anchored = loadGltf(test::metalRoughSpheresGltf().parent_path() / "anchor_metalrough.gltf");
+  REQUIRE(anchored.cameras.size() == 1);
+  REQUIRE(anchored.lights.size() == 1);
+  CHECK(anchored.lights[0].type == Light::Type::Directional);
+  CHECK(glm::length(anchored.lights[0].direction) == doctest::Approx(1.0f));
+  CHECK(anchored.cameras[0].zfar > anchored.cameras[0].znear);
 }
 
 // ---- glTF files written by the tests ------------------------------------------

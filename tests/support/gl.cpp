@@ -1,6 +1,34 @@
 #include "support/gl.hpp"
 
+#include <thread>
+
+#include "headlight/error.hpp"
+
 namespace headlight::test {
+
+bool canMakeContext(Backend backend) {
+  bool made = false;
+  std::thread([&] {
+    try {
+      Context context(ContextOptions{.backend = backend, .errorPolicy = GlErrorPolicy::Throw, .eglDeviceName = {}});
+      made = true;
+    } catch (const ContextError&) {
+    }
+  }).join();
+  return made;
+}
+
+std::string takeGlErrors(Context& context) {
+  try {
+    if (!context.isCurrent()) context.makeCurrent();
+    context.checkErrors("the end of the test case");
+  } catch (const GlError& error) {
+    return error.what();
+  } catch (const ContextError& error) {
+    return std::string("the test context cannot be made current again: ") + error.what();
+  }
+  return {};
+}
 
 double meanWhere(const Frame& frame, const ImageF& image, int channel,
                  const std::function<bool(glm::vec3, glm::vec3)>& select, int& count) {

@@ -25,6 +25,16 @@ inline Context& sharedContext() {
   return context;
 }
 
+// Whether a context of `backend` can be made here; tried on a thread of its
+// own, so the calling thread's current context is untouched.
+bool canMakeContext(Backend backend);
+
+// The GL errors pending on `context` (glGetError and KHR_debug messages of
+// type ERROR), reported and cleared: empty when there were none. `context`
+// must have GlErrorPolicy::Throw; it is made current on this thread first.
+// gl_main.cpp calls it after every test case on sharedContext().
+std::string takeGlErrors(Context& context);
+
 // Mean of `channel` of `image` over the pixels whose G-buffer position and
 // normal pass `select`; sets `count` to how many there were.
 double meanWhere(const Frame& frame, const ImageF& image, int channel,

@@ -1,0 +1,93 @@
+#include "reference/traced_scene.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
+#include "headlight/error.hpp"
+
+namespace headlight::reference {
+
+namespace {
+
+// glTF's default material: white, fully metallic, fully rough.
+const Material& defaultMaterial() {
+  static const Material material;
+  return material;
+}
+
+}  // namespace
+
+TracedScene buildScene(const Scene& scene, int threads) {
+  // "threads=N" also bounds Embree's own BVH-building threads.
+  TracedScene traced{
+      EmbreeDevice(threads > 0 ? "threads=" + std::to_string(threads) : std::string()), EmbreeScene(), {}};
+  traced.device.check("rtcNewDevice");
+  traced.scene = EmbreeScene(traced.device.get());
+  traced.device.check("rtcNewScene");
+  traced.instances.resize(scene.instances.size());
+  for (std::size_t id = 0; id < scene.instances.size(); ++id) {
+    const Instance& instance = scene.instances[id];
+    const std::string what = scene.source + ": instance " + std::to_string(id);
+    if (instance.primitive < 0 || std::size_t(instance.primitive) >= scene.primitives.size())
+      throw Error("traceReference: " + what + " names primitive " + std::to_string(instance.primitive) +
+                  "; the scene has " + std::to_string(scene.primitives.size()));
+    if (instance.material < -1 || (instance.material >= 0 && std::size_t(instance.material) >= scene.materials.size()))
+      throw Error("traceReference: " + what + " names material " + std::to_string(instance.material) +
+                  "; the scene has " + std::to_string(scene.materials.size()));
+    const Primitive& primitive = scene.primitives[std::size_t(instance.primitive)];
+    const Material& material =
+        instance.material >= 0 ? scene.materials[std::size_t(instance.material)] : defaultMaterial();
+    const std::size_t triangleCount = primitive.indices.size() / 3;
+    const std::size_t vertexCount = primitive.positions.size();
+    if (triangleCount == 0 || vertexCount == 0) continue;
+    if (primitive.normals.size() != vertexCount ||
+        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount))
+      throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has " +
+                  std::to_string(vertexCount) + " positions but " + std::to_string(primitive.normals.size()) +
+                  " normals and " + std::to_string(primitive.texcoords.size()) + " texcoords");
+    const std::uint32_t largest =
+        *std::max_element(primitive.indices.begin(), primitive.indices.begin() + 3 * triangleCount);
+    if (largest >= vertexCount)
+      throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has index " +
+                  std::to_string(largest) + " but " + std::to_string(vertexCount) + " vertices");
+    for (const TextureRef* ref :
+         {&material.baseColorTexture, &material.emissiveTexture, &material.metallicRoughnessTexture})
+      if (ref->present() && std::size_t(ref->image) >= scene.images.size())
+        throw Error("traceReference: " + what + ": material \"" + material.name + "\" names image " +
+                    std::to_string(ref->image) + "; the scene has " + std::to_string(scene.images.size()));
+
+    // The scene keeps its own reference to an attached geometry; this one
+    // goes at the end of the iteration.
+    const EmbreeGeometry geometry(traced.device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* positions = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+    if (positions) {
+      for (std::size_t v = 0; v < vertexCount; ++v) {
+        const glm::vec3 world = glm::vec3(instance.worldFromLocal * glm::vec4(primitive.positions[v], 1.0f));
+        positions[3 * v + 0] = world.x;
+        positions[3 * v + 1] = world.y;
+        positions[3 * v + 2] = world.z;
+      }
+      // The scene outlives the Embree scene (the caller's promise), so its
+      // indices are shared rather than copied.
+      rtcSetSharedGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, primitive.indices.data(),
+                                 0, 3 * sizeof(std::uint32_t), triangleCount);
+      rtcCommitGeometry(geometry.get());
+      rtcAttachGeometryByID(traced.scene.get(), geometry.get(), unsigned(id));
+    }
+    traced.device.check(what + " (" + std::to_string(triangleCount) + " triangles)");
+
+    InstanceShading& shading = traced.instances[id];
+    shading.primitive = &primitive;
+    shading.material = &material;
+    shading.normalFromLocal = normalMatrix(instance.worldFromLocal);
+    shading.worldPositions = positions;
+    shading.frontSign = mirrors(instance.worldFromLocal) ? -1.0f : 1.0f;
+  }
+  rtcCommitScene(traced.scene.get());
+  traced.device.check("building the BVH of " + scene.source);
+  return traced;
+}
+
+}  // namespace headlight::reference

@@ -1,0 +1,34 @@
+#pragma once
+// The scene as Embree sees it: one triangle geometry per instance, in world
+// space, with what a hit needs to shade itself (geometry id = instance
+// index).
+#include <glm/glm.hpp>
+
+#include <vector>
+
+#include "headlight/scene.hpp"
+#include "reference/embree_handles.hpp"
+
+namespace headlight::reference {
+
+struct InstanceShading {
+  const Primitive* primitive = nullptr;  // null for an instance with no triangles
+  const Material* material = nullptr;
+  glm::mat3 normalFromLocal{1.0f};        // headlight::normalMatrix, as gpu_scene.cpp uses
+  const float* worldPositions = nullptr;  // Embree's vertex buffer, xyz per vertex
+  float frontSign = 1.0f;                 // glTF: a transform with negative determinant flips the winding
+};
+
+struct TracedScene {
+  EmbreeDevice device;
+  EmbreeScene scene;
+  std::vector<InstanceShading> instances;  // indexed by geometry id
+};
+
+// Flattens `scene` into a committed Embree scene. `threads` > 0 bounds
+// Embree's BVH-building threads. The result points into `scene`, which must
+// outlive it. Throws Error naming the instance for an out-of-range
+// primitive, material, image or vertex index, and for any Embree error.
+TracedScene buildScene(const Scene& scene, int threads);
+
+}  // namespace headlight::reference

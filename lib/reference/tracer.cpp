@@ -1,0 +1,343 @@
+#include "reference/tracer.hpp"
+
+#if defined(__x86_64__) || defined(_M_X64)
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "headlight/error.hpp"
+#include "reference/shading.hpp"
+#include "reference/texture_sampler.hpp"
+
+namespace headlight::reference {
+
+namespace {
+
+bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// One worker's tracer: its own Embree intersect context over the shared
+// inputs.
+class Tracer {
+ public:
+  explicit Tracer(const TraceInputs& in) : in_(in) { rtcInitIntersectContext(&context_); }
+
+  void tracePixel(int x, int y, const Outputs& out) {
+    const Frame& frame = in_.frame;
+    const std::size_t pixel = std::size_t(y) * std::size_t(frame.position.width) + std::size_t(x);
+    float* ao = &out.images.ao.pixels[pixel * 2];
+    float* indirect = &out.images.indirect.pixels[pixel * 6];
+    float* lit = &out.images.lit.pixels[pixel * 4];
+    if (frame.position.at(x, y, 3) == 0.0f) {
+      const glm::vec3 sky = skyRadiance(in_.scene.sky, backgroundRay(x, y)) * in_.skyIntensity;
+      ao[0] = ao[1] = 1.0f;
+      std::fill(indirect, indirect + 6, 0.0f);
+      lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
+      return;
+    }
+
+    const glm::vec3 position(frame.position.at(x, y, 0), frame.position.at(x, y, 1), frame.position.at(x, y, 2));
+    if (!isFinite(position))
+      throw SettingsError("traceReference: frame.position at pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                          ") is not finite on a geometry pixel (A = 1)");
+    const glm::vec3 albedo(frame.albedo.at(x, y, 0), frame.albedo.at(x, y, 1), frame.albedo.at(x, y, 2));
+    const float metallic = frame.material.at(x, y, 0), roughness = frame.material.at(x, y, 1);
+    glm::vec3 normal(frame.normal.at(x, y, 0), frame.normal.at(x, y, 1), frame.normal.at(x, y, 2));
+    const float normalLength = glm::length(normal);
+    // A G-buffer normal is unit length; a hand-made frame might hold zero.
+    normal = normalLength > 1e-6f && std::isfinite(normalLength) ? normal / normalLength : glm::vec3(0, 1, 0);
+    // Embree asserts on non-finite rays: a camera at the shading point has
+    // no view direction, so it looks along the normal.
+    glm::vec3 view = viewDirection(position);
+    if (!std::isfinite(view.x + view.y + view.z)) view = normal;
+    const glm::vec3 origin = position + normal * in_.epsilon;
+    const Basis basis = basisAround(normal);
+    Pcg32 random = pixelStream(in_.settings.seed, pixel);
+
+    // Cosine-weighted rays: AO, indirect, the diffuse sky.
+    const int n = in_.settings.samplesPerPixel;
+    const float radius = in_.settings.radius;
+    const glm::vec3 diffuseWeight = (1.0f - metallic) * albedo;
+    int open = 0, escaped = 0;
+    glm::dvec3 sum(0.0), sumSquares(0.0), sumWithinRadius(0.0), skySum(0.0);
+    for (int i = 0; i < n; ++i) {
+      const float xi0 = random.uniform(), xi1 = random.uniform();
+      const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
+      RTCRayHit rayHit = traceFromSurface(origin, direction, view);
+      if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        ++open;
+        ++escaped;
+        skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+        continue;
+      }
+      const float t = rayHit.ray.tfar;
+      if (t >= radius) ++open;
+      const glm::dvec3 contribution = glm::dvec3(diffuseWeight * radianceLeaving(rayHit, direction));
+      sum += contribution;
+      sumSquares += contribution * contribution;
+      if (t < radius) sumWithinRadius += contribution;
+    }
+    const double count = double(n);
+    const double aoValue = double(open) / count;
+    const glm::dvec3 indirectMean = sum / count;
+    const glm::dvec3 indirectRMean = sumWithinRadius / count;
+    ao[0] = float(aoValue);
+    ao[1] = float(double(escaped) / count);
+    for (int c = 0; c < 3; ++c) {
+      indirect[c] = float(indirectRMean[c]);
+      indirect[3 + c] = float(indirectMean[c]);
+    }
+    if (n > 1) {
+      out.aoStandardError[pixel] = std::sqrt(aoValue * (1.0 - aoValue) / (count - 1.0));
+      // Unbiased sample variance of the per-ray contributions, over n.
+      const glm::dvec3 variance = glm::max((sumSquares - count * indirectMean * indirectMean) / (count - 1.0), 0.0);
+      const glm::dvec3 standardError = glm::sqrt(variance / count);
+      out.indirectStandardError[pixel] = (standardError.x + standardError.y + standardError.z) / 3.0;
+    } else {
+      // One sample says nothing about its spread.
+      out.aoStandardError[pixel] = std::numeric_limits<double>::quiet_NaN();
+      out.indirectStandardError[pixel] = std::numeric_limits<double>::quiet_NaN();
+    }
+
+    const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    glm::vec3 radiance = directLight(surface, position, origin) +
+                         ambientLight(surface, origin, basis, glm::vec3(skySum / count), random) +
+                         glm::vec3(indirectMean);
+    if (!frame.emissive.empty())
+      radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
+    lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
+  }
+
+ private:
+  static RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float far) {
+    RTCRayHit rayHit;
+    rayHit.ray.org_x = origin.x, rayHit.ray.org_y = origin.y, rayHit.ray.org_z = origin.z;
+    rayHit.ray.dir_x = direction.x, rayHit.ray.dir_y = direction.y, rayHit.ray.dir_z = direction.z;
+    rayHit.ray.tnear = 0.0f;
+    rayHit.ray.tfar = far;
+    rayHit.ray.time = 0.0f;
+    rayHit.ray.mask = 0xFFFFFFFFu;
+    rayHit.ray.id = 0;
+    rayHit.ray.flags = 0;
+    rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rayHit;
+  }
+
+  // The first surface along `direction` from a shading point's offset origin
+  // `origin` (p + eps n), robust where that origin lies on another surface's
+  // plane (a pixel centred on a crease: p + eps n is still on the adjacent
+  // wall, and float rounding decided whether rays into the wall hit it).
+  // The ray starts eps behind the origin, so a surface through the origin
+  // is met at t = eps (to rounding) whichever way the ray crosses it.
+  // Surfaces met before that (behind the origin) are passed, as before;
+  // those after are hits. One met within 10% of eps of the origin is a hit
+  // only when the ray enters it from the side that faces the camera
+  // (`toEye`, the view direction at p): that side is the free one, since the
+  // camera sees p past it. Met from its hidden side it is a surface the
+  // origin sits on, and the ray goes on (as a path tracer skips the
+  // primitive it starts on). `rayHit.ray.tfar` is returned from the origin.
+  RTCRayHit traceFromSurface(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& toEye) {
+    const float epsilon = in_.epsilon;
+    const glm::vec3 start = origin - direction * epsilon;
+    RTCRayHit rayHit = makeRayHit(start, direction, std::numeric_limits<float>::infinity());
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      rtcIntersect1(in_.rtcScene, &context_, &rayHit);
+      if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      const float t = rayHit.ray.tfar;
+      if (t > 1.1f * epsilon) break;
+      if (t >= 0.9f * epsilon) {
+        const glm::vec3 faceNormal(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
+        const float towardEye = glm::dot(faceNormal, toEye), along = glm::dot(faceNormal, direction);
+        if (towardEye * along < 0.0f || towardEye == 0.0f) break;  // entered from the eye's side
+      }
+      rayHit = makeRayHit(start, direction, std::numeric_limits<float>::infinity());
+      rayHit.ray.tnear = std::nextafter(t, std::numeric_limits<float>::infinity());
+    }
+    if (rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID) rayHit.ray.tfar = std::max(rayHit.ray.tfar - epsilon, 0.0f);
+    return rayHit;
+  }
+
+  // True when nothing lies between `origin` and `far` along `direction`.
+  // Embree asserts on non-finite rays, so one (from a light at NaN, say)
+  // counts as blocked.
+  bool unoccluded(const glm::vec3& origin, const glm::vec3& direction, float far) {
+    if (!isFinite(origin) || !isFinite(direction)) return false;
+    RTCRay ray = makeRayHit(origin, direction, far).ray;
+    rtcOccluded1(in_.rtcScene, &context_, &ray);
+    return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+  }
+
+  // surface.glsl viewDirection.
+  glm::vec3 viewDirection(const glm::vec3& worldPosition) const {
+    const CameraView& view = in_.frame.view;
+    if (view.orthographic) return glm::normalize(glm::vec3(view.view[0][2], view.view[1][2], view.view[2][2]));
+    return glm::normalize(view.position - worldPosition);
+  }
+
+  // composite.frag's background ray, for this top-first pixel.
+  glm::vec3 backgroundRay(int x, int y) const {
+    const CameraView& view = in_.frame.view;
+    const float width = float(in_.frame.position.width), height = float(in_.frame.position.height);
+    const glm::vec2 fragCoord(float(x) + 0.5f, height - float(y) - 0.5f);  // GL's rows run bottom up
+    const glm::vec4 clip(fragCoord.x / width * 2.0f - 1.0f, fragCoord.y / height * 2.0f - 1.0f, 1.0f, 1.0f);
+    const glm::vec4 viewFar = glm::inverse(view.projection) * clip;
+    const glm::vec3 rayView = view.orthographic ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(viewFar) / viewFar.w;
+    return glm::normalize(glm::transpose(glm::mat3(view.view)) * rayView);
+  }
+
+  // Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.
+  // Lights that cast no shadow in the renderer cast none here either.
+  float lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance) {
+    if (!light.castsShadows) return 1.0f;
+    // Stop short of a point or spot light by epsilon: geometry at the light's
+    // position (a bulb's own mesh) must not shadow it.
+    const float far = std::isfinite(distance) ? std::max(distance - in_.epsilon, 0.0f) : distance;
+    return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
+  }
+
+  // direct_light.frag with shadow rays from `origin` for the maps.
+  glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin) {
+    glm::vec3 sum(0.0f);
+    for (const Light& light : in_.scene.lights) {
+      glm::vec3 toLight;
+      float distance;
+      const float attenuation = lightAttenuation(light, position, toLight, distance);
+      if (attenuation <= 0.0f) continue;
+      const glm::vec3 brdf = cookTorrance(surface, toLight);
+      if (brdf == glm::vec3(0.0f)) continue;
+      const float visibility = lightVisibility(light, origin, toLight, distance);
+      sum += brdf * light.color * light.intensity * (attenuation * visibility);
+    }
+    return sum;
+  }
+
+  // Sky ambient with true visibility. Diffuse: the cosine rays' mean sky
+  // radiance over escaped rays (`skyMean`, 0 for blocked ones) is E / pi.
+  // Specular: GGX-importance-sampled reflections, each weighted by
+  // BRDF * N.L / pdf = F * 4 Vis V.H N.L / N.H (as brdf_lut.frag), times the
+  // sky when the ray escapes. The same samples' Fresnel-free weights give
+  // the split-sum scale and bias, hence the renderer's diffuse weight
+  // kd = (1 - (f0 scale + bias)) (1 - metallic) without its 64x64 table.
+  glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
+                         Pcg32& random) {
+    const int m = in_.specularSamples;
+    const float alpha = surface.roughness * surface.roughness;
+    double scale = 0.0, bias = 0.0;
+    glm::dvec3 specular(0.0);
+    for (int j = 0; j < m; ++j) {
+      const float xi0 = random.uniform(), xi1 = random.uniform();
+      const glm::vec3 halfVector = basis.toWorld(importanceSampleGgx(xi0, xi1, alpha));
+      const float vDotHRaw = glm::dot(surface.view, halfVector);
+      const glm::vec3 toLight = 2.0f * vDotHRaw * halfVector - surface.view;  // reflect(-V, H)
+      const float nDotL = glm::dot(surface.normal, toLight);
+      if (nDotL <= 0.0f) continue;
+      const float nDotH = std::max(glm::dot(surface.normal, halfVector), 0.0f);
+      const float vDotH = std::max(vDotHRaw, 0.0f);
+      const float weight =
+          4.0f * smithGgxVisibility(surface.nDotV, nDotL, alpha) * vDotH * nDotL / std::max(nDotH, 1e-7f);
+      const float fresnel = std::pow(1.0f - vDotH, 5.0f);
+      scale += (1.0f - fresnel) * weight;
+      bias += fresnel * weight;
+      const glm::vec3 direction = glm::normalize(toLight);
+      if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
+        specular +=
+            glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * skyRadiance(in_.scene.sky, direction));
+    }
+    const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + float(bias / m);
+    const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
+    return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;
+  }
+
+  // Ld(h): the Lambertian radiance that the hit surface sends back along the
+  // ray (direct punctual light with shadow rays, plus its emission). The
+  // back of a single-sided surface is black: the renderer never draws it,
+  // but it still blocks rays as its shadow maps do.
+  glm::vec3 radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayDirection) {
+    const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
+    const Primitive& primitive = *instance.primitive;
+    const Material& material = *instance.material;
+    const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
+    const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
+    auto world = [&](std::uint32_t index) {
+      const float* p = &instance.worldPositions[std::size_t(index) * 3];
+      return glm::vec3(p[0], p[1], p[2]);
+    };
+    const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
+    glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;  // glTF front face: counter-clockwise
+    const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+    if (!front && !material.doubleSided) return glm::vec3(0.0f);
+    if (!front) faceNormal = -faceNormal;
+    const float faceLength = glm::length(faceNormal);
+    // Degenerate triangles have no face normal; the ray's own direction
+    // gives the side it came from.
+    const glm::vec3 towardOrigin = faceLength > 0.0f ? faceNormal / faceLength : -rayDirection;
+
+    const glm::vec3 localNormal =
+        w * primitive.normals[corner[0]] + u * primitive.normals[corner[1]] + v * primitive.normals[corner[2]];
+    glm::vec3 normal = instance.normalFromLocal * localNormal;
+    const float normalLength = glm::length(normal);
+    normal = normalLength > 0.0f ? normal / normalLength : towardOrigin;
+    if (!front) normal = -normal;  // gbuffer.frag: the back of a double-sided surface faces the other way
+
+    glm::vec3 baseColor(material.baseColorFactor);
+    float metallic = material.metallicFactor;
+    glm::vec3 emissive = material.emissiveFactor;
+    const bool textured = !primitive.texcoords.empty();
+    glm::vec2 uv(0.0f);
+    if (textured)
+      uv = w * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] + v * primitive.texcoords[corner[2]];
+    if (textured && material.baseColorTexture.present())
+      baseColor *= glm::vec3(sampleTexture(in_.scene, material.baseColorTexture, uv, true));
+    if (textured && material.metallicRoughnessTexture.present())
+      metallic *= sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false).b;
+    if (textured && material.emissiveTexture.present() && material.emissive())
+      emissive *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
+    metallic = std::clamp(metallic, 0.0f, 1.0f);
+
+    const glm::vec3 diffuse = (1.0f - metallic) * baseColor / kPi;
+    glm::vec3 radiance = emissive;
+    if (diffuse == glm::vec3(0.0f)) return radiance;
+    const glm::vec3 hitPosition = w * p0 + u * p1 + v * p2;
+    const glm::vec3 shadowOrigin = hitPosition + towardOrigin * in_.epsilon;
+    glm::vec3 irradiance(0.0f);
+    for (const Light& light : in_.scene.lights) {
+      glm::vec3 toLight;
+      float distance;
+      const float attenuation = lightAttenuation(light, hitPosition, toLight, distance);
+      const float nDotL = glm::dot(normal, toLight);
+      if (attenuation <= 0.0f || nDotL <= 0.0f) continue;
+      const float visibility = lightVisibility(light, shadowOrigin, toLight, distance);
+      irradiance += light.color * light.intensity * (attenuation * nDotL * visibility);
+    }
+    return radiance + diffuse * irradiance;
+  }
+
+  const TraceInputs& in_;
+  RTCIntersectContext context_;
+};
+
+// Embree's advice for speed: denormals flushed to zero on tracing threads.
+void setFlushDenormals() {
+#if defined(__x86_64__) || defined(_M_X64)
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+#endif
+}
+
+}  // namespace
+
+void traceRows(const TraceInputs& inputs, const Outputs& outputs, std::atomic<int>& nextRow) {
+  setFlushDenormals();
+  Tracer tracer(inputs);
+  const int width = inputs.frame.position.width, height = inputs.frame.position.height;
+  for (int y = nextRow++; y < height; y = nextRow++)
+    for (int x = 0; x < width; ++x) tracer.tracePixel(x, y, outputs);
+}
+
+}  // namespace headlight::reference
