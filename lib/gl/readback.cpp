@@ -1,5 +1,6 @@
 #include "gl/readback.hpp"
 
+#include "color/srgb.hpp"
 #include "shared_layout.h"
 
 #include <algorithm>
@@ -24,10 +25,6 @@ std::vector<float> readRgba(const gl::Texture& texture) {
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(texture.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
   return rgba;
-}
-
-float srgbToLinear(float encoded) {
-  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
 }  // namespace

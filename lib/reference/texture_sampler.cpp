@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "color/srgb.hpp"
 #include "reference/sampler_enums.hpp"
 
 namespace headlight::reference {
@@ -18,7 +19,7 @@ const float* srgbToLinearTable() {
     std::array<float, 256> values{};
     for (int i = 0; i < 256; ++i) {
       const float c = float(i) / 255.0f;
-      values[std::size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+      values[std::size_t(i)] = srgbToLinear(c);
     }
     return values;
   }();
