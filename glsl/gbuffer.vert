@@ -1,16 +1,17 @@
 // G-buffer vertex stage: to world space for the position and normal targets,
-// to clip space for rasterisation. Attribute locations match
-// lib/gpu_scene.cpp's.
+// to clip space for rasterisation. Attribute locations are shared_layout.h's
+// kAttribute*; every instance of a primitive is one instanced draw.
 #include "shared_layout.h"
 
-layout(location = 0) in vec3 inPosition;
-layout(location = 1) in vec3 inNormal;
+layout(location = kAttributePosition) in vec3 inPosition;
+layout(location = kAttributeNormal) in vec3 inNormal;
+layout(location = kAttributeObjectIndex) in uint inObjectIndex;
 #ifdef HAS_TEXCOORDS
-layout(location = 2) in vec2 inTexcoord;
+layout(location = kAttributeTexcoord) in vec2 inTexcoord;
 layout(location = 2) out vec2 vTexcoord;
 #endif
 #ifdef HAS_TANGENTS
-layout(location = 3) in vec4 inTangent;
+layout(location = kAttributeTangent) in vec4 inTangent;
 layout(location = 3) out vec4 vWorldTangent;
 #endif
 
@@ -18,6 +19,7 @@ layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) out vec3 vWorldNormal;
 
 void main() {
+  const GpuObject object = objects.objectList[inObjectIndex];
   const vec4 world = object.worldFromLocal * vec4(inPosition, 1.0);
   vWorldPosition = world.xyz;
   vWorldNormal = mat3(object.normalFromLocal) * inNormal;

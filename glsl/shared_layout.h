@@ -76,7 +76,6 @@ using mat4 = glm::mat4;
 // Uniform blocks (X(block, binding name, binding)): std140, below.
 #define HL_UNIFORM_BLOCKS(X)                \
   X(FrameBlock, kBindingFrame, 0)           \
-  X(ObjectBlock, kBindingObject, 1)         \
   X(MaterialBlock, kBindingMaterial, 2)     \
   X(SsgiBlock, kBindingSsgi, 3)             \
   X(LightingBlock, kBindingLighting, 4)     \
@@ -87,7 +86,8 @@ using mat4 = glm::mat4;
 
 // Storage blocks (X(block, binding name, binding)): std430, below.
 #define HL_STORAGE_BLOCKS(X)                \
-  X(LightBuffer, kBindingLights, 0)
+  X(LightBuffer, kBindingLights, 0)         \
+  X(ObjectBuffer, kBindingObjects, 1)
 
 #define HL_UNIT_CONST(name, unit) HL_CONST(int, name, unit)
 #define HL_BINDING_CONST(block, name, binding) HL_CONST(int, name, binding)
@@ -129,11 +129,6 @@ HL_BLOCK_BEGIN(FrameBlock, kBindingFrame)
   vec4 depthToViewZ;        // k: view-space z of NDC depth is HL_VIEW_Z_FROM_NDC_DEPTH(ndc, k) (viewZCoefficients)
 HL_BLOCK_END(frame)
 
-// Per draw in the G-buffer and shadow passes.
-HL_BLOCK_BEGIN(ObjectBlock, kBindingObject)
-  mat4 worldFromLocal;
-  mat4 normalFromLocal;     // inverse transpose of worldFromLocal (upper 3x3 used)
-HL_BLOCK_END(object)
 
 // Per material in the G-buffer pass.
 HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
@@ -231,6 +226,31 @@ HL_STORAGE_BEGIN(LightBuffer, kBindingLights)
   GpuLight lightList[];
 HL_STORAGE_END(lights)
 #endif
+
+// One instance's transforms, in the objects storage buffer (std430, same
+// layout as std140 here): the G-buffer and shadow passes draw every instance
+// of a primitive in one instanced draw, and each vertex finds its instance's
+// entry by the instanced attribute kAttributeObjectIndex.
+struct GpuObject {
+  mat4 worldFromLocal;
+  mat4 normalFromLocal;     // cofactor of worldFromLocal's upper 3x3 (normalMatrix; upper 3x3 used)
+};
+#ifdef __cplusplus
+HL_STORAGE_BEGIN(ObjectBuffer, kBindingObjects)
+  // The C++ side uploads a std::vector<GpuObject>; this struct only names the binding.
+HL_STORAGE_END(objects)
+#else
+HL_STORAGE_BEGIN(ObjectBuffer, kBindingObjects)
+  GpuObject objectList[];
+HL_STORAGE_END(objects)
+#endif
+
+// Vertex attribute locations of the scene's primitives (lib/scene/gpu_scene.cpp).
+HL_CONST(int, kAttributePosition, 0)
+HL_CONST(int, kAttributeNormal, 1)
+HL_CONST(int, kAttributeTexcoord, 2)
+HL_CONST(int, kAttributeTangent, 3)
+HL_CONST(int, kAttributeObjectIndex, 4)  // per instance (divisor 1): the entry of ObjectBuffer
 
 #ifdef __cplusplus
 }  // namespace headlight::gpu

@@ -580,9 +580,14 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
 
   const std::string_view gbufferFiles[] = {"gbuffer.vert", "gbuffer.frag"};
   const gl::Program gbuffer = detail::buildProgram(gbufferFiles);
-  CHECK(blockDataSize(gbuffer.id(), "ObjectBlock") == GLint(sizeof(gpu::ObjectBlock)));
-  CHECK(memberOffset(gbuffer.id(), "ObjectBlock.normalFromLocal") ==
-        GLint(offsetof(gpu::ObjectBlock, normalFromLocal)));
+  // The instances' transforms are std430 and read through a struct: its stride and members.
+  const GLuint objects = glGetProgramResourceIndex(gbuffer.id(), GL_BUFFER_VARIABLE, "ObjectBuffer.objectList[0].normalFromLocal");
+  REQUIRE(objects != GL_INVALID_INDEX);
+  const GLenum objectProperties[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+  GLint objectValues[2] = {-1, -1};
+  glGetProgramResourceiv(gbuffer.id(), GL_BUFFER_VARIABLE, objects, 2, objectProperties, 2, nullptr, objectValues);
+  CHECK(objectValues[0] == GLint(offsetof(gpu::GpuObject, normalFromLocal)));
+  CHECK(objectValues[1] == GLint(sizeof(gpu::GpuObject)));
   CHECK(blockDataSize(gbuffer.id(), "MaterialBlock") == GLint(sizeof(gpu::MaterialBlock)));
   CHECK(memberOffset(gbuffer.id(), "MaterialBlock.factors") == GLint(offsetof(gpu::MaterialBlock, factors)));
 

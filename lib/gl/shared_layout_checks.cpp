@@ -11,7 +11,7 @@ static_assert(sizeof(FrameBlock) == 3 * 64 + 3 * 16);
 static_assert(offsetof(FrameBlock, projection) == 64);
 static_assert(offsetof(FrameBlock, cameraPosition) == 192);
 static_assert(offsetof(FrameBlock, depthToViewZ) == 224);
-static_assert(sizeof(ObjectBlock) == 128);
+static_assert(sizeof(GpuObject) == 128);  // std430 array stride: two mat4
 static_assert(sizeof(MaterialBlock) == 48);
 static_assert(offsetof(MaterialBlock, factors) == 32);
 static_assert(sizeof(SsgiBlock) == kMaxKernelSamples * 16 + 32);

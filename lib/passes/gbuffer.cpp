@@ -55,9 +55,9 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
     : programs_("gbuffer.vert", "gbuffer.frag",
                 [](const ProgramKey& key) { return definesFor(key.features, key.targetDefines); }) {
-  for (const GpuInstance& instance : scene.instances)
-    programs_.get({usableFeatures(scene.primitives[std::size_t(instance.primitive)],
-                                  scene.materials[std::size_t(instance.material)]),
+  for (const GpuDrawGroup& group : scene.drawGroups)
+    programs_.get({usableFeatures(scene.primitives[std::size_t(group.primitive)],
+                                  scene.materials[std::size_t(group.material)]),
                    variant.defines});
 }
 
@@ -87,9 +87,10 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   // Writes to the sRGB albedo target are encoded only with this on.
   glEnable(GL_FRAMEBUFFER_SRGB);
 
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const GpuPrimitive& primitive = scene.primitives[std::size_t(scene.instances[i].primitive)];
-    const GpuMaterial& material = scene.materials[std::size_t(scene.instances[i].material)];
+  scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
+  for (const GpuDrawGroup& group : scene.drawGroups) {
+    const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
+    const GpuMaterial& material = scene.materials[std::size_t(group.material)];
     const std::uint32_t features = usableFeatures(primitive, material);
     programs_.get({features, variant.defines}).use();
     if (material.doubleSided)
@@ -98,13 +99,12 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
       glEnable(GL_CULL_FACE);
     // Also decides gl_FrontFacing, so a mirrored double-sided mesh keeps
     // its normals pointing the right way.
-    glFrontFace(scene.instances[i].mirrored ? GL_CW : GL_CCW);
+    glFrontFace(group.mirrored ? GL_CW : GL_CCW);
     material.block.bindUniform(gpu::MaterialBlock::kBinding);
     bindMaterialTextures(scene, material, features);
-    glBindBufferRange(GL_UNIFORM_BUFFER, gpu::ObjectBlock::kBinding, scene.instanceBlocks.id(),
-                      GLintptr(i * scene.instanceStride), sizeof(gpu::ObjectBlock));
     primitive.vertexArray.bind();
-    glDrawElements(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
+                                        group.instanceCount, group.firstInstance);
   }
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_CULL_FACE);

@@ -162,12 +162,13 @@ void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, in
   // Both faces: single-sided walls must still block light from behind.
   glDisable(GL_CULL_FACE);
   program_.use();
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const GpuPrimitive& primitive = scene.primitives[std::size_t(scene.instances[i].primitive)];
-    glBindBufferRange(GL_UNIFORM_BUFFER, gpu::ObjectBlock::kBinding, scene.instanceBlocks.id(),
-                      GLintptr(i * scene.instanceStride), sizeof(gpu::ObjectBlock));
+  scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
+  // Every instance of a primitive in one draw, whatever its material.
+  for (const GpuPrimitiveRun& run : scene.primitiveRuns) {
+    const GpuPrimitive& primitive = scene.primitives[std::size_t(run.primitive)];
     primitive.vertexArray.bind();
-    glDrawElements(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
+                                        run.instanceCount, run.firstInstance);
   }
 }
 

@@ -16,7 +16,7 @@ gl::Buffer makeBuffer(const std::vector<T>& items) {
   return gl::Buffer::create(std::span<const T>(items));
 }
 
-// Attribute locations match gbuffer.vert's.
+// Attribute locations are shared_layout.h's kAttribute*.
 void addAttribute(GpuPrimitive& gpu, GLuint location, GLint components, std::size_t stride, gl::Buffer buffer) {
   const GLuint vao = gpu.vertexArray.id();
   glVertexArrayVertexBuffer(vao, location, buffer.id(), 0, GLsizei(stride));
@@ -29,14 +29,14 @@ void addAttribute(GpuPrimitive& gpu, GLuint location, GLint components, std::siz
 GpuPrimitive uploadPrimitive(const Primitive& primitive) {
   GpuPrimitive gpu;
   gpu.vertexArray = gl::VertexArray::create();
-  addAttribute(gpu, 0, 3, sizeof(glm::vec3), makeBuffer(primitive.positions));
-  addAttribute(gpu, 1, 3, sizeof(glm::vec3), makeBuffer(primitive.normals));
+  addAttribute(gpu, gpu::kAttributePosition, 3, sizeof(glm::vec3), makeBuffer(primitive.positions));
+  addAttribute(gpu, gpu::kAttributeNormal, 3, sizeof(glm::vec3), makeBuffer(primitive.normals));
   if (!primitive.texcoords.empty()) {
-    addAttribute(gpu, 2, 2, sizeof(glm::vec2), makeBuffer(primitive.texcoords));
+    addAttribute(gpu, gpu::kAttributeTexcoord, 2, sizeof(glm::vec2), makeBuffer(primitive.texcoords));
     gpu.vertexFeatures |= kFeatureTexcoords;
   }
   if (!primitive.tangents.empty()) {
-    addAttribute(gpu, 3, 4, sizeof(glm::vec4), makeBuffer(primitive.tangents));
+    addAttribute(gpu, gpu::kAttributeTangent, 4, sizeof(glm::vec4), makeBuffer(primitive.tangents));
     gpu.vertexFeatures |= kFeatureTangents;
   }
   gl::Buffer indices = makeBuffer(primitive.indices);
@@ -123,18 +123,60 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   return gpu;
 }
 
-gl::Buffer uploadInstances(const Scene& scene, std::size_t& stride) {
-  GLint alignment = 256;
-  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
-  stride = (sizeof(gpu::ObjectBlock) + std::size_t(alignment) - 1) / std::size_t(alignment) * std::size_t(alignment);
-  std::vector<std::uint8_t> bytes(std::max<std::size_t>(1, scene.instances.size()) * stride);
+// Every instance's transforms, in Scene::instances order. At least one
+// entry: a zero-sized buffer cannot be bound.
+gl::Buffer uploadObjects(const Scene& scene) {
+  std::vector<gpu::GpuObject> objects(std::max<std::size_t>(1, scene.instances.size()));
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    gpu::ObjectBlock block{};
-    block.worldFromLocal = scene.instances[i].worldFromLocal;
-    block.normalFromLocal = glm::mat4(normalMatrix(block.worldFromLocal));
-    std::memcpy(bytes.data() + i * stride, &block, sizeof(block));
+    objects[i].worldFromLocal = scene.instances[i].worldFromLocal;
+    objects[i].normalFromLocal = glm::mat4(normalMatrix(objects[i].worldFromLocal));
   }
-  return gl::Buffer::create(bytes.size(), bytes.data());
+  return makeBuffer(objects);
+}
+
+// Sorts the instances into draw order and groups them: one instanced draw
+// per (primitive, material, winding), one run per primitive. Returns the
+// draw order (instance indices).
+std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMaterial, GpuScene& gpu) {
+  struct Key {
+    int primitive, material;
+    bool mirrored;
+    auto operator<=>(const Key&) const = default;
+  };
+  std::vector<Key> keys;
+  keys.reserve(scene.instances.size());
+  for (const Instance& instance : scene.instances)
+    keys.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial,
+                    mirrors(instance.worldFromLocal)});
+  std::vector<std::uint32_t> order(scene.instances.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
+  // Stable: instances of one group keep the file's order (depth ties resolve as before).
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+  for (std::size_t position = 0; position < order.size(); ++position) {
+    const Key& key = keys[order[position]];
+    if (gpu.drawGroups.empty() || Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material,
+                                      gpu.drawGroups.back().mirrored} != key)
+      gpu.drawGroups.push_back({key.primitive, key.material, key.mirrored, GLuint(position), 0});
+    ++gpu.drawGroups.back().instanceCount;
+    if (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive)
+      gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0});
+    ++gpu.primitiveRuns.back().instanceCount;
+  }
+  return order;
+}
+
+// Each primitive's vertex array reads its instance's index into the
+// objects buffer from the draw order, once per instance.
+void attachDrawOrder(GpuScene& gpu) {
+  const GLuint location = GLuint(gpu::kAttributeObjectIndex);
+  for (GpuPrimitive& primitive : gpu.primitives) {
+    const GLuint vao = primitive.vertexArray.id();
+    glVertexArrayVertexBuffer(vao, location, gpu.drawOrder.id(), 0, sizeof(std::uint32_t));
+    glVertexArrayAttribIFormat(vao, location, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(vao, location, location);
+    glVertexArrayBindingDivisor(vao, location, 1);
+    glEnableVertexArrayAttrib(vao, location);
+  }
 }
 
 }  // namespace
@@ -146,11 +188,11 @@ GpuScene uploadScene(const Scene& scene) {
   for (const Material& material : scene.materials) gpu.materials.push_back(uploadMaterial(material, textures));
   gpu.materials.push_back(uploadMaterial(Material{}, textures));  // glTF's default material
   const int defaultMaterial = int(gpu.materials.size()) - 1;
-  for (const Instance& instance : scene.instances) {
-    gpu.instances.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial,
-                             mirrors(instance.worldFromLocal)});
-  }
-  gpu.instanceBlocks = uploadInstances(scene, gpu.instanceStride);
+  std::vector<std::uint32_t> drawOrder = groupInstances(scene, defaultMaterial, gpu);
+  if (drawOrder.empty()) drawOrder.push_back(0);  // a buffer to bind; nothing is drawn
+  gpu.drawOrder = makeBuffer(drawOrder);
+  gpu.objects = uploadObjects(scene);
+  attachDrawOrder(gpu);
   gpu.bounds = scene.worldBounds();
   gpu.hasEmissive = scene.hasEmissive();
   return gpu;

@@ -43,19 +43,33 @@ struct GpuTexture {
   gl::Sampler sampler;
 };
 
-struct GpuInstance {
-  int primitive = 0;      // index into GpuScene::primitives
-  int material = 0;       // index into GpuScene::materials
-  bool mirrored = false;  // negative determinant: clockwise triangles face front (glTF)
+// One instanced draw: every instance of a primitive with one material and
+// one winding. Instances are drawn in draw order (sorted by primitive, then
+// material, then winding), so a primitive's groups are contiguous and the
+// shadow pass draws all its instances at once.
+struct GpuDrawGroup {
+  int primitive = 0;       // index into GpuScene::primitives
+  int material = 0;        // index into GpuScene::materials
+  bool mirrored = false;   // negative determinant: clockwise triangles face front (glTF)
+  GLuint firstInstance = 0;  // into the draw order (the base instance of the draw)
+  GLsizei instanceCount = 0;
+};
+
+// A primitive's instances in draw order, for passes that ignore materials.
+struct GpuPrimitiveRun {
+  int primitive = 0;
+  GLuint firstInstance = 0;
+  GLsizei instanceCount = 0;
 };
 
 struct GpuScene {
   std::vector<GpuPrimitive> primitives;
-  std::vector<GpuInstance> instances;  // same order as Scene::instances and instanceBlocks
   std::vector<GpuMaterial> materials;  // the scene's, then glTF's default material last
   std::vector<GpuTexture> textures;
-  gl::Buffer instanceBlocks;       // one ObjectBlock per instance, at instanceStride apart
-  std::size_t instanceStride = 0;  // bytes, a multiple of GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT
+  std::vector<GpuDrawGroup> drawGroups;      // in draw order
+  std::vector<GpuPrimitiveRun> primitiveRuns;  // in draw order
+  gl::Buffer objects;    // GpuObject per instance, in Scene::instances order (ObjectBuffer)
+  gl::Buffer drawOrder;  // per draw-order position, its instance's index into objects (kAttributeObjectIndex)
   Bounds bounds;
   bool hasEmissive = false;
 };
