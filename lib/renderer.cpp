@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "context/context_access.hpp"
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
 #include "gl/target_formats.hpp"
@@ -330,7 +331,7 @@ struct Renderer::Impl {
       }
       if (!*sources.front() || (target.image == &Frame::ssgi && !withSsgi) || !wanted(target.name)) continue;
       const std::vector<std::string> channels(target.channels.begin(), target.channels.end());
-      frame.*target.image = target.gpuFormat == GpuFormat::Depth32F
+      frame.*target.image = gl::isDepthTarget(target.image)
                                 ? readViewDepth(*sources.front(), frame.view, channels.front())
                                 : readColor(sources, channels);
     }
@@ -341,14 +342,15 @@ struct Renderer::Impl {
 // a GL call through another thread's context (or none) would crash or draw
 // into the wrong context.
 Renderer::Renderer(Context& context)
-    : impl_((context.requireCurrent("headlight::Renderer"), context.lockBackend(), std::make_unique<Impl>(context))) {}
+    : impl_((context.requireCurrent("headlight::Renderer"), detail::ContextAccess::lockBackend(context),
+             std::make_unique<Impl>(context))) {}
 // The GL objects are deleted in their own context: a renderer destroyed on a
 // thread where another context is current makes its own current first (and
 // leaves it current); if that fails, the names are left to the context's
 // destruction rather than deleted in the wrong context.
 Renderer::~Renderer() {
   if (!impl_) return;
-  auto lock = impl_->context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl_->context);
   if (!impl_->context.isCurrent()) {
     try {
       impl_->context.makeCurrent();
@@ -362,7 +364,7 @@ Renderer::~Renderer() {
 void Renderer::setScene(Scene scene) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::setScene");
-  auto lock = impl.context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
   impl.gbufferPass.reset();
   impl.gpuScene.reset();
   impl.gbuffer = GBuffer{};  // its emissive target depends on the scene
@@ -426,7 +428,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
 Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::render");
-  auto lock = impl.context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
   if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
   Frame frame;
   frame.settings = resolve(settings);

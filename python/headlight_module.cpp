@@ -36,7 +36,7 @@ struct PyRenderer {
     renderer.emplace(*context);
   }
   ~PyRenderer() {
-    // Destruction takes the backend lock (Context::lockBackend), which a
+    // Destruction takes the backend lock (ContextAccess::lockBackend), which a
     // render on another thread may hold while it waits for the GIL: give the
     // GIL up first. ~Renderer makes the context current itself when it is not.
     py::gil_scoped_release release;

@@ -9,6 +9,7 @@
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "output/tonemap.hpp"
 #include "passes/ssgi.hpp"
 #include "shared_layout.h"
 

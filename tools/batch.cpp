@@ -25,6 +25,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/targets.hpp"
+#include "output/fingerprint.hpp"
 #include "progress.hpp"
 
 namespace headlight::cli {

@@ -10,12 +10,12 @@
 #include <map>
 #include <sstream>
 
-#include "headlight/bench.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "progress.hpp"
+#include "tooling/bench.hpp"
 
 namespace headlight::detail {
 std::string_view benchChartScript();  // tools/bench_chart.py, embedded at build time

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "cli_options.hpp"
-#include "headlight/bench.hpp"
 #include "headlight/context.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/settings.hpp"
 #include "progress.hpp"
+#include "tooling/bench.hpp"
 
 namespace headlight::cli {
 

@@ -2,8 +2,9 @@
 // Command-line parsing for `headlight render` and `reference`. Render
 // settings are the library's one table (settingOptions()), reference
 // settings referenceOptions(); the rows here are only the CLI's own (where
-// to write, which backend, how chatty). Every row goes through the library's
-// one parser (parseCommandLine) and one help writer (optionHelp).
+// to write, which backend, how chatty). Every row goes through the one
+// parser (parseCommandLine) and one help writer (optionHelp) of the support
+// library (lib/tooling/command_line.hpp).
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
+#include "settings/option_binding.hpp"
+#include "tooling/command_line.hpp"
 
 namespace headlight::cli {
 

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "context/backend.hpp"
+#include "context/context_access.hpp"
 #include "context/hex_code.hpp"
 #include "headlight/error.hpp"
 
@@ -122,7 +123,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
-  auto lock = lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(*this);
   loadGlEntryPoints(*impl_->platform, impl_->gl);
   gladSetCurrentGLContext(&impl_->gl);
   try {
@@ -147,11 +148,10 @@ Context::~Context() {
   if (!impl_) return;  // moved from
   if (gladGetCurrentGLContext() == &impl_->gl) gladSetCurrentGLContext(nullptr);
   // The platform context is destroyed (made not current first) by its own destructor.
-  auto lock = lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(*this);
   impl_->platform.reset();
 }
 
-std::unique_lock<std::mutex> Context::lockBackend() const { return std::unique_lock(backendMutex(impl_->backend)); }
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 
@@ -177,7 +177,6 @@ void Context::requireCurrent(std::string_view operation) const {
                        "(a context is current on one thread at a time)");
 }
 
-std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }
 
 void Context::checkErrors(std::string_view operation) {
   requireCurrent(operation);
@@ -198,4 +197,13 @@ void Context::checkErrors(std::string_view operation) {
   std::cerr << "headlight: warning: " << message << "\n";
 }
 
+namespace detail {
+
+std::unique_lock<std::mutex> ContextAccess::lockBackend(const Context& context) {
+  return std::unique_lock(backendMutex(context.impl_->backend));
+}
+
+std::size_t ContextAccess::pendingErrorCount(const Context& context) { return context.impl_->errors.size(); }
+
+}  // namespace detail
 }  // namespace headlight

@@ -1,35 +1,40 @@
 #pragma once
-// The GL internal format of each frame target's GPU texture, from the
-// frame-target table (headlight/targets.hpp): the G-buffer pass and the
-// renderer allocate what the table says, so readback and docs agree.
+// The GL internal format of each frame target's GPU texture: the G-buffer
+// pass and the renderer allocate these, the readback reads them. One row per
+// frame target (headlight/targets.hpp); a target with more than 4 channels
+// (ssgi) is held in ceil(n / 4) textures of its format, channels 4k..4k+3 in
+// texture k.
 #include <glad/gl.h>
 
 #include "headlight/error.hpp"
-#include "headlight/targets.hpp"
+#include "headlight/frame.hpp"
 
 namespace headlight::gl {
 
-inline GLenum internalFormat(GpuFormat format) {
-  switch (format) {
-    case GpuFormat::Rgba32F:
-      return GL_RGBA32F;
-    case GpuFormat::Rgba16F:
-      return GL_RGBA16F;
-    case GpuFormat::Srgb8Alpha8:
-      return GL_SRGB8_ALPHA8;
-    case GpuFormat::Rgba8:
-      return GL_RGBA8;
-    case GpuFormat::Depth32F:
-      return GL_DEPTH_COMPONENT32F;
-  }
-  return GL_NONE;
+struct TargetGpuFormat {
+  ImageF Frame::*image;
+  GLenum internalFormat;
+};
+
+inline constexpr TargetGpuFormat kTargetGpuFormats[] = {
+    {&Frame::position, GL_RGBA32F},  // float32: half's 11 bits are too few far from the origin
+    {&Frame::normal, GL_RGBA16F},
+    {&Frame::albedo, GL_SRGB8_ALPHA8},  // 8-bit sRGB like the textures it comes from
+    {&Frame::material, GL_RGBA8},       // 8-bit like the textures it comes from
+    {&Frame::depth, GL_DEPTH_COMPONENT32F},
+    {&Frame::emissive, GL_RGBA16F},
+    {&Frame::ssgi, GL_RGBA16F},
+    {&Frame::lit, GL_RGBA16F},
+};
+
+// The format of the target Frame keeps in `image`.
+inline GLenum targetFormat(ImageF Frame::*image) {
+  for (const TargetGpuFormat& row : kTargetGpuFormats)
+    if (row.image == image) return row.internalFormat;
+  throw GlError("no GPU format for this frame target (lib/gl/target_formats.hpp)");
 }
 
-// The format the table gives the target Frame keeps in `image`.
-inline GLenum targetFormat(ImageF Frame::*image) {
-  for (const FrameTarget& target : frameTargets())
-    if (target.image == image) return internalFormat(target.gpuFormat);
-  throw GlError("no frame-target row for this Frame member");
-}
+// Depth targets are read back as view depth, the rest as colour.
+inline bool isDepthTarget(ImageF Frame::*image) { return targetFormat(image) == GL_DEPTH_COMPONENT32F; }
 
 }  // namespace headlight::gl

@@ -16,6 +16,7 @@
 #include "output/atomic_file.hpp"
 #include "output/atomic_image.hpp"
 #include "output/frame_set.hpp"
+#include "output/tonemap.hpp"
 
 namespace headlight {
 namespace {

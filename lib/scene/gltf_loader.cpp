@@ -30,7 +30,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
-#include "headlight/output.hpp"
+#include "output/fingerprint.hpp"
 #include "headlight/scene_loader.hpp"
 #include "image_io/texture_decode.hpp"
 #include "scene/gltf_prescan.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "settings/option_binding.hpp"
 
 namespace headlight {
 

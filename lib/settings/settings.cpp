@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "settings/option_binding.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
