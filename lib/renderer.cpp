@@ -290,8 +290,9 @@ struct Renderer::Impl {
     if (override) return *override;
     if (settings.camera) {
       if (std::size_t(*settings.camera) >= scene.cameras.size())
-        throw SettingsError("--camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
-                            std::to_string(scene.cameras.size()) + " camera(s)");
+        throw SettingsError("camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
+                                std::to_string(scene.cameras.size()) + " camera(s)",
+                            {"camera"});
       return scene.cameras[std::size_t(*settings.camera)];
     }
     if (!scene.cameras.empty()) return scene.cameras.front();
@@ -386,8 +387,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.sceneBytes = estimateSceneBytes(newScene);
   if (impl.sceneBytes > maxMemoryBytes(impl.limits))
     throw LimitError(newScene.source + ": the scene needs about " + std::to_string(impl.sceneBytes >> 20) +
-                     " MiB, more than --max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
-                     " MiB)");
+                         " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
+                         " MiB)",
+                     {"max-memory"});
   impl.scene = std::move(newScene);
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));

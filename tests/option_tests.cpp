@@ -4,7 +4,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <set>
+#include <stdexcept>
 
 #include "bench_command.hpp"
 #include "cli_options.hpp"
@@ -112,7 +114,7 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
     if (spec.autoMeaning.empty()) CHECK_THROWS_AS(parseOptionValue(spec, "auto"), SettingsError);
     if (spec.type == OptionType::Int || spec.type == OptionType::Float) {
       const std::string below = formatOptionValue(spec, spec.minimum - 1.0);
-      const std::string message = "--" + std::string(spec.name) + ": must be in";
+      const std::string message = std::string(spec.name) + ": must be in";
       CHECK_THROWS_WITH_AS(row.set(settings, parseOptionValue(spec, below)), doctest::Contains(message.c_str()),
                            SettingsError);
       CHECK_THROWS_AS(parseOptionValue(spec, "nan"), SettingsError);
@@ -126,19 +128,58 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
                        doctest::Contains("unknown setting 'ssgi-radios'"), SettingsError);
 }
 
+// The library's messages name settings, never flags; Error::settings() lists
+// them, and the CLI words them as flags (commandLineMessage).
+static std::string messageOf(const std::function<void()>& call, std::vector<std::string>* settings = nullptr,
+                      std::string* commandLine = nullptr) {
+  try {
+    call();
+  } catch (const Error& error) {
+    if (settings) *settings = error.settings();
+    if (commandLine) *commandLine = commandLineMessage(error);
+    return error.what();
+  }
+  return "no error";
+}
+
 TEST_CASE("validate() reads the table's ranges; the rules between settings stay") {
   RenderSettings settings;
   CHECK_NOTHROW(settings.validate());
   settings.ssgi.sampleCount = 65;
-  CHECK_THROWS_WITH_AS(settings.validate(), "--ssgi-samples: must be in 1..64, got 65", SettingsError);
+  std::vector<std::string> named;
+  std::string flags;
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags) == "ssgi-samples: must be in 1..64, got 65");
+  CHECK(named == std::vector<std::string>{"ssgi-samples"});
+  CHECK(flags == "--ssgi-samples: must be in 1..64, got 65");
   settings = {};
   settings.ssgi.radius = -1.0f;
-  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("--ssgi-radius: must be in"), SettingsError);
+  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("ssgi-radius: must be in"), SettingsError);
   settings = {};
   settings.ssgi.resolution = SsgiResolution::Half;
   settings.ssgi.blur = false;
-  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("--no-ssgi-blur needs --ssgi-resolution full"),
-                       SettingsError);
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags).find("ssgi-blur off needs ssgi-resolution full") == 0);
+  CHECK(named == std::vector<std::string>{"ssgi-blur", "ssgi-resolution"});
+  CHECK(flags.find("--ssgi-blur off needs --ssgi-resolution full") == 0);
+  settings = {};
+  settings.width = 8193;
+  settings.height = 8193;
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags).find("width 8193 x height 8193: at most") == 0);
+  CHECK(flags.find("--width 8193 x --height 8193: at most") == 0);
+}
+
+TEST_CASE("commandLineMessage words only the settings an error names, and only where they stand alone") {
+  CHECK(commandLineMessage(SettingsError("camera 3: a/camera.gltf has 1 camera(s)", {"camera"})) ==
+        "--camera 3: a/camera.gltf has 1 camera(s)");
+  CHECK(commandLineMessage(LimitError("x.gltf: 9 MiB, more than max-memory allows (8 MiB); raise max-memory",
+                                      {"max-memory"})) ==
+        "x.gltf: 9 MiB, more than --max-memory allows (8 MiB); raise --max-memory");
+  CHECK(commandLineMessage(SettingsError("width 3: too small")) == "width 3: too small");  // names nothing
+  CHECK(commandLineMessage(std::runtime_error("camera 3")) == "camera 3");
+  RenderSettings settings;
+  applyPreset(settings, "default");
+  std::vector<std::string> named;
+  CHECK(messageOf([&] { applyPreset(settings, "slow"); }, &named).find("preset: expected one of") == 0);
+  CHECK(named == std::vector<std::string>{"preset"});
 }
 
 TEST_CASE("bench sweeps any setting row; the product skips what the settings refuse") {
@@ -203,7 +244,7 @@ TEST_CASE("settings file lines: spaces, comments and CRLF are accepted; a bad li
   CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 9\n= 3\n", "w.settings"),
                        doctest::Contains("w.settings:2: expected NAME = VALUE"), SettingsError);
   CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 99\n", "w.settings"),
-                       doctest::Contains("w.settings:1: --ssgi-steps"), SettingsError);
+                       doctest::Contains("w.settings:1: ssgi-steps: must be in"), SettingsError);
 }
 
 TEST_CASE("tune chooses the least frame time among the rows within the AO bound") {

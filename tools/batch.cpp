@@ -322,7 +322,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
         count = cameraCount(scene);
       } catch (const Error& error) {
         Job bad = base;
-        bad.error = error.what();
+        bad.error = commandLineMessage(error);
         jobs.push_back(bad);
         continue;
       }
@@ -535,7 +535,7 @@ int runRenderBatch(const RenderCommand& command) {
           results[i].status = JobResult::Status::Rendered;
         } catch (const std::exception& error) {
           results[i].status = JobResult::Status::Failed;
-          results[i].error = error.what();
+          results[i].error = commandLineMessage(error);
         }
         results[i].writeMs = millisecondsSince(writeStart);
         report(i);
@@ -546,7 +546,7 @@ int runRenderBatch(const RenderCommand& command) {
       if (single) throw;
       cache.release(job.scene);
       result.status = JobResult::Status::Failed;
-      result.error = error.what();
+      result.error = commandLineMessage(error);
       // A scene that failed to load fails every job of it, each with its line.
       report(i);
     }

@@ -132,10 +132,10 @@ int main(int argc, char** argv) {
     std::cerr << "headlight: unknown command '" << args[0] << "'\n" << kUsage;
     return kExitUsage;
   } catch (const SettingsError& error) {
-    std::cerr << "headlight: " << error.what() << "\n";
+    std::cerr << "headlight: " << commandLineMessage(error) << "\n";
     return kExitUsage;
   } catch (const std::exception& error) {
-    std::cerr << "headlight: " << errorKind(error) << ": " << error.what() << "\n";
+    std::cerr << "headlight: " << errorKind(error) << ": " << commandLineMessage(error) << "\n";
     return kExitRuntimeError;
   }
 }

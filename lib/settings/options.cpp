@@ -9,7 +9,10 @@
 namespace headlight {
 namespace {
 
-std::string flag(const OptionSpec& spec) { return "--" + std::string(spec.name); }
+// Errors name the row's setting (Error::settings() lists it for front ends).
+[[noreturn]] void settingError(const OptionSpec& spec, const std::string& problem) {
+  throw SettingsError(std::string(spec.name) + ": " + problem, {std::string(spec.name)});
+}
 
 // Shortest text of `value` that reads back as the same double (and so the same float).
 std::string formatNumber(double value) {
@@ -36,7 +39,7 @@ std::string rangeText(const OptionSpec& spec) {
 }
 
 [[noreturn]] void expected(const OptionSpec& spec, const std::string& what, std::string_view got) {
-  throw SettingsError(flag(spec) + ": expected " + what + ", got '" + std::string(got) + "'");
+  settingError(spec, "expected " + what + ", got '" + std::string(got) + "'");
 }
 
 template <class Number>
@@ -108,10 +111,10 @@ OptionValue parseOptionValue(const OptionSpec& spec, std::string_view text) {
 
 void checkOptionValue(const OptionSpec& spec, const OptionValue& value) {
   if (std::holds_alternative<AutoValue>(value)) {
-    if (spec.autoMeaning.empty()) throw SettingsError(flag(spec) + ": cannot be auto");
+    if (spec.autoMeaning.empty()) settingError(spec, "cannot be auto");
     return;
   }
-  auto wrongKind = [&] { throw SettingsError(flag(spec) + ": value of the wrong type for this setting"); };
+  auto wrongKind = [&] { settingError(spec, "value of the wrong type for this setting"); };
   switch (spec.type) {
     case OptionType::Switch:
     case OptionType::Bool:
@@ -121,21 +124,21 @@ void checkOptionValue(const OptionSpec& spec, const OptionValue& value) {
       if (!std::holds_alternative<std::int64_t>(value)) wrongKind();
       const auto number = std::get<std::int64_t>(value);
       if (double(number) < spec.minimum || double(number) > spec.maximum)
-        throw SettingsError(flag(spec) + ": must be in " + rangeText(spec) + ", got " + std::to_string(number));
+        settingError(spec, "must be in " + rangeText(spec) + ", got " + std::to_string(number));
       return;
     }
     case OptionType::Float: {
       if (!std::holds_alternative<double>(value)) wrongKind();
       const double number = std::get<double>(value);
       if (!(number >= spec.minimum && number <= spec.maximum))  // NaN fails too
-        throw SettingsError(flag(spec) + ": must be in " + rangeText(spec) + ", got " + formatNumber(number));
+        settingError(spec, "must be in " + rangeText(spec) + ", got " + formatNumber(number));
       return;
     }
     case OptionType::Choice: {
       if (std::holds_alternative<std::int64_t>(value)) {
         const auto index = std::get<std::int64_t>(value);
         if (index < 0 || std::size_t(index) >= spec.choices.size())
-          throw SettingsError(flag(spec) + ": no choice number " + std::to_string(index));
+          settingError(spec, "no choice number " + std::to_string(index));
         return;
       }
       if (!std::holds_alternative<std::string>(value)) wrongKind();

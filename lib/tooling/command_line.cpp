@@ -1,8 +1,40 @@
 #include "tooling/command_line.hpp"
 
+#include <string_view>
+
 #include "settings/option_binding.hpp"
 
-namespace headlight::detail {
+namespace headlight {
+namespace {
+
+// The name at `at` stands alone: not part of a longer word or path, nor
+// "camera(s)", nor already a flag.
+bool standsAlone(const std::string& text, std::size_t at, std::size_t length) {
+  const std::size_t end = at + length;
+  return (at == 0 || std::string_view(" (\n'").find(text[at - 1]) != std::string_view::npos) &&
+         (end == text.size() || std::string_view(" :;,)=\n'").find(text[end]) != std::string_view::npos);
+}
+
+}  // namespace
+
+std::string commandLineMessage(const std::exception& error) {
+  std::string text = error.what();
+  const auto* named = dynamic_cast<const Error*>(&error);
+  if (!named) return text;
+  for (const std::string& setting : named->settings()) {
+    if (setting.empty()) continue;
+    for (std::size_t at = text.find(setting); at != std::string::npos; at = text.find(setting, at)) {
+      if (standsAlone(text, at, setting.size())) {
+        text.insert(at, "--");
+        at += 2;
+      }
+      at += setting.size();
+    }
+  }
+  return text;
+}
+
+namespace detail {
 
 FlagMatch matchFlag(const OptionSpec& spec, std::string_view flagName) {
   if (flagName == spec.name) return {true, false};
@@ -34,4 +66,5 @@ std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& d
   return line + "\n";
 }
 
-}  // namespace headlight::detail
+}  // namespace detail
+}  // namespace headlight

@@ -3,6 +3,7 @@
 // (headlight/options.hpp) and the --help lines written from them. Part of the
 // internal support library (lib/tooling) that the CLI, the Python module and
 // the tests link; not in libheadlight and not installed.
+#include <exception>
 #include <optional>
 #include <span>
 #include <string>
@@ -13,6 +14,11 @@
 #include "headlight/options.hpp"
 
 namespace headlight {
+
+// The error's message as the command line words it: each setting the library
+// names (Error::settings(), "camera 3: ...", "raise max-memory") becomes its
+// flag ("--camera 3: ...", "raise --max-memory"). Other exceptions: what().
+std::string commandLineMessage(const std::exception& error);
 
 namespace detail {
 // "--name=value" / "--name" / "--no-name" against one spec: how it matches.
@@ -25,6 +31,18 @@ FlagMatch matchFlag(const OptionSpec& spec, std::string_view flagName);
 bool splitFlag(const std::string& arg, std::string& name, std::optional<std::string>& inlineValue);
 std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& defaultValue);
 }  // namespace detail
+
+// Sets a row from the command line: `text` parsed, or without text a
+// switch's `flagValue`. A SettingsError names the flag, not the setting.
+template <class Target>
+void setFromCommandLine(const Option<Target>& option, Target& target, const std::optional<std::string>& text,
+                        bool flagValue) {
+  try {
+    option.set(target, text ? parseOptionValue(option.spec, *text) : OptionValue(flagValue));
+  } catch (const SettingsError& error) {
+    throw SettingsError(commandLineMessage(error));
+  }
+}
 
 // Parses a command line against `options`; returns the positional
 // arguments in order. Values come as --name VALUE or --name=VALUE; Bool rows
@@ -56,14 +74,14 @@ std::vector<std::string> parseCommandLine(const std::vector<std::string>& args, 
     if (spec.type == OptionType::Switch || spec.type == OptionType::Bool) {
       if (inlineValue && (spec.type == OptionType::Switch || match.negated))
         throw SettingsError("--" + name + " takes no value");
-      found->set(target, inlineValue ? parseOptionValue(spec, *inlineValue) : OptionValue(!match.negated));
+      setFromCommandLine(*found, target, inlineValue, !match.negated);
       continue;
     }
     if (!inlineValue) {
       if (i + 1 >= args.size()) throw SettingsError("--" + name + " needs a value (" + optionValueName(spec) + ")");
       inlineValue = args[++i];
     }
-    found->set(target, parseOptionValue(spec, *inlineValue));
+    setFromCommandLine(*found, target, inlineValue, false);
   }
   return positional;
 }
