@@ -4,6 +4,8 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <functional>
 #include <set>
 #include <stdexcept>
@@ -11,8 +13,11 @@
 #include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "headlight/output.hpp"
+#include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
+#include "support/encoding.hpp"
 #include "support/images.hpp"
+#include "support/process.hpp"
 #include "support/temp_folder.hpp"
 #include "tune_command.hpp"
 
@@ -272,4 +277,83 @@ TEST_CASE("tune's default candidates are the bitmask method's, around the scene'
     if (config.settings.ssgi.thickness) thicknesses.insert(*config.settings.ssgi.thickness);
   }
   CHECK(thicknesses == std::set<float>{0.2f, 0.8f});
+}
+
+// Every command that loads a scene loads it through loadCommandScene with
+// --allow-external-paths and the limits (tools/support: command_setup), so a
+// scene render refuses, reference, bench and tune refuse with the same exit
+// code and message (bench and tune once called loadScene(name) without them).
+TEST_CASE("render, reference, bench and tune refuse a scene over a limit or with an external URI alike") {
+  test::TempFolder folder("scene-input");
+  // Two triangles; one with its buffer outside the asset folder.
+  std::vector<float> positions{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 1, 2, 0};
+  std::vector<unsigned char> bytes(positions.size() * sizeof(float));
+  std::memcpy(bytes.data(), positions.data(), bytes.size());
+  auto gltf = [&](const std::string& uri) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3","min":[0,0,0],"max":[2,2,0]}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":72}],"buffers":[{"byteLength":72,"uri":")" +
+           uri + R"("}]})";
+  };
+  const std::string inside = folder.write("assets/two.gltf", gltf("data:application/octet-stream;base64," +
+                                                                     test::base64(bytes))).string();
+  const std::string outside = folder.write("assets/outside.gltf", gltf("../outside.bin")).string();
+  const std::string out = test::shellQuote((folder.path() / "out").string());
+
+  struct Case {
+    std::string scene, flags, expected;
+  };
+  const Case cases[] = {
+      {inside, "--max-triangles 1", "(3 x --max-triangles 1) allowed; raise --max-triangles"},
+      {outside, "", "outside the asset folder"},
+      {outside, "--allow-external-paths", "outside.bin"},  // let through, then not found
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.flags);
+    const std::string args = test::shellQuote(c.scene) + " " + c.flags + " --out " + out;
+    const test::ProcessResult render = test::runHeadlight("render " + args);
+    INFO(render.output);
+    CHECK(render.exitCode == 1);
+    CHECK(render.output.find(c.expected) != std::string::npos);
+    if (c.flags == "--allow-external-paths") CHECK(render.output.find("outside the asset folder") == std::string::npos);
+    if (!referenceAvailable()) {
+      MESSAGE("reference, bench and tune need Embree, which this build lacks: their part is not checked");
+      continue;
+    }
+    for (const std::string command : {"reference", "bench", "tune --max-ao-error 1"}) {
+      const test::ProcessResult run = test::runHeadlight(command + " " + args);
+      CAPTURE(command);
+      CHECK(run.exitCode == render.exitCode);
+      CHECK(run.output == render.output);  // the same message, word for word
+    }
+    CHECK(!std::filesystem::exists(folder.path() / "out"));
+  }
+}
+
+TEST_CASE("--verbose says per command what it prints, and bench prints the header it promises") {
+  auto verboseLine = [](const std::string& help) {
+    const auto at = help.find("  --verbose ");
+    return at == std::string::npos ? std::string() : help.substr(at, help.find('\n', at) - at);
+  };
+  CHECK(verboseLine(cli::renderHelp()).find("each pass's time") != std::string::npos);
+  CHECK(verboseLine(cli::renderHelp(cli::CommandKind::Reference)).find("the scene's size") != std::string::npos);
+  CHECK(verboseLine(cli::benchHelp()).find("each scene's size") != std::string::npos);
+  CHECK(verboseLine(cli::tuneHelp()).find("every configuration") != std::string::npos);
+  for (const std::string& help : {cli::benchHelp(), cli::tuneHelp()})
+    CHECK(verboseLine(help).find("each pass's time") == std::string::npos);  // neither prints pass times
+
+  if (!referenceAvailable()) {
+    MESSAGE("bench needs Embree, which this build lacks: its --verbose run is not checked");
+    return;
+  }
+  test::TempFolder folder("bench-verbose");
+  const test::ProcessResult run = test::runHeadlight(
+      "bench builtin:cornell --verbose --resolutions 16x16 --sweep ssgi-samples=4 --repetitions 1 --warmup 0 "
+      "--reference-samples 16 --no-chart --out " +
+      test::shellQuote((folder.path() / "bench").string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("GL_RENDERER: ") != std::string::npos);
+  CHECK(run.output.find("scene: builtin:cornell: 8 instances") != std::string::npos);
 }

@@ -163,7 +163,7 @@ class SceneCache {
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_}, limits_)).first;
+    if (found == scenes_.end()) found = scenes_.emplace(name, loadCommandScene(name, allow_, limits_)).first;
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -411,7 +411,7 @@ int runRenderBatch(const RenderCommand& command) {
   auto cameraCount = [&](const std::string& scene) {
     auto found = countedScenes.find(scene);
     if (found == countedScenes.end())
-      found = countedScenes.emplace(scene, loadScene(scene, {command.allowExternalPaths}, command.limits)).first;
+      found = countedScenes.emplace(scene, loadCommandScene(scene, command.allowExternalPaths, command.limits)).first;
     return int(found->second.cameras.size());
   };
   const std::vector<Job> all = expandJobs(command, cameraCount);
@@ -484,14 +484,7 @@ int runRenderBatch(const RenderCommand& command) {
         preloadImageIo();
       }
       if (currentScene != job.scene) {
-        if (verbose) {
-          for (const auto& attempt : context->attempts()) std::cerr << "context: " << attempt << "\n";
-          std::cerr << "backend: " << backendName(context->backend()) << " (" << context->description() << ")\n"
-                    << "GL_RENDERER: " << context->renderer() << "\nGL_VERSION: " << context->version() << "\n"
-                    << "scene: " << scene.source << ": " << scene.instances.size() << " instances, "
-                    << scene.triangleCount() << " triangles, " << scene.lights.size() << " lights, "
-                    << scene.cameras.size() << " cameras\n";
-        }
+        if (verbose) std::cerr << verboseHeader(*context, scene);
         currentScene.clear();
         renderer->setScene(scene);
         currentScene = job.scene;

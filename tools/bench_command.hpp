@@ -67,6 +67,8 @@ struct BenchCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;
+  bool allowExternalPaths = false;  // as render's (sceneInputOptions)
+  ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
 };
 
 // Throws SettingsError for a bad flag or value.
