@@ -70,9 +70,13 @@ class Context {
   const std::vector<std::string>& attempts() const;
 
   // Makes this context current on the calling thread (it already is after
-  // construction). Throws ContextError when the platform refuses (an EGL
-  // context still current on another thread).
+  // construction), releasing whatever context of either backend this thread
+  // had current through another Context. Throws ContextError when the
+  // platform refuses (an EGL context still current on another thread).
   void makeCurrent();
+  // Makes no context current on the calling thread if this one is, so that
+  // another thread can make it current. No-op otherwise.
+  void releaseCurrent();
   // Whether this context is the calling thread's current one.
   bool isCurrent() const;
   // Throws ContextError naming `operation` unless isCurrent().
