@@ -389,7 +389,8 @@ PYBIND11_MODULE(headlight, m) {
           "values",
           [](py::object self) {
             py::list values;
-            for (const auto& [name, image] : self.cast<const Frame&>().targets()) values.append(imageArray(*image, self));
+            for (const auto& [name, image] : self.cast<const Frame&>().targets())
+              values.append(imageArray(*image, self));
             return values;
           },
           "the target arrays, in output order")

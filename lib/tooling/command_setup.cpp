@@ -22,6 +22,8 @@ std::string verboseHeader(const Context& context, const Scene& scene) {
   return text;
 }
 
-void writeTextFile(const std::filesystem::path& path, std::string_view text) { detail::writeTextAtomically(path, text); }
+void writeTextFile(const std::filesystem::path& path, std::string_view text) {
+  detail::writeTextAtomically(path, text);
+}
 
 }  // namespace headlight

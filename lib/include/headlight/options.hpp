@@ -28,7 +28,7 @@
 namespace headlight HEADLIGHT_PUBLIC {
 
 enum class OptionType {
-  Switch,  // a flag without a value (--verbose); sets true
+  Switch,  // a row without a value (a command's --verbose); setting it sets true
   Bool,    // --name / --no-name; as text on|off
   Int,     // an integer in [minimum, maximum]
   Float,   // a finite number in [minimum, maximum]
@@ -43,7 +43,9 @@ struct AutoValue {
 using OptionValue = std::variant<AutoValue, bool, std::int64_t, double, std::string>;
 
 struct OptionSpec {
-  std::string_view name{};  // the setting's name; CLI flag --<name>; EXR key headlight:setting:<name>; Python: '-' -> '_'
+  // The setting's name: errors use it, the CLI's flag is --<name>, the EXR key
+  // headlight:setting:<name>, the Python keyword <name> with '-' -> '_'.
+  std::string_view name{};
   OptionType type = OptionType::Text;
   std::string_view help{};
   double minimum = 0;  // Int, Float: inclusive range
