@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "context/context_access.hpp"
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
 #include "frame/frame_plan.hpp"
@@ -193,7 +194,8 @@ struct Renderer::Impl {
     if (settings.camera) {
       if (std::size_t(*settings.camera) >= scene.cameras.size())
         throw SettingsError("camera " + std::to_string(*settings.camera) + ": " + scene.source + " has " +
-                            std::to_string(scene.cameras.size()) + " camera(s)");
+                                std::to_string(scene.cameras.size()) + " camera(s)",
+                            {"camera"});
       return scene.cameras[std::size_t(*settings.camera)];
     }
     if (!scene.cameras.empty()) return scene.cameras.front();
@@ -249,14 +251,15 @@ struct Renderer::Impl {
 // a GL call through another thread's context (or none) would crash or draw
 // into the wrong context.
 Renderer::Renderer(Context& context)
-    : impl_((context.requireCurrent("headlight::Renderer"), context.lockBackend(), std::make_unique<Impl>(context))) {}
+    : impl_((context.requireCurrent("headlight::Renderer"), detail::ContextAccess::lockBackend(context),
+             std::make_unique<Impl>(context))) {}
 // The GL objects are deleted in their own context: a renderer destroyed on a
 // thread where another context is current makes its own current first (and
 // leaves it current); if that fails, the names are left to the context's
 // destruction rather than deleted in the wrong context.
 Renderer::~Renderer() {
   if (!impl_) return;
-  auto lock = impl_->context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl_->context);
   if (!impl_->context.isCurrent()) {
     try {
       impl_->context.makeCurrent();
@@ -270,7 +273,7 @@ Renderer::~Renderer() {
 void Renderer::setScene(Scene scene) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::setScene");
-  auto lock = impl.context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
   impl.gbufferPass.reset();
   impl.gpuScene.reset();
   try {
@@ -291,8 +294,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.sceneBytes = estimateSceneBytes(newScene);
   if (impl.sceneBytes > maxMemoryBytes(impl.limits))
     throw LimitError(newScene.source + ": the scene needs about " + std::to_string(impl.sceneBytes >> 20) +
-                     " MiB, more than --max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
-                     " MiB)");
+                         " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
+                         " MiB)",
+                     {"max-memory"});
   impl.scene = std::move(newScene);
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
@@ -321,7 +325,7 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
 Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
   Impl& impl = *impl_;
   impl.context.requireCurrent("Renderer::render");
-  auto lock = impl.context.lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
   if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
   Frame frame;
   frame.settings = resolve(settings);

@@ -7,13 +7,20 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "headlight/camera.hpp"
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/output.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
@@ -27,38 +34,89 @@ using namespace headlight;
 namespace {
 
 // A context and the renderer made with it; the renderer goes first.
+//
+// A Python object may be used from any thread, one call at a time: each call
+// takes `inUse` (with the GIL released, so a call on another thread can
+// finish), makes the context current on the calling thread and releases it
+// again at the end, so that the next call may come from another thread (an
+// EGL context current on one thread cannot be made current on another).
 struct PyRenderer {
   std::optional<Context> context;
   std::optional<Renderer> renderer;
+  std::mutex inUse;
+  ResourceLimits limits;
 
   explicit PyRenderer(const ContextOptions& options) {
     context.emplace(options);
     renderer.emplace(*context);
+    context->releaseCurrent();
   }
   ~PyRenderer() {
-    // Destruction takes the backend lock (Context::lockBackend), which a
+    // Destruction takes the backend lock (ContextAccess::lockBackend), which a
     // render on another thread may hold while it waits for the GIL: give the
     // GIL up first. ~Renderer makes the context current itself when it is not.
     py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(inUse);
     renderer.reset();
     context.reset();
   }
-  // A Python object may be used from any thread, one at a time (the GIL
-  // orders the calls); the context follows it.
-  void ensureCurrent() {
-    if (!context->isCurrent()) context->makeCurrent();
+
+  // Call with the GIL released.
+  template <class Work>
+  auto onThisThread(Work&& work) {
+    const std::lock_guard<std::mutex> lock(inUse);
+    struct Release {
+      Context& context;
+      ~Release() { context.releaseCurrent(); }
+    } release{*context};
+    context->makeCurrent();
+    return work();
   }
 };
+
+py::object own(const py::handle& value) { return py::reinterpret_borrow<py::object>(value); }
+
+std::string typeName(const py::handle& value) { return py::str(py::type::of(value).attr("__name__")); }
+
+bool isNumpyBool(const py::handle& value) {
+  return py::hasattr(value, "dtype") && py::str(value.attr("dtype").attr("kind")).cast<std::string>() == "b";
+}
+
+// Integers and reals as Python's numbers ABCs define them, so numpy's
+// scalars (np.int64(64), np.float32(0.5)) count as numbers; bool is not one.
+bool isIntegral(const py::handle& value) {
+  static const py::object integral = py::module_::import("numbers").attr("Integral");
+  return !py::isinstance<py::bool_>(value) && !isNumpyBool(value) && py::isinstance(value, integral);
+}
+bool isReal(const py::handle& value) {
+  static const py::object real = py::module_::import("numbers").attr("Real");
+  return !py::isinstance<py::bool_>(value) && !isNumpyBool(value) && py::isinstance(value, real);
+}
 
 // Python value -> the text the CLI would get, so the row parses and checks it.
 std::string optionText(const OptionSpec& spec, const py::handle& value) {
   if (value.is_none()) return "auto";
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
-  if (py::isinstance<py::int_>(value)) return py::str(value).cast<std::string>();
-  if (py::isinstance<py::float_>(value)) return py::repr(value).cast<std::string>();  // shortest exact text
+  if (py::isinstance<py::bool_>(value) || isNumpyBool(value)) return py::bool_(own(value)) ? "on" : "off";
+  if (isIntegral(value)) return py::str(py::int_(own(value))).cast<std::string>();
+  if (isReal(value)) return py::repr(py::float_(own(value))).cast<std::string>();  // shortest exact text
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  throw SettingsError(std::string(spec.name) + ": expected a number, bool, str or None (auto), got " +
-                      py::str(py::type::of(value)).cast<std::string>());
+  throw SettingsError(std::string(spec.name) + ": expected a number, bool, str or None (auto), got " + typeName(value),
+                      {std::string(spec.name)});
+}
+
+// A str argument, or a SettingsError naming `what` and the type given.
+std::string textArgument(const py::handle& value, std::string_view what, std::string_view expected) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  throw SettingsError(std::string(what) + ": expected " + std::string(expected) + ", got " + typeName(value) + " " +
+                          py::repr(value).cast<std::string>(),
+                      {std::string(what)});
+}
+
+// A path: str or os.PathLike.
+std::string pathArgument(const py::handle& value, std::string_view what) {
+  static const py::object pathLike = py::module_::import("os").attr("PathLike");
+  if (py::isinstance(value, pathLike)) return py::str(py::module_::import("os").attr("fspath")(value));
+  return textArgument(value, what, "a path (str or os.PathLike)");
 }
 
 std::string pythonName(std::string_view rowName) {
@@ -68,13 +126,115 @@ std::string pythonName(std::string_view rowName) {
   return name;
 }
 
+// render()'s keywords for an explicit camera, as Renderer::render's Camera
+// and job files take one: eye, target and up (a look-at) or a 4x4 world ->
+// view matrix, and a vertical field of view in degrees or an orthographic
+// view's height in world units.
+constexpr std::string_view kCameraKeywords[] = {"eye", "target", "up", "fov", "ortho_size", "view"};
+constexpr float kDefaultFovDegrees = 40.0f;  // job files' default
+
+bool isCameraKeyword(std::string_view name) {
+  return std::find(std::begin(kCameraKeywords), std::end(kCameraKeywords), name) != std::end(kCameraKeywords);
+}
+
+[[noreturn]] void badArgument(const std::string& name, const std::string& expected, const py::handle& value) {
+  throw SettingsError(name + ": expected " + expected + ", got " + py::repr(value).cast<std::string>(), {name});
+}
+
+float finiteNumber(const py::handle& value, const std::string& name, const std::string& expected) {
+  if (!isReal(value)) badArgument(name, expected, value);
+  const double number = py::float_(own(value));
+  if (!std::isfinite(number) || std::abs(number) > kMaxWorldMagnitude) badArgument(name, expected, value);
+  return float(number);
+}
+
+glm::vec3 vec3Argument(const py::handle& value, const std::string& name) {
+  const std::string expected = "3 finite numbers (x, y, z)";
+  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value)) {
+    if (!py::hasattr(value, "__len__") || !py::hasattr(value, "__getitem__")) badArgument(name, expected, value);
+  }
+  if (py::len(value) != 3) badArgument(name, expected, value);
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i) v[i] = finiteNumber(value[py::int_(i)], name, expected);
+  return v;
+}
+
+glm::mat4 matrixArgument(const py::handle& value, const std::string& name) {
+  const std::string expected = "a 4x4 matrix of finite numbers (rows first, as numpy writes it)";
+  py::array_t<double> array;
+  try {
+    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!array || array.ndim() != 2 || array.shape(0) != 4 || array.shape(1) != 4) badArgument(name, expected, value);
+  glm::mat4 m;
+  const auto in = array.unchecked<2>();
+  for (int row = 0; row < 4; ++row)
+    for (int column = 0; column < 4; ++column) {
+      if (!std::isfinite(in(row, column))) badArgument(name, expected, value);
+      m[column][row] = float(in(row, column));  // glm is column-major
+    }
+  return m;
+}
+
+std::optional<Camera> cameraFromKwargs(const py::kwargs& kwargs) {
+  auto given = [&](const char* name) { return kwargs.contains(name) && !kwargs[name].is_none(); };
+  const bool lookAt = given("eye") || given("target");
+  const bool view = given("view");
+  if (!lookAt && !view) {
+    for (const char* name : {"up", "fov", "ortho_size"})
+      if (given(name)) throw SettingsError(std::string(name) + ": needs eye and target, or view", {name});
+    return std::nullopt;
+  }
+  if (lookAt && view) throw SettingsError("eye/target and view: give one", {"eye", "target", "view"});
+  if (lookAt && !(given("eye") && given("target")))
+    throw SettingsError("eye and target go together", {"eye", "target"});
+  if (given("camera")) throw SettingsError("camera (an index) and an explicit camera: give one", {"camera"});
+  if (given("fov") && given("ortho_size"))
+    throw SettingsError("fov and ortho_size: give one (perspective or orthographic)", {"fov", "ortho_size"});
+  Camera camera;
+  camera.name = "Python camera";
+  if (lookAt) {
+    const glm::vec3 eye = vec3Argument(kwargs["eye"], "eye");
+    const glm::vec3 target = vec3Argument(kwargs["target"], "target");
+    const glm::vec3 up = given("up") ? vec3Argument(kwargs["up"], "up") : glm::vec3(0.0f, 1.0f, 0.0f);
+    const glm::vec3 forward = target - eye;
+    if (glm::length(forward) == 0.0f) throw SettingsError("eye and target: the same point", {"eye", "target"});
+    if (glm::length(glm::cross(glm::normalize(forward), up)) < 1e-6f)
+      throw SettingsError("up: parallel to the view direction (or zero)", {"up"});
+    camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, up));
+  } else {
+    const glm::mat4 viewMatrix = matrixArgument(kwargs["view"], "view");
+    const float determinant = glm::determinant(viewMatrix);
+    if (!std::isfinite(determinant) || std::abs(determinant) < 1e-12f)
+      throw SettingsError("view: not invertible (determinant " + std::to_string(determinant) + ")", {"view"});
+    camera.worldFromCamera = glm::inverse(viewMatrix);
+  }
+  if (given("ortho_size")) {
+    const float height = finiteNumber(kwargs["ortho_size"], "ortho_size", "the view's height in world units, > 0");
+    if (!(height > 0.0f)) badArgument("ortho_size", "the view's height in world units, > 0", kwargs["ortho_size"]);
+    camera.projection = Camera::Projection::Orthographic;
+    camera.ymag = camera.xmag = 0.5f * height;
+  } else {
+    const float fov =
+        given("fov") ? finiteNumber(kwargs["fov"], "fov", "degrees in (0, 180)") : kDefaultFovDegrees;
+    if (!(fov > 0.0f && fov < 180.0f)) badArgument("fov", "degrees in (0, 180)", kwargs["fov"]);
+    camera.yfov = glm::radians(fov);
+  }
+  return camera;
+}
+
 RenderSettings settingsFromKwargs(const py::kwargs& kwargs) {
   RenderSettings settings;
-  if (kwargs.contains("preset")) applyPreset(settings, kwargs["preset"].cast<std::string>());
+  if (kwargs.contains("preset")) {
+    std::string known;
+    for (std::string_view name : presetNames()) (known += known.empty() ? "" : ", ") += name;
+    applyPreset(settings, textArgument(kwargs["preset"], "preset", "one of " + known + " (a str)"));
+  }
   const auto rows = settingOptions();
   for (const auto& [key, value] : kwargs) {
     std::string name = key.cast<std::string>();
-    if (name == "preset") continue;
+    if (name == "preset" || isCameraKeyword(name)) continue;
     for (char& c : name)
       if (c == '_') c = '-';
     const Option<RenderSettings>* row = nullptr;
@@ -83,11 +243,45 @@ RenderSettings settingsFromKwargs(const py::kwargs& kwargs) {
     if (row == nullptr) {
       std::string known = "preset";
       for (const auto& option : rows) known += ", " + pythonName(option.spec.name);
+      for (std::string_view keyword : kCameraKeywords) (known += ", ") += keyword;
       throw SettingsError("unknown setting '" + key.cast<std::string>() + "' (known: " + known + ")");
     }
     row->set(settings, parseOptionValue(row->spec, optionText(row->spec, value)));
   }
   return settings;
+}
+
+// set_scene's limit keywords: the rows of limitOptions() ('-' -> '_').
+ResourceLimits limitsFromKwargs(const py::kwargs& kwargs) {
+  ResourceLimits limits;
+  for (const auto& [key, value] : kwargs) {
+    std::string name = key.cast<std::string>();
+    for (char& c : name)
+      if (c == '_') c = '-';
+    const Option<ResourceLimits>* row = nullptr;
+    for (const auto& option : limitOptions())
+      if (option.spec.name == name) row = &option;
+    if (row == nullptr) {
+      std::string known = "allow_external_paths";
+      for (const auto& option : limitOptions()) known += ", " + pythonName(option.spec.name);
+      throw SettingsError("unknown set_scene keyword '" + key.cast<std::string>() + "' (known: " + known + ")");
+    }
+    row->set(limits, parseOptionValue(row->spec, optionText(row->spec, value)));
+  }
+  return limits;
+}
+
+// The frame's non-empty targets by name, in frameTargets() order.
+const ImageF* findTarget(const Frame& frame, const std::string& name) {
+  const FrameTarget* row = findFrameTarget(name);
+  if (row == nullptr || row->image == nullptr || (frame.*(row->image)).empty()) return nullptr;
+  return &(frame.*(row->image));
+}
+
+py::list targetNames(const Frame& frame) {
+  py::list names;
+  for (const auto& [name, image] : frame.targets()) names.append(py::str(name));
+  return names;
 }
 
 py::array_t<float> matrix(const glm::mat4& m) {
@@ -118,31 +312,41 @@ PYBIND11_MODULE(headlight, m) {
   // render, hung (tools/thread_stress.py).
   py::module_::import("numpy");
 
-  // The library's exception classes, with its messages. SettingsError is a
-  // ValueError too; the others are RuntimeErrors.
+  // Every exception class the library throws (headlight/error.hpp), with its
+  // messages, under headlight.Error. SettingsError is a ValueError too; the
+  // others are RuntimeErrors. An error's `settings` attribute lists the
+  // settings its message names (Error::settings()).
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
   static py::exception<ContextError> contextError(m, "ContextError", error.ptr());
   static py::exception<SceneError> sceneError(m, "SceneError", error.ptr());
   static py::exception<IoError> ioError(m, "IoError", error.ptr());
   static py::exception<GlError> glError(m, "GlError", error.ptr());
+  static py::exception<LimitError> limitError(m, "LimitError", error.ptr());
   static py::handle settingsError =
       PyErr_NewException("headlight.SettingsError", py::make_tuple(error, py::handle(PyExc_ValueError)).ptr(), nullptr);
   m.attr("SettingsError") = settingsError;
   py::register_exception_translator([](std::exception_ptr p) {
+    auto raise = [](py::handle type, const Error& e) {
+      py::object instance = type(py::str(e.what()));
+      instance.attr("settings") = py::cast(e.settings());
+      PyErr_SetObject(type.ptr(), instance.ptr());
+    };
     try {
       if (p) std::rethrow_exception(p);
     } catch (const ContextError& e) {
-      PyErr_SetString(contextError.ptr(), e.what());
+      raise(contextError, e);
     } catch (const SceneError& e) {
-      PyErr_SetString(sceneError.ptr(), e.what());
+      raise(sceneError, e);
     } catch (const IoError& e) {
-      PyErr_SetString(ioError.ptr(), e.what());
+      raise(ioError, e);
     } catch (const GlError& e) {
-      PyErr_SetString(glError.ptr(), e.what());
+      raise(glError, e);
+    } catch (const LimitError& e) {
+      raise(limitError, e);
     } catch (const SettingsError& e) {
-      PyErr_SetString(settingsError.ptr(), e.what());
+      raise(settingsError, e);
     } catch (const Error& e) {
-      PyErr_SetString(error.ptr(), e.what());
+      raise(error, e);
     }
   });
 
@@ -158,16 +362,55 @@ PYBIND11_MODULE(headlight, m) {
             return targets;
           },
           "dict: target name ('position', 'normal', ..., 'lit') -> array; empty targets are left out")
+      // A read-only mapping of target name -> array (collections.abc.Mapping
+      // is registered below): keys, values, items, get, in, len, iteration.
       .def(
           "__getitem__",
-          [](py::object self, const std::string& name) {
-            const FrameTarget* row = findFrameTarget(name);
+          [](py::object self, const py::object& key) {
             const Frame& frame = self.cast<const Frame&>();
-            if (row == nullptr || row->image == nullptr || (frame.*(row->image)).empty())
-              throw py::key_error("no target '" + name + "' in this frame");
-            return imageArray(frame.*(row->image), self);
+            const ImageF* image = py::isinstance<py::str>(key) ? findTarget(frame, key.cast<std::string>()) : nullptr;
+            if (image == nullptr) {
+              std::string known;
+              for (const auto& [name, target] : frame.targets()) (known += known.empty() ? "" : ", ") += name;
+              throw py::key_error("no target " + py::repr(key).cast<std::string>() + " in this frame (it has " +
+                                  known + ")");
+            }
+            return imageArray(*image, self);
           },
           "frame['lit']: one target's array")
+      .def("__len__", [](const Frame& frame) { return frame.targets().size(); })
+      .def("__contains__",
+           [](const Frame& frame, const py::object& key) {
+             return py::isinstance<py::str>(key) && findTarget(frame, key.cast<std::string>()) != nullptr;
+           })
+      .def("__iter__", [](const Frame& frame) { return py::iter(targetNames(frame)); })
+      .def("keys", [](const Frame& frame) { return targetNames(frame); }, "the target names, in output order")
+      .def(
+          "values",
+          [](py::object self) {
+            py::list values;
+            for (const auto& [name, image] : self.cast<const Frame&>().targets())
+              values.append(imageArray(*image, self));
+            return values;
+          },
+          "the target arrays, in output order")
+      .def(
+          "items",
+          [](py::object self) {
+            py::list items;
+            for (const auto& [name, image] : self.cast<const Frame&>().targets())
+              items.append(py::make_tuple(py::str(name), imageArray(*image, self)));
+            return items;
+          },
+          "(name, array) pairs, in output order")
+      .def(
+          "get",
+          [](py::object self, const py::object& key, const py::object& fallback) -> py::object {
+            const Frame& frame = self.cast<const Frame&>();
+            const ImageF* image = py::isinstance<py::str>(key) ? findTarget(frame, key.cast<std::string>()) : nullptr;
+            return image ? py::object(imageArray(*image, self)) : fallback;
+          },
+          py::arg("key"), py::arg("default") = py::none())
       .def_property_readonly(
           "channels",
           [](const Frame& frame) {
@@ -207,27 +450,39 @@ PYBIND11_MODULE(headlight, m) {
       .def_property_readonly("height", [](const Frame& f) { return f.settings.height; })
       .def(
           "write",
-          [](const Frame& frame, const std::filesystem::path& folder) {
+          [](const Frame& frame, const py::object& folder) {
+            const std::filesystem::path path = pathArgument(folder, "folder");
             std::vector<std::filesystem::path> paths;
-            for (const WrittenFile& file : writeFrame(frame, folder)) paths.push_back(file.path);
+            py::gil_scoped_release release;
+            for (const WrittenFile& file : writeFrame(frame, path)) paths.push_back(file.path);
             return paths;
           },
           py::arg("folder"),
           "writes <folder>/<target>.exr and preview.png as `headlight render` does; returns the paths");
 
   py::class_<PyRenderer>(m, "Renderer",
-                         "A GL context and a renderer. Use one per thread at a time; renders release the GIL.")
-      .def(py::init([](const std::string& backend, const py::object& device, bool strict) {
+                         "A GL context and a renderer. Usable from any thread, one call at a time (the context is "
+                         "made current on the calling thread for each call); calls release the GIL.")
+      .def(py::init([](const py::object& backend, const py::object& device, const py::object& strict) {
              ContextOptions options;
-             options.backend = parseBackend(backend);
-             options.errorPolicy = strict ? GlErrorPolicy::Throw : GlErrorPolicy::Warn;
-             if (py::isinstance<py::int_>(device)) {
-               options.eglDevice = device.cast<int>();
-               if (options.eglDevice < 0) throw SettingsError("device: expected an index >= 0 or a name");
+             options.backend = parseBackend(textArgument(backend, "backend", "'auto', 'egl' or 'osmesa'"));
+             if (!py::isinstance<py::bool_>(strict) && !isNumpyBool(strict))
+               throw SettingsError("strict: expected True or False, got " + py::repr(strict).cast<std::string>(),
+                                   {"strict"});
+             options.errorPolicy = py::bool_(strict) ? GlErrorPolicy::Throw : GlErrorPolicy::Warn;
+             if (isIntegral(device)) {
+               const py::int_ index(device);
+               if (index < py::int_(0) || index > py::int_(INT_MAX))
+                 throw SettingsError("device: expected an EGL device index 0.." + std::to_string(INT_MAX) +
+                                         " or a name, got " + py::repr(index).cast<std::string>(),
+                                     {"device"});
+               options.eglDevice = index.cast<int>();
              } else if (py::isinstance<py::str>(device)) {
                options.eglDeviceName = device.cast<std::string>();
              } else if (!device.is_none()) {
-               throw SettingsError("device: expected None, an EGL device index or an EGL device name");
+               throw SettingsError("device: expected None, an EGL device index or an EGL device name, got " +
+                                       py::repr(device).cast<std::string>(),
+                                   {"device"});
              }
              py::gil_scoped_release release;
              return std::make_unique<PyRenderer>(options);
@@ -237,23 +492,41 @@ PYBIND11_MODULE(headlight, m) {
            "(e.g. 'EGL_MESA_device_software', '/dev/dri/renderD128'); strict: GL errors raise GlError")
       .def(
           "set_scene",
-          [](PyRenderer& self, const std::string& scene, bool allowExternalPaths) {
+          [](PyRenderer& self, const py::object& scene, const py::object& allowExternalPaths,
+             const py::kwargs& kwargs) {
+            SceneLoadOptions options;
+            if (!py::isinstance<py::bool_>(allowExternalPaths))
+              throw SettingsError("allow_external_paths: expected True or False, got " +
+                                      py::repr(allowExternalPaths).cast<std::string>(),
+                                  {"allow-external-paths"});
+            options.allowExternalPaths = allowExternalPaths.cast<bool>();
+            const std::string name = pathArgument(scene, "scene");
+            const ResourceLimits limits = limitsFromKwargs(kwargs);
             py::gil_scoped_release release;
-            self.ensureCurrent();
-            self.renderer->setScene(loadScene(scene, {.allowExternalPaths = allowExternalPaths}));
+            Scene loaded = loadScene(name, options, limits);
+            self.onThisThread([&] {
+              self.renderer->setLimits(limits);
+              self.renderer->setScene(std::move(loaded));
+            });
           },
           py::arg("scene"), py::arg("allow_external_paths") = false,
-          "a glTF file (.gltf/.glb) or 'builtin:cornell' / 'builtin:spheres'")
+          "set_scene(scene, allow_external_paths=False, **limits): a glTF file (.gltf/.glb) or 'builtin:cornell' / "
+          "'builtin:spheres'; limits are limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
+          "max_triangles, max_texels; over one: LimitError")
       .def(
           "render",
           [](PyRenderer& self, const py::kwargs& kwargs) {
+            const std::optional<Camera> camera = cameraFromKwargs(kwargs);
             RenderSettings settings = settingsFromKwargs(kwargs);
             py::gil_scoped_release release;
-            self.ensureCurrent();
-            return std::make_shared<Frame>(self.renderer->render(settings));
+            return self.onThisThread(
+                [&] { return std::make_shared<Frame>(self.renderer->render(settings, camera ? &*camera : nullptr)); });
           },
-          "render(width=640, height=480, **settings) -> Frame; settings are settingOptions() rows "
-          "('-' -> '_'), e.g. ssgi_samples=16, ssgi_radius=None (auto), shadows=False, preset='fast'")
+          "render(width=640, height=480, **settings, eye=None, target=None, up=(0, 1, 0), fov=40, ortho_size=None, "
+          "view=None) -> Frame. Settings are settingOptions() rows ('-' -> '_'), e.g. ssgi_samples=16, "
+          "ssgi_radius=None (auto), shadows=False, preset='fast'. An explicit camera: eye and target (and up), or "
+          "view (4x4 world -> view matrix); with fov (vertical, degrees) or ortho_size (the view's height in world "
+          "units, orthographic). Without one: the scene's camera (the camera setting), or one fitted to the bounds.")
       .def_property_readonly("backend",
                              [](PyRenderer& self) { return std::string(backendName(self.context->backend())); })
       .def_property_readonly("device", [](PyRenderer& self) { return self.context->description(); })
@@ -277,4 +550,7 @@ PYBIND11_MODULE(headlight, m) {
       },
       "every render() keyword: name, value type, default, help, and what 'auto' (None) means");
   m.def("builtin_scenes", &builtinSceneNames);
+
+  // Frame is a read-only mapping of target name -> array.
+  py::module_::import("collections.abc").attr("Mapping").attr("register")(m.attr("Frame"));
 }

@@ -21,6 +21,7 @@
 #include "headlight/finite.hpp"
 #include "headlight/output.hpp"
 #include "output/atomic_file.hpp"
+#include "output/frame_set.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "headlight/bench.hpp"
+#include "tooling/bench.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
 

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "context/context_access.hpp"
 #include "gl/shader_library.hpp"
-#include "headlight/bench.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_builder.hpp"
@@ -19,6 +19,7 @@
 #include "headlight/shapes.hpp"
 #include "shared_layout.h"
 #include "support/gl.hpp"
+#include "tooling/bench.hpp"
 
 using namespace headlight;
 using namespace headlight::test;
@@ -464,7 +465,7 @@ TEST_CASE("a GL error is reported as GlError naming the operation") {
   // Core profile: binding a name that glGen*/glCreate* never returned is
   // GL_INVALID_OPERATION.
   glBindTexture(GL_TEXTURE_2D, 987654);
-  CHECK(context.pendingErrorCount() >= 1);  // the KHR_debug callback saw it
+  CHECK(headlight::detail::ContextAccess::pendingErrorCount(context) >= 1);  // the KHR_debug callback saw it
   try {
     context.checkErrors("deliberate bad bind");
     FAIL("checkErrors did not throw");
@@ -492,7 +493,7 @@ TEST_CASE("a case that leaves a GL error pending is failed by the end-of-case ch
   // and should_fail turns that failure into a pass (and its absence into a
   // failure). The check clears the error, so the next case starts clean.
   glBindTexture(GL_TEXTURE_2D, 987654);
-  CHECK(sharedContext().pendingErrorCount() >= 1);
+  CHECK(detail::ContextAccess::pendingErrorCount(sharedContext()) >= 1);
 }
 
 TEST_CASE("SSGI off: no ssgi target, and the image SSGI would give with no occlusion and no bounce") {

@@ -227,10 +227,10 @@ TEST_SUITE("hostile") {
     ResourceLimits limits;
     CHECK_NOTHROW(loadGltf(scene, {}, limits));
     limits.maxTriangles = 0;  // below the row's minimum, but the struct takes it: no triangle fits
-    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("--max-triangles"), LimitError);
+    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("raise max-triangles"), LimitError);
     limits = {};
     limits.maxInstances = 0;
-    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("--max-instances"), LimitError);
+    CHECK_THROWS_WITH_AS(loadGltf(scene, {}, limits), doctest::Contains("raise max-instances"), LimitError);
 
     json textured = hostile::triangleScene();
     textured["images"] = {{{"uri", hostile::kOnePixelPng}}, {{"uri", hostile::kOnePixelPng}}};
@@ -243,7 +243,7 @@ TEST_SUITE("hostile") {
     limits = {};
     limits.maxMemoryMiB = 64;
     CHECK_NOTHROW(checkFrameFits(64, 64, 0, ResourceLimits{}));
-    CHECK_THROWS_WITH_AS(checkFrameFits(8192, 8192, 0, limits), doctest::Contains("--max-memory"), LimitError);
+    CHECK_THROWS_WITH_AS(checkFrameFits(8192, 8192, 0, limits), doctest::Contains("raise max-memory"), LimitError);
   }
 
   TEST_CASE("finite checks count, name and clamp non-finite values") {

@@ -4,13 +4,20 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <functional>
 #include <set>
+#include <stdexcept>
 
 #include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "headlight/output.hpp"
+#include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
+#include "support/encoding.hpp"
 #include "support/images.hpp"
+#include "support/process.hpp"
 #include "support/temp_folder.hpp"
 #include "tune_command.hpp"
 
@@ -112,7 +119,7 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
     if (spec.autoMeaning.empty()) CHECK_THROWS_AS(parseOptionValue(spec, "auto"), SettingsError);
     if (spec.type == OptionType::Int || spec.type == OptionType::Float) {
       const std::string below = formatOptionValue(spec, spec.minimum - 1.0);
-      const std::string message = "--" + std::string(spec.name) + ": must be in";
+      const std::string message = std::string(spec.name) + ": must be in";
       CHECK_THROWS_WITH_AS(row.set(settings, parseOptionValue(spec, below)), doctest::Contains(message.c_str()),
                            SettingsError);
       CHECK_THROWS_AS(parseOptionValue(spec, "nan"), SettingsError);
@@ -126,19 +133,58 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
                        doctest::Contains("unknown setting 'ssgi-radios'"), SettingsError);
 }
 
+// The library's messages name settings, never flags; Error::settings() lists
+// them, and the CLI words them as flags (commandLineMessage).
+static std::string messageOf(const std::function<void()>& call, std::vector<std::string>* settings = nullptr,
+                      std::string* commandLine = nullptr) {
+  try {
+    call();
+  } catch (const Error& error) {
+    if (settings) *settings = error.settings();
+    if (commandLine) *commandLine = commandLineMessage(error);
+    return error.what();
+  }
+  return "no error";
+}
+
 TEST_CASE("validate() reads the table's ranges; the rules between settings stay") {
   RenderSettings settings;
   CHECK_NOTHROW(settings.validate());
   settings.ssgi.sampleCount = 65;
-  CHECK_THROWS_WITH_AS(settings.validate(), "--ssgi-samples: must be in 1..64, got 65", SettingsError);
+  std::vector<std::string> named;
+  std::string flags;
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags) == "ssgi-samples: must be in 1..64, got 65");
+  CHECK(named == std::vector<std::string>{"ssgi-samples"});
+  CHECK(flags == "--ssgi-samples: must be in 1..64, got 65");
   settings = {};
   settings.ssgi.radius = -1.0f;
-  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("--ssgi-radius: must be in"), SettingsError);
+  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("ssgi-radius: must be in"), SettingsError);
   settings = {};
   settings.ssgi.resolution = SsgiResolution::Half;
   settings.ssgi.blur = false;
-  CHECK_THROWS_WITH_AS(settings.validate(), doctest::Contains("--no-ssgi-blur needs --ssgi-resolution full"),
-                       SettingsError);
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags).find("ssgi-blur off needs ssgi-resolution full") == 0);
+  CHECK(named == std::vector<std::string>{"ssgi-blur", "ssgi-resolution"});
+  CHECK(flags.find("--ssgi-blur off needs --ssgi-resolution full") == 0);
+  settings = {};
+  settings.width = 8193;
+  settings.height = 8193;
+  CHECK(messageOf([&] { settings.validate(); }, &named, &flags).find("width 8193 x height 8193: at most") == 0);
+  CHECK(flags.find("--width 8193 x --height 8193: at most") == 0);
+}
+
+TEST_CASE("commandLineMessage words only the settings an error names, and only where they stand alone") {
+  CHECK(commandLineMessage(SettingsError("camera 3: a/camera.gltf has 1 camera(s)", {"camera"})) ==
+        "--camera 3: a/camera.gltf has 1 camera(s)");
+  CHECK(commandLineMessage(LimitError("x.gltf: 9 MiB, more than max-memory allows (8 MiB); raise max-memory",
+                                      {"max-memory"})) ==
+        "x.gltf: 9 MiB, more than --max-memory allows (8 MiB); raise --max-memory");
+  CHECK(commandLineMessage(SettingsError("width 3: too small")) == "width 3: too small");  // names nothing
+  CHECK(commandLineMessage(std::runtime_error("camera 3")) == "camera 3");
+  RenderSettings settings;
+  applyPreset(settings, "default");
+  std::vector<std::string> named;
+  CHECK(messageOf([&] { applyPreset(settings, "slow"); }, &named).find("preset: expected one of") == 0);
+  CHECK(named == std::vector<std::string>{"preset"});
 }
 
 TEST_CASE("bench sweeps any setting row; the product skips what the settings refuse") {
@@ -203,7 +249,7 @@ TEST_CASE("settings file lines: spaces, comments and CRLF are accepted; a bad li
   CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 9\n= 3\n", "w.settings"),
                        doctest::Contains("w.settings:2: expected NAME = VALUE"), SettingsError);
   CHECK_THROWS_WITH_AS(applySettingsFileText(settings, "ssgi-steps = 99\n", "w.settings"),
-                       doctest::Contains("w.settings:1: --ssgi-steps"), SettingsError);
+                       doctest::Contains("w.settings:1: ssgi-steps: must be in"), SettingsError);
 }
 
 TEST_CASE("tune chooses the least frame time among the rows within the AO bound") {
@@ -231,4 +277,83 @@ TEST_CASE("tune's default candidates are the bitmask method's, around the scene'
     if (config.settings.ssgi.thickness) thicknesses.insert(*config.settings.ssgi.thickness);
   }
   CHECK(thicknesses == std::set<float>{0.2f, 0.8f});
+}
+
+// Every command that loads a scene loads it through loadCommandScene with
+// --allow-external-paths and the limits (tools/support: command_setup), so a
+// scene render refuses, reference, bench and tune refuse with the same exit
+// code and message (bench and tune once called loadScene(name) without them).
+TEST_CASE("render, reference, bench and tune refuse a scene over a limit or with an external URI alike") {
+  test::TempFolder folder("scene-input");
+  // Two triangles; one with its buffer outside the asset folder.
+  std::vector<float> positions{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0, 1, 2, 0};
+  std::vector<unsigned char> bytes(positions.size() * sizeof(float));
+  std::memcpy(bytes.data(), positions.data(), bytes.size());
+  auto gltf = [&](const std::string& uri) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":6,"type":"VEC3","min":[0,0,0],"max":[2,2,0]}],)"
+           R"("bufferViews":[{"buffer":0,"byteLength":72}],"buffers":[{"byteLength":72,"uri":")" +
+           uri + R"("}]})";
+  };
+  const std::string inside = folder.write("assets/two.gltf", gltf("data:application/octet-stream;base64," +
+                                                                     test::base64(bytes))).string();
+  const std::string outside = folder.write("assets/outside.gltf", gltf("../outside.bin")).string();
+  const std::string out = test::shellQuote((folder.path() / "out").string());
+
+  struct Case {
+    std::string scene, flags, expected;
+  };
+  const Case cases[] = {
+      {inside, "--max-triangles 1", "(3 x --max-triangles 1) allowed; raise --max-triangles"},
+      {outside, "", "outside the asset folder"},
+      {outside, "--allow-external-paths", "outside.bin"},  // let through, then not found
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.flags);
+    const std::string args = test::shellQuote(c.scene) + " " + c.flags + " --out " + out;
+    const test::ProcessResult render = test::runHeadlight("render " + args);
+    INFO(render.output);
+    CHECK(render.exitCode == 1);
+    CHECK(render.output.find(c.expected) != std::string::npos);
+    if (c.flags == "--allow-external-paths") CHECK(render.output.find("outside the asset folder") == std::string::npos);
+    if (!referenceAvailable()) {
+      MESSAGE("reference, bench and tune need Embree, which this build lacks: their part is not checked");
+      continue;
+    }
+    for (const std::string command : {"reference", "bench", "tune --max-ao-error 1"}) {
+      const test::ProcessResult run = test::runHeadlight(command + " " + args);
+      CAPTURE(command);
+      CHECK(run.exitCode == render.exitCode);
+      CHECK(run.output == render.output);  // the same message, word for word
+    }
+    CHECK(!std::filesystem::exists(folder.path() / "out"));
+  }
+}
+
+TEST_CASE("--verbose says per command what it prints, and bench prints the header it promises") {
+  auto verboseLine = [](const std::string& help) {
+    const auto at = help.find("  --verbose ");
+    return at == std::string::npos ? std::string() : help.substr(at, help.find('\n', at) - at);
+  };
+  CHECK(verboseLine(cli::renderHelp()).find("each pass's time") != std::string::npos);
+  CHECK(verboseLine(cli::renderHelp(cli::CommandKind::Reference)).find("the scene's size") != std::string::npos);
+  CHECK(verboseLine(cli::benchHelp()).find("each scene's size") != std::string::npos);
+  CHECK(verboseLine(cli::tuneHelp()).find("every configuration") != std::string::npos);
+  for (const std::string& help : {cli::benchHelp(), cli::tuneHelp()})
+    CHECK(verboseLine(help).find("each pass's time") == std::string::npos);  // neither prints pass times
+
+  if (!referenceAvailable()) {
+    MESSAGE("bench needs Embree, which this build lacks: its --verbose run is not checked");
+    return;
+  }
+  test::TempFolder folder("bench-verbose");
+  const test::ProcessResult run = test::runHeadlight(
+      "bench builtin:cornell --verbose --resolutions 16x16 --sweep ssgi-samples=4 --repetitions 1 --warmup 0 "
+      "--reference-samples 16 --no-chart --out " +
+      test::shellQuote((folder.path() / "bench").string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("GL_RENDERER: ") != std::string::npos);
+  CHECK(run.output.find("scene: builtin:cornell: 8 instances") != std::string::npos);
 }

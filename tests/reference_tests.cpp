@@ -558,7 +558,7 @@ TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite
   const Scene scene = cornerScene();
   const Frame frame = uniformFrame(2, 2, ShadingPoint{});
   CHECK_THROWS_WITH_AS(traceReference(scene, frame, referenceSettings(0, 1.0f)),
-                       "--reference-samples: must be in 1..1048576, got 0", SettingsError);
+                       "reference-samples: must be in 1..1048576, got 0", SettingsError);
   CHECK_THROWS_AS(traceReference(scene, frame, referenceSettings(1048577, 1.0f)), SettingsError);
   CHECK_THROWS_WITH_AS(traceReference(scene, frame, referenceSettings(16, 0.0f)),
                        doctest::Contains("radius must be a finite number > 0"), SettingsError);

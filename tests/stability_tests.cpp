@@ -6,6 +6,7 @@
 // same numbers as the doc's table.
 #include <doctest/doctest.h>
 
+#include "context/context_access.hpp"
 #include "headlight/reference.hpp"
 #include "stability/stability.hpp"
 #include "support/gl.hpp"
@@ -41,7 +42,7 @@ void checkEveryMethod(CaseFunction run) {
       }
     }
   }
-  CHECK(test::sharedContext().pendingErrorCount() == 0);
+  CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ TEST_CASE("two EGL and two OSMesa renderers on four threads at once render corre
       failures.push_back(std::string(backendName(backend)) + ": " + error.what());
     }
   };
-  // Same-backend renderers take turns (Context::lockBackend); EGL and OSMesa
+  // Same-backend renderers take turns (detail::ContextAccess::lockBackend); EGL and OSMesa
   // run at the same time.
   std::thread threads[] = {std::thread(work, 0, Backend::Egl), std::thread(work, 1, Backend::OSMesa),
                            std::thread(work, 2, Backend::Egl), std::thread(work, 3, Backend::OSMesa)};

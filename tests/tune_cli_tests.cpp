@@ -139,7 +139,7 @@ TEST_CASE("a malformed settings file is a usage error naming the file and the li
   const Case cases[] = {
       {"# fine\nssgi-slices = 2\nssgi-steps 5\n", "bad.settings:3: expected NAME = VALUE"},
       {"ssgi-slices = 2\nssgi-slicez = 3\n", "bad.settings:2: unknown setting 'ssgi-slicez'"},
-      {"\nssgi-steps = many\n", "bad.settings:2: --ssgi-steps: expected"},
+      {"\nssgi-steps = many\n", "bad.settings:2: ssgi-steps: expected"},  // the file's own name for it
       {"ssgi-steps = 4\nssgi-steps = 8\n", "bad.settings:2: 'ssgi-steps' is already set on line 1"},
   };
   for (const Case& c : cases) {

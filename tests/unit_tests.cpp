@@ -8,6 +8,7 @@
 
 #include "headlight/camera.hpp"
 #include "headlight/output.hpp"
+#include "output/tonemap.hpp"
 
 using namespace headlight;
 

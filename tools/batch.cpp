@@ -25,6 +25,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/targets.hpp"
+#include "output/fingerprint.hpp"
 #include "progress.hpp"
 
 namespace headlight::cli {
@@ -162,7 +163,7 @@ class SceneCache {
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_}, limits_)).first;
+    if (found == scenes_.end()) found = scenes_.emplace(name, loadCommandScene(name, allow_, limits_)).first;
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -321,7 +322,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
         count = cameraCount(scene);
       } catch (const Error& error) {
         Job bad = base;
-        bad.error = error.what();
+        bad.error = commandLineMessage(error);
         jobs.push_back(bad);
         continue;
       }
@@ -410,7 +411,7 @@ int runRenderBatch(const RenderCommand& command) {
   auto cameraCount = [&](const std::string& scene) {
     auto found = countedScenes.find(scene);
     if (found == countedScenes.end())
-      found = countedScenes.emplace(scene, loadScene(scene, {command.allowExternalPaths}, command.limits)).first;
+      found = countedScenes.emplace(scene, loadCommandScene(scene, command.allowExternalPaths, command.limits)).first;
     return int(found->second.cameras.size());
   };
   const std::vector<Job> all = expandJobs(command, cameraCount);
@@ -483,14 +484,7 @@ int runRenderBatch(const RenderCommand& command) {
         preloadImageIo();
       }
       if (currentScene != job.scene) {
-        if (verbose) {
-          for (const auto& attempt : context->attempts()) std::cerr << "context: " << attempt << "\n";
-          std::cerr << "backend: " << backendName(context->backend()) << " (" << context->description() << ")\n"
-                    << "GL_RENDERER: " << context->renderer() << "\nGL_VERSION: " << context->version() << "\n"
-                    << "scene: " << scene.source << ": " << scene.instances.size() << " instances, "
-                    << scene.triangleCount() << " triangles, " << scene.lights.size() << " lights, "
-                    << scene.cameras.size() << " cameras\n";
-        }
+        if (verbose) std::cerr << verboseHeader(*context, scene);
         currentScene.clear();
         renderer->setScene(scene);
         currentScene = job.scene;
@@ -534,7 +528,7 @@ int runRenderBatch(const RenderCommand& command) {
           results[i].status = JobResult::Status::Rendered;
         } catch (const std::exception& error) {
           results[i].status = JobResult::Status::Failed;
-          results[i].error = error.what();
+          results[i].error = commandLineMessage(error);
         }
         results[i].writeMs = millisecondsSince(writeStart);
         report(i);
@@ -545,7 +539,7 @@ int runRenderBatch(const RenderCommand& command) {
       if (single) throw;
       cache.release(job.scene);
       result.status = JobResult::Status::Failed;
-      result.error = error.what();
+      result.error = commandLineMessage(error);
       // A scene that failed to load fails every job of it, each with its line.
       report(i);
     }

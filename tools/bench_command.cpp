@@ -8,14 +8,15 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
-#include "headlight/bench.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "progress.hpp"
+#include "tooling/bench.hpp"
 
 namespace headlight::detail {
 std::string_view benchChartScript();  // tools/bench_chart.py, embedded at build time
@@ -44,7 +45,7 @@ std::pair<int, int> parseResolution(const std::string& text) {
 std::vector<Option<BenchCommand>> benchOptions() {
   using T = OptionType;
   using C = BenchCommand;
-  std::vector<Option<C>> rows = commonCommandOptions<C>();
+  std::vector<Option<C>> rows = commonCommandOptions<C>(kVerboseHelpBench);
   rows.push_back(actionOption<C>({.name = "resolutions",
                                   .type = T::Text,
                                   .help = "image sizes, comma-separated (default 128x96)",
@@ -62,6 +63,7 @@ std::vector<Option<BenchCommand>> benchOptions() {
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
       [](auto& c) -> auto& { return c.chart; }));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
   rows.push_back(settingsFileOption<C>(&C::base));
   for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
   return rows;
@@ -282,8 +284,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
     return 0;
   }
   if (!referenceAvailable()) throw Error("headlight bench needs the reference: this build has no Embree");
-  Context context(command.context);
-  Renderer renderer(context);
+  std::optional<Context> context;  // made once the first scene has loaded: a refused scene needs no GL
+  std::optional<Renderer> renderer;
   std::vector<BenchRow> rows;
   const bool quiet = command.verbosity == Verbosity::Quiet;
   const std::size_t configsPerGroup = benchConfigs(command, 1, 1).size();
@@ -291,10 +293,20 @@ int runBenchCommand(const std::vector<std::string>& args) {
   std::size_t done = 0;
   const MeasureOptions measureOptions{command.repetitions, command.warmup, command.reference};
   for (const std::string& sceneName : command.scenes) {
-    renderer.setScene(loadScene(sceneName));
+    Scene scene = loadCommandScene(sceneName, command.allowExternalPaths, command.limits);
+    if (!context) {
+      context.emplace(command.context);
+      renderer.emplace(*context);
+      renderer->setLimits(command.limits);
+    }
+    if (command.verbosity == Verbosity::Verbose) {
+      progress.clear();
+      std::cerr << verboseHeader(*context, scene);
+    }
+    renderer->setScene(std::move(scene));
     for (const auto& [width, height] : command.resolutions)
       for (BenchRow& row :
-           measureConfigs(renderer, benchConfigs(command, width, height), measureOptions, progress, done))
+           measureConfigs(*renderer, benchConfigs(command, width, height), measureOptions, progress, done))
         rows.push_back(std::move(row));
   }
   progress.finish();

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "cli_options.hpp"
-#include "headlight/bench.hpp"
 #include "headlight/context.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/settings.hpp"
 #include "progress.hpp"
+#include "tooling/bench.hpp"
 
 namespace headlight::cli {
 
@@ -67,6 +67,8 @@ struct BenchCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;
+  bool allowExternalPaths = false;  // as render's (sceneInputOptions)
+  ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
 };
 
 // Throws SettingsError for a bad flag or value.

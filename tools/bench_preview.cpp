@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <vector>
 #include "headlight/output.hpp"
+#include "output/tonemap.hpp"
 using namespace headlight;
 static double ms(std::chrono::steady_clock::time_point a) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();

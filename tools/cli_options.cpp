@@ -128,19 +128,15 @@ std::vector<Option<RenderCommand>> batchOptions() {
 std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
   using T = OptionType;
   using C = RenderCommand;
-  std::vector<Option<C>> rows = commonCommandOptions<C>();
+  std::vector<Option<C>> rows =
+      commonCommandOptions<C>(kind == CommandKind::Render ? kVerboseHelpRender : kVerboseHelpReference);
   rows.push_back(actionOption<C>({.name = "preset",
                                   .type = T::Choice,
                                   .help = "named settings; flags after it override it",
                                   .choices = presetNames()},
                                  [](C& c, const OptionValue& v) { applyPreset(c.settings, text(v)); }));
   rows.push_back(settingsFileOption<C>(&C::settings));
-  rows.push_back(bindOption<C>(
-      {.name = "allow-external-paths",
-       .type = T::Switch,
-       .help = "let glTF URIs point outside the scene file's folder"},
-      [](auto& c) -> auto& { return c.allowExternalPaths; }));
-  for (auto& row : liftOptions(limitOptions(), &C::limits)) rows.push_back(std::move(row));
+  for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
   if (kind == CommandKind::Reference)
     for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
   if (kind == CommandKind::Render)
@@ -152,7 +148,7 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
 }  // namespace
 
 template <class Command>
-std::vector<Option<Command>> commonCommandOptions() {
+std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) {
   using T = OptionType;
   using C = Command;
   return {
@@ -190,15 +186,15 @@ std::vector<Option<Command>> commonCommandOptions() {
       actionOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing but errors"},
                       [](C& c, const OptionValue&) { c.verbosity = Verbosity::Quiet; }),
       actionOption<C>(
-          {.name = "verbose", .type = T::Switch, .help = "print the GL backend, renderer and each pass's time"},
+          {.name = "verbose", .type = T::Switch, .help = verboseHelp},
           [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
       bindOption<C>(
           {.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
   };
 }
-template std::vector<Option<RenderCommand>> commonCommandOptions<RenderCommand>();
-template std::vector<Option<BenchCommand>> commonCommandOptions<BenchCommand>();
-template std::vector<Option<TuneCommand>> commonCommandOptions<TuneCommand>();
+template std::vector<Option<RenderCommand>> commonCommandOptions<RenderCommand>(std::string_view);
+template std::vector<Option<BenchCommand>> commonCommandOptions<BenchCommand>(std::string_view);
+template std::vector<Option<TuneCommand>> commonCommandOptions<TuneCommand>(std::string_view);
 
 RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind kind) {
   RenderCommand command;

@@ -2,8 +2,9 @@
 // Command-line parsing for `headlight render` and `reference`. Render
 // settings are the library's one table (settingOptions()), reference
 // settings referenceOptions(); the rows here are only the CLI's own (where
-// to write, which backend, how chatty). Every row goes through the library's
-// one parser (parseCommandLine) and one help writer (optionHelp).
+// to write, which backend, how chatty). Every row goes through the one
+// parser (parseCommandLine) and one help writer (optionHelp) of the support
+// library (lib/tooling/command_line.hpp).
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/settings.hpp"
+#include "settings/option_binding.hpp"
+#include "tooling/command_line.hpp"
+#include "tooling/command_setup.hpp"
 
 namespace headlight::cli {
 
@@ -46,11 +50,18 @@ struct RenderCommand {
   bool json = false;          // --json: one JSON summary on stdout instead of the summary lines
 };
 
+// What --verbose adds, per command (the help says what that command prints).
+inline constexpr std::string_view kVerboseHelpRender = "print the GL backend, renderer and each pass's time";
+inline constexpr std::string_view kVerboseHelpReference = "print the GL backend, renderer and the scene's size";
+inline constexpr std::string_view kVerboseHelpBench = "print the GL backend, renderer and each scene's size";
+inline constexpr std::string_view kVerboseHelpTune =
+    "print the GL backend, renderer and the scene's size, and every configuration (not only the front)";
+
 // The CLI's own rows shared by every command that renders (out, backend,
 // device, strict, quiet, verbose, help). `Command` is any struct with
 // outDir, context, verbosity and help members.
 template <class Command>
-std::vector<Option<Command>> commonCommandOptions();
+std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp);
 
 // --settings FILE: applies a settings file (headlight tune writes them) to
 // the command's `member` settings where it stands on the command line: flags

@@ -17,6 +17,8 @@
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/options.hpp"
+#include "settings/option_binding.hpp"
+#include "tooling/command_line.hpp"
 
 namespace headlight::cli {
 namespace {

@@ -51,14 +51,6 @@ const char* errorKind(const std::exception& error) {
   return "error";
 }
 
-void printVerboseHeader(const Context& context, const Scene& scene) {
-  for (const auto& attempt : context.attempts()) std::cerr << "context: " << attempt << "\n";
-  std::cerr << "backend: " << backendName(context.backend()) << " (" << context.description() << ")\n"
-            << "GL_RENDERER: " << context.renderer() << "\nGL_VERSION: " << context.version() << "\n"
-            << "scene: " << scene.source << ": " << scene.instances.size() << " instances, " << scene.triangleCount()
-            << " triangles, " << scene.lights.size() << " lights, " << scene.cameras.size() << " cameras\n";
-}
-
 int runRender(const std::vector<std::string>& args) {
   const cli::RenderCommand command = cli::parseRenderArgs(args);
   if (command.help) {
@@ -77,9 +69,9 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
-  Scene scene = loadScene(command.scene, {command.allowExternalPaths}, command.limits);
+  Scene scene = loadCommandScene(command.scene, command.allowExternalPaths, command.limits);
   Context context(command.context);
-  if (command.verbosity == cli::Verbosity::Verbose) printVerboseHeader(context, scene);
+  if (command.verbosity == cli::Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);
   renderer.setLimits(command.limits);
   renderer.setScene(std::move(scene));
@@ -132,10 +124,10 @@ int main(int argc, char** argv) {
     std::cerr << "headlight: unknown command '" << args[0] << "'\n" << kUsage;
     return kExitUsage;
   } catch (const SettingsError& error) {
-    std::cerr << "headlight: " << error.what() << "\n";
+    std::cerr << "headlight: " << commandLineMessage(error) << "\n";
     return kExitUsage;
   } catch (const std::exception& error) {
-    std::cerr << "headlight: " << errorKind(error) << ": " << error.what() << "\n";
+    std::cerr << "headlight: " << errorKind(error) << ": " << commandLineMessage(error) << "\n";
     return kExitRuntimeError;
   }
 }

@@ -5,7 +5,7 @@
 
 One thread per backend named; each makes a renderer, sets builtin:cornell and
 renders 15 frames of 64x48. Prints "ok" (exit 0), or crashes: docs/EMBEDDING.md
-("Threads") counts the runs that crashed before Context::lockBackend existed.
+("Threads") counts the runs that crashed before the backend lock (ContextAccess::lockBackend) existed.
 """
 import sys
 import threading

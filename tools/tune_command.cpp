@@ -17,7 +17,7 @@ namespace {
 std::vector<Option<TuneCommand>> tuneOptions() {
   using T = OptionType;
   using C = TuneCommand;
-  std::vector<Option<C>> rows = commonCommandOptions<C>();
+  std::vector<Option<C>> rows = commonCommandOptions<C>(kVerboseHelpTune);
   for (Option<C>& row : rows)
     if (row.spec.name == "out") {
       row.spec.help = "the settings file to write (render --settings FILE reads it)";
@@ -36,6 +36,7 @@ std::vector<Option<TuneCommand>> tuneOptions() {
                                          "ssgi-frames of the bitmask method)"))
     rows.push_back(std::move(row));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+  for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
   rows.push_back(settingsFileOption<C>(&C::base));
   for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
   return rows;
@@ -52,27 +53,6 @@ std::string number(double value, int digits = 4) {
   text.precision(digits);
   text << value;
   return text.str();
-}
-
-// Written under a temporary name, then renamed: no half-written settings
-// file is ever left under the final name.
-void writeAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    if (!file.flush()) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw IoError(path.string() + ": cannot write the settings file");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw IoError(path.string() + ": cannot write the settings file: " + error.message());
-  }
 }
 
 }  // namespace
@@ -134,9 +114,12 @@ int runTuneCommand(const std::vector<std::string>& args) {
     return 0;
   }
   if (!referenceAvailable()) throw Error("headlight tune needs the reference: this build has no Embree");
+  Scene scene = loadCommandScene(command.scene, command.allowExternalPaths, command.limits);
   Context context(command.context);
+  if (command.verbosity == Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);
-  renderer.setScene(loadScene(command.scene));
+  renderer.setLimits(command.limits);
+  renderer.setScene(std::move(scene));
   const std::vector<SettingSweep> sweeps =
       command.sweeps.empty() ? defaultTuneSweeps(*renderer.resolve(command.base).ssgi.thickness) : command.sweeps;
   const std::vector<BenchConfig> configs = sweepConfigs(command.base, sweeps, command.base.width, command.base.height);
@@ -194,7 +177,7 @@ int runTuneCommand(const std::vector<std::string>& args) {
       "tune: reference = " + std::to_string(row.referenceSamples) + " rays/pixel, mean AO standard error " +
           number(row.referenceAoStandardError, 3),
       "use: headlight render SCENE --settings FILE (flags after --settings override it)"};
-  writeAtomically(command.outDir, settingsFileText(configs[*chosen].settings, comments));
+  writeTextFile(command.outDir, settingsFileText(configs[*chosen].settings, comments));
   if (!quiet)
     std::cout << "chosen: " << row.label << ": AO RMSE " << number(row.ao.rmse) << " <= " << number(command.maxAoError)
               << ", " << number(row.frameMs.median) << " ms/frame\n"

@@ -28,6 +28,8 @@ struct TuneCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;
+  bool allowExternalPaths = false;  // as render's (sceneInputOptions)
+  ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
 
   // 128 x 128: each configuration's frames take tens of milliseconds on
   // llvmpipe, and the reference a few seconds (docs/BENCHMARKS.md, "tune").

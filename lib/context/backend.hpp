@@ -14,6 +14,8 @@ class PlatformContext {
  public:
   virtual ~PlatformContext() = default;
   virtual bool makeCurrent() = 0;  // false: the platform refused (say, current on another thread)
+  // Makes no context of this platform current on the calling thread.
+  virtual void release() = 0;
   virtual GlProc procAddress(const char* name) const = 0;
   virtual std::string description() const = 0;
 };

@@ -3,9 +3,11 @@
 #include <glad/gl.h>
 
 #include <iostream>
+#include <memory>
 #include <mutex>
 
 #include "context/backend.hpp"
+#include "context/context_access.hpp"
 #include "context/hex_code.hpp"
 #include "headlight/error.hpp"
 
@@ -46,6 +48,26 @@ void loadGlEntryPoints(const detail::PlatformContext& platform, GladGLContext& t
     throw ContextError("gladLoadGLContext: could not load OpenGL entry points from " + platform.description());
 }
 
+// The platform context each thread last made current through a Context.
+// EGL's driver and libOSMesa share libglapi's current context (one per
+// thread) but each keeps its own record of what it made current: switching
+// from one backend to the other without releasing the first leaves that
+// record stale, and the next switch back draws into the wrong context or none
+// (GL_INVALID_VALUE in glDeleteProgram, shaders that fail with an empty log).
+// So whatever this thread has current is released through its own API
+// before another platform context is made current. A weak pointer: the
+// context may be destroyed by another thread meanwhile.
+thread_local std::weak_ptr<detail::PlatformContext> tCurrentPlatform;
+
+// Releases the platform context this thread has current, unless it is `keep`.
+void releaseCurrentPlatform(const detail::PlatformContext* keep = nullptr) {
+  const std::shared_ptr<detail::PlatformContext> current = tCurrentPlatform.lock();
+  if (current.get() == keep && keep != nullptr) return;
+  if (current) current->release();
+  gladSetCurrentGLContext(nullptr);
+  tCurrentPlatform.reset();
+}
+
 std::mutex& backendMutex(Backend backend) {
   static std::mutex egl, osmesa;
   return backend == Backend::OSMesa ? osmesa : egl;
@@ -76,7 +98,7 @@ std::string glErrorName(GLenum error) {
 }  // namespace
 
 struct Context::Impl {
-  std::unique_ptr<detail::PlatformContext> platform;
+  std::shared_ptr<detail::PlatformContext> platform;  // shared with tCurrentPlatform's weak pointers
   GladGLContext gl{};  // this context's entry points
   Backend backend = Backend::Auto;
   GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
@@ -106,6 +128,7 @@ struct Context::Impl {
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->errorPolicy = options.errorPolicy;
   auto& attempts = impl_->attempts;
+  releaseCurrentPlatform();  // creation makes the new context current
   if (options.backend == Backend::Auto || options.backend == Backend::Egl) {
     std::lock_guard lock(backendMutex(Backend::Egl));
     impl_->platform = detail::createEglContext(options.eglDevice, options.eglDeviceName, attempts);
@@ -122,7 +145,8 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
-  auto lock = lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(*this);
+  tCurrentPlatform = impl_->platform;
   loadGlEntryPoints(*impl_->platform, impl_->gl);
   gladSetCurrentGLContext(&impl_->gl);
   try {
@@ -145,13 +169,14 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
 Context::~Context() {
   if (!impl_) return;  // moved from
-  if (gladGetCurrentGLContext() == &impl_->gl) gladSetCurrentGLContext(nullptr);
-  // The platform context is destroyed (made not current first) by its own destructor.
-  auto lock = lockBackend();
+  auto lock = detail::ContextAccess::lockBackend(*this);
+  if (tCurrentPlatform.lock() == impl_->platform)
+    releaseCurrentPlatform();
+  else if (gladGetCurrentGLContext() == &impl_->gl)
+    gladSetCurrentGLContext(nullptr);
   impl_->platform.reset();
 }
 
-std::unique_lock<std::mutex> Context::lockBackend() const { return std::unique_lock(backendMutex(impl_->backend)); }
 Context::Context(Context&&) noexcept = default;
 Context& Context::operator=(Context&&) noexcept = default;
 
@@ -162,10 +187,20 @@ std::string Context::version() const { return impl_->glVersion; }
 const std::vector<std::string>& Context::attempts() const { return impl_->attempts; }
 
 void Context::makeCurrent() {
+  releaseCurrentPlatform(impl_->platform.get());  // another context this thread has current, of either backend
   if (!impl_->platform->makeCurrent())
     throw ContextError(impl_->platform->description() +
-                       ": could not make the context current on this thread (is it current on another thread?)");
+                       ": could not make the context current on this thread (it is current on another thread: "
+                       "call releaseCurrent() there first)");
+  tCurrentPlatform = impl_->platform;
   gladSetCurrentGLContext(&impl_->gl);
+}
+
+void Context::releaseCurrent() {
+  if (tCurrentPlatform.lock() == impl_->platform)
+    releaseCurrentPlatform();
+  else if (isCurrent())
+    gladSetCurrentGLContext(nullptr);
 }
 
 bool Context::isCurrent() const { return gladGetCurrentGLContext() == &impl_->gl; }
@@ -177,7 +212,6 @@ void Context::requireCurrent(std::string_view operation) const {
                        "(a context is current on one thread at a time)");
 }
 
-std::size_t Context::pendingErrorCount() const { return impl_->errors.size(); }
 
 void Context::checkErrors(std::string_view operation) {
   requireCurrent(operation);
@@ -198,4 +232,13 @@ void Context::checkErrors(std::string_view operation) {
   std::cerr << "headlight: warning: " << message << "\n";
 }
 
+namespace detail {
+
+std::unique_lock<std::mutex> ContextAccess::lockBackend(const Context& context) {
+  return std::unique_lock(backendMutex(context.impl_->backend));
+}
+
+std::size_t ContextAccess::pendingErrorCount(const Context& context) { return context.impl_->errors.size(); }
+
+}  // namespace detail
 }  // namespace headlight

@@ -56,11 +56,15 @@ class EglContext final : public PlatformContext {
   // The display is not terminated: EGL displays are shared by every context
   // of the process on the same device, and terminating it here would pull it
   // from under another headlight::Context.
+  // Released only where it is current: releasing EGL on a thread where an
+  // OSMesa context is current would clear the current context the two
+  // drivers share (libglapi), under OSMesa's feet.
   ~EglContext() override {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (eglGetCurrentContext() == context_) release();
     eglDestroyContext(display_, context_);
   }
   bool makeCurrent() override { return eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) == EGL_TRUE; }
+  void release() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
   GlProc procAddress(const char* name) const override { return eglGetProcAddress(name); }
   std::string description() const override { return description_; }
 

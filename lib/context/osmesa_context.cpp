@@ -63,6 +63,7 @@ class OSMesaPlatformContext final : public PlatformContext {
   bool makeCurrent() override {
     return library_.makeCurrent(context_, pixel_.data(), GL_UNSIGNED_BYTE, 1, 1) == GL_TRUE;
   }
+  void release() override { library_.makeCurrent(nullptr, nullptr, 0, 0, 0); }
   GlProc procAddress(const char* name) const override { return library_.getProcAddress(name); }
   std::string description() const override { return "OSMesa"; }
 

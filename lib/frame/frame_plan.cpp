@@ -18,9 +18,9 @@ constexpr SsgiMethodTraits kSsgiMethods[] = {
 // ---- Attachments -----------------------------------------------------------------
 
 using F = GpuFormat;
-// Formats of target-backed rows must match the target table's (a unit test
-// checks): the G-buffer's are the frame targets' own; direct light is
-// internal, and half float holds its HDR radiance.
+// The one table of GPU formats: a target's format is the format of the
+// attachment that holds it. Direct light is internal, and half float holds
+// its HDR radiance.
 constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", false, &Frame::position},
     {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", false, &Frame::normal},

@@ -51,6 +51,15 @@ const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method);
 
 // ---- Attachments -------------------------------------------------------------
 
+// How the GPU stores an attachment (lib/gl/target_formats.hpp maps it to GL).
+enum class GpuFormat {
+  Rgba32F,      // float32: position, where half's 11 bits are too few far from the origin
+  Rgba16F,      // half: normals and HDR radiance
+  Srgb8Alpha8,  // 8-bit sRGB: albedo, like the textures it comes from
+  Rgba8,        // 8-bit: material factors, like the textures they come from
+  Depth32F,     // depth, read back as view depth
+};
+
 // Every texture a frame may draw into. The frame's textures are an array
 // indexed by this (lib/renderer.cpp).
 enum class Attachment {

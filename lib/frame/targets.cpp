@@ -38,41 +38,40 @@ constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirec
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 
 using M = DiffMetric;
-using G = GpuFormat;
 using E = ExrStorage;
 
 const FrameTarget kTargets[] = {
-    {"position", &Frame::position, kPositionChannels, G::Rgba32F, E::Float, M::RelativeToScene,
+    {"position", &Frame::position, kPositionChannels, E::Float, M::RelativeToScene,
      thresholds(1e-5, 1e-3, 0.5, 5e-3),
      "world position, A = 1 on geometry. float32 (GPU and EXR): half's 11 bits are too few far from the origin. "
      "Error over the view's far distance: drivers interpolate a few float ulps apart (< 1e-5); 1e-3 of the view "
      "depth is a real geometry or camera change; a silhouette flip can cost ~1, so the mean allows 5e-3. "
      "Coverage A compared absolutely."},
-    {"normal", &Frame::normal, kNormalChannels, G::Rgba16F, E::Half, M::AngleDegrees, thresholds(0.1, 1.0, 0.5, 1.0),
+    {"normal", &Frame::normal, kNormalChannels, E::Half, M::AngleDegrees, thresholds(0.1, 1.0, 0.5, 1.0),
      "world unit normal. Angle in degrees: half storage quantizes unit vectors to ~0.03 deg; 1 deg moves a sharp "
      "highlight, and normal-map or TBN bugs cost many degrees. Components would weigh the axes unequally."},
-    {"albedo", &Frame::albedo, kAlbedoChannels, G::Srgb8Alpha8, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
+    {"albedo", &Frame::albedo, kAlbedoChannels, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
      "linear base colour, 0..1, from 8-bit sRGB textures: one 8-bit step is 3e-4..9e-3 linear, so texture "
      "filtering on another GPU moves values by up to ~1e-2; more is a material or texture change."},
-    {"material", &Frame::material, kMaterialChannels, G::Rgba8, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
+    {"material", &Frame::material, kMaterialChannels, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
      "metallic/roughness/occlusion stored in 8 bits (step 1/255 = 3.9e-3): any step warns, more than two steps "
      "fails."},
-    {"depth", &Frame::depth, kDepthChannels, G::Depth32F, E::Float, M::RelativeToScene,
+    {"depth", &Frame::depth, kDepthChannels, E::Float, M::RelativeToScene,
      thresholds(1e-5, 1e-3, 0.5, 5e-3),
      "view-space depth (distance along -Z), far plane on background; float32 like position. Error over the far "
      "distance: depth precision scales with distance."},
-    {"emissive", &Frame::emissive, kEmissiveChannels, G::Rgba16F, E::Half, M::RelativeToValue,
+    {"emissive", &Frame::emissive, kEmissiveChannels, E::Half, M::RelativeToValue,
      thresholds(2e-3, 2e-2, 0.5, 2e-2),
      "emitted radiance, only for scenes that glow. HDR (emissiveStrength can be large): absolute below 1, relative "
      "above; half storage rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
-    {"ssgi", &Frame::ssgi, kSsgiChannels, G::Rgba16F, E::Half, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
+    {"ssgi", &Frame::ssgi, kSsgiChannels, E::Half, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
      "AO within R, one-bounce indirect within R, sky visibility at any distance and indirect from beyond R, 0..~1; "
      "absent with SSGI off. Two GPU textures (ao + indirect, then sky + indirectFar). Seeded and repeatable on one "
      "driver, but one of 64 kernel samples "
      "landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade, and sky.Y is "
      "held to the same: its long-range samples flip the same way, one slab of a 32-sector mask moves it by ~1/32. "
      "1 % of pixels: samples flip at every depth discontinuity."},
-    {"lit", &Frame::lit, kLitChannels, G::Rgba16F, E::Half, M::RelativeToValue, thresholds(2e-3, 2e-2, 0.5, 2e-2),
+    {"lit", &Frame::lit, kLitChannels, E::Half, M::RelativeToValue, thresholds(2e-3, 2e-2, 0.5, 2e-2),
      "linear HDR radiance, A = coverage: absolute below 1, relative above (a highlight of 50 may move by 1); half "
      "storage rounds at 2.4e-4 relative; 2 % is about one 8-bit step of preview.png at mid grey."},
 };
@@ -81,7 +80,6 @@ const FrameTarget kUnknownTarget{
     "",
     nullptr,
     {},
-    G::Rgba16F,
     E::Half,
     M::Absolute,
     DiffThresholds{},

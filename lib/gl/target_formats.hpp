@@ -1,11 +1,10 @@
 #pragma once
-// The GL internal format of each frame target's GPU texture, from the
-// frame-target table (headlight/targets.hpp): the G-buffer pass and the
-// renderer allocate what the table says, so readback and docs agree.
+// The GL internal format of each GpuFormat: the frame plan's attachment
+// table (frame/frame_plan.cpp, kAttachmentRows) says which format each
+// attachment has, without GL; this maps it for allocation.
 #include <glad/gl.h>
 
-#include "headlight/error.hpp"
-#include "headlight/targets.hpp"
+#include "frame/frame_plan.hpp"
 
 namespace headlight::gl {
 
@@ -23,13 +22,6 @@ inline GLenum internalFormat(GpuFormat format) {
       return GL_DEPTH_COMPONENT32F;
   }
   return GL_NONE;
-}
-
-// The format the table gives the target Frame keeps in `image`.
-inline GLenum targetFormat(ImageF Frame::*image) {
-  for (const FrameTarget& target : frameTargets())
-    if (target.image == image) return internalFormat(target.gpuFormat);
-  throw GlError("no frame-target row for this Frame member");
 }
 
 }  // namespace headlight::gl

@@ -74,7 +74,7 @@ std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureD
     overBudget = true;
     return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " (" + std::to_string(texels) +
            " texels), more than the " + std::to_string(limits.texelBudget) +
-           " texels --max-texels leaves for it; raise --max-texels";
+           " texels max-texels leaves for it; raise max-texels";
   }
   limits.texelBudget -= texels;
   const int channels = std::min(spec.nchannels, 4);

@@ -3,7 +3,7 @@
 // name in the same folder (so the rename is atomic), then renamed over the
 // final name. A crash, a Ctrl-C or an error never leaves a half-written file
 // under a name a reader takes for a result; a kill -9 may leave the hidden
-// temporary, which removeStaleTemporaries (headlight/output.hpp) clears once
+// temporary, which removeStaleTemporaries (output/frame_set.hpp) clears once
 // its process is gone.
 #include <filesystem>
 #include <functional>

@@ -1,4 +1,4 @@
-// Content fingerprints (headlight/output.hpp): scene hashes in the EXR
+// Content fingerprints (output/fingerprint.hpp): scene hashes in the EXR
 // metadata, frame.json's file hashes and --resume's job hashes. XXH3-64
 // from Debian's libxxhash: stable across runs, builds and machines, and
 // without OpenImageIO, so that hashing a scene never loads the image module.
@@ -9,7 +9,7 @@
 #include <iterator>
 
 #include "headlight/error.hpp"
-#include "headlight/output.hpp"
+#include "output/fingerprint.hpp"
 
 namespace headlight {
 

@@ -11,6 +11,7 @@
 
 #include "headlight/error.hpp"
 #include "output/atomic_file.hpp"
+#include "output/fingerprint.hpp"
 
 namespace headlight {
 namespace {

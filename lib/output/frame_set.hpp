@@ -2,6 +2,7 @@
 // The frame.json protocol of writeFrame (headlight/output.hpp): an
 // "incomplete" manifest before the first file is touched, the complete one
 // (each file's size and hash, the settings hash) after the last.
+#include <cstddef>
 #include <filesystem>
 #include <vector>
 
@@ -16,3 +17,11 @@ void finishFrameSet(const Frame& frame, const std::filesystem::path& folder, con
                     const std::vector<WrittenFile>& files);
 
 }  // namespace headlight::detail
+
+namespace headlight {
+
+// Removes <folder>/.*.<pid>-<n>.tmp files whose process <pid> no longer
+// runs (left by a killed writer). Returns how many were removed.
+std::size_t removeStaleTemporaries(const std::filesystem::path& folder);
+
+}  // namespace headlight

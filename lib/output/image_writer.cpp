@@ -16,6 +16,7 @@
 #include "output/atomic_file.hpp"
 #include "output/atomic_image.hpp"
 #include "output/frame_set.hpp"
+#include "output/tonemap.hpp"
 
 namespace headlight {
 namespace {
@@ -103,8 +104,8 @@ ImageF clampedCopy(const ImageF& image, float limit) {
 
 std::string nonFiniteMessage(std::string_view what, std::size_t count, std::size_t total) {
   return std::string(what) + ": " + std::to_string(count) + " of " + std::to_string(total) +
-         " values are NaN or infinite (pass --clamp-nonfinite to write them clamped: NaN -> 0, inf -> the largest "
-         "finite value)";
+         " values are NaN or infinite (pass clamp-nonfinite, NonFinitePolicy::Clamp, to write them clamped: NaN "
+         "-> 0, inf -> the largest finite value)";
 }
 
 // The one-pass tonemap of the preview, straight to 8-bit sRGB.
@@ -144,7 +145,7 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
                             const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy policy,
                             const ImageStats& stats) {
   if (stats.nonFinite && policy == NonFinitePolicy::Error)
-    throw IoError(nonFiniteMessage(path.string(), stats.nonFinite, image.pixels.size()));
+    throw IoError(nonFiniteMessage(path.string(), stats.nonFinite, image.pixels.size()), {"clamp-nonfinite"});
   const ImageF* source = &image;
   ImageF clamped;
   if (stats.nonFinite) {
@@ -219,7 +220,7 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
       refused += (refused.empty() ? "" : "; ") +
                  nonFiniteMessage(std::string(target.name) + ".exr", jobs.back().stats.nonFinite, image.pixels.size());
   }
-  if (!refused.empty()) throw IoError(outDir.string() + ": not written: " + refused);
+  if (!refused.empty()) throw IoError(outDir.string() + ": not written: " + refused, {"clamp-nonfinite"});
   const bool preview = wanted(options, "preview") && !frame.lit.empty();
   if (preview) jobs.push_back({nullptr, {}});
 

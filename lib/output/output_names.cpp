@@ -5,6 +5,7 @@
 
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
+#include "output/tonemap.hpp"
 
 namespace headlight {
 namespace {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "settings/option_binding.hpp"
 
 #ifndef HEADLIGHT_HAS_EMBREE
 #define HEADLIGHT_HAS_EMBREE 0

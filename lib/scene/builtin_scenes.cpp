@@ -10,7 +10,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
-#include "headlight/output.hpp"
+#include "output/fingerprint.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"

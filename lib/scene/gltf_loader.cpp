@@ -30,7 +30,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
-#include "headlight/output.hpp"
+#include "output/fingerprint.hpp"
 #include "headlight/scene_loader.hpp"
 #include "image_io/texture_decode.hpp"
 #include "scene/gltf_prescan.hpp"
@@ -117,7 +117,7 @@ bool refuseOutside(const std::string& path, FileAccess& access) {
   if (access.refusal.empty()) {
     access.refusal = "URI '" + uri + "' resolves to " + resolved.string() + ", outside the asset folder " +
                      access.assetFolder.string() +
-                     "; pass --allow-external-paths (SceneLoadOptions::allowExternalPaths) to allow it";
+                     "; pass allow-external-paths (SceneLoadOptions::allowExternalPaths) to allow it";
   }
   return true;
 }
@@ -377,7 +377,10 @@ class GltfReader {
 
  private:
   [[noreturn]] void fail(const std::string& message) const { throw SceneError(file_ + ": " + message); }
-  [[noreturn]] void failLimit(const std::string& message) const { throw LimitError(file_ + ": " + message); }
+  // `setting`: the limit's setting the message names (Error::settings()).
+  [[noreturn]] void failLimit(const std::string& message, const std::string& setting) const {
+    throw LimitError(file_ + ": " + message, {setting});
+  }
 
   // Every vertex and triangle decoded counts against --max-triangles before
   // its memory is allocated (3 vertices per allowed triangle at most).
@@ -386,8 +389,8 @@ class GltfReader {
     if (count > allowed - std::min<std::uint64_t>(allowed, decodedVertices_)) {
       failLimit(user + " accessor " + std::to_string(accessorIndex) + " has " + std::to_string(count) +
                 " vertices, and with the " + std::to_string(decodedVertices_) + " before it that is more than the " +
-                std::to_string(allowed) + " (3 x --max-triangles " + std::to_string(limits_.maxTriangles) +
-                ") allowed; raise --max-triangles");
+                std::to_string(allowed) + " (3 x max-triangles " + std::to_string(limits_.maxTriangles) +
+                ") allowed; raise max-triangles", "max-triangles");
     }
     decodedVertices_ += count;
   }
@@ -396,8 +399,8 @@ class GltfReader {
     const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles);
     if (count > allowed - std::min<std::uint64_t>(allowed, decodedTriangles_)) {
       failLimit(primitiveName + " has " + std::to_string(count) + " triangles, and with the " +
-                std::to_string(decodedTriangles_) + " before it that is more than --max-triangles " +
-                std::to_string(allowed) + "; raise --max-triangles");
+                std::to_string(decodedTriangles_) + " before it that is more than max-triangles " +
+                std::to_string(allowed) + "; raise max-triangles", "max-triangles");
     }
     decodedTriangles_ += count;
   }
@@ -780,7 +783,7 @@ class GltfReader {
       if (!problem.empty()) {
         const std::string message =
             "image " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'") + ": " + problem;
-        overBudget ? failLimit(message) : fail(message);
+        overBudget ? failLimit(message, "max-texels") : fail(message);
       }
       ImageData image;
       image.name = !source.name.empty() ? source.name : source.uri;
@@ -1205,8 +1208,8 @@ class GltfReader {
       const std::vector<PlacedPrimitive>& placedPrimitives = meshPrimitives(node.mesh);
       if (scene_.instances.size() + placedPrimitives.size() > static_cast<std::uint64_t>(limits_.maxInstances)) {
         failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
-                  std::to_string(scene_.instances.size() + placedPrimitives.size()) + ", more than --max-instances " +
-                  std::to_string(limits_.maxInstances) + "; raise --max-instances");
+                  std::to_string(scene_.instances.size() + placedPrimitives.size()) + ", more than max-instances " +
+                  std::to_string(limits_.maxInstances) + "; raise max-instances", "max-instances");
       }
       for (const PlacedPrimitive& placed : placedPrimitives) {
         scene_.instances.push_back({placed.geometry, worldFromNode, placed.material});
@@ -1316,7 +1319,7 @@ void parseWithTinygltf(tinygltf::Model& model, const std::vector<unsigned char>&
   // Our own findings come first: they name the element precisely, where
   // tinygltf's follow-on messages may not.
   if (!access.refusal.empty()) {
-    throw SceneError(file + ": " + access.refusal);
+    throw SceneError(file + ": " + access.refusal, {"allow-external-paths"});
   }
   if (!decoding.failure.empty()) {
     throw SceneError(file + ": " + decoding.failure);
@@ -1359,8 +1362,9 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
   const std::uint64_t sceneBytes = estimateSceneBytes(scene);
   if (sceneBytes > maxMemoryBytes(limits)) {
     throw LimitError(file + ": the scene needs about " + std::to_string(sceneBytes >> 20) +
-                     " MiB, more than --max-memory allows (" + std::to_string(maxMemoryBytes(limits) >> 20) +
-                     " MiB); raise --max-memory");
+                         " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(limits) >> 20) +
+                         " MiB); raise max-memory",
+                     {"max-memory"});
   }
   return scene;
 }

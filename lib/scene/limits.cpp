@@ -7,6 +7,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "settings/option_binding.hpp"
 
 namespace headlight {
 
@@ -74,9 +75,10 @@ void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const Resou
   if (frame + sceneBytes > limit) {
     throw LimitError("a " + std::to_string(width) + "x" + std::to_string(height) + " render needs about " +
                      mib(frame + sceneBytes) + " (" + std::to_string(kFrameBytesPerPixel) + " bytes per pixel + " +
-                     mib(kFrameBaseBytes) + " + the scene's " + mib(sceneBytes) + "), more than --max-memory allows (" +
+                     mib(kFrameBaseBytes) + " + the scene's " + mib(sceneBytes) + "), more than max-memory allows (" +
                      mib(limit) + (limits.maxMemoryMiB ? "" : ", half of physical memory") +
-                     "); render smaller or raise --max-memory");
+                         "); render smaller or raise max-memory",
+                     {"max-memory"});
   }
 }
 

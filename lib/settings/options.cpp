@@ -4,10 +4,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "settings/option_binding.hpp"
+
 namespace headlight {
 namespace {
 
-std::string flag(const OptionSpec& spec) { return "--" + std::string(spec.name); }
+// Errors name the row's setting (Error::settings() lists it for front ends).
+[[noreturn]] void settingError(const OptionSpec& spec, const std::string& problem) {
+  throw SettingsError(std::string(spec.name) + ": " + problem, {std::string(spec.name)});
+}
 
 // Shortest text of `value` that reads back as the same double (and so the same float).
 std::string formatNumber(double value) {
@@ -34,7 +39,7 @@ std::string rangeText(const OptionSpec& spec) {
 }
 
 [[noreturn]] void expected(const OptionSpec& spec, const std::string& what, std::string_view got) {
-  throw SettingsError(flag(spec) + ": expected " + what + ", got '" + std::string(got) + "'");
+  settingError(spec, "expected " + what + ", got '" + std::string(got) + "'");
 }
 
 template <class Number>
@@ -106,10 +111,10 @@ OptionValue parseOptionValue(const OptionSpec& spec, std::string_view text) {
 
 void checkOptionValue(const OptionSpec& spec, const OptionValue& value) {
   if (std::holds_alternative<AutoValue>(value)) {
-    if (spec.autoMeaning.empty()) throw SettingsError(flag(spec) + ": cannot be auto");
+    if (spec.autoMeaning.empty()) settingError(spec, "cannot be auto");
     return;
   }
-  auto wrongKind = [&] { throw SettingsError(flag(spec) + ": value of the wrong type for this setting"); };
+  auto wrongKind = [&] { settingError(spec, "value of the wrong type for this setting"); };
   switch (spec.type) {
     case OptionType::Switch:
     case OptionType::Bool:
@@ -119,21 +124,21 @@ void checkOptionValue(const OptionSpec& spec, const OptionValue& value) {
       if (!std::holds_alternative<std::int64_t>(value)) wrongKind();
       const auto number = std::get<std::int64_t>(value);
       if (double(number) < spec.minimum || double(number) > spec.maximum)
-        throw SettingsError(flag(spec) + ": must be in " + rangeText(spec) + ", got " + std::to_string(number));
+        settingError(spec, "must be in " + rangeText(spec) + ", got " + std::to_string(number));
       return;
     }
     case OptionType::Float: {
       if (!std::holds_alternative<double>(value)) wrongKind();
       const double number = std::get<double>(value);
       if (!(number >= spec.minimum && number <= spec.maximum))  // NaN fails too
-        throw SettingsError(flag(spec) + ": must be in " + rangeText(spec) + ", got " + formatNumber(number));
+        settingError(spec, "must be in " + rangeText(spec) + ", got " + formatNumber(number));
       return;
     }
     case OptionType::Choice: {
       if (std::holds_alternative<std::int64_t>(value)) {
         const auto index = std::get<std::int64_t>(value);
         if (index < 0 || std::size_t(index) >= spec.choices.size())
-          throw SettingsError(flag(spec) + ": no choice number " + std::to_string(index));
+          settingError(spec, "no choice number " + std::to_string(index));
         return;
       }
       if (!std::holds_alternative<std::string>(value)) wrongKind();
@@ -173,35 +178,7 @@ OptionValue indexToChoice(const OptionSpec& spec, const OptionValue& value) {
   return std::string(spec.choices[std::size_t(std::get<std::int64_t>(value))]);
 }
 
-FlagMatch matchFlag(const OptionSpec& spec, std::string_view flagName) {
-  if (flagName == spec.name) return {true, false};
-  if (spec.type == OptionType::Bool && flagName.size() == spec.name.size() + 3 && flagName.substr(0, 3) == "no-" &&
-      flagName.substr(3) == spec.name)
-    return {true, true};
-  return {};
-}
-
-bool splitFlag(const std::string& arg, std::string& name, std::optional<std::string>& inlineValue) {
-  if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) return false;
-  const auto equals = arg.find('=');
-  name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
-  if (equals != std::string::npos) inlineValue = arg.substr(equals + 1);
-  return true;
-}
-
-std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& defaultValue) {
-  constexpr std::size_t kHelpColumn = 34;
-  std::string left = spec.type == OptionType::Bool ? "  --[no-]" : "  --";
-  left += spec.name;
-  if (const std::string value = optionValueName(spec); !value.empty()) (left += " ") += value;
-  left +=
-      left.size() < kHelpColumn ? std::string(kHelpColumn - left.size(), ' ') : "\n" + std::string(kHelpColumn, ' ');
-  std::string line = left + std::string(spec.help);
-  if (!spec.autoMeaning.empty()) line += " (auto: " + std::string(spec.autoMeaning) + ")";
-  if (spec.type == OptionType::Int || spec.type == OptionType::Float) line += " [" + rangeText(spec) + "]";
-  if (defaultValue) line += " [default: " + formatOptionValue(spec, *defaultValue) + "]";
-  return line + "\n";
-}
+std::string optionRangeText(const OptionSpec& spec) { return rangeText(spec); }
 
 }  // namespace detail
 }  // namespace headlight

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "settings/option_binding.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -251,7 +252,7 @@ void applySettingsFileText(RenderSettings& settings, std::string_view text, cons
     const auto equals = line.find('=');
     const std::string key(trimmed(line.substr(0, equals == std::string_view::npos ? 0 : equals)));
     if (equals == std::string_view::npos || key.empty())
-      throw SettingsError(where + "expected NAME = VALUE (NAME a render setting, as its flag without --), got '" +
+      throw SettingsError(where + "expected NAME = VALUE (NAME a render setting's name), got '" +
                           std::string(line) + "'");
     if (const auto seen = seenOnLine.find(key); seen != seenOnLine.end())
       throw SettingsError(where + "'" + key + "' is already set on line " + std::to_string(seen->second));
@@ -306,7 +307,7 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
   } else {
     std::string known;
     for (std::string_view name : presetNames()) (known += known.empty() ? "" : ", ") += name;
-    throw SettingsError("--preset: expected one of " + known + ", got '" + std::string(preset) + "'");
+    throw SettingsError("preset: expected one of " + known + ", got '" + std::string(preset) + "'", {"preset"});
   }
 }
 
@@ -315,10 +316,12 @@ void RenderSettings::validate() const {
   // Readback sizes are GLsizei (32-bit) byte counts: 2^26 RGBA float pixels
   // is the most one texture read can hold (an 8192 x 8192 image).
   if (std::int64_t(width) * height > (std::int64_t(1) << 26))
-    throw SettingsError("--width " + std::to_string(width) + " x --height " + std::to_string(height) +
-                        ": at most 67108864 pixels (8192 x 8192)");
+    throw SettingsError("width " + std::to_string(width) + " x height " + std::to_string(height) +
+                            ": at most 67108864 pixels (8192 x 8192)",
+                        {"width", "height"});
   if (ssgi.resolution != SsgiResolution::Full && !ssgi.blur)
-    throw SettingsError("--no-ssgi-blur needs --ssgi-resolution full: below full resolution the blur pass upsamples");
+    throw SettingsError("ssgi-blur off needs ssgi-resolution full: below full resolution the blur pass upsamples",
+                        {"ssgi-blur", "ssgi-resolution"});
 }
 
 }  // namespace headlight

@@ -3,7 +3,9 @@
 # was installed and pkg-config:
 #  1. compiles one translation unit that includes every installed public
 #     header, and fails if any of them pulls in glad, EGL, OSMesa, GL,
-#     tinygltf, Embree or OpenImageIO (compiler's dependency list, -M);
+#     tinygltf, Embree or OpenImageIO (compiler's dependency list, -M), or
+#     if any names an internal function or type (the CLI parser, bench rows,
+#     test hooks, GPU formats, locks);
 #  2. builds examples/embed.cpp with `pkg-config --cflags --libs headlight`
 #     and runs it (it renders builtin:cornell into memory and checks a pixel);
 #  3. imports the Python module; 4. renders and diffs with the installed CLI.
@@ -40,6 +42,16 @@ if grep -E -i 'glad|/EGL/|/GL/|/KHR/|tiny_gltf|tinygltf|embree|OpenImageIO|nlohm
   exit 1
 fi
 echo "$(ls "$include"/headlight/*.hpp | wc -l) public headers compile alone; they include no GL, EGL, OSMesa, glad, tinygltf, Embree or OpenImageIO header"
+# The public API is what an embedder needs: the CLI's parser and help, bench
+# rows, test hooks, GPU formats and locks live in the internal libraries.
+internal='parseCommandLine|optionHelp|helpLine|matchFlag|splitFlag|BenchRow|writeBenchCsv|writeBenchJson|maskedError'
+internal="$internal|paretoFront|fileFingerprint|textFingerprint|removeStaleTemporaries|tonemapAces|tonemapReinhard"
+internal="$internal|pendingErrorCount|lockBackend|unique_lock|mutex|GpuFormat|gpuFormat|bindOption|actionOption|liftOptions"
+if grep -n -w -E "$internal" "$include"/headlight/*.hpp || grep -n -F 'see headlight' "$include"/headlight/*.hpp; then
+  echo "public headers expose the internal names above"
+  exit 1
+fi
+echo "no public header names the CLI parser, bench rows, test hooks, GPU formats or locks"
 
 # 2. The example, built and run against the installed library.
 "$@" -std=c++20 "$source/examples/embed.cpp" $flags -o "$dest/embed"

@@ -13,13 +13,13 @@
 
 #include <glm/glm.hpp>
 
-#include "headlight/bench.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_loader.hpp"
 #include "stability/stability.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
+#include "tooling/bench.hpp"
 
 namespace headlight::stability {
 

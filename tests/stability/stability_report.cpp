@@ -19,12 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "headlight/bench.hpp"
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
+#include "output/tonemap.hpp"
 #include "stability/stability.hpp"
+#include "tooling/bench.hpp"
 
 namespace fs = std::filesystem;
 using namespace headlight;

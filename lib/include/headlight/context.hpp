@@ -7,17 +7,22 @@
 // goes through the calling thread's current context. Use one Context (and
 // the Renderer made with it) per thread; contexts of different backends (EGL
 // on one thread, OSMesa on another) may render at the same time, since each
-// Context owns its table of GL entry points. To move a context to another
-// thread, stop using it on the first and call makeCurrent() on the second.
-// docs/EMBEDDING.md has the rules.
+// Context owns its table of GL entry points. Renderers of one backend on
+// several threads are safe but take turns (Mesa's llvmpipe crashed when two
+// contexts of one backend drew at once). To move a context to another
+// thread, call releaseCurrent() on the first and makeCurrent() on the
+// second. docs/EMBEDDING.md has the rules.
 #include <memory>
-#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
 #include "headlight/export.hpp"
 
 namespace headlight HEADLIGHT_PUBLIC {
+
+namespace detail {
+struct ContextAccess;
+}
 
 enum class Backend {
   Auto,  // EGL (device platform, then surfaceless), then OSMesa
@@ -65,30 +70,25 @@ class Context {
   const std::vector<std::string>& attempts() const;
 
   // Makes this context current on the calling thread (it already is after
-  // construction). Throws ContextError when the platform refuses (an EGL
-  // context still current on another thread).
+  // construction), releasing whatever context of either backend this thread
+  // had current through another Context. Throws ContextError when the
+  // platform refuses (an EGL context still current on another thread).
   void makeCurrent();
+  // Makes no context current on the calling thread if this one is, so that
+  // another thread can make it current. No-op otherwise.
+  void releaseCurrent();
   // Whether this context is the calling thread's current one.
   bool isCurrent() const;
   // Throws ContextError naming `operation` unless isCurrent().
   void requireCurrent(std::string_view operation) const;
 
-  // One lock per backend, held by every Renderer call that touches the GL
-  // (and by context creation and destruction): Mesa 22.3's llvmpipe crashed
-  // inside the driver when two contexts of the same backend drew at the same
-  // time on different threads (docs/EMBEDDING.md, "Threads"). Renderers of
-  // one backend on several threads are therefore safe but take turns; an EGL
-  // and an OSMesa renderer still run at the same time.
-  [[nodiscard]] std::unique_lock<std::mutex> lockBackend() const;
-
   // Reports the GL errors collected since the last call (KHR_debug messages
   // of type ERROR, plus glGetError), naming `operation`. Under
   // GlErrorPolicy::Throw it throws GlError; under Warn it prints them.
   void checkErrors(std::string_view operation);
-  // Errors collected so far (and not yet reported), for tests.
-  std::size_t pendingErrorCount() const;
 
  private:
+  friend struct detail::ContextAccess;  // the library's own access (lib/context/context_access.hpp)
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

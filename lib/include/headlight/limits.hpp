@@ -3,9 +3,10 @@
 // anything is allocated. A file of a few kilobytes can otherwise claim
 // gigabytes (an accessor of count 2^31, a node tree listed 100,000 times,
 // 16384^2 textures); the loader and the renderer check these first and throw
-// LimitError naming the file, the element, the limit and the flag that raises it.
+// LimitError naming the file, the element, the limit and the setting that
+// raises it (Error::settings()).
 //
-// Every field is a row of limitOptions() (the CLI's --max-memory, ...), with
+// Every field is a row of limitOptions() (max-memory, ...; the CLI's flags), with
 // in-class defaults; docs/RELIABILITY.md gives the measured costs behind them.
 #include <cstdint>
 #include <optional>
@@ -41,7 +42,7 @@ inline constexpr std::uint64_t kFrameBaseBytes = std::uint64_t(256)
 std::uint64_t estimateFrameBytes(int width, int height);
 
 // Throws LimitError when a width x height render plus `sceneBytes` would not
-// fit in maxMemoryBytes(limits); says the estimate and the flag to raise.
+// fit in maxMemoryBytes(limits); says the estimate and the setting to raise.
 void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const ResourceLimits& limits);
 
 // Where float rendering stays finite. Float holds 3.4e38; shading squares
@@ -59,7 +60,7 @@ inline constexpr double kMaxLightValue = 1e12;
 void checkSceneRanges(const Scene& scene);
 
 // Bytes the scene holds on the CPU and the GPU together (vertices, indices,
-// textures with mipmaps, instances); an estimate for --max-memory.
+// textures with mipmaps, instances); an estimate for max-memory.
 std::uint64_t estimateSceneBytes(const Scene& scene);
 
 }  // namespace headlight

@@ -60,7 +60,7 @@ std::vector<std::string_view> outputTargetNames();
 
 // Writes the frame's targets as <outDir>/<target>.exr, preview.png and
 // frame.json (last). Creates outDir if needed, and first removes temporary
-// files there whose writing process is gone. Throws IoError naming the file
+// files there whose writing process is gone (left by a killed writer). Throws IoError naming the file
 // (with the system's reason, e.g. "No space left on device"), or naming the
 // target and the count of non-finite values under NonFinitePolicy::Error.
 std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::path& outDir,
@@ -93,10 +93,6 @@ std::map<std::string, std::string> readSettingAttributes(const std::filesystem::
 // sRGB, in one pass over the floats. Non-finite values become black.
 WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);
 
-// Tone curves on linear radiance, exposed for tests.
-float tonemapAces(float x);      // Narkowicz's fit of the ACES filmic curve
-float tonemapReinhard(float x);  // x / (1 + x)
-
 // NaN and inf are counted and refused (or clamped) per file by writeFrame;
 // headlight/finite.hpp checks a whole frame in memory (countNonFinite,
 // requireFinite) for callers that do not write files.
@@ -107,7 +103,7 @@ inline constexpr std::string_view kManifestName = "frame.json";
 
 struct ManifestFile {
   std::string name;  // file name in the folder
-  std::string hash;  // 16 hex digits: XXH3-64 of the bytes (textFingerprint)
+  std::string hash;  // 16 hex digits: XXH3-64 (libxxhash) of the bytes
   std::size_t bytes = 0;
 };
 
@@ -137,14 +133,5 @@ struct FrameSetCheck {
 
 // Checks a folder against its frame.json (reading every listed file to hash it).
 FrameSetCheck checkFrameSet(const std::filesystem::path& folder);
-
-// Removes <folder>/.*.<pid>-<n>.tmp files whose process <pid> no longer
-// runs (left by a killed writer). Returns how many were removed.
-std::size_t removeStaleTemporaries(const std::filesystem::path& folder);
-
-// XXH3-64 (libxxhash) of a file's bytes, or of a text, as 16 hex digits. Stable across
-// runs and machines. fileFingerprint throws IoError.
-std::string fileFingerprint(const std::filesystem::path& path);
-std::string textFingerprint(std::string_view text);
 
 }  // namespace headlight

@@ -2,7 +2,7 @@
 // The deferred renderer. Make it once per context; give it a scene once;
 // render as many views and sizes as you like into memory. Shaders are built
 // when the renderer and the scene are set (a settings change that needs
-// another variant, such as --no-ssgi, builds it once, on first use).
+// another variant, such as SSGI off, builds it once, on first use).
 //
 //   headlight::Context context;                    // EGL or OSMesa, 4.5 core
 //   headlight::Renderer renderer(context);
@@ -37,7 +37,7 @@ class Renderer {
   void setScene(Scene scene);
 
   // What setScene and render may use (default: ResourceLimits{}, so
-  // --max-memory's auto). render() refuses an image size whose estimated
+  // max-memory's auto). render() refuses an image size whose estimated
   // memory (estimateFrameBytes) and the scene's do not fit, before allocating.
   void setLimits(const ResourceLimits& limits);
   const Scene& scene() const;

@@ -1,9 +1,10 @@
 #pragma once
-// The one table of frame targets: what each output is, how the GPU stores
-// it, how its EXR stores it and how a regression diff judges it. The
-// renderer's readback, writeFrame, headlight diff's defaults, its directory
-// mode and the tests all read this table; adding a target is one row here, a
-// Frame member, and the pass that draws it (docs/PIPELINE.md, "Adding a target").
+// The one table of frame targets: what each output is, how its EXR stores it
+// and how a regression diff judges it. The renderer's readback, writeFrame,
+// headlight diff's defaults, its directory mode and the tests all read this
+// table; adding a target is one row here, a Frame member, the GPU format of
+// its texture (lib/gl/target_formats.hpp) and the pass that draws it
+// (docs/PIPELINE.md, "Adding a target").
 #include <limits>
 #include <span>
 #include <string_view>
@@ -40,20 +41,13 @@ struct DiffThresholds {
   double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
 };
 
-// The GPU texture a target is read back from (the G-buffer pass and the
-// renderer allocate exactly these; lib/gl maps them to GL enums).
-enum class GpuFormat { Rgba32F, Rgba16F, Srgb8Alpha8, Rgba8, Depth32F };
-
 // What the EXR stores: float32 where half's 11 bits are too few.
 enum class ExrStorage { Half, Float };
 
 struct FrameTarget {
   std::string_view name;                       // file stem (<name>.exr), and headlight diff's row name
   ImageF Frame::*image = nullptr;              // where a Frame keeps it; null for the diff fallback row
-  // EXR channel names, in order. More than 4 (ssgi): the GPU holds them in
-  // ceil(n / 4) textures of gpuFormat, channels 4k..4k+3 in texture k.
-  std::span<const std::string_view> channels;
-  GpuFormat gpuFormat = GpuFormat::Rgba16F;
+  std::span<const std::string_view> channels;  // EXR channel names, in order
   ExrStorage storage = ExrStorage::Half;
   DiffMetric metric = DiffMetric::Absolute;
   DiffThresholds thresholds;

@@ -1,16 +1,16 @@
 #pragma once
 // What `headlight bench` measures, as functions a test can check: error
 // metrics over geometry pixels, the Pareto front of (time, error), and the
-// CSV/JSON rows. The sweep itself lives in tools/bench_command.cpp.
+// CSV/JSON rows. The sweep itself lives in tools/bench_command.cpp. Part of
+// the internal support library (lib/tooling), not of libheadlight.
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-#include "headlight/export.hpp"
 #include "headlight/frame.hpp"
 
-namespace headlight HEADLIGHT_PUBLIC {
+namespace headlight {
 
 // Error of channel `channelA` of `a` against channel `channelB` of `b` over
 // the pixels where `mask` (a Frame's position target) has A = 1.
@@ -79,4 +79,4 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
 // "Model name" from /proc/cpuinfo and the hardware thread count.
 std::string machineDescription();
 
-}  // namespace HEADLIGHT_PUBLIC
+}  // namespace headlight

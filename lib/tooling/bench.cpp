@@ -1,4 +1,4 @@
-#include "headlight/bench.hpp"
+#include "tooling/bench.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,70 @@
+#include "tooling/command_line.hpp"
+
+#include <string_view>
+
+#include "settings/option_binding.hpp"
+
+namespace headlight {
+namespace {
+
+// The name at `at` stands alone: not part of a longer word or path, nor
+// "camera(s)", nor already a flag.
+bool standsAlone(const std::string& text, std::size_t at, std::size_t length) {
+  const std::size_t end = at + length;
+  return (at == 0 || std::string_view(" (\n'").find(text[at - 1]) != std::string_view::npos) &&
+         (end == text.size() || std::string_view(" :;,)=\n'").find(text[end]) != std::string_view::npos);
+}
+
+}  // namespace
+
+std::string commandLineMessage(const std::exception& error) {
+  std::string text = error.what();
+  const auto* named = dynamic_cast<const Error*>(&error);
+  if (!named) return text;
+  for (const std::string& setting : named->settings()) {
+    if (setting.empty()) continue;
+    for (std::size_t at = text.find(setting); at != std::string::npos; at = text.find(setting, at)) {
+      if (standsAlone(text, at, setting.size())) {
+        text.insert(at, "--");
+        at += 2;
+      }
+      at += setting.size();
+    }
+  }
+  return text;
+}
+
+namespace detail {
+
+FlagMatch matchFlag(const OptionSpec& spec, std::string_view flagName) {
+  if (flagName == spec.name) return {true, false};
+  if (spec.type == OptionType::Bool && flagName.size() == spec.name.size() + 3 && flagName.substr(0, 3) == "no-" &&
+      flagName.substr(3) == spec.name)
+    return {true, true};
+  return {};
+}
+
+bool splitFlag(const std::string& arg, std::string& name, std::optional<std::string>& inlineValue) {
+  if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) return false;
+  const auto equals = arg.find('=');
+  name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
+  if (equals != std::string::npos) inlineValue = arg.substr(equals + 1);
+  return true;
+}
+
+std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& defaultValue) {
+  constexpr std::size_t kHelpColumn = 34;
+  std::string left = spec.type == OptionType::Bool ? "  --[no-]" : "  --";
+  left += spec.name;
+  if (const std::string value = optionValueName(spec); !value.empty()) (left += " ") += value;
+  left +=
+      left.size() < kHelpColumn ? std::string(kHelpColumn - left.size(), ' ') : "\n" + std::string(kHelpColumn, ' ');
+  std::string line = left + std::string(spec.help);
+  if (!spec.autoMeaning.empty()) line += " (auto: " + std::string(spec.autoMeaning) + ")";
+  if (spec.type == OptionType::Int || spec.type == OptionType::Float) line += " [" + optionRangeText(spec) + "]";
+  if (defaultValue) line += " [default: " + formatOptionValue(spec, *defaultValue) + "]";
+  return line + "\n";
+}
+
+}  // namespace detail
+}  // namespace headlight

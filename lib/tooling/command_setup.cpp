@@ -1,0 +1,29 @@
+#include "tooling/command_setup.hpp"
+
+#include "headlight/scene_loader.hpp"
+#include "output/atomic_file.hpp"
+
+namespace headlight {
+
+Scene loadCommandScene(const std::string& nameOrPath, bool allowExternalPaths, const ResourceLimits& limits) {
+  SceneLoadOptions options;
+  options.allowExternalPaths = allowExternalPaths;
+  return loadScene(nameOrPath, options, limits);
+}
+
+std::string verboseHeader(const Context& context, const Scene& scene) {
+  std::string text;
+  for (const std::string& attempt : context.attempts()) text += "context: " + attempt + "\n";
+  text += "backend: " + std::string(backendName(context.backend())) + " (" + context.description() + ")\n";
+  text += "GL_RENDERER: " + context.renderer() + "\nGL_VERSION: " + context.version() + "\n";
+  text += "scene: " + scene.source + ": " + std::to_string(scene.instances.size()) + " instances, " +
+          std::to_string(scene.triangleCount()) + " triangles, " + std::to_string(scene.lights.size()) + " lights, " +
+          std::to_string(scene.cameras.size()) + " cameras\n";
+  return text;
+}
+
+void writeTextFile(const std::filesystem::path& path, std::string_view text) {
+  detail::writeTextAtomically(path, text);
+}
+
+}  // namespace headlight
