@@ -2,6 +2,7 @@
 // a table (or one JSON object) -> optional diff images -> exit code.
 #include "diff_command.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -55,6 +56,7 @@ std::span<const std::string_view> targetNames() {
   static const std::vector<std::string_view> names = [] {
     std::vector<std::string_view> list;
     for (const FrameTarget& target : frameTargets()) list.push_back(target.name);
+    list.push_back(previewTargetRow().name);
     return list;
   }();
   return names;
@@ -89,6 +91,16 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
                        .help = "compare only these channels (file mode only)",
                        .valueName = "c1,c2,..."},
                       [](C& c, const OptionValue& v) { c.options.channels = parseChannels(std::get<std::string>(v)); }),
+      actionOption<C>({.name = "metric",
+                       .type = T::Choice,
+                       .help = "judge by this error measure instead of the target's (its thresholds then come "
+                               "from the first table row using it: flip -> lit's)",
+                       .choices = metricNames()},
+                      [](C& c, const OptionValue& v) {
+                        const auto names = metricNames();
+                        const auto found = std::find(names.begin(), names.end(), std::get<std::string>(v));
+                        c.options.metric = DiffMetric(found - names.begin());
+                      }),
       // A typo would silently fall back to idiff's defaults: a choice refuses it.
       actionOption<C>({.name = "target",
                        .type = T::Choice,
@@ -149,6 +161,15 @@ std::string upper(std::string_view text) {
 
 std::string unitSuffix(DiffMetric metric) { return metric == DiffMetric::AngleDegrees ? " deg" : ""; }
 
+std::string flipDescription(const DiffResult& r) {
+  if (!r.flip) return "error = FLIP of R, G, B (0..1); other channels absolute";
+  const FlipDetails& f = *r.flip;
+  std::string text = f.hdr ? "error = HDR-FLIP of R, G, B (0..1) over " + std::to_string(f.exposureCount) +
+                                 " exposures " + number(f.startExposure) + " .. " + number(f.stopExposure) + " EV of A"
+                           : std::string("error = LDR-FLIP of sRGB-decoded R, G, B (0..1)");
+  return text + ", " + number(f.pixelsPerDegree) + " pixels/degree; other channels absolute";
+}
+
 std::string describeMetric(const DiffResult& r) {
   switch (r.metric) {
     case DiffMetric::Absolute:
@@ -159,6 +180,8 @@ std::string describeMetric(const DiffResult& r) {
       return "error = |a - b| / max(1, |a|)";
     case DiffMetric::AngleDegrees:
       return "error = angle between the normals of A and B, in degrees";
+    case DiffMetric::Flip:
+      return flipDescription(r);
   }
   return "";
 }
@@ -253,6 +276,12 @@ json toJson(const DiffResult& r) {
     j["scale"] = num(r.scale);
     j["scale_source"] = r.scaleSource;
   }
+  if (r.flip)
+    j["flip"] = {{"variant", r.flip->hdr ? "hdr" : "ldr"},
+                 {"pixels_per_degree", r.flip->pixelsPerDegree},
+                 {"start_exposure", num(r.flip->startExposure)},
+                 {"stop_exposure", num(r.flip->stopExposure)},
+                 {"exposures", r.flip->exposureCount}};
   j["thresholds"] = toJson(r.thresholds);
   j["width"] = r.width;
   j["height"] = r.height;
@@ -403,10 +432,13 @@ std::string diffHelp() {
     out << line;
   };
   for (const FrameTarget& row : frameTargets()) printRow(row);
+  printRow(previewTargetRow());
   printRow(unknownTargetRow());
   out << "  (warnpercent 0 and hardwarn inf everywhere; reasons in docs/DIFF.md)\n"
          "relative-to-scene: error / A's headlight:far (coverage channel A absolute);\n"
-         "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors.\n"
+         "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors;\n"
+         "flip: the perceived difference of R, G, B, 0..1 (HDR-FLIP of float images, exposures from A;\n"
+         "LDR-FLIP of sRGB 8/16-bit images), other channels absolute; failmean bounds the mean FLIP.\n"
          "Background pixels are compared like any other (their values are deterministic).\n";
   return out.str();
 }

@@ -273,7 +273,12 @@ Opponent toOpponent(const RgbView& image, ToLinear toLinear) {
   for (std::size_t i = 0; i < count; ++i) {
     const float* src = image.pixels + i * std::size_t(image.stride);
     float rgb[3];
-    for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(toLinear(src[c]), 0.0f, 1.0f);
+    // NaN (and what tone mapping makes of inf) counts as black: the caller
+    // judges non-finite input itself; here it must not spread through the filters.
+    for (int c = 0; c < 3; ++c) {
+      const float v = toLinear(src[c]);
+      rgb[c] = v > 0 ? std::min(v, 1.0f) : 0.0f;
+    }
     const float x = (kRgbToXyz[0][0] * rgb[0] + kRgbToXyz[0][1] * rgb[1] + kRgbToXyz[0][2] * rgb[2]) / kWhite.x;
     const float y = luminance(rgb) / kWhite.y;
     const float z = (kRgbToXyz[2][0] * rgb[0] + kRgbToXyz[2][1] * rgb[1] + kRgbToXyz[2][2] * rgb[2]) / kWhite.z;
@@ -412,8 +417,10 @@ FlipResult ldrFlip(const RgbView& reference, const RgbView& test, double ppd) {
 ExposureRange hdrExposureRange(const RgbView& reference) {
   const std::size_t count = std::size_t(reference.width) * std::size_t(reference.height);
   std::vector<float> luminances(count);
-  for (std::size_t i = 0; i < count; ++i)
-    luminances[i] = std::max(exposureLuminance(reference.pixels + i * std::size_t(reference.stride)), 0.0f);
+  for (std::size_t i = 0; i < count; ++i) {
+    const float y = exposureLuminance(reference.pixels + i * std::size_t(reference.stride));
+    luminances[i] = std::isfinite(y) ? std::max(y, 0.0f) : 0.0f;  // non-finite: as black, like the images
+  }
   ExposureRange range;
   const float brightest = luminances.empty() ? 0.0f : *std::max_element(luminances.begin(), luminances.end());
   if (!(brightest > 0)) return range;  // black (or empty): one exposure pair at 1

@@ -59,7 +59,7 @@ struct FlipResult {
   int exposureCount = 0;
 };
 
-// LDR-FLIP of two linear-RGB images (values outside [0, 1] clamped). Throws
+// LDR-FLIP of two linear-RGB images (values outside [0, 1] clamped, NaN as 0). Throws
 // std::invalid_argument when the sizes differ, are zero, or stride < 3.
 FlipResult ldrFlip(const RgbView& reference, const RgbView& test, double pixelsPerDegree = defaultPixelsPerDegree());
 
@@ -73,7 +73,8 @@ struct ExposureRange {
 // infinite there).
 ExposureRange hdrExposureRange(const RgbView& reference);
 
-// HDR-FLIP of two linear HDR radiance images (negative values taken as 0).
+// HDR-FLIP of two linear HDR radiance images (negative, NaN and infinite
+// values taken as 0).
 // Throws like ldrFlip.
 FlipResult hdrFlip(const RgbView& reference, const RgbView& test, double pixelsPerDegree = defaultPixelsPerDegree());
 // The same over the given exposures (e.g. a range chosen elsewhere).
