@@ -55,7 +55,8 @@ TEST_CASE("hdrFlipMean is HDR-FLIP's mean with the reference's exposures, over e
   CHECK(mean > 0.01);
   CHECK(mean < 1.0);
   // The second argument is FLIP's reference (its exposures), the first the test.
-  CHECK(mean == doctest::Approx(flip::hdrFlip({reference.pixels.data(), 40, 32, 4}, {lit.pixels.data(), 40, 32, 4}).mean));
+  CHECK(mean ==
+        doctest::Approx(flip::hdrFlip({reference.pixels.data(), 40, 32, 4}, {lit.pixels.data(), 40, 32, 4}).mean));
   ImageF small = makeImage(8, 8, {"R", "G", "B"}, 0.5f);
   CHECK_THROWS_WITH_AS(hdrFlipMean(small, reference), doctest::Contains("8x8"), Error);
 }

@@ -651,8 +651,8 @@ TEST_CASE("diff: lit is judged by HDR-FLIP, preview.png by LDR-FLIP, and --metri
   // --out: the FLIP map itself in diff.exr's error channel, magma in the PNG
   // (0 is magma's black bottom, whatever the fail threshold).
   const fs::path exr = folder / "flip_diff.exr";
-  const Cli written = runCli({(folder / "lit.exr").string(), (folder / "b" / "lit.exr").string(), "--out",
-                              exr.string(), "--json"});
+  const Cli written =
+      runCli({(folder / "lit.exr").string(), (folder / "b" / "lit.exr").string(), "--out", exr.string(), "--json"});
   CHECK(written.exitCode == 2);
   const nlohmann::json j = nlohmann::json::parse(written.out);
   CHECK(j["metric"] == "flip");

@@ -139,8 +139,8 @@ TEST_CASE("HDR-FLIP matches NVIDIA's FLIP tool on the validation pairs" * doctes
     const auto start = std::chrono::steady_clock::now();
     const flip::FlipResult result = flip::hdrFlip(reference.view(), tested.view());
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    MESSAGE(name << ": HDR-FLIP mean " << result.mean << " (tool " << expected["Mean"] << "), "
-                 << result.exposureCount << " exposures " << result.startExposure << ".." << result.stopExposure << " (tool "
+    MESSAGE(name << ": HDR-FLIP mean " << result.mean << " (tool " << expected["Mean"] << "), " << result.exposureCount
+                 << " exposures " << result.startExposure << ".." << result.stopExposure << " (tool "
                  << expected["Start exposure"] << ".." << expected["Stop exposure"] << "), " << ms << " ms");
 
     CHECK(std::abs(result.startExposure - expected["Start exposure"]) < 6e-5);

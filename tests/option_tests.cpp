@@ -229,7 +229,7 @@ TEST_CASE("tune --max-flip bounds lit's HDR-FLIP, alone or with the AO bound") {
   }
   CHECK(cli::cheapestWithin(rows, std::nullopt, 0.15) == std::optional<std::size_t>(0));
   CHECK(cli::cheapestWithin(rows, std::nullopt, 0.2) == std::optional<std::size_t>(2));  // inclusive
-  CHECK(cli::cheapestWithin(rows, 0.05, 0.2) == std::optional<std::size_t>(3));  // both must hold
+  CHECK(cli::cheapestWithin(rows, 0.05, 0.2) == std::optional<std::size_t>(3));          // both must hold
   CHECK(!cli::cheapestWithin(rows, std::nullopt, 0.01));
   CHECK(cli::parseTuneArgs({"--max-flip", "0.1"}).maxFlip == 0.1);
   CHECK_THROWS_WITH_AS(cli::parseTuneArgs({"--max-flip", "2"}), doctest::Contains("--max-flip"), SettingsError);

@@ -81,7 +81,8 @@ def summary(rows, groups):
         # A CSV from before lit_flip existed has no such column.
         flip = "lit_flip" in group[0]
         lines += ["", "Lowest lit error (lit_ref does not depend on R, so radii compare fairly here):", "",
-                  "| configuration | frame ms (median) | lit relative RMSE | lit SSIM |" + (" lit HDR-FLIP |" if flip else ""),
+                  "| configuration | frame ms (median) | lit relative RMSE | lit SSIM |"
+                  + (" lit HDR-FLIP |" if flip else ""),
                   "|---|---|---|---|" + ("---|" if flip else "")]
         for r in sorted(group, key=lambda r: float(r["lit_rel_rmse"]))[:3] + seeds[:1]:
             lines.append(f"| {describe(r)}{' (seed default)' if r['seed_default'] == '1' else ''} | "

@@ -214,12 +214,11 @@ int runTuneCommand(const std::vector<std::string>& args) {
     return kExitTuneUnmet;
   }
   const BenchRow& row = rows[*chosen];
-  std::vector<std::string> comments{"headlight settings, written by: " + joinArgs(args),
-                                    "the cheapest of " + std::to_string(rows.size()) + " configurations measured on " +
-                                        row.scene + " at " + std::to_string(row.width) + "x" +
-                                        std::to_string(row.height) + " with " + bounds + ": " + row.label,
-                                    "tune: ao-rmse = " + number(row.ao.rmse, 6),
-                                    "tune: lit-flip = " + number(row.litFlip, 6)};
+  std::vector<std::string> comments{
+      "headlight settings, written by: " + joinArgs(args),
+      "the cheapest of " + std::to_string(rows.size()) + " configurations measured on " + row.scene + " at " +
+          std::to_string(row.width) + "x" + std::to_string(row.height) + " with " + bounds + ": " + row.label,
+      "tune: ao-rmse = " + number(row.ao.rmse, 6), "tune: lit-flip = " + number(row.litFlip, 6)};
   if (maxAo) comments.push_back("tune: max-ao-error = " + number(*maxAo, 6));
   if (maxFlip) comments.push_back("tune: max-flip = " + number(*maxFlip, 6));
   comments.push_back("tune: frame-ms = " + number(row.frameMs.median, 6) + " (median of " +

@@ -193,9 +193,8 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
         << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
-        << r.litFlip << ','
-        << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ',' << csvField(r.renderer)
-        << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+        << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
+        << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
   }
   detail::writeTextAtomically(path, out.str());
 }

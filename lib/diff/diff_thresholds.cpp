@@ -69,8 +69,8 @@ DiffMetric resolveMetric(std::string_view target, const DiffOptions& options) {
 
 DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options) {
   const FrameTarget& row = targetTolerance(target);
-  const FrameTarget* unitsRow = options.metric && *options.metric != row.metric ? firstRowWithMetric(*options.metric)
-                                                                                  : &row;
+  const FrameTarget* unitsRow =
+      options.metric && *options.metric != row.metric ? firstRowWithMetric(*options.metric) : &row;
   DiffThresholds t = (unitsRow ? *unitsRow : row).thresholds;
   // A mean bound below a per-pixel bound the caller chose would overrule it
   // (every pixel within --fail, the mean above): an explicit --fail raises it.

@@ -16,12 +16,12 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 // Colour pipeline (HPG 2020, section 4.1).
-constexpr float kColorExponent = 0.7f;              // q_c: HyAB distance ^ 0.7
-constexpr float kRedistributionBreak = 0.4f;        // p_c: of the largest distance ...
-constexpr float kRedistributionValue = 0.95f;       // p_t: ... maps to this
+constexpr float kColorExponent = 0.7f;         // q_c: HyAB distance ^ 0.7
+constexpr float kRedistributionBreak = 0.4f;   // p_c: of the largest distance ...
+constexpr float kRedistributionValue = 0.95f;  // p_t: ... maps to this
 // Feature pipeline (section 4.2).
-constexpr float kFeatureExponent = 0.5f;            // q_f
-constexpr double kFeatureWidthDegrees = 0.082;      // w: peak to trough of the edge detector
+constexpr float kFeatureExponent = 0.5f;        // q_f
+constexpr double kFeatureWidthDegrees = 0.082;  // w: peak to trough of the edge detector
 // HDR-FLIP (EGSR 2021, section 4): the reference's brightest luminance at the
 // start exposure and its median at the stop exposure tone map to this.
 constexpr double kToneTarget = 0.85;
@@ -33,9 +33,9 @@ struct CsfChannel {
   double a1, b1, a2, b2;
 };
 constexpr std::array<CsfChannel, 3> kCsf{{
-    {1.0, 0.0047, 0.0, 1e-5},    // achromatic (Y)
-    {1.0, 0.0053, 0.0, 1e-5},    // red-green (Cx)
-    {34.1, 0.04, 13.5, 0.025},   // blue-yellow (Cz)
+    {1.0, 0.0047, 0.0, 1e-5},   // achromatic (Y)
+    {1.0, 0.0053, 0.0, 1e-5},   // red-green (Cx)
+    {34.1, 0.04, 13.5, 0.025},  // blue-yellow (Cz)
 }};
 constexpr double kCsfLargestB = 0.04;
 
@@ -297,8 +297,7 @@ Lab filteredLab(const std::array<Plane, 3>& filtered, std::size_t i) {
   const float z = (y - filtered[2].values[i] / 200.0f) * kWhite.z;
   const Matrix3& m = xyzToRgb();
   float rgb[3];
-  for (int c = 0; c < 3; ++c)
-    rgb[c] = std::clamp(m.m[c][0] * x + m.m[c][1] * y * kWhite.y + m.m[c][2] * z, 0.0f, 1.0f);
+  for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(m.m[c][0] * x + m.m[c][1] * y * kWhite.y + m.m[c][2] * z, 0.0f, 1.0f);
   return huntLab(rgb[0], rgb[1], rgb[2]);
 }
 
@@ -366,7 +365,7 @@ FlipResult emptyResult(const RgbView& reference) {
 // (k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5).
 constexpr double kAcesPre = 0.6;  // the pre-exposure folded into the fit's coefficients
 constexpr double kAces[6] = {kAcesPre * kAcesPre * 2.51, kAcesPre * 0.03, 0.0,
-                             kAcesPre * kAcesPre * 2.43, kAcesPre * 0.59, 0.14};
+                             kAcesPre* kAcesPre * 2.43,  kAcesPre * 0.59, 0.14};
 
 double acesInverse(double target) {
   const double a = kAces[0] - kAces[3] * target, b = kAces[1] - kAces[4] * target, c = kAces[2] - kAces[5] * target;

@@ -225,7 +225,8 @@ MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const 
   checkOk(pickedB, "channels");
   pickedA.get_pixels(roi, OIIO::TypeDesc::FLOAT, rgbA.data());
   pickedB.get_pixels(roi, OIIO::TypeDesc::FLOAT, rgbB.data());
-  const flip::RgbView viewA{rgbA.data(), roi.width(), roi.height(), 3}, viewB{rgbB.data(), roi.width(), roi.height(), 3};
+  const flip::RgbView viewA{rgbA.data(), roi.width(), roi.height(), 3},
+      viewB{rgbB.data(), roi.width(), roi.height(), 3};
   FlipDetails details;
   details.hdr = !ldr;
   details.pixelsPerDegree = flip::defaultPixelsPerDegree();

@@ -84,7 +84,13 @@ const FrameTarget kTargets[] = {
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.
 constexpr std::string_view kPreviewChannels[] = {"R", "G", "B", "A"};
 const FrameTarget kPreviewTarget{
-    "preview", nullptr, kPreviewChannels, G::Srgb8Alpha8, E::Half, M::Flip, thresholds(0.02, 0.1, 0.5, 0.005),
+    "preview",
+    nullptr,
+    kPreviewChannels,
+    G::Srgb8Alpha8,
+    E::Half,
+    M::Flip,
+    thresholds(0.02, 0.1, 0.5, 0.005),
     "8-bit sRGB after tone mapping (written beside the EXRs, not read back). LDR-FLIP of the decoded colours: "
     "what a viewer sees on a display; the thresholds are lit's, for the same reasons."};
 

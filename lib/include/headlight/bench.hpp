@@ -71,7 +71,7 @@ struct BenchRow {
   ColorErrorStats indirect;  // vs indirect_ref within R
   ColorErrorStats lit;       // vs lit_ref
   double litSsim = 0;
-  double litFlip = 0;        // mean HDR-FLIP (lib/diff/flip.hpp) of lit against lit_ref, over all pixels
+  double litFlip = 0;  // mean HDR-FLIP (lib/diff/flip.hpp) of lit against lit_ref, over all pixels
   int referenceSamples = 0;
   double referenceAoStandardError = 0;
   bool paretoAo = false;  // on the (frame time, AO RMSE) front of its scene and resolution

@@ -83,8 +83,8 @@ DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& opt
 
 // The Flip metric's details: which FLIP and its viewing conditions.
 struct FlipDetails {
-  bool hdr = true;              // HDR-FLIP (float images); false: LDR-FLIP of sRGB-decoded integer images
-  double pixelsPerDegree = 0;   // 67.02: 0.7 m from a 0.7 m wide 3840-px display
+  bool hdr = true;             // HDR-FLIP (float images); false: LDR-FLIP of sRGB-decoded integer images
+  double pixelsPerDegree = 0;  // 67.02: 0.7 m from a 0.7 m wide 3840-px display
   double startExposure = 0, stopExposure = 0;  // HDR-FLIP: from A (the reference)
   int exposureCount = 0;
 };
@@ -110,9 +110,9 @@ struct DiffResult {
   std::filesystem::path a, b;
   std::string target;  // table row used
   DiffMetric metric = DiffMetric::Absolute;
-  DiffThresholds thresholds;  // as used
-  double scale = 1;           // RelativeToScene only: the divisor
-  std::string scaleSource;    // e.g. "headlight:far of A"
+  DiffThresholds thresholds;        // as used
+  double scale = 1;                 // RelativeToScene only: the divisor
+  std::string scaleSource;          // e.g. "headlight:far of A"
   std::optional<FlipDetails> flip;  // Flip only, once computed
   int width = 0, height = 0;
   std::uint64_t pixelCount = 0;
