@@ -464,6 +464,12 @@ TEST_CASE("diff: folder mode reports each target and the worst verdict" * doctes
   CHECK(fs::exists(out / "albedo_diff.exr"));
   CHECK(fs::exists(out / "albedo_diff.png"));
   CHECK(fs::exists(out / "lit_diff.exr"));
+  CHECK(fs::exists(out / "lit_diff_a.png"));  // lit is judged by FLIP: its images beside the map
+  std::ifstream report(out / "report.html");
+  const std::string page((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  CHECK(contains(page, "albedo_diff.png"));
+  CHECK(contains(page, "lit_diff_b.png"));
+  CHECK(contains(page, "<span class='fail'>FAIL</span>"));
 
   // A target in one folder only is structural, and the worst status wins.
   write(b / "ssgi.exr", gradient(10, 10, {"ao.Y"}));
@@ -667,6 +673,23 @@ TEST_CASE("diff: lit is judged by HDR-FLIP, preview.png by LDR-FLIP, and --metri
   REQUIRE(png.read());
   CHECK(png.getchannel(31, 31, 0, 0) < 0.02f);  // FLIP 0 there: magma's near-black
   CHECK(png.getchannel(31, 31, 0, 2) < 0.05f);
+  // Beside the map: A and B as FLIP saw them (tone mapped, 8-bit), and the
+  // HTML report showing the three with the numbers.
+  for (const char* name : {"flip_diff_a.png", "flip_diff_b.png"}) {
+    OIIO::ImageBuf view((folder / name).string());
+    REQUIRE(view.read());
+    CHECK(view.spec().width == 32);
+    CHECK(view.nchannels() == 3);
+  }
+  OIIO::ImageBuf viewA((folder / "flip_diff_a.png").string()), viewB((folder / "flip_diff_b.png").string());
+  REQUIRE(viewA.read());
+  REQUIRE(viewB.read());
+  CHECK(viewB.getchannel(12, 12, 0, 0) > viewA.getchannel(12, 12, 0, 0));  // the brighter block
+  CHECK(viewB.getchannel(30, 30, 0, 0) == viewA.getchannel(30, 30, 0, 0));
+  std::ifstream html(folder / "flip_diff.html");
+  const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  for (const char* part : {"flip_diff_a.png", "flip_diff_b.png", "flip_diff.png", "HDR-FLIP", "FAIL"})
+    CHECK_MESSAGE(contains(page, part), part);
 
   // Coverage is compared absolutely beside the FLIP.
   TestImage uncovered = lit;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -336,13 +337,91 @@ std::vector<std::string> writeImages(const DiffResult& r, const fs::path& exrPat
   return written;
 }
 
+std::string htmlEscaped(std::string_view text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '\'':
+        escaped += "&#39;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// report.html beside the diff images: per compared target its verdict and
+// numbers, and the images writeDiffImages left beside its diff.exr (for the
+// flip metric A and B as FLIP saw them, then the FLIP map in magma; else the
+// heatmap), linked by relative name. `diffs`: each result with its diff.exr.
+void writeHtmlReport(const fs::path& html, const std::vector<std::pair<const DiffResult*, fs::path>>& diffs,
+                     std::vector<std::string>& written, std::vector<std::string>& errors) {
+  std::ostringstream page;
+  page << "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>headlight diff</title><style>"
+          "body{font-family:sans-serif} td{vertical-align:top;padding:4px} img{image-rendering:pixelated;"
+          "max-width:320px} .pass{color:green} .warn{color:orange} .fail,.structural,.file-error{color:red}"
+          "</style></head><body>\n<h1>headlight diff</h1>\n<table>\n"
+          "<tr><th>target</th><th>A (reference)</th><th>B</th><th>error</th><th>numbers</th></tr>\n";
+  std::error_code ignored;
+  for (const auto& [r, exr] : diffs) {
+    const std::string stem = exr.stem().string();
+    auto image = [&](const std::string& name) {
+      return fs::exists(exr.parent_path() / name, ignored) ? "<img src='" + htmlEscaped(name) + "'>" : std::string();
+    };
+    page << "<tr><td><b>" << htmlEscaped(r->target.empty() ? "(none)" : r->target) << "</b><br><span class='"
+         << statusName(r->status) << "'>" << upper(statusName(r->status)) << "</span></td><td>"
+         << image(stem + "_a.png") << "</td><td>" << image(stem + "_b.png") << "</td><td>" << image(stem + ".png")
+         << "</td><td>A: " << htmlEscaped(r->a.string()) << "<br>B: " << htmlEscaped(r->b.string()) << "<br>"
+         << htmlEscaped(std::string(metricName(r->metric)) + ": " + describeMetric(*r)) << "<br>"
+         << htmlEscaped(thresholdsLine(r->thresholds)) << "<br>";
+    for (const ChannelDiff& c : r->channels)
+      page << htmlEscaped(c.name) << ": mean " << number(c.meanError) << ", max " << number(c.maxError) << " at ("
+           << c.maxX << ", " << c.maxY << "), " << number(c.failingPercent) << "% > fail<br>";
+    page << htmlEscaped(r->problem) << "</td></tr>\n";
+  }
+  page << "</table></body></html>\n";
+  // A hidden temporary name in the same folder, then a rename, as for the images.
+  // Built with += : GCC 12 warns falsely (-Wrestrict) on "." + std::string.
+  std::string hiddenName = ".";
+  hiddenName += html.filename().string() + ".tmp";
+  const fs::path temporary = html.parent_path() / hiddenName;
+  std::error_code error;
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << page.str();
+    if (!file.flush()) error = std::make_error_code(std::errc::io_error);
+  }
+  if (!error) fs::rename(temporary, html, error);
+  if (error) {
+    fs::remove(temporary, ignored);
+    errors.push_back(html.string() + ": cannot write the report: " + error.message());
+    return;
+  }
+  written.push_back(html.string());
+}
+
 int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.out.empty() && fs::path(command.out).extension() != ".exr")
     throw UsageError{"--out: in file mode, expected a path ending in .exr (the heatmap goes beside it as .png), got '" +
                      command.out + "'"};
   const DiffResult result = diffImages(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
-  if (!command.out.empty()) written = writeImages(result, command.out, errors);
+  if (!command.out.empty()) {
+    written = writeImages(result, command.out, errors);
+    if (!result.difference.empty() && errors.empty())
+      writeHtmlReport(fs::path(command.out).replace_extension(".html"), {{&result, fs::path(command.out)}}, written,
+                      errors);
+  }
   int code = exitCode(result.status);
   if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
   if (command.json) {
@@ -371,10 +450,15 @@ int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err)
     fs::create_directories(command.out, error);
     if (error)
       errors.push_back(command.out + ": cannot create the output folder: " + error.message());
-    else
-      for (const DiffResult& r : result.targets)
-        for (std::string& path : writeImages(r, fs::path(command.out) / (r.target + "_diff.exr"), errors))
-          written.push_back(std::move(path));
+    else {
+      std::vector<std::pair<const DiffResult*, fs::path>> diffs;
+      for (const DiffResult& r : result.targets) {
+        const fs::path exr = fs::path(command.out) / (r.target + "_diff.exr");
+        for (std::string& path : writeImages(r, exr, errors)) written.push_back(std::move(path));
+        diffs.emplace_back(&r, exr);
+      }
+      writeHtmlReport(fs::path(command.out) / "report.html", diffs, written, errors);
+    }
   }
   int code = result.incompleteSet ? kDiffExitIncompleteSet : exitCode(result.status);
   if (!errors.empty() && !result.incompleteSet) code = std::max(code, exitCode(DiffStatus::FileError));

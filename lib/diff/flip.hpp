@@ -84,6 +84,8 @@ FlipResult hdrFlip(const RgbView& reference, const RgbView& test, const Exposure
 // sRGB transfer function, encoded 0..1 -> linear 0..1 (for 8-bit images such
 // as preview.png, which LDR-FLIP takes linear).
 float srgbToLinear(float encoded);
+// Its inverse, linear 0..1 -> encoded 0..1.
+float linearToSrgb(float linear);
 
 // The ACES filmic curve HDR-FLIP tone maps with (Narkowicz's fit, with the
 // 0.6 pre-exposure the papers use), not clamped.

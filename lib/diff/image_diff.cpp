@@ -391,6 +391,38 @@ void judge(DiffResult& r) {
   }
 }
 
+// An image as the Flip metric saw it, as an 8-bit sRGB PNG at `path`: an
+// integer (display) image as it is, a float one at the middle of the
+// HDR-FLIP exposures, ACES tone mapped.
+void writeFlipView(const fs::path& source, const DiffResult& result, const fs::path& path) {
+  std::string problem;
+  bool integer = false;
+  const std::optional<OIIO::ImageBuf> image = loadImage(source, problem, integer);
+  if (!image) throw IoError(path.string() + ": cannot show " + problem);
+  const std::vector<int> rgb = rgbChannels(image->spec().channelnames);
+  if (rgb.empty()) throw IoError(path.string() + ": " + source.string() + " has no R, G, B channels to show");
+  const OIIO::ImageBuf picked = OIIO::ImageBufAlgo::channels(*image, 3, rgb);
+  checkOk(picked, "channels");
+  std::vector<float> pixels(picked.roi().npixels() * 3);
+  picked.get_pixels(picked.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  const bool hdr = !result.flip || result.flip->hdr;
+  const float scale =
+      hdr && result.flip ? float(std::exp2(0.5 * (result.flip->startExposure + result.flip->stopExposure))) : 1.0f;
+  for (float& v : pixels) {
+    const float shown =
+        hdr ? flip::linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
+    v = std::isfinite(shown) ? std::clamp(shown, 0.0f, 1.0f) : 0.0f;
+  }
+  OIIO::ImageSpec spec(picked.spec().width, picked.spec().height, 3, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B"};
+  OIIO::ImageBuf view(spec);
+  view.set_pixels(view.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  OIIO::ImageSpec pngSpec = spec;
+  pngSpec.set_format(OIIO::TypeDesc::UINT8);
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");
+  detail::writeImageAtomically(path, view, pngSpec, "png");
+}
+
 }  // namespace
 
 DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& options) {
@@ -587,7 +619,17 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
   pngPath.replace_extension(".png");
   detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
   detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
-  return {exrPath, pngPath};
+  std::vector<fs::path> written{exrPath, pngPath};
+  if (flipMap) {
+    // What FLIP compared, for a report to show beside the map.
+    for (const auto& [source, suffix] : {std::pair{result.a, "_a.png"}, std::pair{result.b, "_b.png"}}) {
+      fs::path path = exrPath;
+      path.replace_filename(exrPath.stem().string() + suffix);
+      writeFlipView(source, result, path);
+      written.push_back(path);
+    }
+  }
+  return written;
 }
 
 }  // namespace headlight

@@ -155,8 +155,10 @@ DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesys
 // beside it (same name, .png): the "error" channel through the inferno
 // colour map, scaled so the fail threshold is mid-scale (fail = 0: the
 // largest error is full scale); for the Flip metric, the FLIP map as FLIP's
-// papers show it, 0..1 through magma. Both written atomically (temporary name in
-// the same folder, then rename). Returns the two paths. Throws IoError when
+// papers show it, 0..1 through magma, and beside it <stem>_a.png and
+// <stem>_b.png, A and B as FLIP saw them (8-bit sRGB; float images ACES tone
+// mapped at the middle of the HDR-FLIP exposures), for reports. Both written atomically (temporary name in
+// the same folder, then rename). Returns the paths written. Throws IoError when
 // writing fails, Error when the result has no difference image.
 std::vector<std::filesystem::path> writeDiffImages(const DiffResult& result, const std::filesystem::path& exrPath);
 
