@@ -111,7 +111,7 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
       actionOption<C>(
           {.name = "out",
            .type = T::Text,
-           .help = "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH",
+           .help = "write the difference: file mode PATH.exr/.png/.html; folder mode <target>_diff.* + report.html",
            .valueName = "PATH"},
           [](C& c, const OptionValue& v) {
             if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
