@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "diff/flip.hpp"
+#include "headlight/error.hpp"
 #include "tooling/bench.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
@@ -38,6 +40,25 @@ TEST_CASE("maskedSsim is 1 for identical images and lower for noise" * doctest::
   ImageF b = a;
   for (float& v : b.pixels) v += float(rng() % 1000) / 1000.0f;
   CHECK(maskedSsim(a, b, mask) < 0.95);
+}
+
+TEST_CASE("hdrFlipMean is HDR-FLIP's mean with the reference's exposures, over every pixel" *
+          doctest::test_suite("bench")) {
+  ImageF reference = makeImage(40, 32, {"R", "G", "B", "A"}, 1.0f), lit = reference;
+  std::mt19937 rng(5);
+  for (std::size_t i = 0; i < reference.pixels.size(); ++i)
+    if (i % 4 != 3) reference.pixels[i] = float(rng() % 1000) / 250.0f;  // radiance 0..4
+  CHECK(hdrFlipMean(reference, reference) == 0.0);
+  lit = reference;
+  for (std::size_t i = 0; i < lit.pixels.size(); i += 4) lit.pixels[i] *= 1.5f;  // redder
+  const double mean = hdrFlipMean(lit, reference);
+  CHECK(mean > 0.01);
+  CHECK(mean < 1.0);
+  // The second argument is FLIP's reference (its exposures), the first the test.
+  CHECK(mean ==
+        doctest::Approx(flip::hdrFlip({reference.pixels.data(), 40, 32, 4}, {lit.pixels.data(), 40, 32, 4}).mean));
+  ImageF small = makeImage(8, 8, {"R", "G", "B"}, 0.5f);
+  CHECK_THROWS_WITH_AS(hdrFlipMean(small, reference), doctest::Contains("8x8"), Error);
 }
 
 TEST_CASE("paretoFront keeps exactly the non-dominated points" * doctest::test_suite("bench")) {
@@ -77,6 +98,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   rows[0].frameMs = {12.5, 12, 13};
   rows[0].ao.rmse = 0.1;
   rows[0].sky.rmse = 0.375;
+  rows[0].litFlip = 0.125;
   rows[1].scene = "a, \"quoted\" scene";
   rows[1].label = "ssgi-method=radiance";
   rows[1].settings = {{"ssgi-method", "radiance"}};
@@ -91,6 +113,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   CHECK(header.find("frame_ms_median") != std::string::npos);
   CHECK(header.find("ao_rmse") != std::string::npos);
   CHECK(header.find(",sky_rmse,sky_mae,") != std::string::npos);
+  CHECK(header.find(",lit_ssim,lit_flip,") != std::string::npos);
   // One column per setting row, so a new setting reaches the CSV by itself.
   for (const Option<RenderSettings>& option : settingOptions())
     CHECK(header.find("," + std::string(option.spec.name) + ",") != std::string::npos);
@@ -104,6 +127,7 @@ TEST_CASE("bench.csv and bench.json hold every row with its time and error" * do
   CHECK(json["rows"][1]["frame_ms"]["median"] == 7.25);
   CHECK(json["rows"][0]["ao"]["rmse"] == 0.1);
   CHECK(json["rows"][0]["sky"]["rmse"] == 0.375);
+  CHECK(json["rows"][0]["lit"]["flip"] == 0.125);
   CHECK(json["rows"][0]["settings"]["ssgi-samples"] == "64");
   CHECK(json["rows"][1]["label"] == "ssgi-method=radiance");
   std::filesystem::remove_all(folder);

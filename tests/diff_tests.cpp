@@ -13,6 +13,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "diff/flip.hpp"
 #include "diff_command.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
@@ -311,7 +312,7 @@ TEST_CASE("diff: normals are compared by angle, not per component" * doctest::te
   fs::remove_all(folder);
 }
 
-TEST_CASE("diff: position and depth are relative to headlight:far, lit to max(1, |value|)" *
+TEST_CASE("diff: position and depth are relative to headlight:far, emissive to max(1, |value|)" *
           doctest::test_suite("diff")) {
   const fs::path folder = test::freshFolder("diff_relative");
   fs::create_directories(folder / "b");
@@ -348,21 +349,21 @@ TEST_CASE("diff: position and depth are relative to headlight:far, lit to max(1,
   CHECK(result.maxChannel == "A");
   CHECK(result.maxError == 1);
 
-  // lit: 1 % of a bright value warns; 0.1 on a value of 0.5 fails.
-  TestImage lit = gradient(10, 10, {"R", "G", "B"});
-  lit.at(2, 2, 0) = 100;
-  TestImage brighter = lit;
+  // emissive (HDR radiance): 1 % of a bright value warns; 0.1 on a value of 0.5 fails.
+  TestImage emissive = gradient(10, 10, {"R", "G", "B"});
+  emissive.at(2, 2, 0) = 100;
+  TestImage brighter = emissive;
   brighter.at(2, 2, 0) = 101;
-  write(folder / "lit.exr", lit);
-  write(folder / "b" / "lit.exr", brighter);
-  result = diffImages(folder / "lit.exr", folder / "b" / "lit.exr");
+  write(folder / "emissive.exr", emissive);
+  write(folder / "b" / "emissive.exr", brighter);
+  result = diffImages(folder / "emissive.exr", folder / "b" / "emissive.exr");
   CHECK(result.metric == DiffMetric::RelativeToValue);
   CHECK(result.maxError == doctest::Approx(0.01).epsilon(1e-3));
   CHECK(result.status == DiffStatus::Warn);
-  TestImage darker = lit;
+  TestImage darker = emissive;
   for (int x = 0; x < 10; ++x) darker.at(x, 5, 1) -= 0.1f;
-  write(folder / "b" / "lit.exr", darker);
-  CHECK(diffImages(folder / "lit.exr", folder / "b" / "lit.exr").status == DiffStatus::Fail);
+  write(folder / "b" / "emissive.exr", darker);
+  CHECK(diffImages(folder / "emissive.exr", folder / "b" / "emissive.exr").status == DiffStatus::Fail);
   fs::remove_all(folder);
 }
 
@@ -463,6 +464,12 @@ TEST_CASE("diff: folder mode reports each target and the worst verdict" * doctes
   CHECK(fs::exists(out / "albedo_diff.exr"));
   CHECK(fs::exists(out / "albedo_diff.png"));
   CHECK(fs::exists(out / "lit_diff.exr"));
+  CHECK(fs::exists(out / "lit_diff_a.png"));  // lit is judged by FLIP: its images beside the map
+  std::ifstream report(out / "report.html");
+  const std::string page((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  CHECK(contains(page, "albedo_diff.png"));
+  CHECK(contains(page, "lit_diff_b.png"));
+  CHECK(contains(page, "<span class='fail'>FAIL</span>"));
 
   // A target in one folder only is structural, and the worst status wins.
   write(b / "ssgi.exr", gradient(10, 10, {"ao.Y"}));
@@ -489,7 +496,10 @@ TEST_CASE("diff: --out writes a float diff.exr and a diff.png heatmap, atomicall
   write(folder / "changed.exr", changed);
   const fs::path exr = folder / "report" / "diff.exr";
   fs::create_directories(exr.parent_path());
-  const Cli cli = runCli({(folder / "lit.exr").string(), (folder / "changed.exr").string(), "--out", exr.string()});
+  // lit's own metric is FLIP (below); --metric gives relative-to-value with
+  // the first such row's thresholds (emissive's).
+  const Cli cli = runCli({(folder / "lit.exr").string(), (folder / "changed.exr").string(), "--out", exr.string(),
+                          "--metric", "relative-to-value"});
   INFO(cli.out, cli.err);
   CHECK(cli.exitCode == 1);  // one pixel of 256 over fail: within 0.5 %, so a warning
   CHECK(contains(cli.out, "wrote " + exr.string()));
@@ -538,7 +548,9 @@ TEST_CASE("diff: default thresholds by target, overridden by options" * doctest:
   CHECK(targetTolerance("normal").metric == DiffMetric::AngleDegrees);
   CHECK(targetTolerance("position").metric == DiffMetric::RelativeToScene);
   CHECK(targetTolerance("depth").metric == DiffMetric::RelativeToScene);
-  CHECK(targetTolerance("lit").metric == DiffMetric::RelativeToValue);
+  CHECK(targetTolerance("lit").metric == DiffMetric::Flip);
+  CHECK(targetTolerance("preview").metric == DiffMetric::Flip);
+  CHECK(targetTolerance("emissive").metric == DiffMetric::RelativeToValue);
   CHECK(targetTolerance("albedo").metric == DiffMetric::Absolute);
   CHECK(targetTolerance("normal").thresholds.fail == 1.0);
   CHECK(targetTolerance("ssgi").thresholds.failPercent == 1.0);
@@ -596,6 +608,145 @@ TEST_CASE("diff: the command's usage errors are exit 5, --help is 0 and lists th
   CHECK(contains(cli.out, "3 structural mismatch"));
   CHECK(contains(cli.out, "5 usage error"));
   CHECK(contains(cli.out, "angle-degrees"));
+  CHECK(contains(cli.out, "preview"));
+  cli = runCli({"a.exr", "b.exr", "--metric", "psnr"});
+  CHECK(cli.exitCode == 5);
+  CHECK(contains(cli.err, "flip"));  // the choices are listed
   // Missing files are a file error, not a usage error.
   CHECK(runCli({"/nonexistent/a.exr", "/nonexistent/b.exr"}).exitCode == 4);
+}
+
+TEST_CASE("diff: lit is judged by HDR-FLIP, preview.png by LDR-FLIP, and --metric picks another measure" *
+          doctest::test_suite("diff")) {
+  const fs::path folder = test::freshFolder("diff_flip");
+  fs::create_directories(folder / "b");
+  // HDR radiance up to ~3, fully covered.
+  TestImage lit = gradient(32, 32, {"R", "G", "B", "A"});
+  for (std::size_t i = 0; i < lit.pixels.size(); ++i) lit.pixels[i] = i % 4 == 3 ? 1.0f : 3.0f * lit.pixels[i];
+  write(folder / "lit.exr", lit);
+  write(folder / "b" / "lit.exr", lit);
+  DiffResult result = diffImages(folder / "lit.exr", folder / "b" / "lit.exr");
+  CHECK(result.metric == DiffMetric::Flip);
+  CHECK(result.status == DiffStatus::Pass);
+  REQUIRE(result.channels.size() == 2);  // flip of R, G, B; coverage A on its own
+  CHECK(result.channels[0].name == "flip");
+  CHECK(result.channels[0].sources == std::vector<std::string>{"R", "G", "B"});
+  CHECK(result.channels[1].name == "A");
+  CHECK(result.maxError == 0);
+  REQUIRE(result.flip);
+  CHECK(result.flip->hdr);
+  CHECK(result.flip->exposureCount >= 2);
+
+  // A 6x6 block twice as bright: 3.5 % of the pixels, clearly visible: FAIL,
+  // with the library's HDR-FLIP mean (A is the reference).
+  TestImage brighter = lit;
+  for (int y = 10; y < 16; ++y)
+    for (int x = 10; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) brighter.at(x, y, c) *= 2.0f;
+  write(folder / "b" / "lit.exr", brighter);
+  result = diffImages(folder / "lit.exr", folder / "b" / "lit.exr");
+  CHECK(result.status == DiffStatus::Fail);
+  CHECK(result.maxChannel == "flip");
+  const flip::FlipResult direct = flip::hdrFlip({lit.pixels.data(), 32, 32, 4}, {brighter.pixels.data(), 32, 32, 4});
+  CHECK(result.channels[0].meanError == doctest::Approx(direct.mean).epsilon(1e-5));
+  CHECK(result.channels[0].maxError == doctest::Approx(direct.maximum).epsilon(1e-5));
+  CHECK(result.maxX >= 8);
+  CHECK(result.maxX <= 17);
+  CHECK(result.channels[1].maxError == 0);
+
+  // --out: the FLIP map itself in diff.exr's error channel, magma in the PNG
+  // (0 is magma's black bottom, whatever the fail threshold).
+  const fs::path exr = folder / "flip_diff.exr";
+  const Cli written =
+      runCli({(folder / "lit.exr").string(), (folder / "b" / "lit.exr").string(), "--out", exr.string(), "--json"});
+  CHECK(written.exitCode == 2);
+  const nlohmann::json j = nlohmann::json::parse(written.out);
+  CHECK(j["metric"] == "flip");
+  CHECK(j["flip"]["variant"] == "hdr");
+  CHECK(j["flip"]["pixels_per_degree"].get<double>() == doctest::Approx(67.02).epsilon(1e-3));
+  CHECK(j["flip"]["exposures"].get<int>() == direct.exposureCount);
+  OIIO::ImageBuf diff(exr.string());
+  REQUIRE(diff.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  const int error = diff.spec().channelindex("error");
+  CHECK(diff.getchannel(result.maxX, result.maxY, 0, error) == doctest::Approx(direct.maximum).epsilon(1e-5));
+  OIIO::ImageBuf png((folder / "flip_diff.png").string());
+  REQUIRE(png.read());
+  CHECK(png.getchannel(31, 31, 0, 0) < 0.02f);  // FLIP 0 there: magma's near-black
+  CHECK(png.getchannel(31, 31, 0, 2) < 0.05f);
+  // Beside the map: A and B as FLIP saw them (tone mapped, 8-bit), and the
+  // HTML report showing the three with the numbers.
+  for (const char* name : {"flip_diff_a.png", "flip_diff_b.png"}) {
+    OIIO::ImageBuf view((folder / name).string());
+    REQUIRE(view.read());
+    CHECK(view.spec().width == 32);
+    CHECK(view.nchannels() == 3);
+  }
+  OIIO::ImageBuf viewA((folder / "flip_diff_a.png").string()), viewB((folder / "flip_diff_b.png").string());
+  REQUIRE(viewA.read());
+  REQUIRE(viewB.read());
+  CHECK(viewB.getchannel(12, 12, 0, 0) > viewA.getchannel(12, 12, 0, 0));  // the brighter block
+  CHECK(viewB.getchannel(30, 30, 0, 0) == viewA.getchannel(30, 30, 0, 0));
+  std::ifstream html(folder / "flip_diff.html");
+  const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  for (const char* part : {"flip_diff_a.png", "flip_diff_b.png", "flip_diff.png", "HDR-FLIP", "FAIL"})
+    CHECK_MESSAGE(contains(page, part), part);
+
+  // Coverage is compared absolutely beside the FLIP.
+  TestImage uncovered = lit;
+  for (int x = 0; x < 32; ++x) uncovered.at(x, 0, 3) = 0;  // 3 % of the pixels
+  write(folder / "b" / "lit.exr", uncovered);
+  result = diffImages(folder / "lit.exr", folder / "b" / "lit.exr");
+  CHECK(result.status == DiffStatus::Fail);
+  CHECK(result.maxChannel == "A");
+
+  // Without R, G, B (--channels) FLIP cannot apply: absolute per channel.
+  DiffOptions someChannels;
+  someChannels.channels = {"R", "A"};
+  CHECK(diffImages(folder / "lit.exr", folder / "b" / "lit.exr", someChannels).metric == DiffMetric::Absolute);
+
+  // --metric flip on a file that is no target: lit's thresholds; and the
+  // other way, lit judged by relative-to-value gets emissive's.
+  write(folder / "golden.exr", lit);
+  write(folder / "b" / "golden.exr", brighter);
+  DiffOptions asFlip;
+  asFlip.metric = DiffMetric::Flip;
+  result = diffImages(folder / "golden.exr", folder / "b" / "golden.exr", asFlip);
+  CHECK(result.metric == DiffMetric::Flip);
+  CHECK(result.thresholds.fail == targetTolerance("lit").thresholds.fail);
+  CHECK(result.thresholds.failMean == targetTolerance("lit").thresholds.failMean);
+  DiffOptions asRelative;
+  asRelative.metric = DiffMetric::RelativeToValue;
+  CHECK(resolveThresholds("lit", asRelative).fail == targetTolerance("emissive").thresholds.fail);
+
+  // preview.png: 8-bit sRGB, LDR-FLIP of the decoded values.
+  auto writePng = [](const fs::path& path, const TestImage& image) {
+    OIIO::ImageSpec spec(image.width, image.height, int(image.channels.size()), OIIO::TypeDesc::UINT8);
+    auto output = OIIO::ImageOutput::create(path.string());
+    REQUIRE(output);
+    REQUIRE(output->open(path.string(), spec));
+    REQUIRE(output->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()));
+    REQUIRE(output->close());
+  };
+  TestImage preview = gradient(32, 32, {"R", "G", "B"});
+  TestImage tinted = preview;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 20; x < 32; ++x) tinted.at(x, y, 2) = 0.1f;  // 37 % of the picture loses its blue
+  writePng(folder / "preview.png", preview);
+  writePng(folder / "b" / "preview.png", tinted);
+  result = diffImages(folder / "preview.png", folder / "b" / "preview.png");
+  CHECK(result.metric == DiffMetric::Flip);
+  REQUIRE(result.flip);
+  CHECK_FALSE(result.flip->hdr);
+  CHECK(result.status == DiffStatus::Fail);
+  // The same as LDR-FLIP of the decoded 8-bit values.
+  std::vector<float> decodedA, decodedB;
+  for (std::size_t i = 0; i < preview.pixels.size(); ++i) {
+    decodedA.push_back(flip::srgbToLinear(std::round(preview.pixels[i] * 255.0f) / 255.0f));
+    decodedB.push_back(flip::srgbToLinear(std::round(tinted.pixels[i] * 255.0f) / 255.0f));
+  }
+  const double ldrMean = flip::ldrFlip({decodedA.data(), 32, 32, 3}, {decodedB.data(), 32, 32, 3}).mean;
+  CHECK(result.channels[0].meanError == doctest::Approx(ldrMean).epsilon(1e-4));
+  writePng(folder / "b" / "preview.png", preview);
+  CHECK(diffImages(folder / "preview.png", folder / "b" / "preview.png").status == DiffStatus::Pass);
+  fs::remove_all(folder);
 }

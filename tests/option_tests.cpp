@@ -265,6 +265,22 @@ TEST_CASE("tune chooses the least frame time among the rows within the AO bound"
   CHECK(!cli::cheapestWithin(rows, 0.01));
 }
 
+TEST_CASE("tune --max-flip bounds lit's HDR-FLIP, alone or with the AO bound") {
+  std::vector<BenchRow> rows(4);
+  const double ms[] = {10, 20, 5, 40}, rmse[] = {0.08, 0.04, 0.06, 0.02}, flip[] = {0.1, 0.3, 0.2, 0.05};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    rows[i].frameMs.median = ms[i];
+    rows[i].ao.rmse = rmse[i];
+    rows[i].litFlip = flip[i];
+  }
+  CHECK(cli::cheapestWithin(rows, std::nullopt, 0.15) == std::optional<std::size_t>(0));
+  CHECK(cli::cheapestWithin(rows, std::nullopt, 0.2) == std::optional<std::size_t>(2));  // inclusive
+  CHECK(cli::cheapestWithin(rows, 0.05, 0.2) == std::optional<std::size_t>(3));          // both must hold
+  CHECK(!cli::cheapestWithin(rows, std::nullopt, 0.01));
+  CHECK(cli::parseTuneArgs({"--max-flip", "0.1"}).maxFlip == 0.1);
+  CHECK_THROWS_WITH_AS(cli::parseTuneArgs({"--max-flip", "2"}), doctest::Contains("--max-flip"), SettingsError);
+}
+
 TEST_CASE("tune's default candidates are the bitmask method's, around the scene's auto thickness") {
   const auto sweeps = cli::defaultTuneSweeps(0.4f);
   const auto configs = cli::sweepConfigs(RenderSettings{}, sweeps, 128, 128);

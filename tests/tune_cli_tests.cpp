@@ -90,6 +90,28 @@ TEST_CASE("tune writes the cheapest configuration within the bound, with its err
   fs::remove_all(folder);
 }
 
+TEST_CASE("tune --max-flip chooses within lit's HDR-FLIP and records it; an unreachable one exits 3") {
+  const fs::path folder = freshFolder("tune-flip");
+  const fs::path file = folder / "flip.settings";
+  // 0.9: above every candidate's lit HDR-FLIP against the reference.
+  Run tune = runHeadlight("tune builtin:cornell --max-flip 0.9" + kTinyTune + " --out " + quote(file.string()));
+  INFO(tune.output);
+  REQUIRE(tune.exitCode == 0);
+  const std::string text = readText(file);
+  INFO(text);
+  CHECK(recorded(text, "lit-flip") > 0.0);  // measured: SSGI never matches the path tracer exactly
+  CHECK(recorded(text, "lit-flip") <= 0.9);
+  CHECK(recorded(text, "max-flip") == doctest::Approx(0.9));
+  CHECK(text.find("max-ao-error") == std::string::npos);  // not asked for
+  fs::remove(file);
+  tune = runHeadlight("tune builtin:cornell --max-flip 1e-6" + kTinyTune + " --out " + quote(file.string()));
+  CHECK(tune.exitCode == 3);
+  CHECK(tune.output.find("no configuration reaches lit HDR-FLIP <= 1e-06") != std::string::npos);
+  CHECK(tune.output.find("the best lit HDR-FLIP reached ") != std::string::npos);
+  CHECK(!fs::exists(file));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("tune with an error no configuration reaches exits 3, names the best error, and writes nothing") {
   const fs::path folder = freshFolder("tune-unmet");
   const fs::path file = folder / "never.settings";

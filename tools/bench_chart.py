@@ -19,7 +19,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 METRICS = [("ao_rmse", "AO RMSE vs reference (within R)"),
            ("indirect_rmse", "indirect RMSE vs reference (within R)"),
-           ("lit_rel_rmse", "lit relative RMSE vs lit_ref (no R)")]
+           ("lit_rel_rmse", "lit relative RMSE vs lit_ref (no R)"),
+           ("lit_flip", "lit HDR-FLIP vs lit_ref, mean (no R)")]
 MARKERS = {"hemisphere": "o", "radiance": "s", "bitmask": "^"}
 COLOURS = {"hemisphere": "C0", "radiance": "C1", "bitmask": "C2"}
 SIZES = {"full": 26, "half": 12, "quarter": 6}  # SSGI resolution: full-resolution points are the largest
@@ -28,7 +29,7 @@ METHOD, BLUR, RESOLUTION, FRAMES = "ssgi-method", "ssgi-blur", "ssgi-resolution"
 # Columns that differ between two rows of one configuration: its label and its measurements.
 CHANGING = {"label", "frame_ms_median", "frame_ms_min", "frame_ms_max", "ssgi_ms_median", "ssgi_ms_min",
             "ssgi_ms_max", "ao_rmse", "ao_mae", "sky_rmse", "sky_mae", "indirect_rmse", "indirect_rel_rmse",
-            "lit_rel_rmse", "lit_ssim", "pareto_ao", "repetitions", "seed_default"}
+            "lit_rel_rmse", "lit_ssim", "lit_flip", "pareto_ao", "repetitions", "seed_default"}
 
 
 def pareto(points):
@@ -77,12 +78,16 @@ def summary(rows, groups):
                 best = min(better, key=lambda r: float(r["ao_rmse"]))
                 lines.append(f"Most accurate front point no slower: {describe(best)}, AO RMSE "
                              f"{float(best['ao_rmse']):.4f} ({float(best['ao_rmse']) - seed_error:+.4f}).")
+        # A CSV from before lit_flip existed has no such column.
+        flip = "lit_flip" in group[0]
         lines += ["", "Lowest lit error (lit_ref does not depend on R, so radii compare fairly here):", "",
-                  "| configuration | frame ms (median) | lit relative RMSE | lit SSIM |", "|---|---|---|---|"]
+                  "| configuration | frame ms (median) | lit relative RMSE | lit SSIM |"
+                  + (" lit HDR-FLIP |" if flip else ""),
+                  "|---|---|---|---|" + ("---|" if flip else "")]
         for r in sorted(group, key=lambda r: float(r["lit_rel_rmse"]))[:3] + seeds[:1]:
             lines.append(f"| {describe(r)}{' (seed default)' if r['seed_default'] == '1' else ''} | "
                          f"{float(r['frame_ms_median']):.2f} | {float(r['lit_rel_rmse']):.4f} | "
-                         f"{float(r['lit_ssim']):.3f} |")
+                         f"{float(r['lit_ssim']):.3f} |" + (f" {float(r['lit_flip']):.4f} |" if flip else ""))
         lines.append("")
     return "\n".join(lines)
 
@@ -135,11 +140,13 @@ def main():
     with open(csv_path, newline="") as f:
         rows = list(csv.DictReader(f))
     groups = sorted({(r["scene"], r["width"], r["height"]) for r in rows})
-    fig, axes = plt.subplots(len(METRICS), len(groups), figsize=(max(7.0, 5.2 * len(groups)), 4.2 * len(METRICS)),
+    # A CSV from before a metric's column existed is charted without that row.
+    metrics = [(column, label) for column, label in METRICS if not rows or column in rows[0]]
+    fig, axes = plt.subplots(len(metrics), len(groups), figsize=(max(7.0, 5.2 * len(groups)), 4.2 * len(metrics)),
                              squeeze=False)
     for column, (scene, width, height) in enumerate(groups):
         group = [r for r in rows if (r["scene"], r["width"], r["height"]) == (scene, width, height)]
-        for row_index, (metric, label) in enumerate(METRICS):
+        for row_index, (metric, label) in enumerate(metrics):
             ax = axes[row_index][column]
             points = [(float(r["frame_ms_median"]), float(r[metric])) for r in group]
             for method, marker in MARKERS.items():

@@ -190,6 +190,7 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOpt
   row.indirect = maskedColorError(frame.ssgi, 1, reference.indirect, 0, frame.position);
   row.lit = maskedColorError(frame.lit, 0, reference.lit, 0, frame.position);
   row.litSsim = maskedSsim(frame.lit, reference.lit, frame.position);
+  row.litFlip = hdrFlipMean(frame.lit, reference.lit);
   row.referenceSamples = reference.samplesPerPixel;
   row.referenceAoStandardError = reference.aoMeanStandardError;
   row.renderer = frame.glRenderer;

@@ -2,11 +2,13 @@
 // a table (or one JSON object) -> optional diff images -> exit code.
 #include "diff_command.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <limits>
@@ -57,6 +59,7 @@ std::span<const std::string_view> targetNames() {
   static const std::vector<std::string_view> names = [] {
     std::vector<std::string_view> list;
     for (const FrameTarget& target : frameTargets()) list.push_back(target.name);
+    list.push_back(previewTargetRow().name);
     return list;
   }();
   return names;
@@ -91,6 +94,16 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
                        .help = "compare only these channels (file mode only)",
                        .valueName = "c1,c2,..."},
                       [](C& c, const OptionValue& v) { c.options.channels = parseChannels(std::get<std::string>(v)); }),
+      actionOption<C>({.name = "metric",
+                       .type = T::Choice,
+                       .help = "judge by this error measure instead of the target's (its thresholds then come "
+                               "from the first table row using it: flip -> lit's)",
+                       .choices = metricNames()},
+                      [](C& c, const OptionValue& v) {
+                        const auto names = metricNames();
+                        const auto found = std::find(names.begin(), names.end(), std::get<std::string>(v));
+                        c.options.metric = DiffMetric(found - names.begin());
+                      }),
       // A typo would silently fall back to idiff's defaults: a choice refuses it.
       actionOption<C>({.name = "target",
                        .type = T::Choice,
@@ -100,7 +113,7 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
       actionOption<C>(
           {.name = "out",
            .type = T::Text,
-           .help = "write the difference: file mode PATH.exr + PATH.png; folder mode <target>_diff.exr/.png in PATH",
+           .help = "write the difference: file mode PATH.exr/.png/.html; folder mode <target>_diff.* + report.html",
            .valueName = "PATH"},
           [](C& c, const OptionValue& v) {
             if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
@@ -151,6 +164,15 @@ std::string upper(std::string_view text) {
 
 std::string unitSuffix(DiffMetric metric) { return metric == DiffMetric::AngleDegrees ? " deg" : ""; }
 
+std::string flipDescription(const DiffResult& r) {
+  if (!r.flip) return "error = FLIP of R, G, B (0..1); other channels absolute";
+  const FlipDetails& f = *r.flip;
+  std::string text = f.hdr ? "error = HDR-FLIP of R, G, B (0..1) over " + std::to_string(f.exposureCount) +
+                                 " exposures " + number(f.startExposure) + " .. " + number(f.stopExposure) + " EV of A"
+                           : std::string("error = LDR-FLIP of sRGB-decoded R, G, B (0..1)");
+  return text + ", " + number(f.pixelsPerDegree) + " pixels/degree; other channels absolute";
+}
+
 std::string describeMetric(const DiffResult& r) {
   switch (r.metric) {
     case DiffMetric::Absolute:
@@ -161,6 +183,8 @@ std::string describeMetric(const DiffResult& r) {
       return "error = |a - b| / max(1, |a|)";
     case DiffMetric::AngleDegrees:
       return "error = angle between the normals of A and B, in degrees";
+    case DiffMetric::Flip:
+      return flipDescription(r);
   }
   return "";
 }
@@ -255,6 +279,12 @@ json toJson(const DiffResult& r) {
     j["scale"] = num(r.scale);
     j["scale_source"] = r.scaleSource;
   }
+  if (r.flip)
+    j["flip"] = {{"variant", r.flip->hdr ? "hdr" : "ldr"},
+                 {"pixels_per_degree", r.flip->pixelsPerDegree},
+                 {"start_exposure", num(r.flip->startExposure)},
+                 {"stop_exposure", num(r.flip->stopExposure)},
+                 {"exposures", r.flip->exposureCount}};
   j["thresholds"] = toJson(r.thresholds);
   j["width"] = r.width;
   j["height"] = r.height;
@@ -309,13 +339,91 @@ std::vector<std::string> writeImages(const DiffResult& r, const fs::path& exrPat
   return written;
 }
 
+std::string htmlEscaped(std::string_view text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '\'':
+        escaped += "&#39;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+// report.html beside the diff images: per compared target its verdict and
+// numbers, and the images writeDiffImages left beside its diff.exr (for the
+// flip metric A and B as FLIP saw them, then the FLIP map in magma; else the
+// heatmap), linked by relative name. `diffs`: each result with its diff.exr.
+void writeHtmlReport(const fs::path& html, const std::vector<std::pair<const DiffResult*, fs::path>>& diffs,
+                     std::vector<std::string>& written, std::vector<std::string>& errors) {
+  std::ostringstream page;
+  page << "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>headlight diff</title><style>"
+          "body{font-family:sans-serif} td{vertical-align:top;padding:4px} img{image-rendering:pixelated;"
+          "max-width:320px} .pass{color:green} .warn{color:orange} .fail,.structural,.file-error{color:red}"
+          "</style></head><body>\n<h1>headlight diff</h1>\n<table>\n"
+          "<tr><th>target</th><th>A (reference)</th><th>B</th><th>error</th><th>numbers</th></tr>\n";
+  std::error_code ignored;
+  for (const auto& [r, exr] : diffs) {
+    const std::string stem = exr.stem().string();
+    auto image = [&](const std::string& name) {
+      return fs::exists(exr.parent_path() / name, ignored) ? "<img src='" + htmlEscaped(name) + "'>" : std::string();
+    };
+    page << "<tr><td><b>" << htmlEscaped(r->target.empty() ? "(none)" : r->target) << "</b><br><span class='"
+         << statusName(r->status) << "'>" << upper(statusName(r->status)) << "</span></td><td>"
+         << image(stem + "_a.png") << "</td><td>" << image(stem + "_b.png") << "</td><td>" << image(stem + ".png")
+         << "</td><td>A: " << htmlEscaped(r->a.string()) << "<br>B: " << htmlEscaped(r->b.string()) << "<br>"
+         << htmlEscaped(std::string(metricName(r->metric)) + ": " + describeMetric(*r)) << "<br>"
+         << htmlEscaped(thresholdsLine(r->thresholds)) << "<br>";
+    for (const ChannelDiff& c : r->channels)
+      page << htmlEscaped(c.name) << ": mean " << number(c.meanError) << ", max " << number(c.maxError) << " at ("
+           << c.maxX << ", " << c.maxY << "), " << number(c.failingPercent) << "% > fail<br>";
+    page << htmlEscaped(r->problem) << "</td></tr>\n";
+  }
+  page << "</table></body></html>\n";
+  // A hidden temporary name in the same folder, then a rename, as for the images.
+  // Built with += : GCC 12 warns falsely (-Wrestrict) on "." + std::string.
+  std::string hiddenName = ".";
+  hiddenName += html.filename().string() + ".tmp";
+  const fs::path temporary = html.parent_path() / hiddenName;
+  std::error_code error;
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << page.str();
+    if (!file.flush()) error = std::make_error_code(std::errc::io_error);
+  }
+  if (!error) fs::rename(temporary, html, error);
+  if (error) {
+    fs::remove(temporary, ignored);
+    errors.push_back(html.string() + ": cannot write the report: " + error.message());
+    return;
+  }
+  written.push_back(html.string());
+}
+
 int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.out.empty() && fs::path(command.out).extension() != ".exr")
     throw UsageError{"--out: in file mode, expected a path ending in .exr (the heatmap goes beside it as .png), got '" +
                      command.out + "'"};
   const DiffResult result = diffImages(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
-  if (!command.out.empty()) written = writeImages(result, command.out, errors);
+  if (!command.out.empty()) {
+    written = writeImages(result, command.out, errors);
+    if (!result.difference.empty() && errors.empty())
+      writeHtmlReport(fs::path(command.out).replace_extension(".html"), {{&result, fs::path(command.out)}}, written,
+                      errors);
+  }
   int code = exitCode(result.status);
   if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
   if (command.json) {
@@ -344,10 +452,15 @@ int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err)
     fs::create_directories(command.out, error);
     if (error)
       errors.push_back(command.out + ": cannot create the output folder: " + error.message());
-    else
-      for (const DiffResult& r : result.targets)
-        for (std::string& path : writeImages(r, fs::path(command.out) / (r.target + "_diff.exr"), errors))
-          written.push_back(std::move(path));
+    else {
+      std::vector<std::pair<const DiffResult*, fs::path>> diffs;
+      for (const DiffResult& r : result.targets) {
+        const fs::path exr = fs::path(command.out) / (r.target + "_diff.exr");
+        for (std::string& path : writeImages(r, exr, errors)) written.push_back(std::move(path));
+        diffs.emplace_back(&r, exr);
+      }
+      writeHtmlReport(fs::path(command.out) / "report.html", diffs, written, errors);
+    }
   }
   int code = result.incompleteSet ? kDiffExitIncompleteSet : exitCode(result.status);
   if (!errors.empty() && !result.incompleteSet) code = std::max(code, exitCode(DiffStatus::FileError));
@@ -405,10 +518,13 @@ std::string diffHelp() {
     out << line;
   };
   for (const FrameTarget& row : frameTargets()) printRow(row);
+  printRow(previewTargetRow());
   printRow(unknownTargetRow());
   out << "  (warnpercent 0 and hardwarn inf everywhere; reasons in docs/DIFF.md)\n"
          "relative-to-scene: error / A's headlight:far (coverage channel A absolute);\n"
-         "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors.\n"
+         "relative-to-value: error / max(1, |a|); angle-degrees: angle between the normal vectors;\n"
+         "flip: the perceived difference of R, G, B, 0..1 (HDR-FLIP of float images, exposures from A;\n"
+         "LDR-FLIP of sRGB 8/16-bit images), other channels absolute; failmean bounds the mean FLIP.\n"
          "Background pixels are compared like any other (their values are deterministic).\n";
   return out.str();
 }

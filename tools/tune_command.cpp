@@ -31,6 +31,14 @@ std::vector<Option<TuneCommand>> tuneOptions() {
        .minimum = 0,
        .maximum = 1},
       [](auto& c) -> auto& { return c.maxAoError; }));
+  rows.push_back(bindOption<C>(
+      {.name = "max-flip",
+       .type = T::Float,
+       .help = "the largest mean HDR-FLIP of lit against the reference's lit_ref (every pixel; 0 = identical, "
+               "1 = green against blue) the chosen configuration may have; with --max-ao-error both must hold",
+       .minimum = 0,
+       .maximum = 1},
+      [](auto& c) -> auto& { return c.maxFlip; }));
   for (auto& row : measurementOptions<C>("candidates: sweep a render setting over values; repeat for a cartesian "
                                          "product (default: ssgi-slices, ssgi-steps, ssgi-thickness, ssgi-resolution, "
                                          "ssgi-frames of the bitmask method)"))
@@ -67,22 +75,27 @@ std::vector<SettingSweep> defaultTuneSweeps(float autoThickness) {
   return sweeps;
 }
 
-std::optional<std::size_t> cheapestWithin(const std::vector<BenchRow>& rows, double maxAoError) {
+std::optional<std::size_t> cheapestWithin(const std::vector<BenchRow>& rows, std::optional<double> maxAoError,
+                                          std::optional<double> maxFlip) {
   std::optional<std::size_t> best;
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    if (rows[i].ao.rmse <= maxAoError && (!best || rows[i].frameMs.median < rows[*best].frameMs.median)) best = i;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const bool within = (!maxAoError || rows[i].ao.rmse <= *maxAoError) && (!maxFlip || rows[i].litFlip <= *maxFlip);
+    if (within && (!best || rows[i].frameMs.median < rows[*best].frameMs.median)) best = i;
+  }
   return best;
 }
 
 TuneCommand parseTuneArgs(const std::vector<std::string>& args) {
   TuneCommand command;
-  command.maxAoError = -1;  // "not given"
   const auto options = tuneOptions();
   const std::vector<std::string> scenes = parseCommandLine<TuneCommand>(args, options, command, "tune");
   if (command.help) return command;
   if (scenes.size() > 1) throw SettingsError("more than one scene given: '" + scenes[0] + "' and '" + scenes[1] + "'");
   if (!scenes.empty()) command.scene = scenes[0];
-  if (command.maxAoError < 0) throw SettingsError("--max-ao-error: required (the AO RMSE to meet, e.g. 0.05)");
+  if (command.maxAoError < 0 && command.maxFlip < 0)
+    throw SettingsError(
+        "--max-ao-error: required unless --max-flip is given (the AO RMSE to meet, e.g. 0.05, or lit's HDR-FLIP, "
+        "e.g. 0.1)");
   command.base.validate();
   return command;
 }
@@ -90,13 +103,14 @@ TuneCommand parseTuneArgs(const std::vector<std::string>& args) {
 std::string tuneHelp() {
   TuneCommand defaults;
   std::string help =
-      "usage: headlight tune [SCENE] --max-ao-error E [options]\n\n"
+      "usage: headlight tune [SCENE] (--max-ao-error E | --max-flip F) [options]\n\n"
       "Measures SCENE's own speed/accuracy front (default builtin:cornell): every candidate SSGI\n"
       "configuration is rendered at --width x --height (default 128 x 128), timed (median of\n"
       "--repetitions frames after --warmup) and its AO compared with the Embree reference (`headlight\n"
       "reference`) over geometry pixels, as `headlight bench` does. Writes --out (a settings file:\n"
       "`name = value` lines, for `headlight render --settings FILE`) holding the cheapest\n"
-      "configuration whose AO RMSE is at most E, with its measured error and time as '# tune:' lines.\n"
+      "configuration whose AO RMSE is at most E (and/or whose lit, as mean HDR-FLIP against the reference's\n"
+      "lit_ref, is at most F), with its measured errors and time as '# tune:' lines.\n"
       "Prints the front; a progress bar on stderr when it is a terminal.\n\n"
       "Exit codes: 0 written; 1 runtime error; 2 usage error; 3 no configuration reaches E: nothing is\n"
       "written, and the message names the best AO RMSE reached.\n\n";
@@ -134,8 +148,13 @@ int runTuneCommand(const std::vector<std::string>& args) {
   progress.finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+  // The front on the bound asked for (AO when both are).
+  const std::optional<double> maxAo =
+      command.maxAoError >= 0 ? std::optional<double>(command.maxAoError) : std::nullopt;
+  const std::optional<double> maxFlip = command.maxFlip >= 0 ? std::optional<double>(command.maxFlip) : std::nullopt;
+  auto frontError = [&](const BenchRow& row) { return maxAo ? row.ao.rmse : row.litFlip; };
   std::vector<std::pair<double, double>> points;
-  for (const BenchRow& row : rows) points.emplace_back(row.frameMs.median, row.ao.rmse);
+  for (const BenchRow& row : rows) points.emplace_back(row.frameMs.median, frontError(row));
   const std::vector<bool> front = paretoFront(points);
   std::vector<std::size_t> order(rows.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -147,40 +166,54 @@ int runTuneCommand(const std::vector<std::string>& args) {
               << rows.front().referenceSamples << " rays/pixel (mean AO standard error "
               << number(rows.front().referenceAoStandardError, 2) << ")\n";
     std::cout << (command.verbosity == Verbosity::Verbose ? "every configuration" : "the front")
-              << " (frame ms, AO RMSE):\n";
+              << (maxAo ? " on AO" : " on lit HDR-FLIP") << " (frame ms, AO RMSE, lit HDR-FLIP):\n";
     for (std::size_t i : order)
       if (front[i] || command.verbosity == Verbosity::Verbose)
-        std::printf("  %8.2f ms  %.4f  %s%s\n", rows[i].frameMs.median, rows[i].ao.rmse, rows[i].label.c_str(),
-                    front[i] ? "" : "  (off the front)");
+        std::printf("  %8.2f ms  %.4f  %.4f  %s%s\n", rows[i].frameMs.median, rows[i].ao.rmse, rows[i].litFlip,
+                    rows[i].label.c_str(), front[i] ? "" : "  (off the front)");
     std::fflush(stdout);
   }
 
-  const std::optional<std::size_t> chosen = cheapestWithin(rows, command.maxAoError);
+  std::string bounds;  // "AO RMSE <= 0.05 and lit HDR-FLIP <= 0.1"
+  if (maxAo) bounds = "AO RMSE <= " + number(*maxAo);
+  if (maxFlip) bounds += (bounds.empty() ? "" : " and ") + std::string("lit HDR-FLIP <= ") + number(*maxFlip);
+  const std::optional<std::size_t> chosen = cheapestWithin(rows, maxAo, maxFlip);
   if (!chosen) {
-    const auto best = std::min_element(rows.begin(), rows.end(),
-                                       [](const BenchRow& a, const BenchRow& b) { return a.ao.rmse < b.ao.rmse; });
-    std::cerr << "headlight tune: no configuration reaches AO RMSE <= " << number(command.maxAoError) << " on "
-              << renderer.scene().source << "; the best reached " << number(best->ao.rmse) << " (" << best->label
-              << ", " << number(best->frameMs.median) << " ms/frame); nothing written to " << command.outDir << "\n";
+    std::cerr << "headlight tune: no configuration reaches " << bounds << " on " << renderer.scene().source;
+    // The best reached on each bound asked for.
+    if (maxAo) {
+      const auto best = std::min_element(rows.begin(), rows.end(),
+                                         [](const BenchRow& a, const BenchRow& b) { return a.ao.rmse < b.ao.rmse; });
+      std::cerr << "; the best reached " << number(best->ao.rmse) << " (" << best->label << ", "
+                << number(best->frameMs.median) << " ms/frame)";
+    }
+    if (maxFlip) {
+      const auto best = std::min_element(rows.begin(), rows.end(),
+                                         [](const BenchRow& a, const BenchRow& b) { return a.litFlip < b.litFlip; });
+      std::cerr << "; the best lit HDR-FLIP reached " << number(best->litFlip) << " (" << best->label << ", "
+                << number(best->frameMs.median) << " ms/frame)";
+    }
+    std::cerr << "; nothing written to " << command.outDir << "\n";
     return kExitTuneUnmet;
   }
   const BenchRow& row = rows[*chosen];
-  const std::vector<std::string> comments{
+  std::vector<std::string> comments{
       "headlight settings, written by: " + joinArgs(args),
       "the cheapest of " + std::to_string(rows.size()) + " configurations measured on " + row.scene + " at " +
-          std::to_string(row.width) + "x" + std::to_string(row.height) + " whose AO RMSE is at most " +
-          number(command.maxAoError) + ": " + row.label,
-      "tune: ao-rmse = " + number(row.ao.rmse, 6),
-      "tune: max-ao-error = " + number(command.maxAoError, 6),
-      "tune: frame-ms = " + number(row.frameMs.median, 6) + " (median of " + std::to_string(row.repetitions) +
-          "; ssgi " + number(row.ssgiMs.median) + " ms) on " + row.renderer,
-      "tune: reference = " + std::to_string(row.referenceSamples) + " rays/pixel, mean AO standard error " +
-          number(row.referenceAoStandardError, 3),
-      "use: headlight render SCENE --settings FILE (flags after --settings override it)"};
+          std::to_string(row.width) + "x" + std::to_string(row.height) + " with " + bounds + ": " + row.label,
+      "tune: ao-rmse = " + number(row.ao.rmse, 6), "tune: lit-flip = " + number(row.litFlip, 6)};
+  if (maxAo) comments.push_back("tune: max-ao-error = " + number(*maxAo, 6));
+  if (maxFlip) comments.push_back("tune: max-flip = " + number(*maxFlip, 6));
+  comments.push_back("tune: frame-ms = " + number(row.frameMs.median, 6) + " (median of " +
+                     std::to_string(row.repetitions) + "; ssgi " + number(row.ssgiMs.median) + " ms) on " +
+                     row.renderer);
+  comments.push_back("tune: reference = " + std::to_string(row.referenceSamples) +
+                     " rays/pixel, mean AO standard error " + number(row.referenceAoStandardError, 3));
+  comments.push_back("use: headlight render SCENE --settings FILE (flags after --settings override it)");
   writeTextFile(command.outDir, settingsFileText(configs[*chosen].settings, comments));
   if (!quiet)
-    std::cout << "chosen: " << row.label << ": AO RMSE " << number(row.ao.rmse) << " <= " << number(command.maxAoError)
-              << ", " << number(row.frameMs.median) << " ms/frame\n"
+    std::cout << "chosen: " << row.label << ": AO RMSE " << number(row.ao.rmse) << ", lit HDR-FLIP "
+              << number(row.litFlip) << " (" << bounds << "), " << number(row.frameMs.median) << " ms/frame\n"
               << command.outDir << "\n";
   return 0;
 }

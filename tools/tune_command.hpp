@@ -1,8 +1,9 @@
 #pragma once
-// `headlight tune SCENE --max-ao-error E`: the scene's own speed/accuracy
-// front, measured at a small size against the ray-traced reference with the
-// bench's machinery (measureConfigs), and a settings file holding the
-// cheapest configuration whose AO RMSE is at most E (render --settings FILE).
+// `headlight tune SCENE --max-ao-error E | --max-flip F`: the scene's own
+// speed/accuracy front, measured at a small size against the ray-traced
+// reference with the bench's machinery (measureConfigs), and a settings file
+// holding the cheapest configuration whose AO RMSE is at most E and/or whose
+// lit's mean HDR-FLIP against lit_ref is at most F (render --settings FILE).
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,7 +20,8 @@ struct TuneCommand {
   // --out FILE: the settings file to write (the member's name is the one
   // commonCommandOptions binds --out to).
   std::string outDir = "headlight.settings";
-  double maxAoError = 0;              // --max-ao-error E, required
+  double maxAoError = -1;             // --max-ao-error E; < 0: not given
+  double maxFlip = -1;                // --max-flip F (lit's mean HDR-FLIP); < 0: not given. One of the two is required
   RenderSettings base = smallBase();  // what every configuration starts from; 128 x 128
   std::vector<SettingSweep> sweeps;   // empty: defaultTuneSweeps()
   ReferenceSettings reference = tuneReference();
@@ -48,7 +50,8 @@ struct TuneCommand {
   }
 };
 
-// Throws SettingsError for a bad flag or value, or a missing --max-ao-error.
+// Throws SettingsError for a bad flag or value, or when neither
+// --max-ao-error nor --max-flip is given.
 TuneCommand parseTuneArgs(const std::vector<std::string>& args);
 std::string tuneHelp();
 
@@ -58,8 +61,11 @@ std::string tuneHelp();
 std::vector<SettingSweep> defaultTuneSweeps(float autoThickness);
 
 // The row to write: the one with the least median frame time among those
-// whose AO RMSE is at most `maxAoError`; nullopt when none is.
-std::optional<std::size_t> cheapestWithin(const std::vector<BenchRow>& rows, double maxAoError);
+// whose AO RMSE is at most `maxAoError` and whose lit HDR-FLIP (BenchRow::
+// litFlip) is at most `maxFlip` (a bound not given: no limit); nullopt when
+// none is.
+std::optional<std::size_t> cheapestWithin(const std::vector<BenchRow>& rows, std::optional<double> maxAoError,
+                                          std::optional<double> maxFlip = std::nullopt);
 
 // Runs the whole command; returns the exit code.
 int runTuneCommand(const std::vector<std::string>& args);

@@ -2,6 +2,7 @@
 // thresholds each target is judged by. Outside the image module, so that
 // diff's help and option checks do not load OpenImageIO.
 #include <algorithm>
+#include <vector>
 
 #include "headlight/diff.hpp"
 
@@ -33,17 +34,44 @@ std::string_view metricName(DiffMetric metric) {
       return "relative-to-value";
     case DiffMetric::AngleDegrees:
       return "angle-degrees";
+    case DiffMetric::Flip:
+      return "flip";
   }
   return "?";
 }
 
+std::span<const std::string_view> metricNames() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> list;
+    for (DiffMetric metric : {DiffMetric::Absolute, DiffMetric::RelativeToScene, DiffMetric::RelativeToValue,
+                              DiffMetric::AngleDegrees, DiffMetric::Flip})
+      list.push_back(metricName(metric));
+    return list;
+  }();
+  return names;
+}
+
 const FrameTarget& targetTolerance(std::string_view target) {
+  if (target == previewTargetRow().name) return previewTargetRow();
   const FrameTarget* row = findFrameTarget(target);
   return row ? *row : unknownTargetRow();
 }
 
+const FrameTarget* firstRowWithMetric(DiffMetric metric) {
+  for (const FrameTarget& row : frameTargets())
+    if (row.metric == metric) return &row;
+  return previewTargetRow().metric == metric ? &previewTargetRow() : nullptr;
+}
+
+DiffMetric resolveMetric(std::string_view target, const DiffOptions& options) {
+  return options.metric.value_or(targetTolerance(target).metric);
+}
+
 DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options) {
-  DiffThresholds t = targetTolerance(target).thresholds;
+  const FrameTarget& row = targetTolerance(target);
+  const FrameTarget* unitsRow =
+      options.metric && *options.metric != row.metric ? firstRowWithMetric(*options.metric) : &row;
+  DiffThresholds t = (unitsRow ? *unitsRow : row).thresholds;
   // A mean bound below a per-pixel bound the caller chose would overrule it
   // (every pixel within --fail, the mean above): an explicit --fail raises it.
   if (options.fail) t.failMean = std::max(t.failMean, *options.fail);

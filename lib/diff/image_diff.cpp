@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "diff/flip.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
@@ -43,7 +44,9 @@ bool isCoverageChannel(std::string_view name) {
 // Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
 // shared ImageCache, which may hand back an older copy of a file that was
 // rewritten under the same name, as regression suites do).
-std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem) {
+// `integer`: whether the file stores integer pixels (8-bit PNG and the like:
+// display-encoded values, which the Flip metric decodes as sRGB).
+std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem, bool& integer) {
   std::error_code error;
   if (!fs::exists(path, error)) {
     problem = path.string() + ": no such file";
@@ -59,6 +62,7 @@ std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& probl
     return std::nullopt;
   }
   OIIO::ImageSpec spec = input->spec();
+  integer = !spec.format.is_floating_point();
   if (spec.deep || spec.depth > 1) {
     problem = path.string() + ": deep and volume images are not supported";
     return std::nullopt;
@@ -119,6 +123,17 @@ void checkOk(const OIIO::ImageBuf& image, const char* operation) {
   if (image.has_error()) throw Error(std::string("diff: ImageBufAlgo::") + operation + " failed: " + image.geterror());
 }
 
+// A one-channel float image named `name` holding `values`.
+OIIO::ImageBuf singleChannel(const OIIO::ROI& roi, const std::string& name, const float* values) {
+  OIIO::ImageSpec spec(roi.width(), roi.height(), 1, OIIO::TypeDesc::FLOAT);
+  spec.x = roi.xbegin;
+  spec.y = roi.ybegin;
+  spec.channelnames = {name};
+  OIIO::ImageBuf out(spec);
+  out.set_pixels(out.roi(), OIIO::TypeDesc::FLOAT, values);
+  return out;
+}
+
 // The angle between A's and B's vectors per pixel, in degrees. A loop, not
 // ImageBufAlgo: OIIO has no acos/atan2 op, and acos of a float dot product
 // resolves no better than ~0.02 deg near 0 (1 - cos is below float's
@@ -146,13 +161,7 @@ OIIO::ImageBuf angleImage(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
     }
     angle[i] = float(degrees);  // NaN input stays NaN
   }
-  OIIO::ImageSpec spec(roi.width(), roi.height(), 1, OIIO::TypeDesc::FLOAT);
-  spec.x = roi.xbegin;
-  spec.y = roi.ybegin;
-  spec.channelnames = {name};
-  OIIO::ImageBuf out(spec);
-  out.set_pixels(out.roi(), OIIO::TypeDesc::FLOAT, angle.data());
-  return out;
+  return singleChannel(roi, name, angle.data());
 }
 
 std::string prefixOf(const std::string& channel) {
@@ -182,13 +191,80 @@ void chooseScale(const OIIO::ImageBuf& a, const std::vector<std::string>& channe
   result.scaleSource = largest > 0 ? "largest |value| in A (no headlight:far)" : "1 (no headlight:far, A is all zero)";
 }
 
+// The indices of R, G and B among `channels` (by name, last component: "R"
+// or "<layer>.R"), or empty when one is missing.
+std::vector<int> rgbChannels(const std::vector<std::string>& channels) {
+  std::vector<int> rgb;
+  for (const char* wanted : {"R", "G", "B"}) {
+    const auto found = std::find_if(channels.begin(), channels.end(), [&](const std::string& name) {
+      const auto dot = name.rfind('.');
+      return (dot == std::string::npos ? name : name.substr(dot + 1)) == wanted;
+    });
+    if (found == channels.end()) return {};
+    rgb.push_back(int(found - channels.begin()));
+  }
+  return rgb;
+}
+
 struct MetricImages {
   OIIO::ImageBuf a, b;                    // |a - b| is the error, channel by channel
   std::vector<std::vector<int>> sources;  // per metric channel: indices into the selected channels
 };
 
+// FLIP of the R, G, B channels as channel "flip" of EA (EB zero), then the
+// other channels (coverage) as they are, compared absolutely. HDR-FLIP takes
+// its exposures from A, the reference; LDR-FLIP decodes sRGB first.
+MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::vector<std::string>& channels,
+                        const std::vector<int>& rgb, bool ldr, DiffResult& result) {
+  namespace iba = OIIO::ImageBufAlgo;
+  const OIIO::ROI roi = a.roi();
+  const std::size_t count = roi.npixels();
+  std::vector<float> rgbA(count * 3), rgbB(count * 3);
+  const OIIO::ImageBuf pickedA = iba::channels(a, 3, rgb), pickedB = iba::channels(b, 3, rgb);
+  checkOk(pickedA, "channels");
+  checkOk(pickedB, "channels");
+  pickedA.get_pixels(roi, OIIO::TypeDesc::FLOAT, rgbA.data());
+  pickedB.get_pixels(roi, OIIO::TypeDesc::FLOAT, rgbB.data());
+  const flip::RgbView viewA{rgbA.data(), roi.width(), roi.height(), 3},
+      viewB{rgbB.data(), roi.width(), roi.height(), 3};
+  FlipDetails details;
+  details.hdr = !ldr;
+  details.pixelsPerDegree = flip::defaultPixelsPerDegree();
+  flip::FlipResult flipped;
+  if (ldr) {
+    for (float& v : rgbA) v = flip::srgbToLinear(v);
+    for (float& v : rgbB) v = flip::srgbToLinear(v);
+    flipped = flip::ldrFlip(viewA, viewB, details.pixelsPerDegree);
+  } else {
+    flipped = flip::hdrFlip(viewA, viewB, details.pixelsPerDegree);
+    details.startExposure = flipped.startExposure;
+    details.stopExposure = flipped.stopExposure;
+    details.exposureCount = flipped.exposureCount;
+  }
+  result.flip = details;
+
+  MetricImages m;
+  m.sources = {rgb};
+  std::vector<int> others;
+  for (int c = 0; c < int(channels.size()); ++c)
+    if (std::find(rgb.begin(), rgb.end(), c) == rgb.end()) {
+      others.push_back(c);
+      m.sources.push_back({c});
+    }
+  const OIIO::ImageBuf flipA = singleChannel(roi, "flip", flipped.error.data());
+  const OIIO::ImageBuf flipB = iba::zero(flipA.roi());
+  if (others.empty()) {
+    m.a = flipA;
+    m.b = flipB;
+  } else {
+    m.a = iba::channel_append(flipA, iba::channels(a, int(others.size()), others));
+    m.b = iba::channel_append(flipB, iba::channels(b, int(others.size()), others));
+  }
+  return m;
+}
+
 MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::vector<std::string>& channels,
-                          DiffResult& result) {
+                          bool integerPixels, DiffResult& result) {
   namespace iba = OIIO::ImageBufAlgo;
   MetricImages m;
   const int n = int(channels.size());
@@ -222,6 +298,9 @@ MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
       m.sources = {{0, 1, 2}};
       break;
     }
+    case DiffMetric::Flip:
+      m = flipImages(a, b, channels, rgbChannels(channels), integerPixels, result);
+      break;
   }
   checkOk(m.a, "metric (A)");
   checkOk(m.b, "metric (B)");
@@ -312,6 +391,38 @@ void judge(DiffResult& r) {
   }
 }
 
+// An image as the Flip metric saw it, as an 8-bit sRGB PNG at `path`: an
+// integer (display) image as it is, a float one at the middle of the
+// HDR-FLIP exposures, ACES tone mapped.
+void writeFlipView(const fs::path& source, const DiffResult& result, const fs::path& path) {
+  std::string problem;
+  bool integer = false;
+  const std::optional<OIIO::ImageBuf> image = loadImage(source, problem, integer);
+  if (!image) throw IoError(path.string() + ": cannot show " + problem);
+  const std::vector<int> rgb = rgbChannels(image->spec().channelnames);
+  if (rgb.empty()) throw IoError(path.string() + ": " + source.string() + " has no R, G, B channels to show");
+  const OIIO::ImageBuf picked = OIIO::ImageBufAlgo::channels(*image, 3, rgb);
+  checkOk(picked, "channels");
+  std::vector<float> pixels(picked.roi().npixels() * 3);
+  picked.get_pixels(picked.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  const bool hdr = !result.flip || result.flip->hdr;
+  const float scale =
+      hdr && result.flip ? float(std::exp2(0.5 * (result.flip->startExposure + result.flip->stopExposure))) : 1.0f;
+  for (float& v : pixels) {
+    const float shown =
+        hdr ? flip::linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
+    v = std::isfinite(shown) ? std::clamp(shown, 0.0f, 1.0f) : 0.0f;
+  }
+  OIIO::ImageSpec spec(picked.spec().width, picked.spec().height, 3, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B"};
+  OIIO::ImageBuf view(spec);
+  view.set_pixels(view.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  OIIO::ImageSpec pngSpec = spec;
+  pngSpec.set_format(OIIO::TypeDesc::UINT8);
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");
+  detail::writeImageAtomically(path, view, pngSpec, "png");
+}
+
 }  // namespace
 
 DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& options) {
@@ -320,13 +431,13 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
   result.a = a;
   result.b = b;
   result.target = options.target.empty() ? a.stem().string() : options.target;
-  const FrameTarget& row = targetTolerance(result.target);
-  result.metric = row.metric;
+  result.metric = resolveMetric(result.target, options);
   result.thresholds = resolveThresholds(result.target, options);
 
   std::string problemA, problemB;
-  const std::optional<OIIO::ImageBuf> imageA = loadImage(a, problemA);
-  const std::optional<OIIO::ImageBuf> imageB = loadImage(b, problemB);
+  bool integerA = false, integerB = false;
+  const std::optional<OIIO::ImageBuf> imageA = loadImage(a, problemA, integerA);
+  const std::optional<OIIO::ImageBuf> imageB = loadImage(b, problemB, integerB);
   if (!imageA || !imageB) {
     result.status = DiffStatus::FileError;
     result.problem = problemA + (problemA.empty() || problemB.empty() ? "" : "; ") + problemB;
@@ -359,13 +470,15 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
   // The angle needs a 3-vector; a --channels subset of a normal target is
   // compared per component instead (the metric in the result says so).
   if (result.metric == DiffMetric::AngleDegrees && channels.size() != 3) result.metric = DiffMetric::Absolute;
+  // FLIP needs colour: without R, G and B (a --channels subset) it is absolute too.
+  if (result.metric == DiffMetric::Flip && rgbChannels(channels).empty()) result.metric = DiffMetric::Absolute;
 
   const iba::PixelStats statsA = iba::computePixelStats(selA), statsB = iba::computePixelStats(selB);
   auto nonFinite = [](const iba::PixelStats& s, std::size_t c) {
     return c < s.nancount.size() ? std::uint64_t(s.nancount[c] + s.infcount[c]) : 0;
   };
 
-  const MetricImages m = metricImages(selA, selB, channels, result);
+  const MetricImages m = metricImages(selA, selB, channels, integerA && integerB, result);
   const float fail = float(result.thresholds.fail), warn = float(result.thresholds.warn);
   const iba::CompareResults all = iba::compare(m.a, m.b, fail, warn);
   result.maxError = all.maxerror;
@@ -484,8 +597,10 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
 
   // Heatmap: error * (0.5 / fail), so the fail threshold sits mid-ramp and
   // twice it saturates; +inf (NaN/Inf inputs) saturates too.
+  // FLIP maps are shown as the papers show them: 0..1 through magma.
+  const bool flipMap = result.metric == DiffMetric::Flip;
   const int errorChannel = diff.channelCount() - 1;
-  double fullScale = 2.0 * result.thresholds.fail;
+  double fullScale = flipMap ? 1.0 : 2.0 * result.thresholds.fail;
   if (!(fullScale > 0) || !std::isfinite(fullScale)) {
     fullScale = 0;
     for (std::size_t p = std::size_t(errorChannel); p < diff.pixels.size(); p += diff.channels.size())
@@ -494,7 +609,7 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
   }
   const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
   const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / fullScale)), 0.0f, 1.0f);
-  OIIO::ImageBuf heat = iba::color_map(scaled, 0, "inferno");
+  OIIO::ImageBuf heat = iba::color_map(scaled, 0, flipMap ? "magma" : "inferno");
   if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
   OIIO::ImageSpec pngSpec = heat.spec();
   pngSpec.set_format(OIIO::TypeDesc::UINT8);
@@ -504,7 +619,17 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
   pngPath.replace_extension(".png");
   detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
   detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
-  return {exrPath, pngPath};
+  std::vector<fs::path> written{exrPath, pngPath};
+  if (flipMap) {
+    // What FLIP compared, for a report to show beside the map.
+    for (const auto& [source, suffix] : {std::pair{result.a, "_a.png"}, std::pair{result.b, "_b.png"}}) {
+      fs::path path = exrPath;
+      path.replace_filename(exrPath.stem().string() + suffix);
+      writeFlipView(source, result, path);
+      written.push_back(path);
+    }
+  }
+  return written;
 }
 
 }  // namespace headlight

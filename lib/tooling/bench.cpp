@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "diff/flip.hpp"
 #include "headlight/error.hpp"
 #include "headlight/settings.hpp"
 #include "output/atomic_file.hpp"
@@ -113,6 +114,18 @@ double maskedSsim(const ImageF& a, const ImageF& b, const ImageF& mask) {
   return windows > 0 ? sum / double(windows) : 1.0;
 }
 
+double hdrFlipMean(const ImageF& test, const ImageF& reference) {
+  if (test.width != reference.width || test.height != reference.height || test.channelCount() < 3 ||
+      reference.channelCount() < 3)
+    throw Error("HDR-FLIP: expected two RGB images of one size, got " + std::to_string(test.width) + "x" +
+                std::to_string(test.height) + " with " + std::to_string(test.channelCount()) + " channels and " +
+                std::to_string(reference.width) + "x" + std::to_string(reference.height) + " with " +
+                std::to_string(reference.channelCount()));
+  return flip::hdrFlip({reference.pixels.data(), reference.width, reference.height, reference.channelCount()},
+                       {test.pixels.data(), test.width, test.height, test.channelCount()})
+      .mean;
+}
+
 std::vector<bool> paretoFront(const std::vector<std::pair<double, double>>& points) {
   std::vector<bool> front(points.size(), true);
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -153,7 +166,7 @@ const char* kCsvHeaderStart = "scene,label,";
 const char* kCsvHeaderEnd =
     "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
-    "ao_rmse,ao_mae,sky_rmse,sky_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,"
+    "ao_rmse,ao_mae,sky_rmse,sky_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,lit_flip,"
     "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
 
 std::string csvField(const std::string& text) {
@@ -180,8 +193,8 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
         << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
-        << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ',' << csvField(r.renderer)
-        << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+        << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
+        << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
   }
   detail::writeTextAtomically(path, out.str());
 }
@@ -207,7 +220,7 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
          {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
          {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
          {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
-         {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}}},
+         {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}, {"flip", r.litFlip}}},
          {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},
          {"pareto_ao", r.paretoAo},
          {"renderer", r.renderer},

@@ -35,6 +35,12 @@ ColorErrorStats maskedColorError(const ImageF& a, int firstA, const ImageF& b, i
 // the windows centred on geometry pixels. 1 = identical.
 double maskedSsim(const ImageF& a, const ImageF& b, const ImageF& mask);
 
+// Mean HDR-FLIP (lib/diff/flip.hpp) of linear RGB(A) `test` against
+// `reference` over every pixel (background included, as FLIP's tool and
+// headlight diff take it); the exposures come from the reference. Throws
+// Error for images of different sizes or without 3 channels.
+double hdrFlipMean(const ImageF& test, const ImageF& reference);
+
 // For points (time, error), both to be minimised: true where no other point
 // is at least as good in both and better in one.
 std::vector<bool> paretoFront(const std::vector<std::pair<double, double>>& timeError);
@@ -65,6 +71,7 @@ struct BenchRow {
   ColorErrorStats indirect;  // vs indirect_ref within R
   ColorErrorStats lit;       // vs lit_ref
   double litSsim = 0;
+  double litFlip = 0;  // mean HDR-FLIP (lib/diff/flip.hpp) of lit against lit_ref, over all pixels
   int referenceSamples = 0;
   double referenceAoStandardError = 0;
   bool paretoAo = false;  // on the (frame time, AO RMSE) front of its scene and resolution

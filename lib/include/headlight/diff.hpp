@@ -49,11 +49,18 @@ inline constexpr int kDiffExitUsage = 5;
 // render) or a file differs from what the set wrote; nothing is compared.
 inline constexpr int kDiffExitIncompleteSet = 6;
 
-std::string_view metricName(DiffMetric metric);  // "absolute", "relative-to-scene", ...
+std::string_view metricName(DiffMetric metric);  // "absolute", "relative-to-scene", ..., "flip"
+// Every metric's name, in DiffMetric order (the CLI's --metric choices).
+std::span<const std::string_view> metricNames();
 
 // The frame-target table's row for `target` (headlight/targets.hpp): its
-// metric, thresholds and reason; unknownTargetRow() for any other name.
+// metric, thresholds and reason; previewTargetRow() for "preview",
+// unknownTargetRow() for any other name.
 const FrameTarget& targetTolerance(std::string_view target);
+// The first row of the table (frame targets, then preview) judged by
+// `metric`, or nullptr (none is): where thresholds in its units come from
+// when a metric is chosen explicitly.
+const FrameTarget* firstRowWithMetric(DiffMetric metric);
 
 struct DiffOptions {
   // Each set value replaces the target's default (the CLI's --fail, ...).
@@ -63,10 +70,24 @@ struct DiffOptions {
   std::vector<std::string> channels;
   // Table row to use; empty = A's file stem.
   std::string target;
+  // The metric instead of the row's (the CLI's --metric). When it differs
+  // from the row's, the default thresholds are those of
+  // firstRowWithMetric(*metric) (flip: lit's), since the row's are in other units.
+  std::optional<DiffMetric> metric;
 };
 
-// The target's defaults with the options' overrides applied.
+// The metric the row of `target` and the options give.
+DiffMetric resolveMetric(std::string_view target, const DiffOptions& options);
+// The target's defaults (see DiffOptions::metric) with the options' overrides applied.
 DiffThresholds resolveThresholds(std::string_view target, const DiffOptions& options);
+
+// The Flip metric's details: which FLIP and its viewing conditions.
+struct FlipDetails {
+  bool hdr = true;             // HDR-FLIP (float images); false: LDR-FLIP of sRGB-decoded integer images
+  double pixelsPerDegree = 0;  // 67.02: 0.7 m from a 0.7 m wide 3840-px display
+  double startExposure = 0, stopExposure = 0;  // HDR-FLIP: from A (the reference)
+  int exposureCount = 0;
+};
 
 struct ChannelDiff {
   std::string name;                  // compared channel: "R", "position.X", or "normal.angle"
@@ -89,9 +110,10 @@ struct DiffResult {
   std::filesystem::path a, b;
   std::string target;  // table row used
   DiffMetric metric = DiffMetric::Absolute;
-  DiffThresholds thresholds;  // as used
-  double scale = 1;           // RelativeToScene only: the divisor
-  std::string scaleSource;    // e.g. "headlight:far of A"
+  DiffThresholds thresholds;        // as used
+  double scale = 1;                 // RelativeToScene only: the divisor
+  std::string scaleSource;          // e.g. "headlight:far of A"
+  std::optional<FlipDetails> flip;  // Flip only, once computed
   int width = 0, height = 0;
   std::uint64_t pixelCount = 0;
   std::vector<ChannelDiff> channels;  // empty for Structural and FileError
@@ -132,8 +154,11 @@ DirectoryDiff diffDirectories(const std::filesystem::path& a, const std::filesys
 // Writes result.difference as a float EXR at `exrPath` and a heatmap PNG
 // beside it (same name, .png): the "error" channel through the inferno
 // colour map, scaled so the fail threshold is mid-scale (fail = 0: the
-// largest error is full scale). Both written atomically (temporary name in
-// the same folder, then rename). Returns the two paths. Throws IoError when
+// largest error is full scale); for the Flip metric, the FLIP map as FLIP's
+// papers show it, 0..1 through magma, and beside it <stem>_a.png and
+// <stem>_b.png, A and B as FLIP saw them (8-bit sRGB; float images ACES tone
+// mapped at the middle of the HDR-FLIP exposures), for reports. Both written atomically (temporary name in
+// the same folder, then rename). Returns the paths written. Throws IoError when
 // writing fails, Error when the result has no difference image.
 std::vector<std::filesystem::path> writeDiffImages(const DiffResult& result, const std::filesystem::path& exrPath);
 

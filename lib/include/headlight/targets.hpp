@@ -24,6 +24,9 @@ enum class DiffMetric {
   RelativeToValue,  // |a - b| / max(1, |a|): absolute below 1, relative above (HDR radiance)
   AngleDegrees,     // angle between the 3-channel vectors of A and B, in degrees; one channel
                     // "<prefix>.angle"; 0 when both are zero vectors, 180 when only one is
+  Flip,             // perceived difference of the R, G, B channels (lib/diff/flip.hpp), one channel
+                    // "flip" in 0..1: HDR-FLIP of float images, LDR-FLIP of integer (sRGB-encoded)
+                    // ones; other channels (coverage A) compared absolutely
 };
 
 // idiff's options and idiff's defaults, plus a bound on the mean error. Units
@@ -61,5 +64,8 @@ const FrameTarget* findFrameTarget(std::string_view name);
 // The row headlight diff uses for a file that is no headlight target:
 // idiff's defaults (absolute, warn = fail = 1e-6, no allowance).
 const FrameTarget& unknownTargetRow();
+// headlight diff's row for preview.png, which is no frame target (the
+// renderer writes it from lit; image null): LDR-FLIP.
+const FrameTarget& previewTargetRow();
 
 }  // namespace HEADLIGHT_PUBLIC
