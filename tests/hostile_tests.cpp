@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
 #include <string>
 #include <vector>
 
@@ -162,8 +164,8 @@ TEST_SUITE("hostile") {
       for (int image = 0; image < 2000; ++image) {
         document["images"].push_back({{"uri", "data:image/png;base64,AAAA"}});
       }
-      document["meshes"][0]["primitives"][0]["mode"] = 1;
-      expectRefused(writeGltf(folder, document, "images.gltf"), {"mesh 0 primitive 0", "only TRIANGLES"});
+      document["meshes"][0]["primitives"][0]["mode"] = 7;
+      expectRefused(writeGltf(folder, document, "images.gltf"), {"mesh 0 primitive 0", "has mode 7, expected 0..6"});
     }
   }
 
@@ -262,5 +264,37 @@ TEST_SUITE("hostile") {
                          NonFiniteError);
     CHECK(clampNonFinite(frame) == 2);
     CHECK_NOTHROW(requireFinite(frame));
+  }
+
+  // Never silent (issue 17): a feature that is not rendered is a warning,
+  // once per scene, and is recorded with the outputs; --strict-gltf makes it
+  // an error with nothing written.
+  TEST_CASE("a glTF feature that is not rendered is named once; --strict-gltf refuses the file") {
+    TempFolder folder("hostile");
+    json document = hostile::triangleScene();
+    document["materials"] = {{{"name", "Cloth"}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                             {{"extensions", {{"KHR_materials_sheen", json::object()}}}}};
+    document["meshes"][0]["primitives"][0]["material"] = 0;
+    document["extensionsUsed"] = {"KHR_materials_sheen"};
+    const fs::path scene = writeGltf(folder, document, "sheen.gltf");
+    const std::string warning = "warning: " + scene.string() +
+                                ": KHR_materials_sheen on 2 materials (first: material 0 'Cloth') is not rendered";
+    const fs::path out = folder.path() / "out";
+    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " +
+                                           quote(out));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    const auto first = run.output.find(warning);
+    CHECK(first != std::string::npos);
+    CHECK(run.output.find(warning, first + 1) == std::string::npos);  // two views, one scene: once
+    std::ifstream manifestFile(out / "view_000" / "frame.json");
+    const json manifest = json::parse(manifestFile);
+    CHECK(manifest["ignored"] == json::array({warning.substr(warning.find("KHR_"))}));
+    auto exr = OIIO::ImageInput::open((out / "view_000" / "lit.exr").string());
+    REQUIRE(exr);
+    CHECK(exr->spec().get_string_attribute("headlight:ignored") == warning.substr(warning.find("KHR_")));
+
+    const fs::path strictScene = writeGltf(folder, document, "strict/sheen.gltf");  // its own, empty out/
+    expectRefused(strictScene, {"--strict-gltf: KHR_materials_sheen on 2 materials"}, "--strict-gltf");
   }
 }

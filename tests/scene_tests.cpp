@@ -500,11 +500,11 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
     const std::string message = loadError(path);
     CHECK(message.find(path.string() + ": mesh 0 primitive 0: index 2 of accessor 1 is 3") == 0);
   }
-  SUBCASE("LINES primitive") {
+  SUBCASE("unknown primitive mode") {
     GltfParts parts;
-    parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"mode":1})";
+    parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"mode":7})";
     const std::string message = loadError(writeTriangleGltf(folder, parts));
-    CHECK(message.find("scene.gltf: mesh 0 primitive 0 has mode LINES (1)") != std::string::npos);
+    CHECK(message.find("scene.gltf: mesh 0 primitive 0 has mode 7, expected 0..6") != std::string::npos);
   }
   SUBCASE("no POSITION") {
     GltfParts parts;
@@ -550,21 +550,127 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
     parts.extra =
         R"(,"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"])";
     const std::string message = loadError(writeTriangleGltf(folder, parts));
-    CHECK(message.find("requires extension KHR_draco_mesh_compression") != std::string::npos);
+    CHECK(message.find("requires extension KHR_draco_mesh_compression, which is not supported") != std::string::npos);
+  }
+  SUBCASE("every unsupported required extension is named at once") {
+    GltfParts parts;
+    parts.extra = R"(,"extensionsUsed":["KHR_draco_mesh_compression","KHR_texture_basisu","KHR_texture_transform"],
+                    "extensionsRequired":["KHR_draco_mesh_compression","KHR_texture_transform","KHR_texture_basisu"])";
+    const std::string message = loadError(writeTriangleGltf(folder, parts));
+    CHECK(message.find("requires extensions KHR_draco_mesh_compression, KHR_texture_basisu, which are not supported") !=
+          std::string::npos);
   }
 }
 
-TEST_CASE("glTF: a texCoord other than 0 is refused") {
+// ---- Never silent: features that are not rendered are named ----------------
+
+const IgnoredFeature* findIgnored(const Scene& scene, const std::string& feature) {
+  for (const IgnoredFeature& ignored : scene.ignored) {
+    if (ignored.feature == feature) return &ignored;
+  }
+  return nullptr;
+}
+
+TEST_CASE("glTF: a texCoord other than 0 loads, sampling TEXCOORD_0, and is named") {
   TempFolder folder;
   const std::string png =
       "iVBORw0KGgoAAAANSUhEUgAAAAEAAAACCAIAAAAW4yFwAAAADUlEQVR4nGP4zwAC/wEIAAH/2ZC7NQAAAABJRU5ErkJggg==";
   GltfParts parts;
   parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
-  parts.extra = R"(,"materials":[{"normalTexture":{"index":0,"texCoord":1}}],"textures":[{"source":0}],
-                   "images":[{"uri":"data:image/png;base64,)" +
+  parts.extra = R"(,"materials":[{"name":"Cloth","normalTexture":{"index":0,"texCoord":1}}],
+                   "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" +
                 png + R"("}])";
-  const std::string message = loadError(writeTriangleGltf(folder, parts));
-  CHECK(message.find("scene.gltf: material 0 normalTexture uses TEXCOORD_1") != std::string::npos);
+  const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
+  REQUIRE(scene.ignored.size() == 1);
+  CHECK(scene.ignored[0].describe() ==
+        "TEXCOORD_1 on 1 material (first: material 0 'Cloth') is not rendered (TEXCOORD_0 is sampled instead)");
+}
+
+TEST_CASE("glTF: each feature that is not rendered is named once, with a count and the first element") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":1})";
+  parts.extra = R"(,"extensionsUsed":["KHR_materials_sheen","KHR_materials_unlit","KHR_xmp"],
+    "extensionsRequired":["KHR_materials_unlit"],
+    "materials":[{"name":"A","alphaMode":"BLEND"},
+                 {"name":"Cloth","extensions":{"KHR_materials_sheen":{},"KHR_materials_unlit":{}}},
+                 {"extensions":{"KHR_materials_sheen":{}}},{"alphaMode":"MASK"}],
+    "animations":[{"name":"Walk","channels":[],"samplers":[]},{"channels":[],"samplers":[]}])";
+  const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
+  CHECK(scene.triangleCount() == 1);  // KHR_materials_unlit, though required, leaves the geometry right
+  std::vector<std::string> lines;
+  for (const IgnoredFeature& feature : scene.ignored) lines.push_back(feature.describe());
+  const std::vector<std::string> expected{
+      "alphaMode BLEND on 1 material (first: material 0 'A') is not rendered (drawn opaque)",
+      "alphaMode MASK on 1 material (first: material 3) is not rendered (drawn opaque)",
+      "2 animations (first: animation 0 'Walk') are not played (the static pose is drawn)",
+      "KHR_materials_sheen on 2 materials (first: material 1 'Cloth') is not rendered",
+      "KHR_materials_unlit on 1 material (first: material 1 'Cloth') is not rendered",
+      "KHR_xmp (listed in extensionsUsed) is not rendered",
+  };
+  CHECK(lines == expected);
+
+  SceneLoadOptions strict;
+  strict.strictGltf = true;
+  const std::string message = loadError(folder.path() / "scene.gltf", strict);
+  CHECK(message.find("scene.gltf: --strict-gltf: alphaMode BLEND on 1 material") != std::string::npos);
+  CHECK(message.find("; KHR_xmp (listed in extensionsUsed) is not rendered") != std::string::npos);
+}
+
+TEST_CASE("glTF: points and lines are skipped and named; strips and fans become triangle lists") {
+  TempFolder folder;
+  // Four vertices of a unit quad: (0,0) (1,0) (0,1) (1,1), indices 0 1 2 3.
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, 2, 3};
+  std::vector<unsigned char> buffer(56, 0);
+  std::memcpy(buffer.data(), positions, sizeof positions);
+  std::memcpy(buffer.data() + 48, indices, sizeof indices);
+  folder.write("quad.bin", buffer);
+  auto write = [&](int mode) {
+    const std::string json =
+        R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+        "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":)" +
+        std::to_string(mode) + R"(}]}],"buffers":[{"uri":"quad.bin","byteLength":56}],
+        "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":8}],
+        "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
+                     {"bufferView":1,"componentType":5123,"count":4,"type":"SCALAR"}]})";
+    return folder.write("mode" + std::to_string(mode) + ".gltf", json);
+  };
+  SUBCASE("TRIANGLE_STRIP: (0 1 2) and (2 1 3), both counter-clockwise") {
+    const Scene scene = loadGltf(write(5));
+    REQUIRE(scene.primitives.size() == 1);
+    CHECK(scene.primitives[0].indices == std::vector<std::uint32_t>{0, 1, 2, 2, 1, 3});
+    CHECK(scene.ignored.empty());
+    for (const glm::vec3& normal : scene.primitives[0].normals) CHECK(near(normal, {0, 0, 1}));
+  }
+  SUBCASE("TRIANGLE_FAN: (0 1 2) and (0 2 3)") {
+    const Scene scene = loadGltf(write(6));
+    REQUIRE(scene.primitives.size() == 1);
+    CHECK(scene.primitives[0].indices == std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
+  }
+  SUBCASE("LINE_STRIP: no instance, named") {
+    const Scene scene = loadGltf(write(3));
+    CHECK(scene.instances.empty());
+    REQUIRE(scene.ignored.size() == 1);
+    CHECK(scene.ignored[0].describe() == "mode LINE_STRIP on 1 primitive (first: mesh 0 primitive 0) is not rendered (skipped)");
+  }
+}
+
+TEST_CASE("glTF: --scene picks a scene by index or name") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.nodes = R"([{"mesh":0},{"mesh":0,"translation":[5,0,0]},{"mesh":0,"translation":[9,0,0]}])";
+  parts.sceneNodes = R"([0],"name":"first"},{"nodes":[1,2],"name":"second")";
+  const fs::path path = writeTriangleGltf(folder, parts);
+  CHECK(loadGltf(path).instances.size() == 1);
+  SceneLoadOptions options;
+  options.gltfScene = "1";
+  CHECK(loadGltf(path, options).instances.size() == 2);
+  options.gltfScene = "second";
+  CHECK(loadGltf(path, options).worldBounds().max.x == doctest::Approx(10.0f));
+  options.gltfScene = "2";
+  CHECK(loadError(path, options).find("scene.gltf: --scene 2: the file has 2 scenes (0 'first', 1 'second')") !=
+        std::string::npos);
 }
 
 TEST_CASE("glTF: URIs outside the asset folder are refused unless allowed") {

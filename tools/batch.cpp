@@ -152,17 +152,27 @@ long peakRssKb() {
   return usage.ru_maxrss;  // kilobytes on Linux
 }
 
+// Loads a scene and names, once, each glTF feature it uses that is not
+// rendered (Scene::ignored; frame.json and the EXRs list them too).
+Scene loadAndWarn(const std::string& name, const SceneLoadOptions& options, const ResourceLimits& limits, bool quiet) {
+  Scene scene = loadScene(name, options, limits);
+  if (!quiet)
+    for (const IgnoredFeature& feature : scene.ignored)
+      std::fprintf(stderr, "warning: %s: %s\n", scene.source.c_str(), feature.describe().c_str());
+  return scene;
+}
+
 // Scenes stay loaded while a later job of this shard uses them.
 class SceneCache {
  public:
-  SceneCache(const std::vector<Job>& jobs, bool allowExternalPaths, const ResourceLimits& limits)
-      : allow_(allowExternalPaths), limits_(limits) {
+  SceneCache(const std::vector<Job>& jobs, const SceneLoadOptions& options, const ResourceLimits& limits, bool quiet)
+      : options_(options), limits_(limits), quiet_(quiet) {
     for (const Job& job : jobs)
       if (job.error.empty()) ++remaining_[job.scene];
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_}, limits_)).first;
+    if (found == scenes_.end()) found = scenes_.emplace(name, loadAndWarn(name, options_, limits_, quiet_)).first;
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -175,8 +185,9 @@ class SceneCache {
   }
 
  private:
-  bool allow_;
+  SceneLoadOptions options_;
   ResourceLimits limits_;
+  bool quiet_;
   std::map<std::string, int> remaining_;
   std::map<std::string, Scene> scenes_;
 };
@@ -410,7 +421,7 @@ int runRenderBatch(const RenderCommand& command) {
   auto cameraCount = [&](const std::string& scene) {
     auto found = countedScenes.find(scene);
     if (found == countedScenes.end())
-      found = countedScenes.emplace(scene, loadScene(scene, {command.allowExternalPaths}, command.limits)).first;
+      found = countedScenes.emplace(scene, loadAndWarn(scene, command.loadOptions(), command.limits, quiet)).first;
     return int(found->second.cameras.size());
   };
   const std::vector<Job> all = expandJobs(command, cameraCount);
@@ -420,7 +431,7 @@ int runRenderBatch(const RenderCommand& command) {
   const bool single = all.size() == 1 && command.jobFiles.empty();
 
   std::vector<JobResult> results(jobs.size());
-  SceneCache cache(jobs, command.allowExternalPaths, command.limits);
+  SceneCache cache(jobs, command.loadOptions(), command.limits, quiet);
   for (auto& [name, scene] : countedScenes) cache.adopt(name, std::move(scene));  // loaded once
   countedScenes.clear();
   std::optional<Context> context;

@@ -140,6 +140,7 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
        .type = T::Switch,
        .help = "let glTF URIs point outside the scene file's folder"},
       [](auto& c) -> auto& { return c.allowExternalPaths; }));
+  for (auto& row : liftOptions(sceneLoadOptions(), &C::sceneLoad)) rows.push_back(std::move(row));
   for (auto& row : liftOptions(limitOptions(), &C::limits)) rows.push_back(std::move(row));
   if (kind == CommandKind::Reference)
     for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));

@@ -12,6 +12,7 @@
 #include "headlight/options.hpp"
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/scene_loader.hpp"
 #include "headlight/settings.hpp"
 
 namespace headlight::cli {
@@ -26,6 +27,7 @@ struct RenderCommand {
   std::string outDir = "out";
   ContextOptions context;  // backend, --device; error policy from --strict
   bool allowExternalPaths = false;
+  SceneLoadOptions sceneLoad;  // --strict-gltf, --scene (allowExternalPaths: the member above)
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   RenderSettings settings;
@@ -44,6 +46,12 @@ struct RenderCommand {
   bool resume = false;        // skip jobs whose complete frame.json records the same job hash
   OutputOptions output;       // --targets, --exr-compression, --clamp-nonfinite
   bool json = false;          // --json: one JSON summary on stdout instead of the summary lines
+
+  SceneLoadOptions loadOptions() const {
+    SceneLoadOptions options = sceneLoad;
+    options.allowExternalPaths = allowExternalPaths;
+    return options;
+  }
 };
 
 // The CLI's own rows shared by every command that renders (out, backend,

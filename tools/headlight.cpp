@@ -77,7 +77,7 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
-  Scene scene = loadScene(command.scene, {command.allowExternalPaths}, command.limits);
+  Scene scene = loadScene(command.scene, command.loadOptions(), command.limits);
   Context context(command.context);
   if (command.verbosity == cli::Verbosity::Verbose) printVerboseHeader(context, scene);
   Renderer renderer(context);

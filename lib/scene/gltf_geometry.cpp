@@ -55,34 +55,65 @@ std::vector<glm::vec3> GeometryReader::readPositions(int accessorIndex, const st
   return positions;
 }
 
-std::vector<std::uint32_t> GeometryReader::readTriangleIndices(int accessorIndex, const std::string& primitiveName,
-                                                               std::size_t vertexCount) {
-  std::vector<std::uint32_t> indices;
+// The primitive's vertex order: its indices, or 0..vertexCount-1 without.
+std::vector<std::uint32_t> GeometryReader::readVertexOrder(int accessorIndex, const std::string& primitiveName,
+                                                           std::size_t vertexCount) {
   if (accessorIndex < 0) {
-    reserveTriangles(vertexCount / 3, primitiveName);
-    indices.resize(vertexCount);
+    std::vector<std::uint32_t> order(vertexCount);
     for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
-      indices[vertex] = static_cast<std::uint32_t>(vertex);
+      order[vertex] = static_cast<std::uint32_t>(vertex);
     }
-  } else {
-    const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats);
-    reserveTriangles(accessor.count / 3, primitiveName);
-    indices = accessors_.readIndices(accessor);
-    for (std::size_t position = 0; position < indices.size(); ++position) {
-      if (indices[position] >= vertexCount) {
-        source_.fail(primitiveName + ": index " + std::to_string(position) + " of accessor " +
-                     std::to_string(accessorIndex) + " is " + std::to_string(indices[position]) +
-                     ", but the primitive has " + countOf(vertexCount, "vertex") + " (expected < " +
-                     std::to_string(vertexCount) + ")");
-      }
+    return order;
+  }
+  const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats);
+  std::vector<std::uint32_t> indices = accessors_.readIndices(accessor);
+  for (std::size_t position = 0; position < indices.size(); ++position) {
+    if (indices[position] >= vertexCount) {
+      source_.fail(primitiveName + ": index " + std::to_string(position) + " of accessor " +
+                   std::to_string(accessorIndex) + " is " + std::to_string(indices[position]) +
+                   ", but the primitive has " + countOf(vertexCount, "vertex") + " (expected < " +
+                   std::to_string(vertexCount) + ")");
     }
   }
-  if (indices.size() % 3 != 0) {
-    source_.fail(primitiveName + " has " + std::to_string(indices.size()) +
+  return indices;
+}
+
+// Strips and fans as triangle lists, with glTF's (and GL's) winding: strip
+// triangle i is (i, i+1, i+2), its first two swapped for odd i; fan
+// triangle i is (0, i+1, i+2).
+static std::vector<std::uint32_t> triangleList(const std::vector<std::uint32_t>& order, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES || order.size() < 3) {
+    return mode == TINYGLTF_MODE_TRIANGLES ? order : std::vector<std::uint32_t>{};
+  }
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve((order.size() - 2) * 3);
+  for (std::size_t i = 0; i + 2 < order.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      triangles.insert(triangles.end(), {order[0], order[i + 1], order[i + 2]});
+    } else if (i % 2 == 0) {
+      triangles.insert(triangles.end(), {order[i], order[i + 1], order[i + 2]});
+    } else {
+      triangles.insert(triangles.end(), {order[i + 1], order[i], order[i + 2]});
+    }
+  }
+  return triangles;
+}
+
+std::vector<std::uint32_t> GeometryReader::readTriangleIndices(const tinygltf::Primitive& source,
+                                                               const std::string& primitiveName,
+                                                               std::size_t vertexCount) {
+  const int accessorIndex = source.indices;
+  const std::size_t orderCount =
+      accessorIndex < 0 ? vertexCount : accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats).count;
+  const std::size_t triangleCount =
+      source.mode == TINYGLTF_MODE_TRIANGLES ? orderCount / 3 : (orderCount >= 3 ? orderCount - 2 : 0);
+  reserveTriangles(triangleCount, primitiveName);
+  if (source.mode == TINYGLTF_MODE_TRIANGLES && orderCount % 3 != 0) {
+    source_.fail(primitiveName + " has " + std::to_string(orderCount) +
                  (accessorIndex < 0 ? " vertices and no indices" : " indices in accessor " + std::to_string(accessorIndex)) +
                  ", expected a multiple of 3 for TRIANGLES");
   }
-  return indices;
+  return triangleList(readVertexOrder(accessorIndex, primitiveName, vertexCount), source.mode);
 }
 
 namespace {
@@ -121,7 +152,7 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   }
   primitive.positions = readPositions(positionAccessor, primitiveName);
   const std::size_t vertexCount = primitive.positions.size();
-  primitive.indices = readTriangleIndices(source.indices, primitiveName, vertexCount);
+  primitive.indices = readTriangleIndices(source, primitiveName, vertexCount);
   if (const int normals = attributeAccessor(source, "NORMAL"); normals >= 0) {
     primitive.normals =
         accessors_.readAttribute<3>(normals, primitiveName + " NORMAL", kNormalFormats, vertexCount, positionAccessor);

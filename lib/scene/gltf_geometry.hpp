@@ -19,14 +19,17 @@ class GeometryReader {
   GeometryReader(const Source& source, const ResourceLimits& limits) : source_(source), accessors_(source), limits_(limits) {}
 
   // The geometry of `primitive` (named `primitiveName` in messages), whose
-  // mode must be TRIANGLES. Throws SceneError or LimitError.
+  // mode must be TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN (made a triangle
+  // list). Throws SceneError or LimitError.
   Primitive read(const tinygltf::Primitive& primitive, const std::string& primitiveName);
 
  private:
   void reserveVertices(std::size_t count, int accessorIndex, const std::string& user);
   void reserveTriangles(std::size_t count, const std::string& primitiveName);
   std::vector<glm::vec3> readPositions(int accessorIndex, const std::string& primitiveName);
-  std::vector<std::uint32_t> readTriangleIndices(int accessorIndex, const std::string& primitiveName,
+  std::vector<std::uint32_t> readVertexOrder(int accessorIndex, const std::string& primitiveName,
+                                             std::size_t vertexCount);
+  std::vector<std::uint32_t> readTriangleIndices(const tinygltf::Primitive& source, const std::string& primitiveName,
                                                  std::size_t vertexCount);
 
   const Source& source_;

@@ -4,12 +4,13 @@
 // The parts, one job each: gltf_prescan (the raw JSON, before tinygltf),
 // gltf_files (the file sandbox), gltf_accessors (validated accessors),
 // gltf_geometry (primitives), gltf_materials (materials and images),
-// gltf_nodes (the node walk, cameras, lights). This file puts them in order:
+// gltf_nodes (the node walk, cameras, lights), gltf_features (what is not
+// rendered, named). This file puts them in order:
 // structure first, images last, so a file that is refused is refused before
 // any image is decoded.
 #include <algorithm>
-#include <array>
 #include <cctype>
+#include <charconv>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -20,6 +21,7 @@
 #include "headlight/limits.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
+#include "scene/gltf_features.hpp"
 #include "scene/gltf_files.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_materials.hpp"
@@ -36,11 +38,6 @@ using gltf::attributeAccessor;
 
 constexpr std::string_view kBuiltinPrefix = "builtin:";
 
-// Extensions this loader understands; a file that *requires* any other one
-// cannot be drawn correctly, so it is refused rather than drawn wrongly.
-constexpr std::array<std::string_view, 2> kSupportedExtensions{"KHR_lights_punctual",
-                                                               "KHR_materials_emissive_strength"};
-
 std::string lowercase(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -48,8 +45,8 @@ std::string lowercase(std::string text) {
 }
 
 // Key of a primitive's geometry: its POSITION, NORMAL, TEXCOORD_0, TANGENT and
-// indices accessors. Primitives with equal keys share decoding work.
-using GeometryKey = std::tuple<int, int, int, int, int>;
+// indices accessors and its mode. Primitives with equal keys share decoding work.
+using GeometryKey = std::tuple<int, int, int, int, int, int>;
 
 class GltfReader {
  public:
@@ -57,28 +54,18 @@ class GltfReader {
       : source_(source), model_(source.model), scene_(scene), limits_(limits), geometry_(source, limits) {}
 
   // Everything but the images, which loadGltf decodes last.
-  void read() {
-    checkRequiredExtensions();
+  void read(int sceneIndex) {
     for (std::size_t material = 0; material < model_.materials.size(); ++material) {
       scene_.materials.push_back(gltf::readMaterial(source_, static_cast<int>(material)));
     }
     lights_ = gltf::punctualLights(model_);
     const gltf::NodeWalk walk(source_);
-    for (int root : walk.rootNodes()) {
+    for (int root : walk.rootNodes(sceneIndex)) {
       walk.traverse(root, [this](int node, const glm::mat4& worldFromNode) { visit(node, worldFromNode); });
     }
   }
 
  private:
-  void checkRequiredExtensions() const {
-    for (const std::string& required : model_.extensionsRequired) {
-      if (std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), required) == kSupportedExtensions.end()) {
-        source_.fail("requires extension " + required + ", which is not supported (supported: " +
-                     std::string(kSupportedExtensions[0]) + ", " + std::string(kSupportedExtensions[1]) + ")");
-      }
-    }
-  }
-
   bool materialHasTextures(int material) const {
     if (material < 0) {
       return false;
@@ -95,21 +82,22 @@ class GltfReader {
     int material;
   };
 
+  // Points and lines are not drawn (gltf_features names them): no instance.
+  static bool drawn(int mode) {
+    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
+  }
+
   PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex) {
     const tinygltf::Primitive& source =
         model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
     const std::string primitiveName =
         "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitiveIndex);
-    if (source.mode != TINYGLTF_MODE_TRIANGLES) {
-      source_.fail(primitiveName + " has mode " + gltf::modeName(source.mode) + " (" + std::to_string(source.mode) +
-                   "), but only TRIANGLES (4) is supported");
-    }
     if (source.material != -1) {
       source_.checkIndex(source.material, model_.materials, primitiveName, "material");
     }
     const GeometryKey key{attributeAccessor(source, "POSITION"), attributeAccessor(source, "NORMAL"),
                           attributeAccessor(source, "TEXCOORD_0"), attributeAccessor(source, "TANGENT"),
-                          source.indices};
+                          source.indices, source.mode};
     // Files often repeat one geometry under many materials (one mesh per
     // material); it is decoded and stored once, and each use is an instance.
     auto [cached, inserted] = geometryCache_.try_emplace(key, static_cast<int>(scene_.primitives.size()));
@@ -131,7 +119,14 @@ class GltfReader {
     if (inserted) {
       const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
       for (std::size_t primitive = 0; primitive < mesh.primitives.size(); ++primitive) {
-        entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive)));
+        const int mode = mesh.primitives[primitive].mode;
+        if (mode < TINYGLTF_MODE_POINTS || mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+          source_.fail("mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitive) + " has mode " +
+                       std::to_string(mode) + ", expected 0..6");
+        }
+        if (drawn(mode)) {
+          entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive)));
+        }
       }
     }
     return entry->second;
@@ -173,6 +168,31 @@ class GltfReader {
   std::map<GeometryKey, int> geometryCache_;
 };
 
+// --scene: an index, or the name of one of the file's scenes; -1 when not given.
+int sceneIndex(const gltf::Source& source, const std::string& chosen) {
+  if (chosen.empty()) {
+    return -1;
+  }
+  const auto& scenes = source.model.scenes;
+  for (std::size_t index = 0; index < scenes.size(); ++index) {
+    if (scenes[index].name == chosen) {
+      return static_cast<int>(index);
+    }
+  }
+  int index = -1;
+  const auto [end, error] = std::from_chars(chosen.data(), chosen.data() + chosen.size(), index);
+  if (error != std::errc() || end != chosen.data() + chosen.size() || index < 0 ||
+      static_cast<std::size_t>(index) >= scenes.size()) {
+    std::string names;
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      names += (i == 0 ? "" : ", ") + std::to_string(i) + (scenes[i].name.empty() ? "" : " '" + scenes[i].name + "'");
+    }
+    source.fail("--scene " + chosen + ": the file has " + gltf::countOf(scenes.size(), "scene") +
+                (names.empty() ? "" : " (" + names + ")"));
+  }
+  return index;
+}
+
 }  // namespace
 
 Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const ResourceLimits& limits) {
@@ -192,7 +212,14 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
   scene.source = file;
   scene.sourceHash = textFingerprint(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   const gltf::Source source{file, model};
-  GltfReader(source, scene, limits).read();
+  gltf::checkRequiredExtensions(source);
+  scene.ignored = gltf::findIgnoredFeatures(model);
+  if (options.strictGltf && !scene.ignored.empty()) {
+    std::string list;
+    for (const IgnoredFeature& feature : scene.ignored) list += (list.empty() ? "" : "; ") + feature.describe();
+    source.fail("--strict-gltf: " + list);
+  }
+  GltfReader(source, scene, limits).read(sceneIndex(source, options.gltfScene));
   scene.images = gltf::readImages(model, file, warnings, limits);
   checkSceneRanges(scene);
   const std::uint64_t sceneBytes = estimateSceneBytes(scene);

@@ -50,8 +50,9 @@ TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, 
   }
   const tinygltf::Model& model = source.model;
   source.checkIndex(textureIndex, model.textures, user, "texture");
-  if (texCoord != 0) {
-    source.fail(user + " uses TEXCOORD_" + std::to_string(texCoord) + ", but only TEXCOORD_0 is supported");
+  // Another texCoord is sampled from TEXCOORD_0 (gltf_features names it).
+  if (texCoord < 0) {
+    source.fail(user + " has texCoord " + std::to_string(texCoord) + ", expected >= 0");
   }
   const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(textureIndex)];
   const std::string textureName = "texture " + std::to_string(textureIndex);

@@ -1,0 +1,152 @@
+// The Khronos conformance models (../shared/gltf-conformance, or
+// $HEADLIGHT_SHARED_DIR): each loads, and every glTF feature it uses is
+// either rendered or named in Scene::ignored. The features a file uses are
+// read here from its JSON, independently of the loader's detectors, so a
+// detector that misses one fails the test. A missing folder is a skip.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+#include "support/assets.hpp"
+
+namespace fs = std::filesystem;
+using namespace headlight;
+using nlohmann::json;
+
+namespace {
+
+fs::path conformanceFolder() { return test::sharedFolder() / "gltf-conformance"; }
+
+bool haveConformance() { return test::exists(conformanceFolder() / "README.md"); }
+
+fs::path modelPath(const std::string& model) { return conformanceFolder() / model / "glTF" / (model + ".gltf"); }
+
+// What Headlight renders of what the test looks for; everything else a
+// file uses must be named.
+const std::set<std::string> kRendered{"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+
+bool nonZero(const json& weights) {
+  return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });
+}
+
+// The features `document` uses that the test checks, in the loader's names.
+std::set<std::string> usedFeatures(const json& document) {
+  static const char* kModes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+  std::set<std::string> used;
+  for (const json& name : document.value("extensionsUsed", json::array())) used.insert(name.get<std::string>());
+  for (const json& material : document.value("materials", json::array())) {
+    const std::string alphaMode = material.value("alphaMode", "OPAQUE");
+    if (alphaMode != "OPAQUE") used.insert("alphaMode " + alphaMode);
+    const json pbr = material.value("pbrMetallicRoughness", json::object());
+    for (const json* info : {&pbr, &material}) {
+      for (const auto& [key, value] : info->items()) {
+        if (key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0 && value.value("texCoord", 0) != 0) {
+          used.insert("TEXCOORD_" + std::to_string(value.value("texCoord", 0)));
+        }
+      }
+    }
+  }
+  const json meshes = document.value("meshes", json::array());
+  std::vector<bool> weighted;
+  for (const json& mesh : meshes) weighted.push_back(nonZero(mesh.value("weights", json::array())));
+  for (const json& node : document.value("nodes", json::array())) {
+    if (node.contains("mesh") && nonZero(node.value("weights", json::array()))) weighted[node["mesh"]] = true;
+    if (node.contains("skin") && node.contains("mesh")) used.insert("skin");
+  }
+  for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh) {
+    for (const json& primitive : meshes[mesh]["primitives"]) {
+      for (const auto& [attribute, accessor] : primitive["attributes"].items()) {
+        if (attribute.rfind("COLOR_", 0) == 0) used.insert(attribute);
+      }
+      const int mode = primitive.value("mode", 4);
+      if (mode >= 0 && mode <= 3) used.insert(std::string("mode ") + kModes[mode]);
+      if (primitive.contains("targets") && weighted[mesh]) used.insert("morph targets");
+    }
+  }
+  if (!document.value("animations", json::array()).empty()) used.insert("animation");
+  return used;
+}
+
+std::vector<std::string> conformanceModels() {
+  std::vector<std::string> models;
+  for (const auto& entry : fs::directory_iterator(conformanceFolder())) {
+    if (entry.is_directory() && test::exists(modelPath(entry.path().filename().string()))) {
+      models.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(models.begin(), models.end());
+  return models;
+}
+
+}  // namespace
+
+TEST_CASE("conformance: every model loads and names each feature it uses that is not rendered" *
+          doctest::skip(!haveConformance())) {
+  const std::vector<std::string> models = conformanceModels();
+  CHECK(models.size() >= 28);  // the shared folder's README lists 28
+  for (const std::string& model : models) {
+    CAPTURE(model);
+    Scene scene;
+    try {
+      scene = loadGltf(modelPath(model));
+    } catch (const Error& error) {
+      FAIL_CHECK("refused: " << error.what());
+      continue;
+    }
+    CHECK(scene.triangleCount() > 0);
+    std::set<std::string> named;
+    for (const IgnoredFeature& feature : scene.ignored) {
+      named.insert(feature.feature);
+      CHECK(feature.count > 0);
+      CHECK(!feature.describe().empty());
+    }
+    std::ifstream file(modelPath(model));
+    for (const std::string& feature : usedFeatures(json::parse(file))) {
+      CAPTURE(feature);
+      CHECK((kRendered.count(feature) != 0 || named.count(feature) != 0));
+    }
+  }
+}
+
+TEST_CASE("conformance: --strict-gltf refuses a model naming what is not rendered" *
+          doctest::skip(!haveConformance())) {
+  SceneLoadOptions strict;
+  strict.strictGltf = true;
+  CHECK_THROWS_WITH_AS(loadGltf(modelPath("SheenCloth"), strict),
+                       doctest::Contains("--strict-gltf: KHR_materials_sheen on 1 material"), SceneError);
+  CHECK(loadGltf(modelPath("NormalTangentTest"), strict).ignored.empty());
+}
+
+TEST_CASE("conformance: MeshPrimitiveModes draws its strip and fan as triangles, skips points and lines" *
+          doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("MeshPrimitiveModes"));
+  std::ifstream file(modelPath("MeshPrimitiveModes"));
+  const json document = json::parse(file);
+  // Expected triangles from the JSON: TRIANGLES count/3, strips and fans count-2.
+  std::size_t expected = 0;
+  for (const json& node : document["nodes"]) {
+    if (!node.contains("mesh")) continue;
+    for (const json& primitive : document["meshes"][node["mesh"].get<int>()]["primitives"]) {
+      const int mode = primitive.value("mode", 4);
+      const std::size_t count = primitive.contains("indices")
+                                    ? document["accessors"][primitive["indices"].get<int>()]["count"].get<std::size_t>()
+                                    : document["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"]
+                                          .get<std::size_t>();
+      if (mode == 4) expected += count / 3;
+      if (mode == 5 || mode == 6) expected += count - 2;
+    }
+  }
+  CHECK(expected > 0);
+  CHECK(scene.triangleCount() == expected);
+  std::set<std::string> named;
+  for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
+  CHECK(named == std::set<std::string>{"mode POINTS", "mode LINES", "mode LINE_LOOP", "mode LINE_STRIP"});
+}
