@@ -6,12 +6,15 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
@@ -31,7 +34,9 @@ fs::path modelPath(const std::string& model) { return conformanceFolder() / mode
 
 // What Headlight renders of what the test looks for; everything else a
 // file uses must be named.
-const std::set<std::string> kRendered{"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+const std::set<std::string> kRendered{"KHR_lights_punctual",     "KHR_materials_emissive_strength",
+                                      "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
+                                      "skin",                    "morph targets"};
 
 bool nonZero(const json& weights) {
   return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });
@@ -149,4 +154,86 @@ TEST_CASE("conformance: MeshPrimitiveModes draws its strip and fan as triangles,
   std::set<std::string> named;
   for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
   CHECK(named == std::set<std::string>{"mode POINTS", "mode LINES", "mode LINE_LOOP", "mode LINE_STRIP"});
+}
+
+namespace {
+
+json readJson(const fs::path& path) {
+  std::ifstream file(path);
+  return json::parse(file);
+}
+
+// Accessor `index` of a float VEC3 accessor of the model, read from its .bin
+// here (not through the loader).
+std::vector<glm::vec3> readVec3(const std::string& model, const json& document, int index) {
+  const json& accessor = document["accessors"][index];
+  const json& view = document["bufferViews"][accessor["bufferView"].get<int>()];
+  const json& buffer = document["buffers"][view["buffer"].get<int>()];
+  std::ifstream file(modelPath(model).parent_path() / buffer["uri"].get<std::string>(), std::ios::binary);
+  file.seekg(view.value("byteOffset", 0) + accessor.value("byteOffset", 0));
+  std::vector<glm::vec3> values(accessor["count"].get<std::size_t>());
+  file.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(glm::vec3)));
+  REQUIRE(file.good());
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("conformance: SimpleInstancing places 125 instances" * doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("SimpleInstancing"));
+  CHECK(scene.instances.size() == 125);
+  CHECK(scene.primitives.size() == 1);
+  CHECK(scene.ignored.empty());
+  // TRANSLATION spans 0..10 and SCALE 1..2 on a 0..1 cube: the world bounds reach past 10.
+  CHECK(scene.worldBounds().max.x > 10.0f);
+  ResourceLimits limits;
+  limits.maxInstances = 124;
+  CHECK_THROWS_AS(loadGltf(modelPath("SimpleInstancing"), {}, limits), LimitError);
+}
+
+TEST_CASE("conformance: SimpleMorph's vertices move by its weighted targets" * doctest::skip(!haveConformance())) {
+  const json document = readJson(modelPath("SimpleMorph"));
+  const json& primitive = document["meshes"][0]["primitives"][0];
+  std::vector<glm::vec3> expected = readVec3("SimpleMorph", document, primitive["attributes"]["POSITION"]);
+  const json& weights = document["meshes"][0]["weights"];
+  for (std::size_t target = 0; target < primitive["targets"].size(); ++target) {
+    const std::vector<glm::vec3> deltas = readVec3("SimpleMorph", document, primitive["targets"][target]["POSITION"]);
+    for (std::size_t v = 0; v < expected.size(); ++v) expected[v] += weights[target].get<float>() * deltas[v];
+  }
+  const Scene scene = loadGltf(modelPath("SimpleMorph"));
+  REQUIRE(scene.primitives.size() == 1);
+  const std::vector<glm::vec3>& positions = scene.primitives[0].positions;
+  REQUIRE(positions.size() == expected.size());
+  bool moved = false;
+  const std::vector<glm::vec3> base = readVec3("SimpleMorph", document, primitive["attributes"]["POSITION"]);
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    CAPTURE(v);
+    CHECK(glm::length(positions[v] - expected[v]) < 1e-6f);
+    moved = moved || glm::length(positions[v] - base[v]) > 0.1f;
+  }
+  CHECK(moved);  // the weights (0.5, 0.5) move it
+  std::set<std::string> named;
+  for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
+  CHECK(named == std::set<std::string>{"animation"});  // its weights animation is not played
+}
+
+TEST_CASE("conformance: SimpleSkin and RecursiveSkeletons are posed by their joints" *
+          doctest::skip(!haveConformance())) {
+  // SimpleSkin's joints rest where it was bound: posing with the nodes'
+  // transforms and the inverse bind matrices gives back the accessor's
+  // bounds (ignoring the inverse bind matrices would lift the top by 1).
+  const json document = readJson(modelPath("SimpleSkin"));
+  const json& position = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
+  const Scene simple = loadGltf(modelPath("SimpleSkin"));
+  REQUIRE(simple.instances.size() == 1);
+  CHECK(simple.instances[0].worldFromLocal == glm::mat4(1.0f));
+  const Bounds bounds = simple.worldBounds();
+  for (int axis = 0; axis < 3; ++axis) {
+    CHECK(bounds.min[axis] == doctest::Approx(position["min"][axis].get<float>()).epsilon(1e-5));
+    CHECK(bounds.max[axis] == doctest::Approx(position["max"][axis].get<float>()).epsilon(1e-5));
+  }
+  const Scene recursive = loadGltf(modelPath("RecursiveSkeletons"));
+  CHECK(!recursive.worldBounds().empty());
+  CHECK(std::isfinite(recursive.worldBounds().radius()));
+  for (const IgnoredFeature& feature : recursive.ignored) CHECK(feature.feature != "skin");
 }

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "headlight/error.hpp"
 #include "headlight/finite.hpp"
 #include "headlight/limits.hpp"
@@ -296,5 +298,84 @@ TEST_SUITE("hostile") {
 
     const fs::path strictScene = writeGltf(folder, document, "strict/sheen.gltf");  // its own, empty out/
     expectRefused(strictScene, {"--strict-gltf: KHR_materials_sheen on 2 materials"}, "--strict-gltf");
+  }
+
+  // The static pose (issue 17 item 2): morph targets, skins and
+  // EXT_mesh_gpu_instancing are applied at load; their inputs are checked.
+  TEST_CASE("the posed scene loads as hand-computed: morphed, skinned, instanced") {
+    TempFolder folder("hostile");
+    const fs::path path = writeGltf(folder, hostile::posedScene(), "posed.gltf");
+    const Scene scene = loadGltf(path);
+    REQUIRE(scene.instances.size() == 4);
+    CHECK(scene.ignored.empty());
+    auto positions = [&](std::size_t instance) { return scene.primitives[scene.instances[instance].primitive].positions; };
+    auto near = [](const std::vector<glm::vec3>& actual, const std::vector<glm::vec3>& expected) {
+      if (actual.size() != expected.size()) return false;
+      for (std::size_t v = 0; v < actual.size(); ++v)
+        if (glm::length(actual[v] - expected[v]) > 1e-5f) return false;
+      return true;
+    };
+    // Morph: base + 0.5 x (0, 0, 1).
+    CHECK(near(positions(0), {{-1, -1, 0.5f}, {1, -1, 0.5f}, {0, 1, 0.5f}}));
+    // Skin: (x, y) -> (-y, x) by the joint, in world space (identity instance).
+    CHECK(near(positions(1), {{1, -1, 0}, {1, 1, 0}, {-1, 0, 0}}));
+    CHECK(scene.instances[1].worldFromLocal == glm::mat4(1.0f));
+    // Instancing: two placements of mesh 0.
+    CHECK(glm::vec3(scene.instances[2].worldFromLocal[3]) == glm::vec3(0, 0, 0));
+    CHECK(glm::vec3(scene.instances[3].worldFromLocal[3]) == glm::vec3(3, 0, 0));
+    ResourceLimits limits;
+    limits.maxInstances = 3;
+    CHECK_THROWS_WITH_AS(loadGltf(path, {}, limits), doctest::Contains("--max-instances 3"), LimitError);
+    const ProcessResult run =
+        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+  }
+
+  TEST_CASE("bad skins, morph targets and instancing attributes are refused, naming the element") {
+    TempFolder folder("hostile");
+    {
+      json document = hostile::posedScene();
+      document["skins"][0]["joints"] = {2, 2, 2};  // 3 joints, 1 inverse bind matrix
+      expectRefused(writeGltf(folder, document, "ibm.gltf"),
+                    {"skin 0 inverseBindMatrices accessor 4 has 1 matrix, but the skin has 3 joints"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["skins"][0]["joints"] = {7};
+      expectRefused(writeGltf(folder, document, "joint-node.gltf"), {"skin 0 joint 0 refers to node 7"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["skins"][0].erase("inverseBindMatrices");
+      document["meshes"][2]["primitives"][0]["attributes"]["JOINTS_0"] = 3;  // float weights as joints
+      expectRefused(writeGltf(folder, document, "joint-format.gltf"),
+                    {"mesh 2 primitive 0 JOINTS_0 accessor 3 is FLOAT VEC4, expected UNSIGNED_BYTE VEC4"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["accessors"][2]["bufferView"] = 3;  // WEIGHTS_0's float 1.0 (00 00 80 3f) from byte 2: joint 128
+      document["accessors"][2]["byteOffset"] = 2;
+      expectRefused(writeGltf(folder, document, "joint-range.gltf"),
+                    {"mesh 2 primitive 0 JOINTS_0 accessor 2 names joint 128 at vertex 0, but the skin has 1 joint"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["meshes"][1]["weights"] = {0.5, 0.25};
+      expectRefused(writeGltf(folder, document, "weights.gltf"),
+                    {"mesh 1 primitive 0 has 1 morph target, but its weights have 2 values"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["accessors"][1]["count"] = 2;
+      expectRefused(writeGltf(folder, document, "target-count.gltf"),
+                    {"target 0 POSITION accessor 1 has 2 elements, but POSITION accessor 0 has 3"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["nodes"][3]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"] = 0;  // 3 elements
+      expectRefused(writeGltf(folder, document, "instances.gltf"),
+                    {"node 3 EXT_mesh_gpu_instancing SCALE accessor 0 has 3 elements, but the other attributes have 2"});
+    }
   }
 }

@@ -689,3 +689,35 @@ TEST_CASE("glTF: URIs outside the asset folder are refused unless allowed") {
   allowed.allowExternalPaths = true;
   CHECK(loadGltf(path, allowed).triangleCount() == 1);
 }
+
+TEST_CASE("glTF: KHR_mesh_quantization's integer attributes decode as the extension says") {
+  TempFolder folder;
+  // POSITION: normalized SHORT VEC3 (stride 8); NORMAL: normalized BYTE VEC3 (stride 4).
+  const std::int16_t positions[12] = {0, 0, 0, 0, 32767, 0, 0, 0, 0, -32767, 0, 0};
+  const std::int8_t normals[12] = {0, 0, 127, 0, 0, 127, 0, 0, -128, 0, 0, 0};
+  std::vector<unsigned char> bytes(sizeof positions + sizeof normals);
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, normals, sizeof normals);
+  auto write = [&](const std::string& name, const std::string& extensions) {
+    return folder.write(name, R"({"asset":{"version":"2.0"},)" + extensions + R"("scenes":[{"nodes":[0]}],
+      "nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1}}]}],
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
+      "bufferViews":[{"buffer":0,"byteLength":24,"byteStride":8},{"buffer":0,"byteOffset":24,"byteLength":12,"byteStride":4}],
+      "accessors":[{"bufferView":0,"componentType":5122,"normalized":true,"count":3,"type":"VEC3"},
+                   {"bufferView":1,"componentType":5120,"normalized":true,"count":3,"type":"VEC3"}]})");
+  };
+  const Scene scene = loadGltf(write("quantized.gltf", R"("extensionsUsed":["KHR_mesh_quantization"],
+                                                         "extensionsRequired":["KHR_mesh_quantization"],)"));
+  REQUIRE(scene.primitives.size() == 1);
+  const Primitive& primitive = scene.primitives[0];
+  CHECK(near(primitive.positions[0], {0, 0, 0}));
+  CHECK(near(primitive.positions[1], {1, 0, 0}));
+  CHECK(near(primitive.positions[2], {0, -1, 0}));
+  CHECK(near(primitive.normals[0], {0, 0, 1}));
+  CHECK(near(primitive.normals[1], {0, 1, 0}));
+  CHECK(near(primitive.normals[2], {-1, 0, 0}));  // -128 and -127 are both -1
+  CHECK(scene.ignored.empty());
+  // Without the extension the formats are core glTF's.
+  CHECK(loadError(write("plain.gltf", "")).find("POSITION accessor 0 is normalized SHORT VEC3, expected FLOAT VEC3") !=
+        std::string::npos);
+}

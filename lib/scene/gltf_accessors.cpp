@@ -284,6 +284,20 @@ template std::vector<glm::vec<2, float>> AccessorReader::readFloats<2>(const Che
 template std::vector<glm::vec<3, float>> AccessorReader::readFloats<3>(const CheckedAccessor&) const;
 template std::vector<glm::vec<4, float>> AccessorReader::readFloats<4>(const CheckedAccessor&) const;
 
+std::vector<glm::mat4> AccessorReader::readMatrices(const CheckedAccessor& accessor) const {
+  std::vector<glm::mat4> matrices(accessor.count, glm::mat4(0.0f));
+  if (accessor.data != nullptr) {
+    for (std::size_t element = 0; element < accessor.count; ++element) {
+      decodeFloats(accessor.data + element * accessor.stride, accessor.componentType, false, 16, &matrices[element][0][0]);
+    }
+  }
+  for (std::size_t k = 0; k < accessor.sparseCount; ++k) {
+    decodeFloats(accessor.sparseValues + k * accessor.elementSize, accessor.componentType, false, 16,
+                 &matrices[sparseTarget(accessor, k)][0][0]);
+  }
+  return matrices;
+}
+
 std::vector<std::uint32_t> AccessorReader::readIndices(const CheckedAccessor& accessor) const {
   std::vector<std::uint32_t> indices(accessor.count, 0u);
   if (accessor.data != nullptr) {

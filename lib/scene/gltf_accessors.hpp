@@ -34,6 +34,56 @@ inline constexpr AccessorFormat kTangentFormats[]{kFloatVec4};
 inline constexpr AccessorFormat kTexcoordFormats[]{
     kFloatVec2, AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC2, true},
     AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, true}};
+// KHR_mesh_quantization's additions (its table): integer and normalized
+// integer positions and texcoords, normalized integer normals and tangents.
+inline constexpr AccessorFormat kQuantizedPositionFormats[]{
+    kFloatVec3,
+    {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, false},
+    {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC3, false},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC3, true},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, false},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, false},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, true}};
+inline constexpr AccessorFormat kQuantizedNormalFormats[]{kFloatVec3,
+                                                          {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true},
+                                                          {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true}};
+inline constexpr AccessorFormat kQuantizedTangentFormats[]{kFloatVec4,
+                                                           {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true},
+                                                           {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, true}};
+inline constexpr AccessorFormat kQuantizedTexcoordFormats[]{
+    kFloatVec2,
+    {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC2, false},
+    {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC2, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC2, false},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC2, true},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC2, false},
+    {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC2, true},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, false},
+    {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, true}};
+// Morph target deltas (core glTF, and quantized: the same table).
+inline constexpr AccessorFormat kPositionDeltaFormats[]{kFloatVec3,
+                                                        {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, false},
+                                                        {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true},
+                                                        {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, false},
+                                                        {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true}};
+inline constexpr AccessorFormat kDirectionDeltaFormats[]{kFloatVec3,
+                                                         {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, true},
+                                                         {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC3, true}};
+// Skins: JOINTS_n and WEIGHTS_n, inverseBindMatrices.
+inline constexpr AccessorFormat kJointFormats[]{{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, false},
+                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, false}};
+inline constexpr AccessorFormat kWeightFormats[]{kFloatVec4,
+                                                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, true},
+                                                 {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, true}};
+inline constexpr AccessorFormat kMatrixFormats[]{{TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, false}};
+// EXT_mesh_gpu_instancing: TRANSLATION and SCALE as positions are, ROTATION
+// float or normalized signed integers.
+inline constexpr AccessorFormat kInstanceRotationFormats[]{kFloatVec4,
+                                                           {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, true},
+                                                           {TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_TYPE_VEC4, true}};
+
 inline constexpr AccessorFormat kIndexFormats[]{
     AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_SCALAR, false},
     AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, false},
@@ -59,6 +109,8 @@ class AccessorReader {
  public:
   explicit AccessorReader(const Source& source) : source_(source) {}
 
+  const Source& source() const { return source_; }
+
   // Validates everything about accessor `accessorIndex` that reading it
   // depends on (index, format among `allowed`, count, bufferView range,
   // stride, sparse ranges); `user` names who reads it in messages.
@@ -68,6 +120,9 @@ class AccessorReader {
   // (unsigned to 0..1, signed to -1..1), other integers by value. N = 1..4.
   template <int N>
   std::vector<glm::vec<N, float>> readFloats(const CheckedAccessor& accessor) const;
+
+  // A MAT4 accessor as matrices (glTF's column-major order, as GLM's).
+  std::vector<glm::mat4> readMatrices(const CheckedAccessor& accessor) const;
 
   // An index accessor (UNSIGNED_BYTE/SHORT/INT) as 32-bit values.
   std::vector<std::uint32_t> readIndices(const CheckedAccessor& accessor) const;

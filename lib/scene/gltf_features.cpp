@@ -10,8 +10,8 @@ namespace headlight::gltf {
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 2> kRenderedExtensions{"KHR_lights_punctual",
-                                                              "KHR_materials_emissive_strength"};
+constexpr std::array<std::string_view, 4> kRenderedExtensions{
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
 
 // Extensions that are not rendered but leave the geometry right, so a file
 // that requires them still loads (and names them): the picture is wrong only
@@ -122,39 +122,6 @@ void findUnrenderedModes(const tinygltf::Model& model, Tally& tally) {
   }
 }
 
-bool hasNonZero(const std::vector<double>& weights) {
-  return std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0.0; });
-}
-
-void findMorphTargets(const tinygltf::Model& model, Tally& tally) {
-  std::vector<char> weighted(model.meshes.size(), 0);
-  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
-    weighted[mesh] = hasNonZero(model.meshes[mesh].weights);
-  }
-  for (const tinygltf::Node& node : model.nodes) {
-    if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < model.meshes.size() && hasNonZero(node.weights)) {
-      weighted[static_cast<std::size_t>(node.mesh)] = 1;
-    }
-  }
-  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
-    const auto& primitives = model.meshes[mesh].primitives;
-    const bool targets = std::any_of(primitives.begin(), primitives.end(),
-                                     [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
-    if (targets && weighted[mesh]) {
-      tally.add("morph targets", "mesh", named("mesh", mesh, model.meshes[mesh].name),
-                "is not rendered (drawn with weights 0)");
-    }
-  }
-}
-
-void findSkins(const tinygltf::Model& model, Tally& tally) {
-  for (std::size_t node = 0; node < model.nodes.size(); ++node) {
-    if (model.nodes[node].skin >= 0 && model.nodes[node].mesh >= 0) {
-      tally.add("skin", "node", named("node", node, model.nodes[node].name), "is not rendered (drawn in bind pose)");
-    }
-  }
-}
-
 void findAnimations(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.animations.size(); ++index) {
     tally.add("animation", "animation", named("animation", index, model.animations[index].name),
@@ -217,8 +184,8 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
 
 // The table: remove a row when its feature becomes rendered.
 constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
-    findAlphaModes,      findSecondaryTexcoords, findVertexColors, findUnrenderedModes,  findMorphTargets,
-    findSkins,           findAnimations,         findElementExtensions, findListedExtensions,
+    findAlphaModes, findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,
+    findAnimations, findElementExtensions,  findListedExtensions,
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "headlight/scene_loader.hpp"
+#include "scene/gltf_pose.hpp"
 
 namespace headlight::gltf {
 
@@ -12,6 +13,13 @@ int attributeAccessor(const tinygltf::Primitive& primitive, const char* attribut
   const auto found = primitive.attributes.find(attribute);
   return found == primitive.attributes.end() ? -1 : found->second;
 }
+
+GeometryReader::GeometryReader(const Source& source, const ResourceLimits& limits)
+    : source_(source),
+      accessors_(source),
+      limits_(limits),
+      quantized_(std::find(source.model.extensionsUsed.begin(), source.model.extensionsUsed.end(),
+                           "KHR_mesh_quantization") != source.model.extensionsUsed.end()) {}
 
 // Every vertex decoded counts against --max-triangles before its memory is
 // allocated (3 vertices per allowed triangle at most).
@@ -37,7 +45,9 @@ void GeometryReader::reserveTriangles(std::size_t count, const std::string& prim
 }
 
 std::vector<glm::vec3> GeometryReader::readPositions(int accessorIndex, const std::string& primitiveName) {
-  const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " POSITION", kPositionFormats);
+  const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " POSITION",
+                                                    quantized_ ? std::span<const AccessorFormat>(kQuantizedPositionFormats)
+                                                               : std::span<const AccessorFormat>(kPositionFormats));
   reserveVertices(accessor.count, accessorIndex, primitiveName + " POSITION");
   std::vector<glm::vec3> positions = accessors_.readFloats<3>(accessor);
   for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
@@ -144,7 +154,8 @@ void repairNormals(Primitive& primitive) {
 
 }  // namespace
 
-Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName) {
+Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName, const Pose& pose) {
+  using Formats = std::span<const AccessorFormat>;
   Primitive primitive;
   const int positionAccessor = attributeAccessor(source, "POSITION");
   if (positionAccessor < 0) {
@@ -153,22 +164,36 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   primitive.positions = readPositions(positionAccessor, primitiveName);
   const std::size_t vertexCount = primitive.positions.size();
   primitive.indices = readTriangleIndices(source, primitiveName, vertexCount);
-  if (const int normals = attributeAccessor(source, "NORMAL"); normals >= 0) {
-    primitive.normals =
-        accessors_.readAttribute<3>(normals, primitiveName + " NORMAL", kNormalFormats, vertexCount, positionAccessor);
-    repairNormals(primitive);
-  } else {
-    generateNormals(primitive);
+  const int normals = attributeAccessor(source, "NORMAL");
+  if (normals >= 0) {
+    primitive.normals = accessors_.readAttribute<3>(
+        normals, primitiveName + " NORMAL", quantized_ ? Formats(kQuantizedNormalFormats) : Formats(kNormalFormats),
+        vertexCount, positionAccessor);
   }
   if (const int texcoords = attributeAccessor(source, "TEXCOORD_0"); texcoords >= 0) {
-    primitive.texcoords = accessors_.readAttribute<2>(texcoords, primitiveName + " TEXCOORD_0", kTexcoordFormats,
-                                                      vertexCount, positionAccessor);
+    primitive.texcoords = accessors_.readAttribute<2>(
+        texcoords, primitiveName + " TEXCOORD_0",
+        quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats), vertexCount, positionAccessor);
   }
   // Missing tangents stay missing: the G-buffer shader derives a tangent
   // frame from screen-space derivatives instead.
   if (const int tangents = attributeAccessor(source, "TANGENT"); tangents >= 0) {
-    primitive.tangents = accessors_.readAttribute<4>(tangents, primitiveName + " TANGENT", kTangentFormats,
-                                                     vertexCount, positionAccessor);
+    primitive.tangents = accessors_.readAttribute<4>(
+        tangents, primitiveName + " TANGENT",
+        quantized_ ? Formats(kQuantizedTangentFormats) : Formats(kTangentFormats), vertexCount, positionAccessor);
+  }
+  applyMorphTargets(accessors_, source, primitiveName, pose.weights, primitive);
+  if (normals >= 0) {
+    repairNormals(primitive);
+  }
+  if (pose.joints != nullptr) {
+    applySkin(accessors_, source, primitiveName, *pose.joints, primitive);
+    if (normals >= 0) {
+      repairNormals(primitive);  // skinning scales them
+    }
+  }
+  if (normals < 0) {
+    generateNormals(primitive);
   }
   for (const glm::vec3& position : primitive.positions) {
     primitive.bounds.extend(position);

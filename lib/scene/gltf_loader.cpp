@@ -26,6 +26,7 @@
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_materials.hpp"
 #include "scene/gltf_nodes.hpp"
+#include "scene/gltf_pose.hpp"
 #include "scene/gltf_prescan.hpp"
 
 namespace headlight {
@@ -45,8 +46,11 @@ std::string lowercase(std::string text) {
 }
 
 // Key of a primitive's geometry: its POSITION, NORMAL, TEXCOORD_0, TANGENT and
-// indices accessors and its mode. Primitives with equal keys share decoding work.
-using GeometryKey = std::tuple<int, int, int, int, int, int>;
+// indices accessors, its mode, and the pose (morph weights, skin) it is
+// drawn in. Primitives with equal keys share decoding work.
+using GeometryKey = std::tuple<int, int, int, int, int, int, std::vector<float>, int>;
+// A mesh as one node draws it: mesh, morph weights, skin.
+using MeshKey = std::tuple<int, std::vector<float>, int>;
 
 class GltfReader {
  public:
@@ -60,9 +64,11 @@ class GltfReader {
     }
     lights_ = gltf::punctualLights(model_);
     const gltf::NodeWalk walk(source_);
+    walk_ = &walk;
     for (int root : walk.rootNodes(sceneIndex)) {
       walk.traverse(root, [this](int node, const glm::mat4& worldFromNode) { visit(node, worldFromNode); });
     }
+    walk_ = nullptr;
   }
 
  private:
@@ -87,7 +93,7 @@ class GltfReader {
     return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
   }
 
-  PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex) {
+  PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex, const gltf::Pose& pose, int skin) {
     const tinygltf::Primitive& source =
         model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
     const std::string primitiveName =
@@ -97,12 +103,12 @@ class GltfReader {
     }
     const GeometryKey key{attributeAccessor(source, "POSITION"), attributeAccessor(source, "NORMAL"),
                           attributeAccessor(source, "TEXCOORD_0"), attributeAccessor(source, "TANGENT"),
-                          source.indices, source.mode};
+                          source.indices, source.mode, pose.weights, skin};
     // Files often repeat one geometry under many materials (one mesh per
     // material); it is decoded and stored once, and each use is an instance.
     auto [cached, inserted] = geometryCache_.try_emplace(key, static_cast<int>(scene_.primitives.size()));
     if (inserted) {
-      scene_.primitives.push_back(geometry_.read(source, primitiveName));
+      scene_.primitives.push_back(geometry_.read(source, primitiveName, pose));
     }
     Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
     // A textured material samples UVs; without TEXCOORD_0 it samples (0, 0),
@@ -113,9 +119,20 @@ class GltfReader {
     return {cached->second, source.material};
   }
 
-  // A mesh's primitives are added once, however many nodes use the mesh.
-  const std::vector<PlacedPrimitive>& meshPrimitives(int meshIndex) {
-    auto [entry, inserted] = meshCache_.try_emplace(meshIndex);
+  // A mesh's primitives are added once per pose, however many nodes use it.
+  const std::vector<PlacedPrimitive>& meshPrimitives(int meshIndex, int nodeIndex) {
+    const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(nodeIndex)];
+    gltf::Pose pose{gltf::morphWeights(source_, nodeIndex, meshIndex), nullptr};
+    const int skin = node.skin;
+    if (skin >= 0) {
+      source_.checkIndex(skin, model_.skins, "node " + std::to_string(nodeIndex), "skin");
+      auto [joints, fresh] = jointCache_.try_emplace(skin);
+      if (fresh) {
+        joints->second = gltf::jointMatrices(geometry_.accessors(), *walk_, skin);
+      }
+      pose.joints = &joints->second;
+    }
+    auto [entry, inserted] = meshCache_.try_emplace(MeshKey{meshIndex, pose.weights, skin});
     if (inserted) {
       const tinygltf::Mesh& mesh = model_.meshes[static_cast<std::size_t>(meshIndex)];
       for (std::size_t primitive = 0; primitive < mesh.primitives.size(); ++primitive) {
@@ -125,7 +142,7 @@ class GltfReader {
                        std::to_string(mode) + ", expected 0..6");
         }
         if (drawn(mode)) {
-          entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive)));
+          entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive), pose, skin));
         }
       }
     }
@@ -137,15 +154,30 @@ class GltfReader {
     const std::string nodeName = "node " + std::to_string(nodeIndex);
     if (node.mesh >= 0) {
       source_.checkIndex(node.mesh, model_.meshes, nodeName, "mesh");
-      const std::vector<PlacedPrimitive>& placedPrimitives = meshPrimitives(node.mesh);
-      if (scene_.instances.size() + placedPrimitives.size() > static_cast<std::uint64_t>(limits_.maxInstances)) {
-        source_.failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
-                          std::to_string(scene_.instances.size() + placedPrimitives.size()) +
-                          ", more than --max-instances " + std::to_string(limits_.maxInstances) +
-                          "; raise --max-instances");
+      const std::vector<PlacedPrimitive>& placedPrimitives = meshPrimitives(node.mesh, nodeIndex);
+      // A skinned mesh is posed in world space: glTF ignores its node's transform.
+      const glm::mat4 worldFromMesh = node.skin >= 0 ? glm::mat4(1.0f) : worldFromNode;
+      std::vector<glm::mat4> placements = gltf::instanceTransforms(geometry_.accessors(), source_, nodeIndex);
+      if (placements.empty()) {
+        placements.push_back(glm::mat4(1.0f));
       }
-      for (const PlacedPrimitive& placed : placedPrimitives) {
-        scene_.instances.push_back({placed.geometry, worldFromNode, placed.material});
+      const std::uint64_t added = static_cast<std::uint64_t>(placedPrimitives.size()) * placements.size();
+      if (scene_.instances.size() + added > static_cast<std::uint64_t>(limits_.maxInstances)) {
+        source_.failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
+                          std::to_string(scene_.instances.size() + added) + ", more than --max-instances " +
+                          std::to_string(limits_.maxInstances) + "; raise --max-instances");
+      }
+      for (const glm::mat4& placement : placements) {
+        const glm::mat4 worldFromLocal = worldFromMesh * placement;
+        for (int column = 0; column < 4; ++column) {
+          if (!(glm::all(glm::lessThanEqual(glm::abs(worldFromLocal[column]), glm::vec4(kMaxWorldMagnitude))))) {
+            source_.fail(nodeName + " EXT_mesh_gpu_instancing places an instance beyond magnitude " +
+                         std::to_string(static_cast<long long>(kMaxWorldMagnitude)));
+          }
+        }
+        for (const PlacedPrimitive& placed : placedPrimitives) {
+          scene_.instances.push_back({placed.geometry, worldFromLocal, placed.material});
+        }
       }
     }
     if (node.camera >= 0) {
@@ -164,7 +196,9 @@ class GltfReader {
   ResourceLimits limits_;
   gltf::GeometryReader geometry_;
   std::vector<tinygltf::Light> lights_;
-  std::map<int, std::vector<PlacedPrimitive>> meshCache_;
+  const gltf::NodeWalk* walk_ = nullptr;  // during read()
+  std::map<int, std::vector<glm::mat4>> jointCache_;
+  std::map<MeshKey, std::vector<PlacedPrimitive>> meshCache_;
   std::map<GeometryKey, int> geometryCache_;
 };
 

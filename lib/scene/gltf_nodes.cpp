@@ -120,6 +120,14 @@ glm::dmat4 NodeWalk::localTransform(int nodeIndex) const {
   return local;
 }
 
+glm::mat4 NodeWalk::worldTransform(int nodeIndex) const {
+  glm::dmat4 world = localTransform(nodeIndex);
+  for (int parent = parentOf(nodeIndex); parent != -1; parent = parentOf(parent)) {
+    world = localTransform(parent) * world;
+  }
+  return checkedWorld(nodeIndex, world);
+}
+
 // World transforms must stay where float rendering stays finite
 // (kMaxWorldMagnitude): a translation of 1e39 or nested scales of 1e20 x
 // 1e20 are finite doubles but inf or NaN as floats.

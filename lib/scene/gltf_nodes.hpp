@@ -32,6 +32,10 @@ class NodeWalk {
   // checked finite.
   glm::dmat4 localTransform(int nodeIndex) const;
 
+  // A node's world transform, composed up its parent chain (the trees are
+  // checked, so the chain ends), checked as traverse() checks it.
+  glm::mat4 worldTransform(int nodeIndex) const;
+
   int parentOf(int nodeIndex) const { return parentOf_[static_cast<std::size_t>(nodeIndex)]; }
 
  private:
