@@ -237,3 +237,30 @@ TEST_CASE("conformance: SimpleSkin and RecursiveSkeletons are posed by their joi
   CHECK(std::isfinite(recursive.worldBounds().radius()));
   for (const IgnoredFeature& feature : recursive.ignored) CHECK(feature.feature != "skin");
 }
+
+TEST_CASE("conformance: generated tangents match the MikkTSpace tangents NormalTangentMirrorTest ships" *
+          doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("NormalTangentMirrorTest"));
+  std::size_t compared = 0, close = 0, sameSign = 0;
+  for (const Primitive& shipped : scene.primitives) {
+    REQUIRE(!shipped.tangents.empty());
+    Primitive generated = shipped;
+    generated.tangents.clear();
+    generateTangents(generated);
+    // Compare per corner (a split vertex is a new index).
+    for (std::size_t corner = 0; corner < shipped.indices.size(); ++corner) {
+      const glm::vec4& expected = shipped.tangents[shipped.indices[corner]];
+      const glm::vec4& actual = generated.tangents[generated.indices[corner]];
+      ++compared;
+      sameSign += expected.w == actual.w;
+      // 0.99: within about 8 degrees (Blender welds and weights a little differently).
+      close += glm::dot(glm::normalize(glm::vec3(expected)), glm::vec3(actual)) > 0.99f;
+    }
+  }
+  CAPTURE(compared);
+  CAPTURE(close);
+  CAPTURE(sameSign);
+  CHECK(compared > 1000);
+  CHECK(sameSign >= compared * 99 / 100);
+  CHECK(close >= compared * 95 / 100);
+}

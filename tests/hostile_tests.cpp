@@ -378,4 +378,28 @@ TEST_SUITE("hostile") {
                     {"node 3 EXT_mesh_gpu_instancing SCALE accessor 0 has 3 elements, but the other attributes have 2"});
     }
   }
+
+  TEST_CASE("a normal-mapped triangle without tangents and with zero UV area still renders finite") {
+    TempFolder folder("hostile");
+    json document = hostile::triangleScene();
+    const std::vector<unsigned char> uvs(24, 0);  // three (0, 0): no UV area, no tangent direction
+    document["buffers"].push_back(
+        {{"byteLength", uvs.size()}, {"uri", "data:application/octet-stream;base64," + base64(uvs)}});
+    document["bufferViews"].push_back({{"buffer", 1}, {"byteLength", uvs.size()}});
+    document["accessors"].push_back({{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC2"}, {"count", 3}});
+    document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
+    document["meshes"][0]["primitives"][0]["material"] = 0;
+    document["images"] = {{{"uri", hostile::kOnePixelPng}}};
+    document["textures"] = {{{"source", 0}}};
+    document["materials"] = {{{"normalTexture", {{"index", 0}}}}};
+    const fs::path path = writeGltf(folder, document, "flat-uv.gltf");
+    const Scene scene = loadGltf(path);
+    REQUIRE(scene.primitives[0].tangents.size() == 3);
+    for (const glm::vec4& tangent : scene.primitives[0].tangents)
+      CHECK(std::abs(glm::length(glm::vec3(tangent)) - 1.0f) < 1e-5f);
+    const ProcessResult run =
+        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);  // exit 1 if any target held NaN or inf
+  }
 }

@@ -111,6 +111,12 @@ class GltfReader {
       scene_.primitives.push_back(geometry_.read(source, primitiveName, pose));
     }
     Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
+    // A normal map needs tangents; without TANGENT they are made as
+    // MikkTSpace makes them (the glTF spec's rule for missing tangents).
+    if (primitive.tangents.empty() && !primitive.texcoords.empty() && source.material >= 0 &&
+        scene_.materials[static_cast<std::size_t>(source.material)].normalTexture.present()) {
+      generateTangents(primitive);
+    }
     // A textured material samples UVs; without TEXCOORD_0 it samples (0, 0),
     // which is glTF's answer too, so the shader always has texcoords to read.
     if (primitive.texcoords.empty() && materialHasTextures(source.material)) {

@@ -46,6 +46,13 @@ int main(int argc, char** argv) {
   nlohmann::json strip = scene;
   strip["meshes"][0]["primitives"][0]["mode"] = 5;
   write("strip.gltf", strip.dump());
+  // A normal map without TANGENT: tangents are generated (MikkTSpace's rules).
+  nlohmann::json normalMapped = textured;
+  normalMapped["materials"] = {{{"normalTexture", {{"index", 0}}}}};
+  // The positions' bytes as UVs.
+  normalMapped["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC2"}, {"count", 3}});
+  normalMapped["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
+  write("normal-mapped.gltf", normalMapped.dump());
   std::cout << "seeds written to " << folder.string() << "\n";
   return 0;
 }

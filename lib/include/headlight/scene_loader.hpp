@@ -52,4 +52,12 @@ std::vector<std::string> builtinSceneNames();
 // vertex no triangle touches gets +Z.
 void generateNormals(Primitive& primitive);
 
+// Fills Primitive::tangents (which must be empty) from the normals and
+// TEXCOORD_0 by MikkTSpace's rules (lib/scene/tangents.cpp): per-corner UV
+// tangents projected onto the normal, angle-weighted, summed over corners
+// that share position, normal, UV and handedness; w = handedness. A vertex
+// used with both handednesses is split (positions, normals and texcoords
+// grow, indices are remapped). Does nothing without normals and texcoords.
+void generateTangents(Primitive& primitive);
+
 }  // namespace HEADLIGHT_PUBLIC
