@@ -785,3 +785,21 @@ TEST_CASE("tangents: a vertex whose triangles have no UV area gets a unit tangen
     CHECK(std::abs(glm::dot(glm::vec3(tangent), glm::vec3(0, 0, 1))) < 1e-5f);
   }
 }
+
+TEST_CASE("glTF: KHR_materials_pbrSpecularGlossiness is approximated as metallic-roughness, and says so") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+  parts.extra = R"(,"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],
+    "extensionsRequired":["KHR_materials_pbrSpecularGlossiness"],
+    "materials":[{"name":"Old","extensions":{"KHR_materials_pbrSpecularGlossiness":
+      {"diffuseFactor":[0.5,0.25,1,1],"specularFactor":[1,1,1],"glossinessFactor":0.75}}}])";
+  const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
+  REQUIRE(scene.materials.size() == 1);
+  CHECK(near(glm::vec3(scene.materials[0].baseColorFactor), {0.5f, 0.25f, 1.0f}));
+  CHECK(scene.materials[0].metallicFactor == 0.0f);
+  CHECK(scene.materials[0].roughnessFactor == doctest::Approx(0.25f));
+  REQUIRE(scene.ignored.size() == 1);
+  CHECK(scene.ignored[0].describe().find(
+            "KHR_materials_pbrSpecularGlossiness on 1 material (first: material 0 'Old') is approximated") == 0);
+}

@@ -20,8 +20,22 @@ constexpr std::array<std::string_view, 4> kRenderedExtensions{
 constexpr std::array<std::string_view, 3> kDrawableWithout{
     "KHR_texture_transform",               // textures drawn untransformed
     "KHR_materials_unlit",                 // drawn lit
-    "KHR_materials_pbrSpecularGlossiness"  // drawn with the metallic-roughness defaults or fallback
+    "KHR_materials_pbrSpecularGlossiness"  // approximated as metallic-roughness (gltf_materials.cpp)
 };
+
+// Extensions converted at load into something close: named with what was done.
+constexpr std::pair<std::string_view, const char*> kApproximatedExtensions[]{
+    {"KHR_materials_pbrSpecularGlossiness",
+     "is approximated (diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and "
+     "specularGlossinessTexture are not rendered)"},
+};
+
+const char* effectOf(const std::string& extension) {
+  for (const auto& [name, effect] : kApproximatedExtensions) {
+    if (name == extension) return effect;
+  }
+  return "is not rendered";
+}
 
 template <std::size_t N>
 bool listed(const std::array<std::string_view, N>& list, const std::string& name) {
@@ -133,7 +147,7 @@ void addExtensions(const tinygltf::ExtensionMap& extensions, const char* noun, c
                    Tally& tally) {
   for (const auto& [name, value] : extensions) {
     if (!extensionRendered(name)) {
-      tally.add(name, noun, element);
+      tally.add(name, noun, element, effectOf(name));
     }
   }
 }

@@ -91,9 +91,12 @@ std::vector<std::uint32_t> GeometryReader::readVertexOrder(int accessorIndex, co
 // Strips and fans as triangle lists, with glTF's (and GL's) winding: strip
 // triangle i is (i, i+1, i+2), its first two swapped for odd i; fan
 // triangle i is (0, i+1, i+2).
-static std::vector<std::uint32_t> triangleList(const std::vector<std::uint32_t>& order, int mode) {
-  if (mode == TINYGLTF_MODE_TRIANGLES || order.size() < 3) {
-    return mode == TINYGLTF_MODE_TRIANGLES ? order : std::vector<std::uint32_t>{};
+static std::vector<std::uint32_t> triangleList(std::vector<std::uint32_t> order, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    return order;  // moved: no copy of a large index buffer
+  }
+  if (order.size() < 3) {
+    return {};
   }
   std::vector<std::uint32_t> triangles;
   triangles.reserve((order.size() - 2) * 3);

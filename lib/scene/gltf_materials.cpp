@@ -114,6 +114,53 @@ void readFactors(const Source& source, const tinygltf::Material& material, const
   }
 }
 
+double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  return value.IsNumber() || value.IsInt() ? value.GetNumberAsDouble() : fallback;
+}
+
+// KHR_materials_pbrSpecularGlossiness, approximated as metallic-roughness
+// (gltf_features names it "approximated"): the diffuse colour and texture
+// become the base colour, metallic 0 (a dielectric: the specular colour is
+// dropped), roughness 1 - glossiness; specularGlossinessTexture is not read.
+void readSpecularGlossiness(const Source& source, const tinygltf::Material& material, const std::string& name,
+                            Material& out) {
+  const auto extension = material.extensions.find("KHR_materials_pbrSpecularGlossiness");
+  if (extension == material.extensions.end() || !extension->second.IsObject()) {
+    return;
+  }
+  const tinygltf::Value& specGloss = extension->second;
+  out.baseColorFactor = glm::vec4(1.0f);
+  if (specGloss.Has("diffuseFactor")) {
+    const tinygltf::Value& diffuse = specGloss.Get("diffuseFactor");
+    if (!diffuse.IsArray() || diffuse.ArrayLen() != 4) {
+      source.fail(name + " KHR_materials_pbrSpecularGlossiness diffuseFactor is not 4 numbers");
+    }
+    for (int c = 0; c < 4; ++c) {
+      const tinygltf::Value& component = diffuse.Get(c);
+      if (!component.IsNumber() && !component.IsInt()) {
+        source.fail(name + " KHR_materials_pbrSpecularGlossiness diffuseFactor is not 4 numbers");
+      }
+      out.baseColorFactor[c] = static_cast<float>(component.GetNumberAsDouble());
+    }
+  }
+  const double glossiness = numberOr(specGloss, "glossinessFactor", 1.0);
+  out.metallicFactor = 0.0f;
+  out.roughnessFactor = static_cast<float>(1.0 - glossiness);
+  const bool valid = std::isfinite(glossiness) && glossiness >= 0.0 && glossiness <= 1.0 &&
+                     std::all_of(&out.baseColorFactor[0], &out.baseColorFactor[0] + 4, [](float f) { return std::isfinite(f); });
+  if (!valid) {
+    source.fail(name + " KHR_materials_pbrSpecularGlossiness has a non-finite or out-of-range factor");
+  }
+  if (specGloss.Has("diffuseTexture") && specGloss.Get("diffuseTexture").Has("index")) {
+    const tinygltf::Value& texture = specGloss.Get("diffuseTexture");
+    out.baseColorTexture = readTextureRef(source, texture.Get("index").GetNumberAsInt(),
+                                          static_cast<int>(numberOr(texture, "texCoord", 0.0)),
+                                          name + " KHR_materials_pbrSpecularGlossiness diffuseTexture");
+  }
+}
+
 }  // namespace
 
 Material readMaterial(const Source& source, int materialIndex) {
@@ -134,6 +181,7 @@ Material readMaterial(const Source& source, int materialIndex) {
                                         name + " occlusionTexture");
   out.emissiveTexture = readTextureRef(source, material.emissiveTexture.index, material.emissiveTexture.texCoord,
                                        name + " emissiveTexture");
+  readSpecularGlossiness(source, material, name, out);
   return out;
 }
 
