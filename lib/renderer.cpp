@@ -377,6 +377,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   frame.backend = std::string(backendName(impl.context.backend())) + ": " + impl.context.description();
   frame.sceneSource = impl.scene.source;
   frame.sceneHash = impl.scene.sourceHash;
+  for (const IgnoredFeature& feature : impl.scene.ignored) frame.ignored.push_back(feature.describe());
   return frame;
 }
 

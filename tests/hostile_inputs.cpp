@@ -76,3 +76,57 @@ std::vector<unsigned char> glb(const std::string& json, const std::vector<unsign
 }
 
 }  // namespace headlight::test::hostile
+
+namespace headlight::test::hostile {
+
+// The static pose (issue 17 item 2): bytes of one buffer, laid out as
+// posedScene() describes.
+json posedScene() {
+  std::vector<float> floats = {-1, -1, 0, 1, -1, 0, 0, 1, 0,  // 0: POSITION
+                               0,  0,  1, 0, 0,  1, 0, 0, 1}; // 36: morph target POSITION deltas
+  std::vector<unsigned char> bytes(floats.size() * 4);
+  std::memcpy(bytes.data(), floats.data(), bytes.size());
+  bytes.resize(bytes.size() + 12, 0);  // 72: JOINTS_0, UNSIGNED_BYTE VEC4, all joint 0
+  const float weights[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  const float translations[6] = {0, 0, 0, 3, 0, 0};
+  for (const auto& [data, size] : {std::pair<const float*, std::size_t>{weights, sizeof weights},  // 84: WEIGHTS_0
+                                   {identity, sizeof identity},           // 132: inverseBindMatrices
+                                   {translations, sizeof translations}})  // 196: instance TRANSLATION
+  {
+    const auto* raw = reinterpret_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), raw, raw + size);
+  }
+  json views = json::array();
+  for (const auto& [offset, length] : std::vector<std::pair<int, int>>{{0, 36}, {36, 36}, {72, 12}, {84, 48}, {132, 64},
+                                                                       {196, 24}}) {
+    views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}});
+  }
+  return {
+      {"asset", {{"version", "2.0"}}},
+      {"extensionsUsed", {"EXT_mesh_gpu_instancing"}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+      {"bufferViews", views},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 3}},
+        {{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 3}},
+        {{"bufferView", 2}, {"componentType", 5121}, {"type", "VEC4"}, {"count", 3}},
+        {{"bufferView", 3}, {"componentType", 5126}, {"type", "VEC4"}, {"count", 3}},
+        {{"bufferView", 4}, {"componentType", 5126}, {"type", "MAT4"}, {"count", 1}},
+        {{"bufferView", 5}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 2}}}},
+      {"meshes",
+       {{{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}},
+        {{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"targets", {{{"POSITION", 1}}}}}}}, {"weights", {0.5}}},
+        {{"primitives", {{{"attributes", {{"POSITION", 0}, {"JOINTS_0", 2}, {"WEIGHTS_0", 3}}}}}}}}},
+      {"skins", {{{"joints", {2}}, {"inverseBindMatrices", 4}}}},
+      {"nodes",
+       {{{"mesh", 1}},
+        {{"mesh", 2}, {"skin", 0}, {"translation", {100, 0, 0}}},
+        {{"rotation", {0, 0, 0.70710678, 0.70710678}}},
+        {{"mesh", 0}, {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", {{"TRANSLATION", 5}}}}}}}}}},
+      {"scenes", {{{"nodes", {0, 1, 2, 3}}}}},
+      {"scene", 0},
+  };
+}
+
+}  // namespace headlight::test::hostile

@@ -25,3 +25,14 @@ std::string nestedArrays(int depth);
 std::vector<unsigned char> glb(const std::string& json, const std::vector<unsigned char>& bin, std::uint32_t version);
 
 }  // namespace headlight::test::hostile
+
+namespace headlight::test::hostile {
+
+// The static pose: node 0 draws mesh 1, a triangle with one morph target
+// (POSITION deltas +Z, weight 0.5); node 1 draws mesh 2 skinned to joint
+// node 2 (rotated 90 degrees about +Z, identity inverseBindMatrices; node 1's
+// own translation of 100 is ignored, as glTF says); node 3 draws mesh 0
+// twice through EXT_mesh_gpu_instancing (TRANSLATION 0 and +3 X).
+nlohmann::json posedScene();
+
+}  // namespace headlight::test::hostile

@@ -7,9 +7,13 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "headlight/error.hpp"
 #include "headlight/finite.hpp"
@@ -162,8 +166,8 @@ TEST_SUITE("hostile") {
       for (int image = 0; image < 2000; ++image) {
         document["images"].push_back({{"uri", "data:image/png;base64,AAAA"}});
       }
-      document["meshes"][0]["primitives"][0]["mode"] = 1;
-      expectRefused(writeGltf(folder, document, "images.gltf"), {"mesh 0 primitive 0", "only TRIANGLES"});
+      document["meshes"][0]["primitives"][0]["mode"] = 7;
+      expectRefused(writeGltf(folder, document, "images.gltf"), {"mesh 0 primitive 0", "has mode 7, expected 0..6"});
     }
   }
 
@@ -262,5 +266,140 @@ TEST_SUITE("hostile") {
                          NonFiniteError);
     CHECK(clampNonFinite(frame) == 2);
     CHECK_NOTHROW(requireFinite(frame));
+  }
+
+  // Never silent (issue 17): a feature that is not rendered is a warning,
+  // once per scene, and is recorded with the outputs; --strict-gltf makes it
+  // an error with nothing written.
+  TEST_CASE("a glTF feature that is not rendered is named once; --strict-gltf refuses the file") {
+    TempFolder folder("hostile");
+    json document = hostile::triangleScene();
+    document["materials"] = {{{"name", "Cloth"}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
+                             {{"extensions", {{"KHR_materials_sheen", json::object()}}}}};
+    document["meshes"][0]["primitives"][0]["material"] = 0;
+    document["extensionsUsed"] = {"KHR_materials_sheen"};
+    const fs::path scene = writeGltf(folder, document, "sheen.gltf");
+    const std::string warning = "warning: " + scene.string() +
+                                ": KHR_materials_sheen on 2 materials (first: material 0 'Cloth') is not rendered";
+    const fs::path out = folder.path() / "out";
+    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " +
+                                           quote(out));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    const auto first = run.output.find(warning);
+    CHECK(first != std::string::npos);
+    CHECK(run.output.find(warning, first + 1) == std::string::npos);  // two views, one scene: once
+    std::ifstream manifestFile(out / "view_000" / "frame.json");
+    const json manifest = json::parse(manifestFile);
+    CHECK(manifest["ignored"] == json::array({warning.substr(warning.find("KHR_"))}));
+    auto exr = OIIO::ImageInput::open((out / "view_000" / "lit.exr").string());
+    REQUIRE(exr);
+    CHECK(exr->spec().get_string_attribute("headlight:ignored") == warning.substr(warning.find("KHR_")));
+
+    const fs::path strictScene = writeGltf(folder, document, "strict/sheen.gltf");  // its own, empty out/
+    expectRefused(strictScene, {"--strict-gltf: KHR_materials_sheen on 2 materials"}, "--strict-gltf");
+  }
+
+  // The static pose (issue 17 item 2): morph targets, skins and
+  // EXT_mesh_gpu_instancing are applied at load; their inputs are checked.
+  TEST_CASE("the posed scene loads as hand-computed: morphed, skinned, instanced") {
+    TempFolder folder("hostile");
+    const fs::path path = writeGltf(folder, hostile::posedScene(), "posed.gltf");
+    const Scene scene = loadGltf(path);
+    REQUIRE(scene.instances.size() == 4);
+    CHECK(scene.ignored.empty());
+    auto positions = [&](std::size_t instance) { return scene.primitives[scene.instances[instance].primitive].positions; };
+    auto near = [](const std::vector<glm::vec3>& actual, const std::vector<glm::vec3>& expected) {
+      if (actual.size() != expected.size()) return false;
+      for (std::size_t v = 0; v < actual.size(); ++v)
+        if (glm::length(actual[v] - expected[v]) > 1e-5f) return false;
+      return true;
+    };
+    // Morph: base + 0.5 x (0, 0, 1).
+    CHECK(near(positions(0), {{-1, -1, 0.5f}, {1, -1, 0.5f}, {0, 1, 0.5f}}));
+    // Skin: (x, y) -> (-y, x) by the joint, in world space (identity instance).
+    CHECK(near(positions(1), {{1, -1, 0}, {1, 1, 0}, {-1, 0, 0}}));
+    CHECK(scene.instances[1].worldFromLocal == glm::mat4(1.0f));
+    // Instancing: two placements of mesh 0.
+    CHECK(glm::vec3(scene.instances[2].worldFromLocal[3]) == glm::vec3(0, 0, 0));
+    CHECK(glm::vec3(scene.instances[3].worldFromLocal[3]) == glm::vec3(3, 0, 0));
+    ResourceLimits limits;
+    limits.maxInstances = 3;
+    CHECK_THROWS_WITH_AS(loadGltf(path, {}, limits), doctest::Contains("max-instances 3"), LimitError);
+    const ProcessResult run =
+        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+  }
+
+  TEST_CASE("bad skins, morph targets and instancing attributes are refused, naming the element") {
+    TempFolder folder("hostile");
+    {
+      json document = hostile::posedScene();
+      document["skins"][0]["joints"] = {2, 2, 2};  // 3 joints, 1 inverse bind matrix
+      expectRefused(writeGltf(folder, document, "ibm.gltf"),
+                    {"skin 0 inverseBindMatrices accessor 4 has 1 matrix, but the skin has 3 joints"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["skins"][0]["joints"] = {7};
+      expectRefused(writeGltf(folder, document, "joint-node.gltf"), {"skin 0 joint 0 refers to node 7"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["skins"][0].erase("inverseBindMatrices");
+      document["meshes"][2]["primitives"][0]["attributes"]["JOINTS_0"] = 3;  // float weights as joints
+      expectRefused(writeGltf(folder, document, "joint-format.gltf"),
+                    {"mesh 2 primitive 0 JOINTS_0 accessor 3 is FLOAT VEC4, expected UNSIGNED_BYTE VEC4"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["accessors"][2]["bufferView"] = 3;  // WEIGHTS_0's float 1.0 (00 00 80 3f) from byte 2: joint 128
+      document["accessors"][2]["byteOffset"] = 2;
+      expectRefused(writeGltf(folder, document, "joint-range.gltf"),
+                    {"mesh 2 primitive 0 JOINTS_0 accessor 2 names joint 128 at vertex 0, but the skin has 1 joint"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["meshes"][1]["weights"] = {0.5, 0.25};
+      expectRefused(writeGltf(folder, document, "weights.gltf"),
+                    {"mesh 1 primitive 0 has 1 morph target, but its weights have 2 values"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["accessors"][1]["count"] = 2;
+      expectRefused(writeGltf(folder, document, "target-count.gltf"),
+                    {"target 0 POSITION accessor 1 has 2 elements, but POSITION accessor 0 has 3"});
+    }
+    {
+      json document = hostile::posedScene();
+      document["nodes"][3]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"] = 0;  // 3 elements
+      expectRefused(writeGltf(folder, document, "instances.gltf"),
+                    {"node 3 EXT_mesh_gpu_instancing SCALE accessor 0 has 3 elements, but the other attributes have 2"});
+    }
+  }
+
+  TEST_CASE("a normal-mapped triangle without tangents and with zero UV area still renders finite") {
+    TempFolder folder("hostile");
+    json document = hostile::triangleScene();
+    const std::vector<unsigned char> uvs(24, 0);  // three (0, 0): no UV area, no tangent direction
+    document["buffers"].push_back(
+        {{"byteLength", uvs.size()}, {"uri", "data:application/octet-stream;base64," + base64(uvs)}});
+    document["bufferViews"].push_back({{"buffer", 1}, {"byteLength", uvs.size()}});
+    document["accessors"].push_back({{"bufferView", 1}, {"componentType", 5126}, {"type", "VEC2"}, {"count", 3}});
+    document["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
+    document["meshes"][0]["primitives"][0]["material"] = 0;
+    document["images"] = {{{"uri", hostile::kOnePixelPng}}};
+    document["textures"] = {{{"source", 0}}};
+    document["materials"] = {{{"normalTexture", {{"index", 0}}}}};
+    const fs::path path = writeGltf(folder, document, "flat-uv.gltf");
+    const Scene scene = loadGltf(path);
+    REQUIRE(scene.primitives[0].tangents.size() == 3);
+    for (const glm::vec4& tangent : scene.primitives[0].tangents)
+      CHECK(std::abs(glm::length(glm::vec3(tangent)) - 1.0f) < 1e-5f);
+    const ProcessResult run =
+        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);  // exit 1 if any target held NaN or inf
   }
 }

@@ -153,17 +153,20 @@ long peakRssKb() {
   return usage.ru_maxrss;  // kilobytes on Linux
 }
 
+// Loads a scene and names, once, each glTF feature it uses that is not
+// rendered (Scene::ignored; frame.json and the EXRs list them too).
+
 // Scenes stay loaded while a later job of this shard uses them.
 class SceneCache {
  public:
-  SceneCache(const std::vector<Job>& jobs, bool allowExternalPaths, const ResourceLimits& limits)
-      : allow_(allowExternalPaths), limits_(limits) {
+  SceneCache(const std::vector<Job>& jobs, const SceneLoadOptions& options, const ResourceLimits& limits, bool quiet)
+      : options_(options), limits_(limits), quiet_(quiet) {
     for (const Job& job : jobs)
       if (job.error.empty()) ++remaining_[job.scene];
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadCommandScene(name, allow_, limits_)).first;
+    if (found == scenes_.end()) found = scenes_.emplace(name, loadCommandScene(name, options_, limits_, quiet_)).first;
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -176,8 +179,9 @@ class SceneCache {
   }
 
  private:
-  bool allow_;
+  SceneLoadOptions options_;
   ResourceLimits limits_;
+  bool quiet_;
   std::map<std::string, int> remaining_;
   std::map<std::string, Scene> scenes_;
 };
@@ -411,7 +415,7 @@ int runRenderBatch(const RenderCommand& command) {
   auto cameraCount = [&](const std::string& scene) {
     auto found = countedScenes.find(scene);
     if (found == countedScenes.end())
-      found = countedScenes.emplace(scene, loadCommandScene(scene, command.allowExternalPaths, command.limits)).first;
+      found = countedScenes.emplace(scene, loadCommandScene(scene, command.sceneLoad, command.limits, quiet)).first;
     return int(found->second.cameras.size());
   };
   const std::vector<Job> all = expandJobs(command, cameraCount);
@@ -421,7 +425,7 @@ int runRenderBatch(const RenderCommand& command) {
   const bool single = all.size() == 1 && command.jobFiles.empty();
 
   std::vector<JobResult> results(jobs.size());
-  SceneCache cache(jobs, command.allowExternalPaths, command.limits);
+  SceneCache cache(jobs, command.sceneLoad, command.limits, quiet);
   for (auto& [name, scene] : countedScenes) cache.adopt(name, std::move(scene));  // loaded once
   countedScenes.clear();
   std::optional<Context> context;

@@ -294,7 +294,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   std::size_t done = 0;
   const MeasureOptions measureOptions{command.repetitions, command.warmup, command.reference};
   for (const std::string& sceneName : command.scenes) {
-    Scene scene = loadCommandScene(sceneName, command.allowExternalPaths, command.limits);
+    Scene scene = loadCommandScene(sceneName, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
     if (!context) {
       context.emplace(command.context);
       renderer.emplace(*context);

@@ -67,7 +67,7 @@ struct BenchCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;
-  bool allowExternalPaths = false;  // as render's (sceneInputOptions)
+  SceneLoadOptions sceneLoad;  // as render's (sceneInputOptions): --allow-external-paths, --strict-gltf, --scene
   ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
 };
 

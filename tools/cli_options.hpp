@@ -13,6 +13,7 @@
 #include "headlight/options.hpp"
 #include "headlight/output.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/scene_loader.hpp"
 #include "headlight/settings.hpp"
 #include "settings/option_binding.hpp"
 #include "tooling/command_line.hpp"
@@ -29,7 +30,7 @@ struct RenderCommand {
   std::string scene = "builtin:cornell";  // file path or builtin:<name>
   std::string outDir = "out";
   ContextOptions context;  // backend, --device; error policy from --strict
-  bool allowExternalPaths = false;
+  SceneLoadOptions sceneLoad;  // --allow-external-paths, --strict-gltf, --scene
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   RenderSettings settings;

@@ -69,7 +69,8 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
-  Scene scene = loadCommandScene(command.scene, command.allowExternalPaths, command.limits);
+  Scene scene = loadCommandScene(command.scene, command.sceneLoad, command.limits,
+                                 command.verbosity == cli::Verbosity::Quiet);
   Context context(command.context);
   if (command.verbosity == cli::Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);

@@ -128,7 +128,7 @@ int runTuneCommand(const std::vector<std::string>& args) {
     return 0;
   }
   if (!referenceAvailable()) throw Error("headlight tune needs the reference: this build has no Embree");
-  Scene scene = loadCommandScene(command.scene, command.allowExternalPaths, command.limits);
+  Scene scene = loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
   Context context(command.context);
   if (command.verbosity == Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);

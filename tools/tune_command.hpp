@@ -30,7 +30,7 @@ struct TuneCommand {
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;
-  bool allowExternalPaths = false;  // as render's (sceneInputOptions)
+  SceneLoadOptions sceneLoad;  // as render's (sceneInputOptions): --allow-external-paths, --strict-gltf, --scene
   ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
 
   // 128 x 128: each configuration's frames take tens of milliseconds on

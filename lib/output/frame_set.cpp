@@ -34,6 +34,7 @@ json manifestJson(const Frame& frame, const OutputOptions& options, bool complet
   j["settings_hash"] = textFingerprint(settingsText);
   j["job_hash"] = options.jobHash;
   j["renderer"] = frame.glRenderer;
+  j["ignored"] = frame.ignored;  // glTF features not rendered
   j["settings"] = settings;
   j["files"] = json::array();
   return j;

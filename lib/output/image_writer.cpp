@@ -44,6 +44,10 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
   spec.attribute("headlight:backend", frame.backend);
   spec.attribute("headlight:scene", frame.sceneSource);
   spec.attribute("headlight:sceneHash", frame.sceneHash);
+  // glTF features the scene uses that are not rendered, "; "-separated (empty: none).
+  std::string ignored;
+  for (const std::string& feature : frame.ignored) ignored += (ignored.empty() ? "" : "; ") + feature;
+  spec.attribute("headlight:ignored", ignored);
   spec.attribute("headlight:conventions",
                  "right-handed world, +Y up; camera looks down -Z; rows top first; depth.Z = view-space depth");
   // As used: "auto" values appear as the numbers they resolved to.

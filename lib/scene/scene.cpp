@@ -28,6 +28,19 @@ glm::vec3 unitOrPlusZ(const glm::vec3& sum) {
 
 }  // namespace
 
+std::string IgnoredFeature::describe() const {
+  if (noun.empty()) {
+    return feature + (first.empty() ? "" : " (" + first + ")") + " " + effect;
+  }
+  const std::string counted = std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+  // A feature that is its own element ("animation") is counted, not repeated.
+  if (feature == noun) {
+    const bool plural = count != 1 && effect.rfind("is ", 0) == 0;
+    return counted + " (first: " + first + ") " + (plural ? "are " + effect.substr(3) : effect);
+  }
+  return feature + " on " + counted + " (first: " + first + ") " + effect;
+}
+
 Bounds Bounds::transformed(const glm::mat4& transform) const {
   Bounds result;
   if (empty()) {

@@ -1,14 +1,19 @@
 #include "tooling/command_setup.hpp"
 
+#include <cstdio>
+
 #include "headlight/scene_loader.hpp"
 #include "output/atomic_file.hpp"
 
 namespace headlight {
 
-Scene loadCommandScene(const std::string& nameOrPath, bool allowExternalPaths, const ResourceLimits& limits) {
-  SceneLoadOptions options;
-  options.allowExternalPaths = allowExternalPaths;
-  return loadScene(nameOrPath, options, limits);
+Scene loadCommandScene(const std::string& nameOrPath, const SceneLoadOptions& options, const ResourceLimits& limits,
+                       bool quiet) {
+  Scene scene = loadScene(nameOrPath, options, limits);
+  if (!quiet)
+    for (const IgnoredFeature& feature : scene.ignored)
+      std::fprintf(stderr, "warning: %s: %s\n", scene.source.c_str(), feature.describe().c_str());
+  return scene;
 }
 
 std::string verboseHeader(const Context& context, const Scene& scene) {

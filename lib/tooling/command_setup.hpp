@@ -13,12 +13,14 @@
 #include "headlight/limits.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene.hpp"
+#include "headlight/scene_loader.hpp"
 #include "settings/option_binding.hpp"
 
 namespace headlight {
 
-// --allow-external-paths and the limit rows (--max-memory, ...), bound to a
-// command's `allowExternalPaths` and `limits` members.
+// --allow-external-paths, the scene-load rows (--strict-gltf, --scene) and
+// the limit rows (--max-memory, ...), bound to a command's `sceneLoad` and
+// `limits` members.
 template <class Command>
 std::vector<Option<Command>> sceneInputOptions() {
   std::vector<Option<Command>> rows;
@@ -26,13 +28,17 @@ std::vector<Option<Command>> sceneInputOptions() {
       {.name = "allow-external-paths",
        .type = OptionType::Switch,
        .help = "let glTF URIs point outside the scene file's folder"},
-      [](auto& c) -> auto& { return c.allowExternalPaths; }));
+      [](auto& c) -> auto& { return c.sceneLoad.allowExternalPaths; }));
+  for (auto& row : liftOptions(sceneLoadOptions(), &Command::sceneLoad)) rows.push_back(std::move(row));
   for (auto& row : liftOptions(limitOptions(), &Command::limits)) rows.push_back(std::move(row));
   return rows;
 }
 
-// loadScene with the command's limits and external-path rule.
-Scene loadCommandScene(const std::string& nameOrPath, bool allowExternalPaths, const ResourceLimits& limits);
+// loadScene with the command's load options and limits; then, unless
+// `quiet`, one "warning: FILE: ..." line on stderr per glTF feature the file
+// uses that is not rendered (Scene::ignored).
+Scene loadCommandScene(const std::string& nameOrPath, const SceneLoadOptions& options, const ResourceLimits& limits,
+                       bool quiet);
 
 // --verbose's header: what each context attempt said, the backend, GL_RENDERER
 // and GL_VERSION, and the scene's size. Lines end in '\n'.

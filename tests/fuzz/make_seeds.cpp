@@ -40,6 +40,19 @@ int main(int argc, char** argv) {
   binary["buffers"][0].erase("uri");
   const auto packed = hostile::glb(binary.dump(), hostile::trianglePositions(), 2);
   write("binchunk.glb", std::string(packed.begin(), packed.end()));
+  // The static pose: morph targets, a skin, EXT_mesh_gpu_instancing.
+  const nlohmann::json posed = hostile::posedScene();
+  write("posed.gltf", posed.dump());
+  nlohmann::json strip = scene;
+  strip["meshes"][0]["primitives"][0]["mode"] = 5;
+  write("strip.gltf", strip.dump());
+  // A normal map without TANGENT: tangents are generated (MikkTSpace's rules).
+  nlohmann::json normalMapped = textured;
+  normalMapped["materials"] = {{{"normalTexture", {{"index", 0}}}}};
+  // The positions' bytes as UVs.
+  normalMapped["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC2"}, {"count", 3}});
+  normalMapped["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
+  write("normal-mapped.gltf", normalMapped.dump());
   std::cout << "seeds written to " << folder.string() << "\n";
   return 0;
 }

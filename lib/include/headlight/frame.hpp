@@ -61,6 +61,10 @@ struct Frame {
   std::string backend;      // "egl" or "osmesa", and which device
   std::string sceneSource;  // file path or builtin name
   std::string sceneHash;
+  // glTF features the scene uses that are not rendered, one line each
+  // (Scene::ignored, IgnoredFeature::describe()); written to frame.json and
+  // the EXRs' headlight:ignored.
+  std::vector<std::string> ignored;
 
   // Every non-empty target with its file stem ("position", ..., "lit"), in
   // the order of frameTargets() (headlight/targets.hpp).

@@ -150,6 +150,20 @@ struct Sky {
   float intensity = 1.0f;                // multiplies all three
 };
 
+// A glTF feature the file uses that Headlight does not render (or only
+// approximates), named once per feature with how many elements use it and
+// the first of them, so that a picture is never silently wrong.
+struct IgnoredFeature {
+  std::string feature;                     // "KHR_materials_sheen", "alphaMode BLEND", "COLOR_0", "mode POINTS"
+  std::string noun;                        // what uses it: "material", "primitive", "node"; empty: the file
+  std::size_t count = 0;                   // how many of them
+  std::string first;                       // the first, as messages name it: "material 2 'Cloth'"
+  std::string effect = "is not rendered";  // or "is not played", "is approximated"
+
+  // "KHR_materials_sheen on 3 materials (first: material 2 'Cloth') is not rendered"
+  std::string describe() const;
+};
+
 struct Scene {
   std::string source;      // file path, or "builtin:<name>"
   std::string sourceHash;  // hex fingerprint of the file's bytes (or the builtin's name and version)
@@ -160,6 +174,7 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   Sky sky;
+  std::vector<IgnoredFeature> ignored;  // glTF only; in the order first met
 
   Bounds worldBounds() const;
   bool hasEmissive() const;

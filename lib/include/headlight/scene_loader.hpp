@@ -2,12 +2,14 @@
 // Turning a scene name into a Scene: glTF 2.0 files (.gltf, .glb) through
 // tinygltf, and the built-in scenes by name ("builtin:cornell").
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "headlight/export.hpp"
 #include "headlight/limits.hpp"
+#include "headlight/options.hpp"
 #include "headlight/scene.hpp"
 
 namespace headlight HEADLIGHT_PUBLIC {
@@ -16,7 +18,16 @@ struct SceneLoadOptions {
   // glTF URIs that resolve outside the asset's folder (../x.bin, /etc/x.png)
   // are refused unless this is set.
   bool allowExternalPaths = false;
+  // A glTF feature the file uses that is not rendered (Scene::ignored) is a
+  // SceneError naming all of them, instead of a warning.
+  bool strictGltf = false;
+  // Which of the file's scenes: an index or a name; empty: the file's
+  // `scene` (else scene 0).
+  std::string gltfScene;
 };
+
+// The rows (strict-gltf, scene), for the CLI and settings files.
+std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
 // file. Throws SceneError naming the file, the element and the problem.
@@ -40,5 +51,13 @@ std::vector<std::string> builtinSceneNames();
 // triangles (used when a file has none). Degenerate triangles add nothing; a
 // vertex no triangle touches gets +Z.
 void generateNormals(Primitive& primitive);
+
+// Fills Primitive::tangents (which must be empty) from the normals and
+// TEXCOORD_0 by MikkTSpace's rules (lib/scene/tangents.cpp): per-corner UV
+// tangents projected onto the normal, angle-weighted, summed over corners
+// that share position, normal, UV and handedness; w = handedness. A vertex
+// used with both handednesses is split (positions, normals and texcoords
+// grow, indices are remapped). Does nothing without normals and texcoords.
+void generateTangents(Primitive& primitive);
 
 }  // namespace HEADLIGHT_PUBLIC

@@ -1,0 +1,236 @@
+#include "scene/gltf_features.hpp"
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <string_view>
+
+namespace headlight::gltf {
+
+namespace {
+
+// Extensions that are rendered: nothing about them is named.
+constexpr std::array<std::string_view, 4> kRenderedExtensions{
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
+
+// Extensions that are not rendered but leave the geometry right, so a file
+// that requires them still loads (and names them): the picture is wrong only
+// in the named way. Any other required extension (Draco, meshopt, BasisU:
+// geometry or images that cannot be read without it) refuses the file.
+constexpr std::array<std::string_view, 3> kDrawableWithout{
+    "KHR_texture_transform",               // textures drawn untransformed
+    "KHR_materials_unlit",                 // drawn lit
+    "KHR_materials_pbrSpecularGlossiness"  // approximated as metallic-roughness (gltf_materials.cpp)
+};
+
+// Extensions converted at load into something close: named with what was done.
+constexpr std::pair<std::string_view, const char*> kApproximatedExtensions[]{
+    {"KHR_materials_pbrSpecularGlossiness",
+     "is approximated (diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and "
+     "specularGlossinessTexture are not rendered)"},
+};
+
+const char* effectOf(const std::string& extension) {
+  for (const auto& [name, effect] : kApproximatedExtensions) {
+    if (name == extension) return effect;
+  }
+  return "is not rendered";
+}
+
+template <std::size_t N>
+bool listed(const std::array<std::string_view, N>& list, const std::string& name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+std::string named(const char* noun, std::size_t index, const std::string& name) {
+  return std::string(noun) + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
+}
+
+// Features in the order first met; each element counts once per feature.
+class Tally {
+ public:
+  void add(const std::string& feature, const char* noun, const std::string& element,
+           const char* effect = "is not rendered") {
+    auto [entry, inserted] = index_.try_emplace(feature, features_.size());
+    if (inserted) {
+      features_.push_back({feature, noun, 0, element, effect});
+      lastElement_.emplace_back();
+    }
+    if (lastElement_[entry->second] != element) {
+      lastElement_[entry->second] = element;
+      ++features_[entry->second].count;
+    }
+  }
+  bool has(const std::string& feature) const { return index_.count(feature) != 0; }
+  std::vector<IgnoredFeature> take() { return std::move(features_); }
+
+ private:
+  std::map<std::string, std::size_t> index_;
+  std::vector<IgnoredFeature> features_;
+  std::vector<std::string> lastElement_;
+};
+
+// The texture references glTF's core material makes, with their names.
+std::array<std::pair<const char*, const tinygltf::ExtensionMap*>, 5> textureExtensions(const tinygltf::Material& m) {
+  return {{{"baseColorTexture", &m.pbrMetallicRoughness.baseColorTexture.extensions},
+           {"metallicRoughnessTexture", &m.pbrMetallicRoughness.metallicRoughnessTexture.extensions},
+           {"normalTexture", &m.normalTexture.extensions},
+           {"occlusionTexture", &m.occlusionTexture.extensions},
+           {"emissiveTexture", &m.emissiveTexture.extensions}}};
+}
+
+std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& m) {
+  const auto& pbr = m.pbrMetallicRoughness;
+  return {{{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
+           {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord},
+           {m.normalTexture.index, m.normalTexture.texCoord},
+           {m.occlusionTexture.index, m.occlusionTexture.texCoord},
+           {m.emissiveTexture.index, m.emissiveTexture.texCoord}}};
+}
+
+// ---- Detectors: one per feature that is not rendered -------------------------
+
+void findAlphaModes(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t index = 0; index < model.materials.size(); ++index) {
+    const tinygltf::Material& material = model.materials[index];
+    if (material.alphaMode == "MASK" || material.alphaMode == "BLEND") {
+      tally.add("alphaMode " + material.alphaMode, "material", named("material", index, material.name),
+                "is not rendered (drawn opaque)");
+    }
+  }
+}
+
+void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t index = 0; index < model.materials.size(); ++index) {
+    for (const auto& [texture, texCoord] : textureCoordinates(model.materials[index])) {
+      if (texture >= 0 && texCoord != 0) {
+        tally.add("TEXCOORD_" + std::to_string(texCoord), "material",
+                  named("material", index, model.materials[index].name),
+                  "is not rendered (TEXCOORD_0 is sampled instead)");
+      }
+    }
+  }
+}
+
+void findVertexColors(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
+    for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
+      for (const auto& [attribute, accessor] : model.meshes[mesh].primitives[primitive].attributes) {
+        if (attribute.rfind("COLOR_", 0) == 0) {
+          tally.add(attribute, "primitive", named("mesh", mesh, "") + " primitive " + std::to_string(primitive));
+        }
+      }
+    }
+  }
+}
+
+void findUnrenderedModes(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
+    for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
+      const int mode = model.meshes[mesh].primitives[primitive].mode;
+      if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
+        tally.add("mode " + modeName(mode), "primitive",
+                  named("mesh", mesh, "") + " primitive " + std::to_string(primitive), "is not rendered (skipped)");
+      }
+    }
+  }
+}
+
+void findAnimations(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t index = 0; index < model.animations.size(); ++index) {
+    tally.add("animation", "animation", named("animation", index, model.animations[index].name),
+              "is not played (the static pose is drawn)");
+  }
+}
+
+void addExtensions(const tinygltf::ExtensionMap& extensions, const char* noun, const std::string& element,
+                   Tally& tally) {
+  for (const auto& [name, value] : extensions) {
+    if (!extensionRendered(name)) {
+      tally.add(name, noun, element, effectOf(name));
+    }
+  }
+}
+
+// Extensions where elements carry them: materials (and their texture
+// references), primitives, nodes, textures, cameras.
+void findElementExtensions(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t index = 0; index < model.materials.size(); ++index) {
+    const tinygltf::Material& material = model.materials[index];
+    const std::string element = named("material", index, material.name);
+    addExtensions(material.extensions, "material", element, tally);
+    for (const auto& [texture, extensions] : textureExtensions(material)) {
+      addExtensions(*extensions, "material", element, tally);
+    }
+  }
+  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
+    for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
+      addExtensions(model.meshes[mesh].primitives[primitive].extensions, "primitive",
+                    named("mesh", mesh, "") + " primitive " + std::to_string(primitive), tally);
+    }
+  }
+  for (std::size_t node = 0; node < model.nodes.size(); ++node) {
+    addExtensions(model.nodes[node].extensions, "node", named("node", node, model.nodes[node].name), tally);
+  }
+  for (std::size_t texture = 0; texture < model.textures.size(); ++texture) {
+    addExtensions(model.textures[texture].extensions, "texture", named("texture", texture, ""), tally);
+  }
+  for (std::size_t camera = 0; camera < model.cameras.size(); ++camera) {
+    addExtensions(model.cameras[camera].extensions, "camera", named("camera", camera, model.cameras[camera].name),
+                  tally);
+  }
+  for (const auto& [name, value] : model.extensions) {
+    if (!extensionRendered(name)) {
+      tally.add(name, "", "on the file");
+    }
+  }
+}
+
+// What extensionsUsed lists that no element above carries (extensions
+// inside other extensions, KHR_xmp, unknown ones).
+void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
+  for (const std::string& name : model.extensionsUsed) {
+    if (!extensionRendered(name) && !tally.has(name)) {
+      tally.add(name, "", "listed in extensionsUsed");
+    }
+  }
+}
+
+// The table: remove a row when its feature becomes rendered.
+constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
+    findAlphaModes, findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,
+    findAnimations, findElementExtensions,  findListedExtensions,
+};
+
+}  // namespace
+
+bool extensionRendered(const std::string& name) { return listed(kRenderedExtensions, name); }
+
+std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model) {
+  Tally tally;
+  for (auto detect : kDetectors) {
+    detect(model, tally);
+  }
+  return tally.take();
+}
+
+void checkRequiredExtensions(const Source& source) {
+  std::string refused;
+  std::size_t count = 0;
+  for (const std::string& required : source.model.extensionsRequired) {
+    if (!extensionRendered(required) && !listed(kDrawableWithout, required)) {
+      refused += (refused.empty() ? "" : ", ") + required;
+      ++count;
+    }
+  }
+  if (count == 0) {
+    return;
+  }
+  std::string accepted;
+  for (std::string_view name : kRenderedExtensions) accepted += (accepted.empty() ? "" : ", ") + std::string(name);
+  for (std::string_view name : kDrawableWithout) accepted += ", " + std::string(name) + " (not rendered)";
+  source.fail(std::string(count == 1 ? "requires extension " : "requires extensions ") + refused +
+              (count == 1 ? ", which is" : ", which are") + " not supported (accepted as required: " + accepted + ")");
+}
+
+}  // namespace headlight::gltf

@@ -1,0 +1,207 @@
+#include "scene/gltf_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "headlight/scene_loader.hpp"
+#include "scene/gltf_pose.hpp"
+
+namespace headlight::gltf {
+
+int attributeAccessor(const tinygltf::Primitive& primitive, const char* attribute) {
+  const auto found = primitive.attributes.find(attribute);
+  return found == primitive.attributes.end() ? -1 : found->second;
+}
+
+GeometryReader::GeometryReader(const Source& source, const ResourceLimits& limits)
+    : source_(source),
+      accessors_(source),
+      limits_(limits),
+      quantized_(std::find(source.model.extensionsUsed.begin(), source.model.extensionsUsed.end(),
+                           "KHR_mesh_quantization") != source.model.extensionsUsed.end()) {}
+
+// Every vertex decoded counts against --max-triangles before its memory is
+// allocated (3 vertices per allowed triangle at most).
+void GeometryReader::reserveVertices(std::size_t count, int accessorIndex, const std::string& user) {
+  const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles) * 3;
+  if (count > allowed - std::min<std::uint64_t>(allowed, decodedVertices_)) {
+    source_.failLimit(user + " accessor " + std::to_string(accessorIndex) + " has " + std::to_string(count) +
+                      " vertices, and with the " + std::to_string(decodedVertices_) +
+                      " before it that is more than the " + std::to_string(allowed) + " (3 x max-triangles " +
+                      std::to_string(limits_.maxTriangles) + ") allowed; raise max-triangles", "max-triangles");
+  }
+  decodedVertices_ += count;
+}
+
+void GeometryReader::reserveTriangles(std::size_t count, const std::string& primitiveName) {
+  const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles);
+  if (count > allowed - std::min<std::uint64_t>(allowed, decodedTriangles_)) {
+    source_.failLimit(primitiveName + " has " + std::to_string(count) + " triangles, and with the " +
+                      std::to_string(decodedTriangles_) + " before it that is more than max-triangles " +
+                      std::to_string(allowed) + "; raise max-triangles", "max-triangles");
+  }
+  decodedTriangles_ += count;
+}
+
+std::vector<glm::vec3> GeometryReader::readPositions(int accessorIndex, const std::string& primitiveName) {
+  const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " POSITION",
+                                                    quantized_ ? std::span<const AccessorFormat>(kQuantizedPositionFormats)
+                                                               : std::span<const AccessorFormat>(kPositionFormats));
+  reserveVertices(accessor.count, accessorIndex, primitiveName + " POSITION");
+  std::vector<glm::vec3> positions = accessors_.readFloats<3>(accessor);
+  for (std::size_t vertex = 0; vertex < positions.size(); ++vertex) {
+    const glm::vec3& p = positions[vertex];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      source_.fail("accessor " + std::to_string(accessorIndex) + " (POSITION of " + primitiveName +
+                   ") has a non-finite value at element " + std::to_string(vertex));
+    }
+  }
+  // Indices are 32-bit; more vertices than that could not all be drawn.
+  if (positions.size() > std::numeric_limits<std::uint32_t>::max()) {
+    source_.fail(primitiveName + " has " + std::to_string(positions.size()) +
+                 " vertices, more than 32-bit indices reach");
+  }
+  return positions;
+}
+
+// The primitive's vertex order: its indices, or 0..vertexCount-1 without.
+std::vector<std::uint32_t> GeometryReader::readVertexOrder(int accessorIndex, const std::string& primitiveName,
+                                                           std::size_t vertexCount) {
+  if (accessorIndex < 0) {
+    std::vector<std::uint32_t> order(vertexCount);
+    for (std::size_t vertex = 0; vertex < vertexCount; ++vertex) {
+      order[vertex] = static_cast<std::uint32_t>(vertex);
+    }
+    return order;
+  }
+  const CheckedAccessor accessor = accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats);
+  std::vector<std::uint32_t> indices = accessors_.readIndices(accessor);
+  for (std::size_t position = 0; position < indices.size(); ++position) {
+    if (indices[position] >= vertexCount) {
+      source_.fail(primitiveName + ": index " + std::to_string(position) + " of accessor " +
+                   std::to_string(accessorIndex) + " is " + std::to_string(indices[position]) +
+                   ", but the primitive has " + countOf(vertexCount, "vertex") + " (expected < " +
+                   std::to_string(vertexCount) + ")");
+    }
+  }
+  return indices;
+}
+
+// Strips and fans as triangle lists, with glTF's (and GL's) winding: strip
+// triangle i is (i, i+1, i+2), its first two swapped for odd i; fan
+// triangle i is (0, i+1, i+2).
+static std::vector<std::uint32_t> triangleList(std::vector<std::uint32_t> order, int mode) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    return order;  // moved: no copy of a large index buffer
+  }
+  if (order.size() < 3) {
+    return {};
+  }
+  std::vector<std::uint32_t> triangles;
+  triangles.reserve((order.size() - 2) * 3);
+  for (std::size_t i = 0; i + 2 < order.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      triangles.insert(triangles.end(), {order[0], order[i + 1], order[i + 2]});
+    } else if (i % 2 == 0) {
+      triangles.insert(triangles.end(), {order[i], order[i + 1], order[i + 2]});
+    } else {
+      triangles.insert(triangles.end(), {order[i + 1], order[i], order[i + 2]});
+    }
+  }
+  return triangles;
+}
+
+std::vector<std::uint32_t> GeometryReader::readTriangleIndices(const tinygltf::Primitive& source,
+                                                               const std::string& primitiveName,
+                                                               std::size_t vertexCount) {
+  const int accessorIndex = source.indices;
+  const std::size_t orderCount =
+      accessorIndex < 0 ? vertexCount : accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats).count;
+  const std::size_t triangleCount =
+      source.mode == TINYGLTF_MODE_TRIANGLES ? orderCount / 3 : (orderCount >= 3 ? orderCount - 2 : 0);
+  reserveTriangles(triangleCount, primitiveName);
+  if (source.mode == TINYGLTF_MODE_TRIANGLES && orderCount % 3 != 0) {
+    source_.fail(primitiveName + " has " + std::to_string(orderCount) +
+                 (accessorIndex < 0 ? " vertices and no indices" : " indices in accessor " + std::to_string(accessorIndex)) +
+                 ", expected a multiple of 3 for TRIANGLES");
+  }
+  return triangleList(readVertexOrder(accessorIndex, primitiveName, vertexCount), source.mode);
+}
+
+namespace {
+
+// Normals from the file are normalised; any that cannot be (zero, NaN) are
+// replaced by generated ones rather than reaching the shader.
+void repairNormals(Primitive& primitive) {
+  bool allUsable = true;
+  for (glm::vec3& normal : primitive.normals) {
+    const float length = glm::length(normal);
+    if (std::isfinite(length) && length > 1e-12f) {
+      normal /= length;
+    } else {
+      allUsable = false;
+    }
+  }
+  if (!allUsable) {
+    Primitive generated{primitive.positions, {}, {}, {}, primitive.indices, {}};
+    generateNormals(generated);
+    for (std::size_t vertex = 0; vertex < primitive.normals.size(); ++vertex) {
+      const float length = glm::length(primitive.normals[vertex]);
+      if (!(std::isfinite(length) && std::abs(length - 1.0f) < 1e-3f)) {
+        primitive.normals[vertex] = generated.normals[vertex];
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName, const Pose& pose) {
+  using Formats = std::span<const AccessorFormat>;
+  Primitive primitive;
+  const int positionAccessor = attributeAccessor(source, "POSITION");
+  if (positionAccessor < 0) {
+    source_.fail(primitiveName + " has no POSITION attribute");
+  }
+  primitive.positions = readPositions(positionAccessor, primitiveName);
+  const std::size_t vertexCount = primitive.positions.size();
+  primitive.indices = readTriangleIndices(source, primitiveName, vertexCount);
+  const int normals = attributeAccessor(source, "NORMAL");
+  if (normals >= 0) {
+    primitive.normals = accessors_.readAttribute<3>(
+        normals, primitiveName + " NORMAL", quantized_ ? Formats(kQuantizedNormalFormats) : Formats(kNormalFormats),
+        vertexCount, positionAccessor);
+  }
+  if (const int texcoords = attributeAccessor(source, "TEXCOORD_0"); texcoords >= 0) {
+    primitive.texcoords = accessors_.readAttribute<2>(
+        texcoords, primitiveName + " TEXCOORD_0",
+        quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats), vertexCount, positionAccessor);
+  }
+  // Missing tangents stay missing: the G-buffer shader derives a tangent
+  // frame from screen-space derivatives instead.
+  if (const int tangents = attributeAccessor(source, "TANGENT"); tangents >= 0) {
+    primitive.tangents = accessors_.readAttribute<4>(
+        tangents, primitiveName + " TANGENT",
+        quantized_ ? Formats(kQuantizedTangentFormats) : Formats(kTangentFormats), vertexCount, positionAccessor);
+  }
+  applyMorphTargets(accessors_, source, primitiveName, pose.weights, primitive);
+  if (normals >= 0) {
+    repairNormals(primitive);
+  }
+  if (pose.joints != nullptr) {
+    applySkin(accessors_, source, primitiveName, *pose.joints, primitive);
+    if (normals >= 0) {
+      repairNormals(primitive);  // skinning scales them
+    }
+  }
+  if (normals < 0) {
+    generateNormals(primitive);
+  }
+  for (const glm::vec3& position : primitive.positions) {
+    primitive.bounds.extend(position);
+  }
+  return primitive;
+}
+
+}  // namespace headlight::gltf

@@ -1,0 +1,220 @@
+#include "scene/gltf_materials.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "image_io/texture_decode.hpp"
+
+namespace headlight::gltf {
+
+namespace {
+
+// Largest texture side accepted: GL 4.5 guarantees only 16384, and a larger
+// claim in a file header is far more likely corruption than a real texture.
+constexpr int kMaxImageSide = 16384;
+
+bool validWrap(int wrap) { return wrap == 33071 || wrap == 33648 || wrap == 10497; }
+
+bool validFilter(int filter) { return filter == 9728 || filter == 9729 || (filter >= 9984 && filter <= 9987); }
+
+void readSampler(const Source& source, int samplerIndex, TextureRef& ref) {
+  const tinygltf::Sampler& sampler = source.model.samplers[static_cast<std::size_t>(samplerIndex)];
+  const std::string samplerName = "sampler " + std::to_string(samplerIndex);
+  if (!validWrap(sampler.wrapS) || !validWrap(sampler.wrapT)) {
+    source.fail(samplerName + " has wrap modes " + std::to_string(sampler.wrapS) + "/" + std::to_string(sampler.wrapT) +
+                ", expected 33071, 33648 or 10497");
+  }
+  ref.wrapS = sampler.wrapS;
+  ref.wrapT = sampler.wrapT;
+  // -1 = not given: keep TextureRef's defaults (trilinear, as viewers do).
+  if (sampler.minFilter != -1) {
+    if (!validFilter(sampler.minFilter)) {
+      source.fail(samplerName + " has minFilter " + std::to_string(sampler.minFilter) +
+                  ", expected 9728, 9729 or 9984..9987");
+    }
+    ref.minFilter = sampler.minFilter;
+  }
+  if (sampler.magFilter != -1) {
+    if (sampler.magFilter != 9728 && sampler.magFilter != 9729) {
+      source.fail(samplerName + " has magFilter " + std::to_string(sampler.magFilter) + ", expected 9728 or 9729");
+    }
+    ref.magFilter = sampler.magFilter;
+  }
+}
+
+TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, const std::string& user) {
+  TextureRef ref;
+  if (textureIndex < 0) {
+    return ref;
+  }
+  const tinygltf::Model& model = source.model;
+  source.checkIndex(textureIndex, model.textures, user, "texture");
+  // Another texCoord is sampled from TEXCOORD_0 (gltf_features names it).
+  if (texCoord < 0) {
+    source.fail(user + " has texCoord " + std::to_string(texCoord) + ", expected >= 0");
+  }
+  const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(textureIndex)];
+  const std::string textureName = "texture " + std::to_string(textureIndex);
+  if (texture.source < 0) {
+    source.fail(textureName +
+                " has no source image (extension-only images such as KHR_texture_basisu are not supported)");
+  }
+  source.checkIndex(texture.source, model.images, textureName, "image");
+  ref.image = texture.source;
+  if (texture.sampler >= 0) {
+    source.checkIndex(texture.sampler, model.samplers, textureName, "sampler");
+    readSampler(source, texture.sampler, ref);
+  }
+  return ref;
+}
+
+float emissiveStrength(const Source& source, const tinygltf::Material& material, const std::string& materialName) {
+  const auto extension = material.extensions.find("KHR_materials_emissive_strength");
+  if (extension == material.extensions.end() || !extension->second.Has("emissiveStrength")) {
+    return 1.0f;
+  }
+  const double strength = extension->second.Get("emissiveStrength").GetNumberAsDouble();
+  if (!(strength >= 0.0) || !std::isfinite(strength)) {
+    source.fail(materialName + " has emissiveStrength " + std::to_string(strength) + ", expected >= 0");
+  }
+  return static_cast<float>(strength);
+}
+
+void readFactors(const Source& source, const tinygltf::Material& material, const std::string& name, Material& out) {
+  const auto& pbr = material.pbrMetallicRoughness;
+  if (pbr.baseColorFactor.size() != 4) {
+    source.fail(name + " has " + std::to_string(pbr.baseColorFactor.size()) + " baseColorFactor values, expected 4");
+  }
+  out.baseColorFactor =
+      glm::vec4(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2], pbr.baseColorFactor[3]);
+  out.metallicFactor = static_cast<float>(pbr.metallicFactor);
+  out.roughnessFactor = static_cast<float>(pbr.roughnessFactor);
+  if (!material.emissiveFactor.empty() && material.emissiveFactor.size() != 3) {
+    source.fail(name + " has " + std::to_string(material.emissiveFactor.size()) + " emissiveFactor values, expected 3");
+  }
+  if (material.emissiveFactor.size() == 3) {
+    out.emissiveFactor = glm::vec3(material.emissiveFactor[0], material.emissiveFactor[1], material.emissiveFactor[2]) *
+                         emissiveStrength(source, material, name);
+  }
+  out.normalScale = static_cast<float>(material.normalTexture.scale);
+  out.occlusionStrength = static_cast<float>(material.occlusionTexture.strength);
+  out.doubleSided = material.doubleSided;
+  const std::array<float, 9> factors{out.baseColorFactor.r,
+                                     out.baseColorFactor.g,
+                                     out.baseColorFactor.b,
+                                     out.baseColorFactor.a,
+                                     out.metallicFactor,
+                                     out.roughnessFactor,
+                                     out.emissiveFactor.r + out.emissiveFactor.g + out.emissiveFactor.b,
+                                     out.normalScale,
+                                     out.occlusionStrength};
+  if (!std::all_of(factors.begin(), factors.end(), [](float f) { return std::isfinite(f); })) {
+    source.fail(name + " has a non-finite factor");
+  }
+}
+
+double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  return value.IsNumber() || value.IsInt() ? value.GetNumberAsDouble() : fallback;
+}
+
+// KHR_materials_pbrSpecularGlossiness, approximated as metallic-roughness
+// (gltf_features names it "approximated"): the diffuse colour and texture
+// become the base colour, metallic 0 (a dielectric: the specular colour is
+// dropped), roughness 1 - glossiness; specularGlossinessTexture is not read.
+void readSpecularGlossiness(const Source& source, const tinygltf::Material& material, const std::string& name,
+                            Material& out) {
+  const auto extension = material.extensions.find("KHR_materials_pbrSpecularGlossiness");
+  if (extension == material.extensions.end() || !extension->second.IsObject()) {
+    return;
+  }
+  const tinygltf::Value& specGloss = extension->second;
+  out.baseColorFactor = glm::vec4(1.0f);
+  if (specGloss.Has("diffuseFactor")) {
+    const tinygltf::Value& diffuse = specGloss.Get("diffuseFactor");
+    if (!diffuse.IsArray() || diffuse.ArrayLen() != 4) {
+      source.fail(name + " KHR_materials_pbrSpecularGlossiness diffuseFactor is not 4 numbers");
+    }
+    for (int c = 0; c < 4; ++c) {
+      const tinygltf::Value& component = diffuse.Get(c);
+      if (!component.IsNumber() && !component.IsInt()) {
+        source.fail(name + " KHR_materials_pbrSpecularGlossiness diffuseFactor is not 4 numbers");
+      }
+      out.baseColorFactor[c] = static_cast<float>(component.GetNumberAsDouble());
+    }
+  }
+  const double glossiness = numberOr(specGloss, "glossinessFactor", 1.0);
+  out.metallicFactor = 0.0f;
+  out.roughnessFactor = static_cast<float>(1.0 - glossiness);
+  const bool valid = std::isfinite(glossiness) && glossiness >= 0.0 && glossiness <= 1.0 &&
+                     std::all_of(&out.baseColorFactor[0], &out.baseColorFactor[0] + 4, [](float f) { return std::isfinite(f); });
+  if (!valid) {
+    source.fail(name + " KHR_materials_pbrSpecularGlossiness has a non-finite or out-of-range factor");
+  }
+  if (specGloss.Has("diffuseTexture") && specGloss.Get("diffuseTexture").Has("index")) {
+    const tinygltf::Value& texture = specGloss.Get("diffuseTexture");
+    out.baseColorTexture = readTextureRef(source, texture.Get("index").GetNumberAsInt(),
+                                          static_cast<int>(numberOr(texture, "texCoord", 0.0)),
+                                          name + " KHR_materials_pbrSpecularGlossiness diffuseTexture");
+  }
+}
+
+}  // namespace
+
+Material readMaterial(const Source& source, int materialIndex) {
+  const tinygltf::Material& material = source.model.materials[static_cast<std::size_t>(materialIndex)];
+  const std::string name = "material " + std::to_string(materialIndex);
+  Material out;
+  out.name = material.name.empty() ? name : material.name;
+  readFactors(source, material, name, out);
+  const auto& pbr = material.pbrMetallicRoughness;
+  out.baseColorTexture =
+      readTextureRef(source, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, name + " baseColorTexture");
+  out.metallicRoughnessTexture =
+      readTextureRef(source, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                     name + " metallicRoughnessTexture");
+  out.normalTexture = readTextureRef(source, material.normalTexture.index, material.normalTexture.texCoord,
+                                     name + " normalTexture");
+  out.occlusionTexture = readTextureRef(source, material.occlusionTexture.index, material.occlusionTexture.texCoord,
+                                        name + " occlusionTexture");
+  out.emissiveTexture = readTextureRef(source, material.emissiveTexture.index, material.emissiveTexture.texCoord,
+                                       name + " emissiveTexture");
+  readSpecularGlossiness(source, material, name, out);
+  return out;
+}
+
+std::vector<ImageData> readImages(tinygltf::Model& model, const std::string& file, const std::string& warnings,
+                                  const ResourceLimits& limits) {
+  const Source source{file, model};
+  std::vector<ImageData> images;
+  detail::TextureDecodeLimits decodeLimits{kMaxImageSide, limits.maxTexels};
+  for (std::size_t index = 0; index < model.images.size(); ++index) {
+    tinygltf::Image& encodedImage = model.images[index];
+    // An external image tinygltf could not find is only a warning to it.
+    if (encodedImage.image.empty() || encodedImage.width != -1) {
+      source.fail("image " + std::to_string(index) +
+                  (encodedImage.uri.empty() ? "" : " (uri '" + encodedImage.uri + "')") + " could not be loaded" +
+                  (warnings.empty() ? "" : ": " + warnings));
+    }
+    const std::vector<unsigned char> encoded = std::move(encodedImage.image);
+    bool overBudget = false;
+    detail::DecodedTexture decoded;
+    const std::string problem = detail::decodeTexture(encoded.data(), encoded.size(), decodeLimits, decoded, overBudget);
+    if (!problem.empty()) {
+      const std::string message = "image " + std::to_string(index) +
+                                  (encodedImage.name.empty() ? "" : " '" + encodedImage.name + "'") + ": " + problem;
+      overBudget ? source.failLimit(message, "max-texels") : source.fail(message);
+    }
+    ImageData image;
+    image.name = !encodedImage.name.empty() ? encodedImage.name : encodedImage.uri;
+    image.width = decoded.width;
+    image.height = decoded.height;
+    image.rgba = std::move(decoded.rgba);
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
+}  // namespace headlight::gltf

@@ -1,0 +1,27 @@
+// SceneLoadOptions' rows in the one options table (headlight/options.hpp):
+// the CLI's --strict-gltf and --scene, and settings files, read them.
+#include "headlight/scene_loader.hpp"
+#include "settings/option_binding.hpp"
+
+namespace headlight {
+
+std::span<const Option<SceneLoadOptions>> sceneLoadOptions() {
+  using T = OptionType;
+  using O = SceneLoadOptions;
+  static const Option<O> rows[] = {
+      bindOption<O>({.name = "strict-gltf",
+                     .type = T::Switch,
+                     .help = "refuse a glTF file that uses a feature Headlight does not render (default: warn, "
+                             "naming each)"},
+                    [](auto& o) -> auto& { return o.strictGltf; }),
+      bindOption<O>({.name = "scene",
+                     .type = T::Text,
+                     .help = "which of the glTF file's scenes to render: an index or a name (default: the file's "
+                             "`scene`, else 0)",
+                     .valueName = "N|NAME"},
+                    [](auto& o) -> auto& { return o.gltfScene; }),
+  };
+  return rows;
+}
+
+}  // namespace headlight

@@ -1,0 +1,266 @@
+// The Khronos conformance models (../shared/gltf-conformance, or
+// $HEADLIGHT_SHARED_DIR): each loads, and every glTF feature it uses is
+// either rendered or named in Scene::ignored. The features a file uses are
+// read here from its JSON, independently of the loader's detectors, so a
+// detector that misses one fails the test. A missing folder is a skip.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "headlight/error.hpp"
+#include "headlight/scene_loader.hpp"
+#include "support/assets.hpp"
+
+namespace fs = std::filesystem;
+using namespace headlight;
+using nlohmann::json;
+
+namespace {
+
+fs::path conformanceFolder() { return test::sharedFolder() / "gltf-conformance"; }
+
+bool haveConformance() { return test::exists(conformanceFolder() / "README.md"); }
+
+fs::path modelPath(const std::string& model) { return conformanceFolder() / model / "glTF" / (model + ".gltf"); }
+
+// What Headlight renders of what the test looks for; everything else a
+// file uses must be named.
+const std::set<std::string> kRendered{"KHR_lights_punctual",     "KHR_materials_emissive_strength",
+                                      "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
+                                      "skin",                    "morph targets"};
+
+bool nonZero(const json& weights) {
+  return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });
+}
+
+// The features `document` uses that the test checks, in the loader's names.
+std::set<std::string> usedFeatures(const json& document) {
+  static const char* kModes[] = {"POINTS", "LINES", "LINE_LOOP", "LINE_STRIP"};
+  std::set<std::string> used;
+  for (const json& name : document.value("extensionsUsed", json::array())) used.insert(name.get<std::string>());
+  for (const json& material : document.value("materials", json::array())) {
+    const std::string alphaMode = material.value("alphaMode", "OPAQUE");
+    if (alphaMode != "OPAQUE") used.insert("alphaMode " + alphaMode);
+    const json pbr = material.value("pbrMetallicRoughness", json::object());
+    for (const json* info : {&pbr, &material}) {
+      for (const auto& [key, value] : info->items()) {
+        if (key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0 && value.value("texCoord", 0) != 0) {
+          used.insert("TEXCOORD_" + std::to_string(value.value("texCoord", 0)));
+        }
+      }
+    }
+  }
+  const json meshes = document.value("meshes", json::array());
+  std::vector<bool> weighted;
+  for (const json& mesh : meshes) weighted.push_back(nonZero(mesh.value("weights", json::array())));
+  for (const json& node : document.value("nodes", json::array())) {
+    if (node.contains("mesh") && nonZero(node.value("weights", json::array()))) weighted[node["mesh"]] = true;
+    if (node.contains("skin") && node.contains("mesh")) used.insert("skin");
+  }
+  for (std::size_t mesh = 0; mesh < meshes.size(); ++mesh) {
+    for (const json& primitive : meshes[mesh]["primitives"]) {
+      for (const auto& [attribute, accessor] : primitive["attributes"].items()) {
+        if (attribute.rfind("COLOR_", 0) == 0) used.insert(attribute);
+      }
+      const int mode = primitive.value("mode", 4);
+      if (mode >= 0 && mode <= 3) used.insert(std::string("mode ") + kModes[mode]);
+      if (primitive.contains("targets") && weighted[mesh]) used.insert("morph targets");
+    }
+  }
+  if (!document.value("animations", json::array()).empty()) used.insert("animation");
+  return used;
+}
+
+std::vector<std::string> conformanceModels() {
+  std::vector<std::string> models;
+  for (const auto& entry : fs::directory_iterator(conformanceFolder())) {
+    if (entry.is_directory() && test::exists(modelPath(entry.path().filename().string()))) {
+      models.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(models.begin(), models.end());
+  return models;
+}
+
+}  // namespace
+
+TEST_CASE("conformance: every model loads and names each feature it uses that is not rendered" *
+          doctest::skip(!haveConformance())) {
+  const std::vector<std::string> models = conformanceModels();
+  CHECK(models.size() >= 28);  // the shared folder's README lists 28
+  for (const std::string& model : models) {
+    CAPTURE(model);
+    Scene scene;
+    try {
+      scene = loadGltf(modelPath(model));
+    } catch (const Error& error) {
+      FAIL_CHECK("refused: " << error.what());
+      continue;
+    }
+    CHECK(scene.triangleCount() > 0);
+    std::set<std::string> named;
+    for (const IgnoredFeature& feature : scene.ignored) {
+      named.insert(feature.feature);
+      CHECK(feature.count > 0);
+      CHECK(!feature.describe().empty());
+    }
+    std::ifstream file(modelPath(model));
+    for (const std::string& feature : usedFeatures(json::parse(file))) {
+      CAPTURE(feature);
+      CHECK((kRendered.count(feature) != 0 || named.count(feature) != 0));
+    }
+  }
+}
+
+TEST_CASE("conformance: --strict-gltf refuses a model naming what is not rendered" *
+          doctest::skip(!haveConformance())) {
+  SceneLoadOptions strict;
+  strict.strictGltf = true;
+  CHECK_THROWS_WITH_AS(loadGltf(modelPath("SheenCloth"), strict),
+                       doctest::Contains("strict-gltf: KHR_materials_sheen on 1 material"), SceneError);
+  CHECK(loadGltf(modelPath("NormalTangentTest"), strict).ignored.empty());
+}
+
+TEST_CASE("conformance: MeshPrimitiveModes draws its strip and fan as triangles, skips points and lines" *
+          doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("MeshPrimitiveModes"));
+  std::ifstream file(modelPath("MeshPrimitiveModes"));
+  const json document = json::parse(file);
+  // Expected triangles from the JSON: TRIANGLES count/3, strips and fans count-2.
+  std::size_t expected = 0;
+  for (const json& node : document["nodes"]) {
+    if (!node.contains("mesh")) continue;
+    for (const json& primitive : document["meshes"][node["mesh"].get<int>()]["primitives"]) {
+      const int mode = primitive.value("mode", 4);
+      const std::size_t count = primitive.contains("indices")
+                                    ? document["accessors"][primitive["indices"].get<int>()]["count"].get<std::size_t>()
+                                    : document["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"]
+                                          .get<std::size_t>();
+      if (mode == 4) expected += count / 3;
+      if (mode == 5 || mode == 6) expected += count - 2;
+    }
+  }
+  CHECK(expected > 0);
+  CHECK(scene.triangleCount() == expected);
+  std::set<std::string> named;
+  for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
+  CHECK(named == std::set<std::string>{"mode POINTS", "mode LINES", "mode LINE_LOOP", "mode LINE_STRIP"});
+}
+
+namespace {
+
+json readJson(const fs::path& path) {
+  std::ifstream file(path);
+  return json::parse(file);
+}
+
+// Accessor `index` of a float VEC3 accessor of the model, read from its .bin
+// here (not through the loader).
+std::vector<glm::vec3> readVec3(const std::string& model, const json& document, int index) {
+  const json& accessor = document["accessors"][index];
+  const json& view = document["bufferViews"][accessor["bufferView"].get<int>()];
+  const json& buffer = document["buffers"][view["buffer"].get<int>()];
+  std::ifstream file(modelPath(model).parent_path() / buffer["uri"].get<std::string>(), std::ios::binary);
+  file.seekg(view.value("byteOffset", 0) + accessor.value("byteOffset", 0));
+  std::vector<glm::vec3> values(accessor["count"].get<std::size_t>());
+  file.read(reinterpret_cast<char*>(values.data()), static_cast<std::streamsize>(values.size() * sizeof(glm::vec3)));
+  REQUIRE(file.good());
+  return values;
+}
+
+}  // namespace
+
+TEST_CASE("conformance: SimpleInstancing places 125 instances" * doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("SimpleInstancing"));
+  CHECK(scene.instances.size() == 125);
+  CHECK(scene.primitives.size() == 1);
+  CHECK(scene.ignored.empty());
+  // TRANSLATION spans 0..10 and SCALE 1..2 on a 0..1 cube: the world bounds reach past 10.
+  CHECK(scene.worldBounds().max.x > 10.0f);
+  ResourceLimits limits;
+  limits.maxInstances = 124;
+  CHECK_THROWS_AS(loadGltf(modelPath("SimpleInstancing"), {}, limits), LimitError);
+}
+
+TEST_CASE("conformance: SimpleMorph's vertices move by its weighted targets" * doctest::skip(!haveConformance())) {
+  const json document = readJson(modelPath("SimpleMorph"));
+  const json& primitive = document["meshes"][0]["primitives"][0];
+  std::vector<glm::vec3> expected = readVec3("SimpleMorph", document, primitive["attributes"]["POSITION"]);
+  const json& weights = document["meshes"][0]["weights"];
+  for (std::size_t target = 0; target < primitive["targets"].size(); ++target) {
+    const std::vector<glm::vec3> deltas = readVec3("SimpleMorph", document, primitive["targets"][target]["POSITION"]);
+    for (std::size_t v = 0; v < expected.size(); ++v) expected[v] += weights[target].get<float>() * deltas[v];
+  }
+  const Scene scene = loadGltf(modelPath("SimpleMorph"));
+  REQUIRE(scene.primitives.size() == 1);
+  const std::vector<glm::vec3>& positions = scene.primitives[0].positions;
+  REQUIRE(positions.size() == expected.size());
+  bool moved = false;
+  const std::vector<glm::vec3> base = readVec3("SimpleMorph", document, primitive["attributes"]["POSITION"]);
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    CAPTURE(v);
+    CHECK(glm::length(positions[v] - expected[v]) < 1e-6f);
+    moved = moved || glm::length(positions[v] - base[v]) > 0.1f;
+  }
+  CHECK(moved);  // the weights (0.5, 0.5) move it
+  std::set<std::string> named;
+  for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
+  CHECK(named == std::set<std::string>{"animation"});  // its weights animation is not played
+}
+
+TEST_CASE("conformance: SimpleSkin and RecursiveSkeletons are posed by their joints" *
+          doctest::skip(!haveConformance())) {
+  // SimpleSkin's joints rest where it was bound: posing with the nodes'
+  // transforms and the inverse bind matrices gives back the accessor's
+  // bounds (ignoring the inverse bind matrices would lift the top by 1).
+  const json document = readJson(modelPath("SimpleSkin"));
+  const json& position = document["accessors"][document["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>()];
+  const Scene simple = loadGltf(modelPath("SimpleSkin"));
+  REQUIRE(simple.instances.size() == 1);
+  CHECK(simple.instances[0].worldFromLocal == glm::mat4(1.0f));
+  const Bounds bounds = simple.worldBounds();
+  for (int axis = 0; axis < 3; ++axis) {
+    CHECK(bounds.min[axis] == doctest::Approx(position["min"][axis].get<float>()).epsilon(1e-5));
+    CHECK(bounds.max[axis] == doctest::Approx(position["max"][axis].get<float>()).epsilon(1e-5));
+  }
+  const Scene recursive = loadGltf(modelPath("RecursiveSkeletons"));
+  CHECK(!recursive.worldBounds().empty());
+  CHECK(std::isfinite(recursive.worldBounds().radius()));
+  for (const IgnoredFeature& feature : recursive.ignored) CHECK(feature.feature != "skin");
+}
+
+TEST_CASE("conformance: generated tangents match the MikkTSpace tangents NormalTangentMirrorTest ships" *
+          doctest::skip(!haveConformance())) {
+  const Scene scene = loadGltf(modelPath("NormalTangentMirrorTest"));
+  std::size_t compared = 0, close = 0, sameSign = 0;
+  for (const Primitive& shipped : scene.primitives) {
+    REQUIRE(!shipped.tangents.empty());
+    Primitive generated = shipped;
+    generated.tangents.clear();
+    generateTangents(generated);
+    // Compare per corner (a split vertex is a new index).
+    for (std::size_t corner = 0; corner < shipped.indices.size(); ++corner) {
+      const glm::vec4& expected = shipped.tangents[shipped.indices[corner]];
+      const glm::vec4& actual = generated.tangents[generated.indices[corner]];
+      ++compared;
+      sameSign += expected.w == actual.w;
+      // 0.99: within about 8 degrees (Blender welds and weights a little differently).
+      close += glm::dot(glm::normalize(glm::vec3(expected)), glm::vec3(actual)) > 0.99f;
+    }
+  }
+  CAPTURE(compared);
+  CAPTURE(close);
+  CAPTURE(sameSign);
+  CHECK(compared > 1000);
+  CHECK(sameSign >= compared * 99 / 100);
+  CHECK(close >= compared * 95 / 100);
+}
