@@ -29,7 +29,7 @@ flags=(-std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undef
 # Only what the loader needs: no GL, no context.
 sources=(lib/scene/gltf_loader.cpp lib/scene/gltf_prescan.cpp lib/scene/limits.cpp lib/scene/scene.cpp
          lib/scene/shapes.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp lib/settings/options.cpp
-         lib/output/fingerprint.cpp lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
+         lib/output/fingerprint.cpp lib/output/bounded_read.cpp lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
 objects=()
 for source in "${sources[@]}"; do
   object="$out/obj/$(basename "$source" .cpp).o"

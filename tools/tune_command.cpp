@@ -10,6 +10,8 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "output/atomic_file.hpp"
+#include "output/bounded_read.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -54,25 +56,19 @@ std::string number(double value, int digits = 4) {
   return text.str();
 }
 
-// Written under a temporary name, then renamed: no half-written settings
-// file is ever left under the final name.
-void writeAtomically(const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path temporary = path.string() + ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    if (!file.flush()) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw IoError(path.string() + ": cannot write the settings file");
-    }
-  }
+// --out checked before the (long) measurement: a folder, a device or the
+// scene itself is refused up front, not after minutes of work.
+void checkTuneOut(const TuneCommand& command) {
+  namespace fs = std::filesystem;
+  const fs::path out = command.outDir;
+  if (out.empty()) throw SettingsError("--out: expected the settings file to write");
   std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw IoError(path.string() + ": cannot write the settings file: " + error.message());
-  }
+  if (fs::is_directory(out, error))
+    throw SettingsError("--out " + out.string() + ": is a folder, expected the settings file to write");
+  if (const std::string kind = detail::nonRegularKind(out); !kind.empty())
+    throw SettingsError("--out " + out.string() + ": is " + kind + ", expected the settings file to write");
+  if (command.scene.rfind("builtin:", 0) != 0 && fs::exists(out, error) && fs::equivalent(out, command.scene, error))
+    throw SettingsError("--out " + out.string() + ": is the scene being tuned; write the settings elsewhere");
 }
 
 }  // namespace
@@ -133,6 +129,7 @@ int runTuneCommand(const std::vector<std::string>& args) {
     std::cout << tuneHelp();
     return 0;
   }
+  checkTuneOut(command);
   if (!referenceAvailable()) throw Error("headlight tune needs the reference: this build has no Embree");
   Context context(command.context);
   Renderer renderer(context);
@@ -194,7 +191,7 @@ int runTuneCommand(const std::vector<std::string>& args) {
       "tune: reference = " + std::to_string(row.referenceSamples) + " rays/pixel, mean AO standard error " +
           number(row.referenceAoStandardError, 3),
       "use: headlight render SCENE --settings FILE (flags after --settings override it)"};
-  writeAtomically(command.outDir, settingsFileText(configs[*chosen].settings, comments));
+  detail::writeTextAtomically(command.outDir, settingsFileText(configs[*chosen].settings, comments));
   if (!quiet)
     std::cout << "chosen: " << row.label << ": AO RMSE " << number(row.ao.rmse) << " <= " << number(command.maxAoError)
               << ", " << number(row.frameMs.median) << " ms/frame\n"

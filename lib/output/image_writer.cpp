@@ -227,7 +227,17 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   fs::create_directories(outDir, error);
   if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
   removeStaleTemporaries(outDir);
-  detail::beginFrameSet(frame, outDir, options);
+  // Only files an earlier Headlight set here listed are removed below (the
+  // CLI refuses, without --force, a folder whose target-named files are not).
+  std::vector<std::string> owned;
+  try {
+    owned = detail::ownedFileNames(outDir);
+  } catch (const IoError&) {
+    // Not a Headlight manifest: nothing in the folder is ours to remove.
+  }
+  std::vector<std::string> planned;
+  for (const Job& job : jobs) planned.push_back(job.target ? std::string(job.target->name) + ".exr" : "preview.png");
+  detail::beginFrameSet(frame, outDir, options, planned);
 
   std::vector<WrittenFile> written(jobs.size());
   std::vector<std::function<void()>> tasks;
@@ -245,10 +255,12 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   // A target this frame lacks (ssgi with SSGI off, emissive for a scene
   // without glow) or that was not asked for must not survive from an
   // earlier render into the folder, where a diff would take it for this one's.
+  auto removeIfOurs = [&](const std::string& name) {
+    if (std::find(owned.begin(), owned.end(), name) != owned.end()) fs::remove(outDir / name, error);
+  };
   for (const FrameTarget& target : frameTargets())
-    if ((frame.*target.image).empty() || !wanted(options, target.name))
-      fs::remove(outDir / (std::string(target.name) + ".exr"), error);
-  if (!preview) fs::remove(outDir / "preview.png", error);
+    if ((frame.*target.image).empty() || !wanted(options, target.name)) removeIfOurs(std::string(target.name) + ".exr");
+  if (!preview) removeIfOurs("preview.png");
   detail::finishFrameSet(frame, outDir, options, written);
   return written;
 }

@@ -63,6 +63,10 @@ struct DiffOptions {
   std::vector<std::string> channels;
   // Table row to use; empty = A's file stem.
   std::string target;
+  // MiB the decoded images may take (A and B as float, and as much again
+  // for the comparison), checked on their declared sizes before any pixel
+  // is decoded; nullopt: half of physical memory (the CLI's --max-memory).
+  std::optional<std::int64_t> maxMemoryMiB;
 };
 
 // The target's defaults with the options' overrides applied.
