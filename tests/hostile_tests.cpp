@@ -486,3 +486,31 @@ TEST_SUITE("hostile") {
     }
   }
 }
+
+TEST_SUITE("hostile") {
+  TEST_CASE("amplification: 1,000 primitives placed by 999 nodes are refused up front, naming --max-draws") {
+    TempFolder folder("hostile");
+    json document = hostile::triangleScene();
+    document["meshes"][0]["primitives"] = json::array();
+    for (int primitive = 0; primitive < 1000; ++primitive)
+      document["meshes"][0]["primitives"].push_back({{"attributes", {{"POSITION", 0}}}});
+    document["nodes"] = json::array();
+    document["scenes"][0]["nodes"] = json::array();
+    for (int node = 0; node < 999; ++node) {
+      document["nodes"].push_back({{"mesh", 0}, {"translation", {0.01 * node, 0, 0}}});
+      document["scenes"][0]["nodes"].push_back(node);
+    }
+    const fs::path scene = writeGltf(folder, document, "amplified.gltf");
+    CHECK(fs::file_size(scene) < 150000);
+    const auto start = std::chrono::steady_clock::now();
+    expectRefused(scene, {"999000 instances x 2 passes", "--max-draws"});
+    // Measured 0.94 s on the 2-core machine (most of it the loader); 10 s leaves room for sanitizers.
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
+
+    ResourceLimits limits;
+    Scene small = loadGltf(writeGltf(folder, hostile::triangleScene(), "one.gltf"), {}, limits);
+    CHECK(drawPassCount(small) == 2);  // the G-buffer and the default key light's shadow view
+    limits.maxDrawnTriangles = 1;
+    CHECK_THROWS_WITH_AS(checkDrawBudget(small, limits), doctest::Contains("--max-drawn-triangles"), LimitError);
+  }
+}

@@ -60,7 +60,11 @@ class SceneCache {
   }
   const Scene& get(const std::string& name) {
     auto found = scenes_.find(name);
-    if (found == scenes_.end()) found = scenes_.emplace(name, loadScene(name, {allow_}, limits_)).first;
+    if (found == scenes_.end()) {
+      Scene scene = loadScene(name, {allow_}, limits_);
+      checkDrawBudget(scene, limits_);  // before the context: a refusal costs no GL start-up
+      found = scenes_.emplace(name, std::move(scene)).first;
+    }
     return found->second;
   }
   // A scene loaded before the batch started (to count its cameras).
@@ -211,6 +215,7 @@ int runSingleRender(const RenderCommand& command) {
     return 0;
   }
   Scene scene = loadScene(job.scene, {command.allowExternalPaths}, command.limits);
+  checkDrawBudget(scene, command.limits);  // before the context: a refusal costs no GL start-up
   Context context(command.context);
   preloadImageIo();  // OpenImageIO loads on the other core while this one compiles shaders and renders
   if (command.verbosity == Verbosity::Verbose) printVerboseHeader(context, scene);

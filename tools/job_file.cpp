@@ -87,10 +87,12 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
   static const char* kKeys[] = {"scene", "out", "camera", "eye",           "target",
                                 "up",    "fov", "size",   "settings_file", "settings"};
-  for (const auto& [key, value] : j.items())
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();  // a name, not a structured binding: lambdas capture it (clang 14)
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
       throw SettingsError("unknown key \"" + excerpt(key) +
                           "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings)");
+  }
   if (!j.contains("scene") || !j["scene"].is_string() || j["scene"].get<std::string>().empty())
     throw SettingsError("\"scene\": expected a file path or builtin:NAME");
   job.scene = j["scene"].get<std::string>();
