@@ -514,3 +514,23 @@ TEST_SUITE("hostile") {
     CHECK_THROWS_WITH_AS(checkDrawBudget(small, limits), doctest::Contains("--max-drawn-triangles"), LimitError);
   }
 }
+
+TEST_SUITE("hostile") {
+  TEST_CASE("no silent saturation: a half-float target that clamps is counted and warned about") {
+    TempFolder folder("hostile");
+    const fs::path scene =
+        writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 1e8), "bright.gltf");
+    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " +
+                                           quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(run.output.find("pixels saturated at half float's 65504") != std::string::npos);
+    CHECK(run.output.find("warning: " + (folder.path() / "out" / "lit.exr").string()) != std::string::npos);
+    // A light within half's range: no note.
+    const fs::path dim = writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 10), "dim.gltf");
+    const ProcessResult dimRun =
+        runHeadlight("render " + quote(dim) + " --width 32 --height 24 --out " + quote(folder.path() / "dim"));
+    CHECK(dimRun.exitCode == 0);
+    CHECK(dimRun.output.find("saturated") == std::string::npos);
+  }
+}

@@ -113,7 +113,10 @@ json summaryJson(const std::vector<Job>& jobs, const std::vector<JobResult>& res
       }
       json fileList = json::array();
       for (const WrittenFile& file : r.files)
-        fileList.push_back({{"path", file.path.string()}, {"bytes", file.bytes}, {"non_finite", file.nonFinite}});
+        fileList.push_back({{"path", file.path.string()},
+                            {"bytes", file.bytes},
+                            {"non_finite", file.nonFinite},
+                            {"saturated_pixels", file.saturatedPixels}});
       files += r.files.size();
       entry["passes_ms"] = passes;
       entry["render_ms"] = r.renderMs;
@@ -194,6 +197,17 @@ void printVerboseHeader(const Context& context, const Scene& scene) {
             << " triangles, " << scene.lights.size() << " lights, " << scene.cameras.size() << " cameras\n";
 }
 
+// A half-float target that clamped is said on stderr, with the way out:
+// the summary line alone is easy to miss in a batch.
+void warnSaturated(const std::vector<WrittenFile>& files) {
+  for (const WrittenFile& file : files)
+    if (file.saturatedPixels)
+      std::cerr << "headlight: warning: " << file.path.string() << ": " << file.saturatedPixels
+                << " pixels saturated at 65504, half float's largest value: the scene's light exceeds the "
+                   "half-float target's range (lower light intensities or emissive strengths; float output for "
+                   "such scenes is not available yet, docs/RELIABILITY.md)\n";
+}
+
 // The renderer draws only what the output needs (the preview reads lit).
 std::vector<std::string> renderTargetsFor(const OutputOptions& output) {
   std::vector<std::string> targets;
@@ -234,6 +248,7 @@ int runSingleRender(const RenderCommand& command) {
   const std::vector<WrittenFile> files = writeFrame(frame, job.outDir, output);
   if (command.verbosity != Verbosity::Quiet)
     for (const WrittenFile& file : files) std::cout << file.summary << "\n";
+  warnSaturated(files);
   return 0;
 }
 
@@ -276,9 +291,11 @@ int runRenderBatch(const RenderCommand& command) {
     if (r.status == JobResult::Status::Failed) {
       progress.clear();
       std::cerr << "headlight: job " << jobs[index].origin << " failed: " << r.error << "\n";
-    } else if (lines && r.status == JobResult::Status::Rendered) {
+    } else if (r.status == JobResult::Status::Rendered) {
       progress.clear();
-      for (const WrittenFile& file : r.files) std::cout << file.summary << "\n";
+      if (lines)
+        for (const WrittenFile& file : r.files) std::cout << file.summary << "\n";
+      warnSaturated(r.files);
     } else if (lines && r.status == JobResult::Status::Skipped) {
       progress.clear();
       std::cout << jobs[index].outDir << ": skipped (--resume: complete set of the same job)\n";

@@ -55,23 +55,33 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
 struct ImageStats {
   std::vector<float> min, max;
   std::size_t nonFinite = 0;
+  std::size_t saturatedPixels = 0;  // pixels with a finite channel at +-kHalfMax or beyond
 };
 
 ImageStats imageStats(const ImageF& image) {
   const std::size_t channels = image.channels.size();
   ImageStats stats{std::vector<float>(channels, std::numeric_limits<float>::infinity()),
-                   std::vector<float>(channels, -std::numeric_limits<float>::infinity()), 0};
-  for (std::size_t i = 0; i < image.pixels.size(); i += channels)
+                   std::vector<float>(channels, -std::numeric_limits<float>::infinity()), 0, 0};
+  for (std::size_t i = 0; i < image.pixels.size(); i += channels) {
+    bool saturated = false;
     for (std::size_t c = 0; c < channels; ++c) {
       const float v = image.pixels[i + c];
       if (!std::isfinite(v)) {
         ++stats.nonFinite;
         continue;
       }
+      saturated = saturated || std::abs(v) >= kHalfMax;
       stats.min[c] = std::min(stats.min[c], v);
       stats.max[c] = std::max(stats.max[c], v);
     }
+    stats.saturatedPixels += saturated;
+  }
   return stats;
+}
+
+std::string saturationNote(std::size_t pixels) {
+  return "; " + std::to_string(pixels) + " pixels saturated at half float's 65504 (light beyond the half-float " +
+         "target's range was clamped)";
 }
 
 std::string summarize(const fs::path& path, const ImageF& image, const char* type, const ImageStats& stats,
@@ -161,7 +171,13 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
   addMetadata(spec, frame);
   for (const auto& [name, value] : extra) spec.attribute(name, value);
   detail::writePixelsAtomically(path, source->pixels.data(), OIIO::TypeDesc::FLOAT, spec, "openexr");
-  WrittenFile file{path, summarize(path, image, halfFloat ? "half" : "float", stats, policy), stats.nonFinite, 0};
+  // Only a half target saturates (a float one holds 3.4e38): counted after
+  // the readback, where the GPU's half texture has already clamped.
+  const std::size_t saturated = halfFloat ? stats.saturatedPixels : 0;
+  WrittenFile file{path,
+                   summarize(path, image, halfFloat ? "half" : "float", stats, policy) +
+                       (saturated ? saturationNote(saturated) : ""),
+                   stats.nonFinite, 0, saturated};
   std::error_code error;
   file.bytes = std::size_t(fs::file_size(path, error));
   return file;
@@ -192,7 +208,7 @@ WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   std::ostringstream line;
   line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
        << (aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure << " EV)";
-  WrittenFile file{path, line.str(), 0, 0};
+  WrittenFile file{path, line.str(), 0, 0, 0};
   std::error_code error;
   file.bytes = std::size_t(fs::file_size(path, error));
   return file;
