@@ -522,3 +522,9 @@ TEST_CASE("render touches only its own files") {
   job.outDir = (folder.path() / "scenes" / ".").string();
   CHECK(outputFolderRefusal(job, true).find("holds the scene") != std::string::npos);  // even with --force
 }
+
+TEST_CASE("a write failure with its own errno is not blamed on a full disk") {
+  const std::string reason = detail::writeFailureReason("/proc/no-such-folder/x.exr", "", ENOENT);
+  CHECK(reason.find("No such file or directory") != std::string::npos);
+  CHECK(reason.find("disk full") == std::string::npos);  // /proc has 0 bytes free, and is no disk
+}

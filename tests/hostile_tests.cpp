@@ -534,3 +534,23 @@ TEST_SUITE("hostile") {
     CHECK(dimRun.output.find("saturated") == std::string::npos);
   }
 }
+
+TEST_SUITE("hostile") {
+  TEST_CASE("bench and tune: an empty --resolutions and a sweep product past the bound are usage errors") {
+    ProcessResult run = runHeadlight("bench --resolutions ''");
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find("--resolutions: expected WxH,..., got an empty list") != std::string::npos);
+    std::string sweeps;
+    for (const char* name : {"ssgi-samples", "ssgi-slices", "ssgi-steps", "exposure", "ssgi-seed"}) {
+      sweeps += std::string(" --sweep ") + name + "=";
+      for (int value = 1; value <= 16; ++value) sweeps += (value > 1 ? "," : "") + std::to_string(value);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    run = runHeadlight("bench" + sweeps);
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find("16 x 16 x 16 x 16 x 16 values make 1.05e+06 configurations") != std::string::npos);
+    run = runHeadlight("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
+    CHECK(run.exitCode != 0);
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));  // refused, not enumerated
+  }
+}
