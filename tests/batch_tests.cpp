@@ -15,8 +15,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "batch.hpp"
@@ -383,8 +383,10 @@ TEST_CASE("job lines: deep JSON, a long line and echoed input are bounded, each 
   std::string text = deep + "\n";
   for (const char* key : {"settings", "size", "eye", "fov", "camera"})
     text += std::string(R"({"scene": "builtin:cornell", "out": "o", ")") + key + "\": " + deep + "}\n";
-  text += R"({"scene": "builtin:cornell", "out": "fine"})" "\n";
-  text += R"({"scene": "builtin:cornell", "out": "o", "target": [0, 0, 0], "eye": ")" + std::string(5000, 'x') + "\"}\n";
+  text += R"({"scene": "builtin:cornell", "out": "fine"})"
+          "\n";
+  text +=
+      R"({"scene": "builtin:cornell", "out": "o", "target": [0, 0, 0], "eye": ")" + std::string(5000, 'x') + "\"}\n";
   text += std::string(detail::kMaxJobLineBytes + 1, ' ') + "{}\n";
   const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
   REQUIRE(jobs.size() == 9);
@@ -411,8 +413,9 @@ TEST_CASE("job files and settings files: only regular files, within their size l
   RenderSettings settings;
   CHECK_THROWS_WITH_AS(applySettingsFile(settings, folder.path()), doctest::Contains("is a folder"), SettingsError);
   if (fs::exists("/dev/zero")) {
-    CHECK_THROWS_WITH_AS(readJobFile("/dev/zero", {}), doctest::Contains("/dev/zero: cannot read the job file: is a "
-                                                                         "character device"),
+    CHECK_THROWS_WITH_AS(readJobFile("/dev/zero", {}),
+                         doctest::Contains("/dev/zero: cannot read the job file: is a "
+                                           "character device"),
                          IoError);
     CHECK_THROWS_WITH_AS(applySettingsFile(settings, "/dev/zero"), doctest::Contains("character device"),
                          SettingsError);
@@ -436,14 +439,17 @@ TEST_CASE("job files and settings files: only regular files, within their size l
   CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
   rusage children{};
   getrusage(RUSAGE_CHILDREN, &children);
-  CHECK(children.ru_maxrss < 256 * 1024);  // kilobytes: under 256 MiB for a 1 GiB file
+  CHECK(children.ru_maxrss < 256 * 1024);                       // kilobytes: under 256 MiB for a 1 GiB file
   CHECK(detail::excerpt(std::string("a\0b", 3)) == "a\\x00b");  // a NUL shown, not an end of the message
 }
 
 TEST_CASE("two jobs writing one folder are refused before anything renders, naming both") {
-  const std::string text = R"({"scene": "builtin:cornell", "out": "dup"})" "\n"
-                           R"({"scene": "builtin:spheres", "out": "elsewhere"})" "\n"
-                           R"({"scene": "builtin:spheres", "out": "./dup/"})" "\n";
+  const std::string text = R"({"scene": "builtin:cornell", "out": "dup"})"
+                           "\n"
+                           R"({"scene": "builtin:spheres", "out": "elsewhere"})"
+                           "\n"
+                           R"({"scene": "builtin:spheres", "out": "./dup/"})"
+                           "\n";
   const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
   CHECK(normalizedOutDir("dup") == normalizedOutDir("./dup/"));
   CHECK(normalizedOutDir("dup") == normalizedOutDir((fs::current_path() / "x" / ".." / "dup").string()));
@@ -469,8 +475,7 @@ TEST_CASE("frame sets: an edited file list (an entry removed, the list emptied) 
 
   writeFrame(syntheticFrame(), out, {});
   edit([](nlohmann::json& j) { j["files"] = nlohmann::json::array(); });
-  for (const char* name : {"position.exr", "normal.exr", "depth.exr", "lit.exr", "preview.png"})
-    fs::remove(out / name);
+  for (const char* name : {"position.exr", "normal.exr", "depth.exr", "lit.exr", "preview.png"}) fs::remove(out / name);
   CHECK(checkFrameSet(out).state == FrameSetState::Incomplete);
 
   // A version-1 set (the goldens') has no list hash: a target it does not list is still caught.

@@ -316,10 +316,9 @@ TEST_SUITE("hostile") {
   TEST_CASE("a job line nested 100,000 deep fails that job, naming its line (no stack overflow)") {
     TempFolder folder("hostile");
     const std::string deep = hostile::nestedArrays(100000);
-    const fs::path jobs =
-        folder.write("d.jsonl", deep + "\n" + R"({"scene": "builtin:cornell", "out": ")" +
-                                    (folder.path() / "ok").string() + R"(", "size": "32x24", "settings": )" + deep +
-                                    "}\n");
+    const fs::path jobs = folder.write("d.jsonl", deep + "\n" + R"({"scene": "builtin:cornell", "out": ")" +
+                                                      (folder.path() / "ok").string() +
+                                                      R"(", "size": "32x24", "settings": )" + deep + "}\n");
     const ProcessResult run = runHeadlight("render --jobs " + quote(jobs));
     INFO(run.output);
     CHECK(run.exitCode == 1);
@@ -359,9 +358,12 @@ TEST_SUITE("hostile") {
   TEST_CASE("two job lines with one output folder are refused before anything renders") {
     TempFolder folder("hostile");
     const std::string dup = (folder.path() / "dup").string();
-    const fs::path jobs = folder.write(
-        "dup.jsonl", R"({"scene": "builtin:cornell", "out": ")" + dup + R"(", "size": "32x24"})" "\n" +
-                         R"({"scene": "builtin:spheres", "out": ")" + dup + R"(/./", "size": "32x24"})" "\n");
+    const fs::path jobs = folder.write("dup.jsonl", R"({"scene": "builtin:cornell", "out": ")" + dup +
+                                                        R"(", "size": "32x24"})"
+                                                        "\n" +
+                                                        R"({"scene": "builtin:spheres", "out": ")" + dup +
+                                                        R"(/./", "size": "32x24"})"
+                                                        "\n");
     const ProcessResult run = runHeadlight("render --jobs " + quote(jobs));
     INFO(run.output);
     CHECK(run.exitCode == 2);
@@ -373,7 +375,8 @@ TEST_SUITE("hostile") {
   TEST_CASE("render, diff and tune leave other files alone") {
     TempFolder folder("hostile");
     const fs::path scene = writeGltf(folder, hostile::triangleScene());
-    ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path()));
+    ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path()));
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds the scene") != std::string::npos);
@@ -447,8 +450,8 @@ TEST_SUITE("hostile") {
       run = runHeadlight("tune --settings " + quote(input));
       CHECK(run.exitCode == 2);
       CHECK(run.output.find("cannot read the settings file") != std::string::npos);
-      const fs::path jobs = folder.write("z.jsonl", R"({"scene": "builtin:cornell", "out": "x", "settings_file": ")" +
-                                                        input + "\"}\n");
+      const fs::path jobs =
+          folder.write("z.jsonl", R"({"scene": "builtin:cornell", "out": "x", "settings_file": ")" + input + "\"}\n");
       run = runHeadlight("render --jobs " + quote(jobs));
       CHECK(run.exitCode == 1);
       CHECK(run.output.find("z.jsonl:1 failed: " + input + ": cannot read the settings file") != std::string::npos);
@@ -520,8 +523,8 @@ TEST_SUITE("hostile") {
     TempFolder folder("hostile");
     const fs::path scene =
         writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 1e8), "bright.gltf");
-    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " +
-                                           quote(folder.path() / "out"));
+    const ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(run.output.find("pixels saturated at half float's 65504") != std::string::npos);
@@ -549,7 +552,8 @@ TEST_SUITE("hostile") {
     run = runHeadlight("bench" + sweeps);
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("16 x 16 x 16 x 16 x 16 values make 1.05e+06 configurations") != std::string::npos);
-    run = runHeadlight("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
+    run =
+        runHeadlight("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
     CHECK(run.exitCode != 0);
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));  // refused, not enumerated
   }

@@ -218,9 +218,8 @@ std::vector<std::string> renderTargetsFor(const OutputOptions& output) {
 }  // namespace
 
 int runSingleRender(const RenderCommand& command) {
-  const std::vector<Job> jobs = expandJobs(command, [](const std::string&) -> int {
-    throw SettingsError("internal: a single render has no camera list");
-  });
+  const std::vector<Job> jobs = expandJobs(
+      command, [](const std::string&) -> int { throw SettingsError("internal: a single render has no camera list"); });
   const Job& job = jobs.at(0);
   if (const std::string refusal = outputFolderRefusal(job, command.force); !refusal.empty()) throw IoError(refusal);
   if (command.resume && jobAlreadyDone(job, command.output)) {

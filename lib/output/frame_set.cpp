@@ -222,7 +222,8 @@ void finishFrameSet(const Frame& frame, const fs::path& folder, const OutputOpti
   }
   std::vector<ManifestFile> listed;
   for (const json& file : j["files"])
-    listed.push_back({file["name"].get<std::string>(), file["hash"].get<std::string>(), file["bytes"].get<std::size_t>()});
+    listed.push_back(
+        {file["name"].get<std::string>(), file["hash"].get<std::string>(), file["bytes"].get<std::size_t>()});
   j["files_hash"] = fileListHash(listed);
   writeTextAtomically(folder / kManifestName, j.dump(2) + "\n");
 }

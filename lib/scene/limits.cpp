@@ -215,13 +215,14 @@ int drawPassCount(const Scene& scene) {
 
 void checkDrawBudget(const Scene& scene, const ResourceLimits& limits) {
   const std::uint64_t passes = std::uint64_t(drawPassCount(scene));
-  const std::string perFrame = " x " + std::to_string(passes) + " passes (the G-buffer and " +
-                               std::to_string(passes - 1) + " shadow views) = ";
+  const std::string perFrame =
+      " x " + std::to_string(passes) + " passes (the G-buffer and " + std::to_string(passes - 1) + " shadow views) = ";
   const std::uint64_t draws = std::uint64_t(scene.instances.size()) * passes;
   if (draws > std::uint64_t(limits.maxDraws))
     throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.instances.size()) + " instances" +
                      perFrame + std::to_string(draws) + " draws, more than --max-draws allows (" +
-                     std::to_string(limits.maxDraws) + "; about 50 us a shadow-view draw on llvmpipe); raise --max-draws");
+                     std::to_string(limits.maxDraws) +
+                     "; about 50 us a shadow-view draw on llvmpipe); raise --max-draws");
   const std::uint64_t triangles = std::uint64_t(scene.triangleCount()) * passes;
   if (triangles > std::uint64_t(limits.maxDrawnTriangles))
     throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.triangleCount()) + " triangles" +
