@@ -533,3 +533,9 @@ TEST_CASE("a write failure with its own errno is not blamed on a full disk") {
   CHECK(reason.find("No such file or directory") != std::string::npos);
   CHECK(reason.find("disk full") == std::string::npos);  // /proc has 0 bytes free, and is no disk
 }
+
+TEST_CASE("a NUL in a settings file is named, not the end of the message") {
+  RenderSettings settings;
+  CHECK_THROWS_WITH_AS(applySettingsFileText(settings, std::string("ssgi-slices = 3\nssgi-st\0eps = 4\n", 32), "x"),
+                       doctest::Contains("x:2: holds a NUL byte"), SettingsError);
+}

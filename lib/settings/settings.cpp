@@ -249,6 +249,9 @@ void applySettingsFileText(RenderSettings& settings, std::string_view text, cons
     ++lineNumber;
     if (line.empty() || line.front() == '#') continue;
     const std::string where = name + ":" + std::to_string(lineNumber) + ": ";
+    // A NUL would end every message that quotes the line at the NUL.
+    if (line.find('\0') != std::string_view::npos)
+      throw SettingsError(where + "holds a NUL byte (not a settings file?)");
     const auto equals = line.find('=');
     const std::string key(trimmed(line.substr(0, equals == std::string_view::npos ? 0 : equals)));
     // The line itself is not echoed: a file given by mistake (/etc/passwd)
