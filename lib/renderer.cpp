@@ -291,6 +291,7 @@ void Renderer::setLimits(const ResourceLimits& limits) { impl_->limits = limits;
 void Renderer::Impl::loadScene(Scene newScene) {
   Impl& impl = *this;
   checkSceneRanges(newScene);
+  checkDrawBudget(newScene, impl.limits);
   impl.sceneBytes = estimateSceneBytes(newScene);
   if (impl.sceneBytes > maxMemoryBytes(impl.limits))
     throw LimitError(newScene.source + ": the scene needs about " + std::to_string(impl.sceneBytes >> 20) +

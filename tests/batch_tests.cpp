@@ -3,6 +3,8 @@
 // temporaries, and non-finite values refused or clamped.
 #include <doctest/doctest.h>
 
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,7 +14,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "batch.hpp"
@@ -21,6 +25,8 @@
 #include "headlight/finite.hpp"
 #include "headlight/output.hpp"
 #include "output/atomic_file.hpp"
+#include "output/bounded_read.hpp"
+#include "output/fingerprint.hpp"
 #include "output/frame_set.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
@@ -370,4 +376,168 @@ TEST_CASE("job lines: a settings file, overridden by the line's own settings, an
   CHECK(jobs[0].settings.ssgi.stepCount == 9);
   CHECK(jobs[1].error.find("no-such.settings: cannot read the settings file") != std::string::npos);
   fs::remove_all(folder);
+}
+
+// ---- Hardening, round two (issue 15): the job model and frame sets ----------
+
+TEST_CASE("job lines: deep JSON, a long line and echoed input are bounded, each naming its line") {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string text = deep + "\n";
+  for (const char* key : {"settings", "size", "eye", "fov", "camera"})
+    text += std::string(R"({"scene": "builtin:cornell", "out": "o", ")") + key + "\": " + deep + "}\n";
+  text += R"({"scene": "builtin:cornell", "out": "fine"})"
+          "\n";
+  text +=
+      R"({"scene": "builtin:cornell", "out": "o", "target": [0, 0, 0], "eye": ")" + std::string(5000, 'x') + "\"}\n";
+  text += std::string(detail::kMaxJobLineBytes + 1, ' ') + "{}\n";
+  const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
+  REQUIRE(jobs.size() == 9);
+  for (std::size_t line = 0; line < 6; ++line) {
+    CAPTURE(line);
+    CHECK(jobs[line].origin == "jobs.jsonl:" + std::to_string(line + 1));
+    CHECK(jobs[line].error.find("JSON nests deeper than 64 levels") != std::string::npos);
+  }
+  CHECK(jobs[6].error.empty());  // the lines after a refused one still parse
+  CHECK(jobs[7].error.find("\"eye\": expected [x, y, z]") != std::string::npos);
+  CHECK(jobs[7].error.size() < 300);  // the 5,000-character value is cut to an excerpt
+  CHECK(jobs[8].error.find("more than the 1.0 MiB a job line may have") != std::string::npos);
+  // 64 levels are fine (the limit is a refusal above it, not a crash below it).
+  const std::string settings64 = R"({"scene": "builtin:cornell", "out": "o", "settings": {"x": )" +
+                                 std::string(62, '[') + std::string(62, ']') + "}}";
+  const std::vector<Job> nested = parseJobLines(settings64, "n.jsonl", RenderSettings{});
+  CHECK(nested.at(0).error.find("expected a string, number or boolean") != std::string::npos);
+}
+
+TEST_CASE("job files and settings files: only regular files, within their size limits") {
+  test::TempFolder folder("bounded-reads");
+  CHECK_THROWS_WITH_AS(readJobFile(folder.path(), {}), doctest::Contains("is a folder, expected a regular file"),
+                       IoError);
+  RenderSettings settings;
+  CHECK_THROWS_WITH_AS(applySettingsFile(settings, folder.path()), doctest::Contains("is a folder"), SettingsError);
+  if (fs::exists("/dev/zero")) {
+    CHECK_THROWS_WITH_AS(readJobFile("/dev/zero", {}),
+                         doctest::Contains("/dev/zero: cannot read the job file: is a "
+                                           "character device"),
+                         IoError);
+    CHECK_THROWS_WITH_AS(applySettingsFile(settings, "/dev/zero"), doctest::Contains("character device"),
+                         SettingsError);
+    CHECK_THROWS_WITH_AS(fileFingerprint("/dev/zero"), doctest::Contains("character device"), IoError);
+  }
+  const fs::path fifo = folder.path() / "fifo";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH_AS(readJobFile(fifo, {}), doctest::Contains("is a FIFO"), IoError);  // returns, never blocks
+  CHECK_THROWS_WITH_AS(applySettingsFile(settings, fifo), doctest::Contains("is a FIFO"), SettingsError);
+  const fs::path big = folder.write("big.settings", std::string(detail::kMaxSettingsFileBytes + 1, '#'));
+  CHECK_THROWS_WITH_AS(applySettingsFile(settings, big), doctest::Contains("more than the 1.0 MiB"), SettingsError);
+  // A sparse 1 GiB file hashes in constant memory (streamed, not read
+  // whole): hashed in a child, whose peak resident memory stays far below it.
+  const fs::path sparse = folder.path() / "sparse";
+  std::ofstream(sparse).close();
+  fs::resize_file(sparse, std::uintmax_t(1) << 30);
+  const pid_t child = fork();
+  if (child == 0) _exit(fileFingerprint(sparse).size() == 16 ? 0 : 1);
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  CHECK((WIFEXITED(status) && WEXITSTATUS(status) == 0));
+  rusage children{};
+  getrusage(RUSAGE_CHILDREN, &children);
+  CHECK(children.ru_maxrss < 256 * 1024);                       // kilobytes: under 256 MiB for a 1 GiB file
+  CHECK(detail::excerpt(std::string("a\0b", 3)) == "a\\x00b");  // a NUL shown, not an end of the message
+}
+
+TEST_CASE("two jobs writing one folder are refused before anything renders, naming both") {
+  const std::string text = R"({"scene": "builtin:cornell", "out": "dup"})"
+                           "\n"
+                           R"({"scene": "builtin:spheres", "out": "elsewhere"})"
+                           "\n"
+                           R"({"scene": "builtin:spheres", "out": "./dup/"})"
+                           "\n";
+  const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
+  CHECK(normalizedOutDir("dup") == normalizedOutDir("./dup/"));
+  CHECK(normalizedOutDir("dup") == normalizedOutDir((fs::current_path() / "x" / ".." / "dup").string()));
+  CHECK_THROWS_WITH_AS(checkDistinctOutDirs(jobs), doctest::Contains("jobs.jsonl:1 and jobs.jsonl:3 both write into"),
+                       SettingsError);
+  CHECK_NOTHROW(checkDistinctOutDirs({jobs[0], jobs[1]}));
+}
+
+TEST_CASE("frame sets: an edited file list (an entry removed, the list emptied) is incomplete") {
+  test::TempFolder folder("frameset-list");
+  const fs::path out = folder.path() / "set";
+  writeFrame(syntheticFrame(), out, {});
+  auto edit = [&](const std::function<void(nlohmann::json&)>& change) {
+    nlohmann::json j;
+    std::ifstream(out / "frame.json") >> j;
+    change(j);
+    std::ofstream(out / "frame.json") << j.dump(2);
+  };
+  edit([](nlohmann::json& j) { j["files"].erase(j["files"].begin()); });  // position.exr left out
+  FrameSetCheck check = checkFrameSet(out);
+  CHECK(check.state == FrameSetState::Incomplete);
+  CHECK(check.problem.find("does not match the list hash") != std::string::npos);
+
+  writeFrame(syntheticFrame(), out, {});
+  edit([](nlohmann::json& j) { j["files"] = nlohmann::json::array(); });
+  for (const char* name : {"position.exr", "normal.exr", "depth.exr", "lit.exr", "preview.png"}) fs::remove(out / name);
+  CHECK(checkFrameSet(out).state == FrameSetState::Incomplete);
+
+  // A version-1 set (the goldens') has no list hash: a target it does not list is still caught.
+  writeFrame(syntheticFrame(), out, {});
+  edit([](nlohmann::json& j) {
+    j["version"] = 1;
+    j.erase("files_hash");
+    j["files"].erase(j["files"].begin());
+  });
+  check = checkFrameSet(out);
+  CHECK(check.state == FrameSetState::Incomplete);
+  CHECK(check.problem.find("does not list position.exr") != std::string::npos);
+  edit([](nlohmann::json& j) { j["files"][0]["name"] = "../../etc/passwd"; });
+  CHECK(checkFrameSet(out).state == FrameSetState::Incomplete);
+
+  fs::remove(out / "frame.json");
+  fs::create_directory(out / "frame.json");
+  check = checkFrameSet(out);
+  CHECK(check.state == FrameSetState::Incomplete);
+  CHECK(check.problem.find("frame.json: cannot read the frame manifest: is a folder") != std::string::npos);
+}
+
+TEST_CASE("render touches only its own files") {
+  test::TempFolder folder("own-files");
+  const fs::path out = folder.path() / "set";
+  fs::create_directories(out);
+  std::ofstream(out / "lit.exr") << "a user's file";
+  Job job;
+  job.scene = "builtin:cornell";
+  job.outDir = out.string();
+  CHECK(outputFolderRefusal(job, false).find("holds lit.exr, which no earlier Headlight set") != std::string::npos);
+  CHECK(outputFolderRefusal(job, true).empty());
+  fs::remove(out / "lit.exr");
+  writeFrame(syntheticFrame(), out, {});
+  CHECK(outputFolderRefusal(job, false).empty());  // our own set: replaced freely
+
+  // A target this frame lacks is removed only when an earlier set listed it.
+  std::ofstream(out / "emissive.exr") << "not Headlight's";
+  writeFrame(syntheticFrame(), out, {});
+  CHECK(fs::exists(out / "emissive.exr"));
+  OutputOptions depthOnly;
+  depthOnly.targets = {"depth"};
+  writeFrame(syntheticFrame(), out, depthOnly);
+  CHECK_FALSE(fs::exists(out / "lit.exr"));  // listed by the earlier set: removed
+  CHECK(fs::exists(out / "emissive.exr"));
+
+  const fs::path scene = folder.write("scenes/scene.gltf", "{}");
+  job.scene = scene.string();
+  job.outDir = (folder.path() / "scenes" / ".").string();
+  CHECK(outputFolderRefusal(job, true).find("holds the scene") != std::string::npos);  // even with --force
+}
+
+TEST_CASE("a write failure with its own errno is not blamed on a full disk") {
+  const std::string reason = detail::writeFailureReason("/proc/no-such-folder/x.exr", "", ENOENT);
+  CHECK(reason.find("No such file or directory") != std::string::npos);
+  CHECK(reason.find("disk full") == std::string::npos);  // /proc has 0 bytes free, and is no disk
+}
+
+TEST_CASE("a NUL in a settings file is named, not the end of the message") {
+  RenderSettings settings;
+  CHECK_THROWS_WITH_AS(applySettingsFileText(settings, std::string("ssgi-slices = 3\nssgi-st\0eps = 4\n", 32), "x"),
+                       doctest::Contains("x:2: holds a NUL byte"), SettingsError);
 }

@@ -54,6 +54,8 @@ std::vector<Option<BenchCommand>> benchOptions() {
                                    c.resolutions.clear();
                                    for (const auto& item : splitList(std::get<std::string>(v), ','))
                                      c.resolutions.push_back(parseResolution(item));
+                                   if (c.resolutions.empty())
+                                     throw SettingsError("--resolutions: expected WxH,..., got an empty list");
                                  }));
   for (auto& row :
        measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
@@ -98,6 +100,21 @@ std::vector<SettingSweep> defaultBenchSweeps() {
 
 std::vector<BenchConfig> sweepConfigs(const RenderSettings& base, const std::vector<SettingSweep>& sweeps, int width,
                                       int height) {
+  // The product bounded before the odometer runs: five lists of 100 values
+  // would enumerate 1e10 configurations (issue 15).
+  constexpr double kMaxConfigs = 100'000;  // a bench measures about one a second: a day
+  double product = 1;
+  std::string sizes;
+  for (const SettingSweep& sweep : sweeps) {
+    product *= double(sweep.values.size());
+    (sizes += sizes.empty() ? "" : " x ") += std::to_string(sweep.values.size());
+  }
+  if (product > kMaxConfigs) {
+    char count[32];
+    std::snprintf(count, sizeof count, "%.3g", product);
+    throw SettingsError("--sweep: " + sizes + " values make " + count + " configurations, more than the " +
+                        std::to_string(std::int64_t(kMaxConfigs)) + " one run may measure; shorten the lists");
+  }
   std::vector<BenchConfig> configs;
   std::vector<std::size_t> index(sweeps.size(), 0);  // an odometer over the sweeps' values
   for (bool more = true; more;) {

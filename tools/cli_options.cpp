@@ -33,6 +33,7 @@ void parseShard(RenderCommand& c, const std::string& value) {
     std::size_t usedIndex = 0, usedCount = 0;
     if (slash == std::string::npos) throw std::invalid_argument("no slash");
     const std::string index = value.substr(0, slash), count = value.substr(slash + 1);
+    c.shardIndexOmitted = index.empty();
     c.shardIndex = index.empty() ? 0 : std::stoi(index, &usedIndex);
     c.shardCount = std::stoi(count, &usedCount);
     if (usedIndex != index.size() || usedCount != count.size()) throw std::invalid_argument("trailing text");
@@ -75,13 +76,28 @@ std::vector<Option<RenderCommand>> batchOptions() {
                        .help = "render only jobs k with k % N == I (I from 0); with --shard-index-env, write /N",
                        .valueName = "I/N"},
                       [](C& c, const OptionValue& v) { parseShard(c, text(v)); }),
-      bindOption<C>(
+      actionOption<C>(
           {.name = "shard-index-env",
            .type = T::Text,
            .help = "read the shard index I from this environment variable (SLURM_ARRAY_TASK_ID, "
                    "JOB_COMPLETION_INDEX)",
            .valueName = "VAR"},
-          [](auto& c) -> auto& { return c.shardIndexEnv; }),
+          [](C& c, const OptionValue& v) {
+            if (text(v).empty()) throw SettingsError("--shard-index-env: expected the name of an environment variable");
+            c.shardIndexEnv = text(v);
+          },
+          [](const C& c) { return OptionValue(c.shardIndexEnv); }),
+      bindOption<C>(
+          {.name = "wait",
+           .type = T::Switch,
+           .help = "when another render holds an output folder's lock, wait for it (default: fail at once)"},
+          [](auto& c) -> auto& { return c.wait; }),
+      bindOption<C>(
+          {.name = "force",
+           .type = T::Switch,
+           .help = "replace files with a target's name (lit.exr, frame.json, ...) that no earlier Headlight set in "
+                   "the folder wrote"},
+          [](auto& c) -> auto& { return c.force; }),
       bindOption<C>(
           {.name = "resume",
            .type = T::Switch,
@@ -216,6 +232,12 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
                         ": needs --orbit (the only way to place several views)");
   if (command.orbit && command.views == 0) throw SettingsError("--orbit: needs --views N");
   if (command.orbit && command.camerasAll) throw SettingsError("--orbit and --cameras all: choose one");
+  if (command.shardIndexOmitted && command.shardIndexEnv.empty())
+    throw SettingsError("--shard /" + std::to_string(command.shardCount) +
+                        ": no shard index; give --shard I/N or --shard-index-env VAR");
+  if (!command.shardIndexOmitted && !command.shardIndexEnv.empty() && command.shardIndex != 0)
+    throw SettingsError("--shard " + std::to_string(command.shardIndex) + "/" + std::to_string(command.shardCount) +
+                        " and --shard-index-env " + command.shardIndexEnv + ": give the index one way");
   return command;
 }
 

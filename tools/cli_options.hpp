@@ -45,7 +45,10 @@ struct RenderCommand {
   bool camerasAll = false;            // --cameras all: one job per camera of the scene
   int shardIndex = 0;                 // --shard I/N: jobs k with k % N == I
   int shardCount = 1;
-  std::string shardIndexEnv;  // --shard-index-env VAR: I read from $VAR when the batch starts
+  bool shardIndexOmitted = false;  // --shard /N: I must come from --shard-index-env
+  std::string shardIndexEnv;       // --shard-index-env VAR: I read from $VAR when the batch starts
+  bool wait = false;               // --wait: wait for another render's lock on an output folder
+  bool force = false;              // --force: replace files with a target's name no Headlight set listed
   bool resume = false;        // skip jobs whose complete frame.json records the same job hash
   OutputOptions output;       // --targets, --exr-compression, --clamp-nonfinite
   bool json = false;          // --json: one JSON summary on stdout instead of the summary lines

@@ -119,6 +119,18 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
             if (std::get<std::string>(v).empty()) throw UsageError{"--out: expected a path"};
             c.out = std::get<std::string>(v);
           }),
+      actionOption<C>({.name = "max-memory",
+                       .type = T::Int,
+                       .help = "MiB the compared images may take decoded (checked on their declared sizes first)",
+                       .minimum = 64,
+                       .maximum = double(std::int64_t(1) << 30),
+                       .autoMeaning = "half of physical memory"},
+                      [](C& c, const OptionValue& v) {
+                        if (const auto* mib = std::get_if<std::int64_t>(&v))
+                          c.options.maxMemoryMiB = *mib;
+                        else
+                          c.options.maxMemoryMiB.reset();  // auto
+                      }),
       bindOption<C>(
           {.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
           [](auto& c) -> auto& { return c.json; }),
@@ -416,6 +428,17 @@ int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.out.empty() && fs::path(command.out).extension() != ".exr")
     throw UsageError{"--out: in file mode, expected a path ending in .exr (the heatmap goes beside it as .png), got '" +
                      command.out + "'"};
+  if (!command.out.empty()) {
+    // The heatmap and the difference never replace an input.
+    const fs::path exr = command.out, png = fs::path(command.out).replace_extension(".png");
+    for (const fs::path& written : {exr, png})
+      for (const std::string& input : command.paths) {
+        std::error_code error;
+        if (fs::exists(written, error) && fs::equivalent(written, input, error))
+          throw UsageError{"--out " + command.out + ": would overwrite the input " + input + " (with " +
+                           written.string() + "); write the difference elsewhere"};
+      }
+  }
   const DiffResult result = diffImages(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
   if (!command.out.empty()) {

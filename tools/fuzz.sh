@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
-# Builds the glTF loader's libFuzzer target with clang-14 (ASan + UBSan) into
-# build-fuzz/ and runs it on the seed corpus made by the tests.
+# Builds a libFuzzer target with clang-14 (ASan + UBSan) into build-fuzz/ and
+# runs it on its seed corpus. Targets (FUZZ_TARGET):
+#   gltf-loader  the glTF loader (default); seeds made by the tests
+#   job-file     render --jobs' job-line parser and out-folder clash check
+#   settings     the settings-file parser (render --settings, tune's output)
 #
-#   tools/fuzz.sh [SECONDS] [SEED_DIR [SEED_MAKER]]   # default 3600 s; corpus kept in $FUZZ_OUT/corpus
+#   tools/fuzz.sh [SECONDS] [SEED_DIR [SEED_MAKER]]   # default 3600 s; corpus kept in $FUZZ_OUT/corpus[-TARGET]
 #
 # SEED_MAKER (build/tests/make-fuzz-seeds) writes the tests' scenes into
-# SEED_DIR first. FUZZ_OUT: where to build and keep the corpus (build-fuzz).
+# SEED_DIR first (gltf-loader). FUZZ_OUT: where to build and keep the corpus
+# (build-fuzz).
 #
-# meson test --suite fuzz runs it for 60 s (see tests/meson.build). Exit 77
-# (skipped) when clang++-14 or libFuzzer (libclang-rt-14-dev) is missing.
+# meson test --suite fuzz runs the loader for 60 s (see tests/meson.build).
+# Exit 77 (skipped) when clang++-14 or libFuzzer (libclang-rt-14-dev) is missing.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-3600}
@@ -23,13 +27,29 @@ if ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { r
     "$cxx" -x c++ -fsanitize=fuzzer - -o /dev/null 2>/dev/null; then
   echo "skipping: $cxx cannot link -fsanitize=fuzzer (Debian: libclang-rt-14-dev)"; exit 77
 fi
-mkdir -p "$out/obj" "$out/corpus"
+target=${FUZZ_TARGET:-gltf-loader}
+corpus="$out/corpus"
+[[ "$target" != gltf-loader ]] && corpus="$out/corpus-$target"
+mkdir -p "$out/obj" "$corpus"
 flags=(-std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-       -Ilib/include -Ilib -Iglsl -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0)
-# Only what the loader needs: no GL, no context.
-sources=(lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp
-         lib/scene/shapes.cpp lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp lib/settings/options.cpp
-         lib/output/fingerprint.cpp lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
+       -Ilib/include -Ilib -Iglsl -Itools -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0)
+# Only what each target needs: no GL, no context.
+common=(lib/settings/options.cpp lib/output/fingerprint.cpp lib/output/bounded_read.cpp)
+case "$target" in
+  gltf-loader)
+    sources=("${common[@]}" lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp lib/scene/shapes.cpp
+             lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp
+             lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
+    libs=($(pkg-config --libs OpenImageIO libxxhash) -ltinygltf) ;;
+  job-file)
+    sources=("${common[@]}" lib/settings/settings.cpp lib/scene/scene.cpp lib/scene/camera.cpp tools/job_file.cpp
+             tests/fuzz/job_file_fuzz.cpp)
+    libs=($(pkg-config --libs libxxhash)) ;;
+  settings)
+    sources=("${common[@]}" lib/settings/settings.cpp tests/fuzz/settings_fuzz.cpp)
+    libs=($(pkg-config --libs libxxhash)) ;;
+  *) echo "fuzz.sh: unknown FUZZ_TARGET '$target' (gltf-loader, job-file, settings)" >&2; exit 2 ;;
+esac
 objects=()
 for source in "${sources[@]}"; do
   object="$out/obj/$(basename "$source" .cpp).o"
@@ -38,17 +58,16 @@ for source in "${sources[@]}"; do
   fi
   objects+=("$object")
 done
-"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" $(pkg-config --libs OpenImageIO libxxhash) -ltinygltf \
-  -o "$out/gltf-loader-fuzz"
+"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" "${libs[@]}" -o "$out/$target-fuzz"
 [[ -n "$maker" ]] && "$maker" "$seeds"
-dirs=("$out/corpus")
+dirs=("$corpus")
 [[ -n "$seeds" ]] && dirs+=("$seeds")
-# One worker; findings (crash-*, leak-*, timeout-*) land in $out/. A finding
+# One worker; findings (crash-*, leak-*, timeout-*) land in $out/$target-. A finding
 # exits 1: libFuzzer's own default (77) would read as "skipped" to meson.
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 # Function names in reports (and for the suppressions) need a symbolizer;
 # Debian's clang-14 puts llvm-14's beside it, not on PATH.
 [[ -z "${ASAN_SYMBOLIZER_PATH:-}" && -x /usr/lib/llvm-14/bin/llvm-symbolizer ]] &&
   export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
-exec "$out/gltf-loader-fuzz" -error_exitcode=1 -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=20 \
-  -artifact_prefix="$out/" -print_final_stats=1 "${dirs[@]}"
+exec "$out/$target-fuzz" -error_exitcode=1 -max_total_time="$seconds" -max_len=65536 -rss_limit_mb=2048 -timeout=20 \
+  -artifact_prefix="$out/$target-" -print_final_stats=1 "${dirs[@]}"

@@ -57,7 +57,7 @@ int runRender(const std::vector<std::string>& args) {
     std::cout << cli::renderHelp();
     return kExitOk;
   }
-  return cli::runRenderBatch(command);
+  return cli::isSingleRender(command) ? cli::runSingleRender(command) : cli::runRenderBatch(command);
 }
 
 // `reference`: the G-buffer as `render` would draw it, then Embree traces

@@ -10,6 +10,8 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "output/atomic_file.hpp"
+#include "output/bounded_read.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -61,6 +63,21 @@ std::string number(double value, int digits = 4) {
   text.precision(digits);
   text << value;
   return text.str();
+}
+
+// --out checked before the (long) measurement: a folder, a device or the
+// scene itself is refused up front, not after minutes of work.
+void checkTuneOut(const TuneCommand& command) {
+  namespace fs = std::filesystem;
+  const fs::path out = command.outDir;
+  if (out.empty()) throw SettingsError("--out: expected the settings file to write");
+  std::error_code error;
+  if (fs::is_directory(out, error))
+    throw SettingsError("--out " + out.string() + ": is a folder, expected the settings file to write");
+  if (const std::string kind = detail::nonRegularKind(out); !kind.empty())
+    throw SettingsError("--out " + out.string() + ": is " + kind + ", expected the settings file to write");
+  if (command.scene.rfind("builtin:", 0) != 0 && fs::exists(out, error) && fs::equivalent(out, command.scene, error))
+    throw SettingsError("--out " + out.string() + ": is the scene being tuned; write the settings elsewhere");
 }
 
 }  // namespace
@@ -127,6 +144,7 @@ int runTuneCommand(const std::vector<std::string>& args) {
     std::cout << tuneHelp();
     return 0;
   }
+  checkTuneOut(command);
   if (!referenceAvailable()) throw Error("headlight tune needs the reference: this build has no Embree");
   Scene scene = loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
   Context context(command.context);

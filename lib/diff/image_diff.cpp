@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -19,9 +20,11 @@
 #include "diff/flip.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
+#include "headlight/limits.hpp"
 #include "headlight/output.hpp"
 #include "output/atomic_file.hpp"
 #include "output/atomic_image.hpp"
+#include "output/bounded_read.hpp"
 
 namespace headlight {
 namespace {
@@ -41,40 +44,64 @@ bool isCoverageChannel(std::string_view name) {
   return name == "A" || (name.size() > 2 && name.substr(name.size() - 2) == ".A");
 }
 
-// Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
-// shared ImageCache, which may hand back an older copy of a file that was
-// rewritten under the same name, as regression suites do).
-// `integer`: whether the file stores integer pixels (8-bit PNG and the like:
-// display-encoded values, which the Flip metric decodes as sRGB).
-std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem, bool& integer) {
+// Opens an image file for its header: only a regular file (a FIFO or a
+// /dev/zero link named lit.exr would block or never end).
+std::unique_ptr<OIIO::ImageInput> openImage(const fs::path& path, std::string& problem) {
   std::error_code error;
   if (!fs::exists(path, error)) {
     problem = path.string() + ": no such file";
-    return std::nullopt;
+    return nullptr;
   }
-  if (fs::is_directory(path, error)) {
-    problem = path.string() + ": is a folder, expected an image file";
-    return std::nullopt;
+  if (const std::string kind = detail::nonRegularKind(path); !kind.empty()) {
+    problem = path.string() + ": is " + kind + ", expected an image file";
+    return nullptr;
   }
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) {
     problem = path.string() + ": cannot read: " + OIIO::geterror();
-    return std::nullopt;
+    return nullptr;
   }
-  OIIO::ImageSpec spec = input->spec();
-  integer = !spec.format.is_floating_point();
+  const OIIO::ImageSpec& spec = input->spec();
   if (spec.deep || spec.depth > 1) {
     problem = path.string() + ": deep and volume images are not supported";
-    return std::nullopt;
+    return nullptr;
   }
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    problem = path.string() + ": declares " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
+              std::to_string(spec.nchannels) + " pixels";
+    return nullptr;
+  }
+  return input;
+}
+
+// Bytes of the image as float, from its header (no overflow: each factor < 2^31).
+double declaredFloatBytes(const OIIO::ImageSpec& spec) {
+  return double(spec.width) * double(spec.height) * double(spec.nchannels) * sizeof(float);
+}
+
+// Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
+// shared ImageCache, which may hand back an older copy of a file that was
+// rewritten under the same name, as regression suites do).
+std::optional<OIIO::ImageBuf> readImage(OIIO::ImageInput& input, const fs::path& path, std::string& problem) {
+  OIIO::ImageSpec spec = input.spec();
   spec.set_format(OIIO::TypeDesc::FLOAT);
   OIIO::ImageBuf buffer(spec);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels())) {
-    problem = path.string() + ": cannot read the pixels: " + input->geterror();
+  if (!input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels())) {
+    problem = path.string() + ": cannot read the pixels: " + input.geterror();
     return std::nullopt;
   }
   return buffer;
 }
+
+// openImage then readImage; `integer`: whether the file stores integer pixels.
+std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem, bool& integer) {
+  const std::unique_ptr<OIIO::ImageInput> input = openImage(path, problem);
+  if (!input) return std::nullopt;
+  integer = !input->spec().format.is_floating_point();
+  return readImage(*input, path, problem);
+}
+
+std::string mebibytes(double bytes) { return number(bytes / double(1 << 20)) + " MiB"; }
 
 std::string joined(const std::vector<std::string>& names) {
   std::string text;
@@ -435,9 +462,36 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
   result.thresholds = resolveThresholds(result.target, options);
 
   std::string problemA, problemB;
+  // Both headers first: the declared sizes are checked against the memory
+  // limit before either image's pixels are decoded.
+  const std::unique_ptr<OIIO::ImageInput> inputA = openImage(a, problemA), inputB = openImage(b, problemB);
+  if (inputA && inputB) {
+    const double need = 2.0 * (declaredFloatBytes(inputA->spec()) + declaredFloatBytes(inputB->spec()));
+    ResourceLimits limits;
+    limits.maxMemoryMiB = options.maxMemoryMiB;
+    const double allowed = double(maxMemoryBytes(limits));
+    if (need > allowed) {
+      result.status = DiffStatus::FileError;
+      result.problem = a.string() + " and " + b.string() + " declare " + std::to_string(inputA->spec().width) + "x" +
+                       std::to_string(inputA->spec().height) + "x" + std::to_string(inputA->spec().nchannels) +
+                       " and " + std::to_string(inputB->spec().width) + "x" + std::to_string(inputB->spec().height) +
+                       "x" + std::to_string(inputB->spec().nchannels) + " values: comparing them needs about " +
+                       mebibytes(need) + " (both as float, and as much again to compare), more than --max-memory " +
+                       "allows (" + mebibytes(allowed) + (options.maxMemoryMiB ? "" : ", half of physical memory") +
+                       "); raise --max-memory to compare them";
+      return result;
+    }
+  }
+  std::optional<OIIO::ImageBuf> imageA, imageB;
+  // Integer pixels (8-bit PNG and the like) are display-encoded values,
+  // which the Flip metric decodes as sRGB.
   bool integerA = false, integerB = false;
-  const std::optional<OIIO::ImageBuf> imageA = loadImage(a, problemA, integerA);
-  const std::optional<OIIO::ImageBuf> imageB = loadImage(b, problemB, integerB);
+  if (inputA && inputB) {
+    integerA = !inputA->spec().format.is_floating_point();
+    integerB = !inputB->spec().format.is_floating_point();
+    imageA = readImage(*inputA, a, problemA);
+    imageB = readImage(*inputB, b, problemB);
+  }
   if (!imageA || !imageB) {
     result.status = DiffStatus::FileError;
     result.problem = problemA + (problemA.empty() || problemB.empty() ? "" : "; ") + problemB;

@@ -54,10 +54,26 @@ const ImageModuleTable* loadImageModule() {
     if (!handle) throw IoError(path.string() + ": cannot load the image module: " + dlerror());
     const auto entry = reinterpret_cast<ImageModuleEntry>(dlsym(handle, kImageModuleEntry));
     if (!entry) throw IoError(path.string() + ": not a Headlight image module (no " + kImageModuleEntry + ")");
+    // The table is checked before any of its functions is called: a module
+    // whose entry returns NULL, or a table of another size or version, is
+    // refused with its path. Beyond that a module is trusted: a corrupt file
+    // that passes these checks runs its own code (docs/RELIABILITY.md).
     const ImageModuleTable* table = entry();
+    if (!table) throw IoError(path.string() + ": broken image module: " + kImageModuleEntry + "() returned no table");
     if (table->abi != kImageModuleAbi || table->tableSize != sizeof(ImageModuleTable))
       throw IoError(path.string() + ": image module from another build (interface " + std::to_string(table->abi) +
-                    ", this build needs " + std::to_string(kImageModuleAbi) + ")");
+                    ", table of " + std::to_string(table->tableSize) + " bytes; this build needs interface " +
+                    std::to_string(kImageModuleAbi) + ", " + std::to_string(sizeof(ImageModuleTable)) + " bytes)");
+    const void* const functions[] = {reinterpret_cast<const void*>(table->writeFrame),
+                                     reinterpret_cast<const void*>(table->writeExr),
+                                     reinterpret_cast<const void*>(table->writePreview),
+                                     reinterpret_cast<const void*>(table->readSettingAttributes),
+                                     reinterpret_cast<const void*>(table->diffImages),
+                                     reinterpret_cast<const void*>(table->diffDirectories),
+                                     reinterpret_cast<const void*>(table->writeDiffImages),
+                                     reinterpret_cast<const void*>(table->decodeTexture)};
+    for (const void* function : functions)
+      if (!function) throw IoError(path.string() + ": broken image module: its table has a null function");
     return table;  // never unloaded: OpenImageIO keeps threads and caches
   }
   throw IoError(std::string("cannot write or read images: the image module ") + kImageModuleFile +

@@ -49,7 +49,11 @@ std::string writeFailureReason(const fs::path& path, std::string writerMessage, 
     if (reason.find(system) == std::string::npos) reason += (reason.empty() ? "" : ": ") + system;
   }
   // A full disk often reaches the writer as a short write with errno lost
-  // (OpenEXR's exceptions); the free space says what happened.
+  // (OpenEXR's exceptions); the free space says what happened. Only then:
+  // a missing folder or a refused permission has its own errno, and
+  // /proc's zero free bytes are no full disk.
+  const bool unexplained = savedErrno == 0 || savedErrno == ENOSPC || savedErrno == EDQUOT || savedErrno == EIO;
+  if (!unexplained) return reason.empty() ? "unknown reason (the writer gave none)" : reason;
   std::error_code error;
   const fs::space_info space = fs::space(path.parent_path().empty() ? fs::path(".") : path.parent_path(), error);
   if (!error && space.available < (1u << 20))

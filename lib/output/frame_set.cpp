@@ -4,13 +4,16 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "headlight/error.hpp"
+#include "headlight/targets.hpp"
 #include "output/atomic_file.hpp"
+#include "output/bounded_read.hpp"
 #include "output/fingerprint.hpp"
 
 namespace headlight {
@@ -19,7 +22,32 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
-constexpr int kManifestVersion = 1;
+// 2: "files_hash" (a hash of the file list) and "owned". Version 1 sets
+// (the goldens) have no list hash and are checked without it.
+constexpr int kManifestVersion = 2;
+
+// What the file list says, hashed: an edited list (an entry removed, the
+// list emptied) no longer matches the hash written with it.
+std::string fileListHash(const std::vector<ManifestFile>& files) {
+  std::string text;
+  for (const ManifestFile& file : files) text += file.name + " " + file.hash + " " + std::to_string(file.bytes) + "\n";
+  return textFingerprint(text);
+}
+
+// A listed name must name a file in the folder itself.
+bool plainFileName(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." && name.find('/') == std::string::npos &&
+         name.find('\0') == std::string::npos;
+}
+
+json readManifestJson(const fs::path& path) {
+  const std::string text = detail::readRegularFile(path, detail::kMaxManifestBytes, "the frame manifest");
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
+  }
+}
 
 json manifestJson(const Frame& frame, const OutputOptions& options, bool complete) {
   const std::map<std::string, std::string> settings = settingsAsText(frame.settings);
@@ -85,11 +113,9 @@ std::size_t removeStaleTemporaries(const fs::path& folder) {
 std::optional<FrameManifest> readManifest(const fs::path& folder) {
   const fs::path path = folder / kManifestName;
   std::error_code error;
-  if (!fs::exists(path, error)) return std::nullopt;
-  std::ifstream in(path);
-  if (!in) throw IoError(path.string() + ": cannot read");
+  if (!fs::exists(path, error) && !fs::is_symlink(path, error)) return std::nullopt;
+  const json j = readManifestJson(path);
   try {
-    const json j = json::parse(in);
     FrameManifest manifest;
     manifest.complete = j.at("complete").get<bool>();
     manifest.scene = j.value("scene", "");
@@ -97,12 +123,18 @@ std::optional<FrameManifest> readManifest(const fs::path& folder) {
     manifest.settingsHash = j.value("settings_hash", "");
     manifest.jobHash = j.value("job_hash", "");
     if (j.contains("settings")) manifest.settings = j.at("settings").get<std::map<std::string, std::string>>();
-    for (const json& file : j.at("files"))
+    for (const json& file : j.at("files")) {
       manifest.files.push_back({file.at("name").get<std::string>(), file.at("hash").get<std::string>(),
                                 file.at("bytes").get<std::size_t>()});
+      if (!plainFileName(manifest.files.back().name))
+        throw IoError(path.string() + ": lists \"" + detail::excerpt(manifest.files.back().name) +
+                      "\", not a file name in the folder");
+    }
+    if (manifest.complete && j.value("version", 1) >= 2 && j.value("files_hash", "") != fileListHash(manifest.files))
+      throw IoError(path.string() + ": its file list does not match the list hash written with it (edited?)");
     return manifest;
   } catch (const json::exception& e) {
-    throw IoError(path.string() + ": not a headlight frame manifest: " + e.what());
+    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
   }
 }
 
@@ -118,6 +150,17 @@ FrameSetCheck checkFrameSet(const fs::path& folder) {
   const std::string where = (folder / kManifestName).string();
   if (!manifest->complete)
     return {FrameSetState::Incomplete, where + " says a write was under way and never finished (a killed render?)"};
+  if (manifest->files.empty()) return {FrameSetState::Incomplete, where + " lists no file"};
+  // A target in the folder the list leaves out: an entry removed, or a
+  // file from some other write.
+  for (const FrameTarget& target : frameTargets()) {
+    const std::string name = std::string(target.name) + ".exr";
+    std::error_code error;
+    if (!fs::exists(folder / name, error)) continue;
+    if (std::none_of(manifest->files.begin(), manifest->files.end(),
+                     [&](const ManifestFile& file) { return file.name == name; }))
+      return {FrameSetState::Incomplete, where + " does not list " + name + ", which is in the folder"};
+  }
   for (const ManifestFile& file : manifest->files) {
     const fs::path path = folder / file.name;
     std::error_code error;
@@ -133,8 +176,38 @@ FrameSetCheck checkFrameSet(const fs::path& folder) {
 
 namespace detail {
 
-void beginFrameSet(const Frame& frame, const fs::path& folder, const OutputOptions& options) {
-  writeTextAtomically(folder / kManifestName, manifestJson(frame, options, false).dump(2) + "\n");
+std::vector<std::string> ownedFileNames(const fs::path& folder) {
+  const fs::path path = folder / kManifestName;
+  std::error_code error;
+  if (!fs::exists(path, error) && !fs::is_symlink(path, error)) return {};
+  const json j = readManifestJson(path);
+  std::vector<std::string> names{std::string(kManifestName)};
+  try {
+    for (const char* key : {"files", "owned"}) {
+      if (!j.contains(key)) continue;
+      for (const json& entry : j.at(key)) {
+        const std::string name = entry.is_string() ? entry.get<std::string>() : entry.at("name").get<std::string>();
+        if (plainFileName(name)) names.push_back(name);
+      }
+    }
+  } catch (const json::exception& e) {
+    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
+  }
+  return names;
+}
+
+void beginFrameSet(const Frame& frame, const fs::path& folder, const OutputOptions& options,
+                   const std::vector<std::string>& planned) {
+  json j = manifestJson(frame, options, false);
+  std::vector<std::string> owned = planned;
+  try {
+    for (const std::string& name : ownedFileNames(folder))
+      if (name != kManifestName && std::find(owned.begin(), owned.end(), name) == owned.end()) owned.push_back(name);
+  } catch (const IoError&) {
+    // Not a manifest (the caller was told to replace it): nothing more is ours.
+  }
+  j["owned"] = owned;
+  writeTextAtomically(folder / kManifestName, j.dump(2) + "\n");
 }
 
 void finishFrameSet(const Frame& frame, const fs::path& folder, const OutputOptions& options,
@@ -149,6 +222,11 @@ void finishFrameSet(const Frame& frame, const fs::path& folder, const OutputOpti
                           {"bytes", std::size_t(bytes)},
                           {"non_finite", file.nonFinite}});
   }
+  std::vector<ManifestFile> listed;
+  for (const json& file : j["files"])
+    listed.push_back(
+        {file["name"].get<std::string>(), file["hash"].get<std::string>(), file["bytes"].get<std::size_t>()});
+  j["files_hash"] = fileListHash(listed);
   writeTextAtomically(folder / kManifestName, j.dump(2) + "\n");
 }
 

@@ -4,14 +4,24 @@
 // (each file's size and hash, the settings hash) after the last.
 #include <cstddef>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "headlight/output.hpp"
 
 namespace headlight::detail {
 
-// Replaces frame.json with one that says a write is under way.
-void beginFrameSet(const Frame& frame, const std::filesystem::path& folder, const OutputOptions& options);
+// The names of files Headlight sets wrote into `folder`, as its frame.json
+// lists them (a finished set's files, an interrupted one's planned files);
+// empty without a frame.json. Only these may be removed or replaced without
+// --force. Throws IoError for a frame.json that is not a Headlight manifest.
+std::vector<std::string> ownedFileNames(const std::filesystem::path& folder);
+
+// Replaces frame.json with one that says a write is under way; it names
+// `planned` and the names the previous manifest owned, so that an
+// interrupted write's files stay Headlight's.
+void beginFrameSet(const Frame& frame, const std::filesystem::path& folder, const OutputOptions& options,
+                   const std::vector<std::string>& planned);
 // Hashes the written files and writes frame.json with "complete": true.
 void finishFrameSet(const Frame& frame, const std::filesystem::path& folder, const OutputOptions& options,
                     const std::vector<WrittenFile>& files);

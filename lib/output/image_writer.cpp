@@ -60,23 +60,33 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
 struct ImageStats {
   std::vector<float> min, max;
   std::size_t nonFinite = 0;
+  std::size_t saturatedPixels = 0;  // pixels with a finite channel at +-kHalfMax or beyond
 };
 
 ImageStats imageStats(const ImageF& image) {
   const std::size_t channels = image.channels.size();
   ImageStats stats{std::vector<float>(channels, std::numeric_limits<float>::infinity()),
-                   std::vector<float>(channels, -std::numeric_limits<float>::infinity()), 0};
-  for (std::size_t i = 0; i < image.pixels.size(); i += channels)
+                   std::vector<float>(channels, -std::numeric_limits<float>::infinity()), 0, 0};
+  for (std::size_t i = 0; i < image.pixels.size(); i += channels) {
+    bool saturated = false;
     for (std::size_t c = 0; c < channels; ++c) {
       const float v = image.pixels[i + c];
       if (!std::isfinite(v)) {
         ++stats.nonFinite;
         continue;
       }
+      saturated = saturated || std::abs(v) >= kHalfMax;
       stats.min[c] = std::min(stats.min[c], v);
       stats.max[c] = std::max(stats.max[c], v);
     }
+    stats.saturatedPixels += saturated;
+  }
   return stats;
+}
+
+std::string saturationNote(std::size_t pixels) {
+  return "; " + std::to_string(pixels) + " pixels saturated at half float's 65504 (light beyond the half-float " +
+         "target's range was clamped)";
 }
 
 std::string summarize(const fs::path& path, const ImageF& image, const char* type, const ImageStats& stats,
@@ -166,7 +176,13 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
   addMetadata(spec, frame);
   for (const auto& [name, value] : extra) spec.attribute(name, value);
   detail::writePixelsAtomically(path, source->pixels.data(), OIIO::TypeDesc::FLOAT, spec, "openexr");
-  WrittenFile file{path, summarize(path, image, halfFloat ? "half" : "float", stats, policy), stats.nonFinite, 0};
+  // Only a half target saturates (a float one holds 3.4e38): counted after
+  // the readback, where the GPU's half texture has already clamped.
+  const std::size_t saturated = halfFloat ? stats.saturatedPixels : 0;
+  WrittenFile file{path,
+                   summarize(path, image, halfFloat ? "half" : "float", stats, policy) +
+                       (saturated ? saturationNote(saturated) : ""),
+                   stats.nonFinite, 0, saturated};
   std::error_code error;
   file.bytes = std::size_t(fs::file_size(path, error));
   return file;
@@ -197,7 +213,7 @@ WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   std::ostringstream line;
   line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
        << (aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure << " EV)";
-  WrittenFile file{path, line.str(), 0, 0};
+  WrittenFile file{path, line.str(), 0, 0, 0};
   std::error_code error;
   file.bytes = std::size_t(fs::file_size(path, error));
   return file;
@@ -232,7 +248,17 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   fs::create_directories(outDir, error);
   if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
   removeStaleTemporaries(outDir);
-  detail::beginFrameSet(frame, outDir, options);
+  // Only files an earlier Headlight set here listed are removed below (the
+  // CLI refuses, without --force, a folder whose target-named files are not).
+  std::vector<std::string> owned;
+  try {
+    owned = detail::ownedFileNames(outDir);
+  } catch (const IoError&) {
+    // Not a Headlight manifest: nothing in the folder is ours to remove.
+  }
+  std::vector<std::string> planned;
+  for (const Job& job : jobs) planned.push_back(job.target ? std::string(job.target->name) + ".exr" : "preview.png");
+  detail::beginFrameSet(frame, outDir, options, planned);
 
   std::vector<WrittenFile> written(jobs.size());
   std::vector<std::function<void()>> tasks;
@@ -250,10 +276,12 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   // A target this frame lacks (ssgi with SSGI off, emissive for a scene
   // without glow) or that was not asked for must not survive from an
   // earlier render into the folder, where a diff would take it for this one's.
+  auto removeIfOurs = [&](const std::string& name) {
+    if (std::find(owned.begin(), owned.end(), name) != owned.end()) fs::remove(outDir / name, error);
+  };
   for (const FrameTarget& target : frameTargets())
-    if ((frame.*target.image).empty() || !wanted(options, target.name))
-      fs::remove(outDir / (std::string(target.name) + ".exr"), error);
-  if (!preview) fs::remove(outDir / "preview.png", error);
+    if ((frame.*target.image).empty() || !wanted(options, target.name)) removeIfOurs(std::string(target.name) + ".exr");
+  if (!preview) removeIfOurs("preview.png");
   detail::finishFrameSet(frame, outDir, options, written);
   return written;
 }

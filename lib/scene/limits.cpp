@@ -44,6 +44,20 @@ std::span<const Option<ResourceLimits>> limitOptions() {
            .minimum = 1,
            .maximum = double(std::int64_t(1) << 34)},
           [](auto& l) -> auto& { return l.maxTexels; }),
+      bindOption<L>(
+          {.name = "max-draws",
+           .type = T::Int,
+           .help = "most instance draws a frame (instances x passes: the G-buffer and each shadow view)",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 40)},
+          [](auto& l) -> auto& { return l.maxDraws; }),
+      bindOption<L>(
+          {.name = "max-drawn-triangles",
+           .type = T::Int,
+           .help = "most triangles drawn a frame (the scene's triangles x passes)",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 40)},
+          [](auto& l) -> auto& { return l.maxDrawnTriangles; }),
   };
   return rows;
 }
@@ -192,6 +206,31 @@ class RangeCheck {
 }  // namespace
 
 void checkSceneRanges(const Scene& scene) { RangeCheck(scene).run(); }
+
+int drawPassCount(const Scene& scene) {
+  if (scene.lights.empty()) return 2;  // the G-buffer and the default key light's shadow view
+  int passes = 1;
+  for (const Light& light : scene.lights)
+    if (light.castsShadows) passes += light.type == Light::Type::Point ? 6 : 1;
+  return passes;
+}
+
+void checkDrawBudget(const Scene& scene, const ResourceLimits& limits) {
+  const std::uint64_t passes = std::uint64_t(drawPassCount(scene));
+  const std::string perFrame =
+      " x " + std::to_string(passes) + " passes (the G-buffer and " + std::to_string(passes - 1) + " shadow views) = ";
+  const std::uint64_t draws = std::uint64_t(scene.instances.size()) * passes;
+  if (draws > std::uint64_t(limits.maxDraws))
+    throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.instances.size()) + " instances" +
+                     perFrame + std::to_string(draws) + " draws, more than --max-draws allows (" +
+                     std::to_string(limits.maxDraws) +
+                     "; about 50 us a shadow-view draw on llvmpipe); raise --max-draws");
+  const std::uint64_t triangles = std::uint64_t(scene.triangleCount()) * passes;
+  if (triangles > std::uint64_t(limits.maxDrawnTriangles))
+    throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.triangleCount()) + " triangles" +
+                     perFrame + std::to_string(triangles) + ", more than --max-drawn-triangles allows (" +
+                     std::to_string(limits.maxDrawnTriangles) + "); raise --max-drawn-triangles");
+}
 
 std::uint64_t estimateSceneBytes(const Scene& scene) {
   std::uint64_t bytes = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "output/bounded_read.hpp"
 #include "settings/option_binding.hpp"
 #include "shared_layout.h"
 
@@ -249,11 +250,17 @@ void applySettingsFileText(RenderSettings& settings, std::string_view text, cons
     ++lineNumber;
     if (line.empty() || line.front() == '#') continue;
     const std::string where = name + ":" + std::to_string(lineNumber) + ": ";
+    // A NUL would end every message that quotes the line at the NUL.
+    if (line.find('\0') != std::string_view::npos)
+      throw SettingsError(where + "holds a NUL byte (not a settings file?)");
     const auto equals = line.find('=');
     const std::string key(trimmed(line.substr(0, equals == std::string_view::npos ? 0 : equals)));
+    // The line itself is not echoed: a file given by mistake (/etc/passwd)
+    // should not have its contents printed.
     if (equals == std::string_view::npos || key.empty())
-      throw SettingsError(where + "expected NAME = VALUE (NAME a render setting's name), got '" +
-                          std::string(line) + "'");
+      throw SettingsError(where + "expected NAME = VALUE (NAME a render setting's name), got a line " +
+                          (equals == std::string_view::npos ? "without '='" : "with nothing before '='") +
+                          " (not a settings file?)");
     if (const auto seen = seenOnLine.find(key); seen != seenOnLine.end())
       throw SettingsError(where + "'" + key + "' is already set on line " + std::to_string(seen->second));
     seenOnLine.emplace(key, lineNumber);
@@ -266,11 +273,14 @@ void applySettingsFileText(RenderSettings& settings, std::string_view text, cons
 }
 
 void applySettingsFile(RenderSettings& settings, const std::filesystem::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw SettingsError(path.string() + ": cannot read the settings file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << file.rdbuf();
-  applySettingsFileText(settings, text.str(), path.string());
+  std::string text;
+  try {
+    // A regular file of at most 1 MiB: a folder, /dev/zero or a FIFO is refused, not read.
+    text = detail::readRegularFile(path, detail::kMaxSettingsFileBytes, "the settings file");
+  } catch (const IoError& error) {
+    throw SettingsError(error.what());
+  }
+  applySettingsFileText(settings, text, path.string());
 }
 
 void applyPreset(RenderSettings& settings, std::string_view preset) {

@@ -74,6 +74,10 @@ struct DiffOptions {
   // from the row's, the default thresholds are those of
   // firstRowWithMetric(*metric) (flip: lit's), since the row's are in other units.
   std::optional<DiffMetric> metric;
+  // MiB the decoded images may take (A and B as float, and as much again
+  // for the comparison), checked on their declared sizes before any pixel
+  // is decoded; nullopt: half of physical memory (the CLI's --max-memory).
+  std::optional<std::int64_t> maxMemoryMiB;
 };
 
 // The metric the row of `target` and the options give.

@@ -23,9 +23,16 @@ struct ResourceLimits {
   std::int64_t maxInstances = 1'000'000;           // drawn mesh primitives (node x primitive), 1..2^31
   std::int64_t maxTriangles = 10'000'000;          // decoded triangles, all primitives together, 1..2^31
   std::int64_t maxTexels = std::int64_t(1) << 28;  // decoded texels, all images together (1 GiB as RGBA8)
+  // What one frame draws (drawPassCount passes over the scene), so that a
+  // small file of many instances cannot take minutes a frame. Measured on
+  // llvmpipe, 2 cores (docs/RELIABILITY.md): about 5 us a draw in the
+  // G-buffer and 48 in a shadow view; 0.075 and 0.12 us a triangle.
+  std::int64_t maxDraws = 150'000;              // instances x passes per frame, 1..2^40
+  std::int64_t maxDrawnTriangles = 50'000'000;  // triangles x passes per frame, 1..2^40
 };
 
-// The rows: max-memory, max-instances, max-triangles, max-texels.
+// The rows: max-memory, max-instances, max-triangles, max-texels, max-draws,
+// max-drawn-triangles.
 std::span<const Option<ResourceLimits>> limitOptions();
 
 // Physical memory in bytes (sysconf), or 0 where it cannot be read.
@@ -58,6 +65,17 @@ inline constexpr double kMaxLightValue = 1e12;
 // lights, emissive and base colour factors, the sky. loadGltf and
 // Renderer::setScene call it, so built and loaded scenes get the same rules.
 void checkSceneRanges(const Scene& scene);
+
+// Passes that draw the whole scene in one frame, at most: the G-buffer, one
+// per directional or spot light casting shadows, six per point light (a cube
+// map); a scene without lights gets the renderer's default key light (one).
+int drawPassCount(const Scene& scene);
+
+// Throws LimitError "<scene.source>: ..." when instances x passes exceeds
+// maxDraws or triangles x passes exceeds maxDrawnTriangles, naming the
+// counts, the limit and the flag that raises it. Renderer::setScene and the
+// CLI (before it creates a context) call it.
+void checkDrawBudget(const Scene& scene, const ResourceLimits& limits);
 
 // Bytes the scene holds on the CPU and the GPU together (vertices, indices,
 // textures with mipmaps, instances); an estimate for max-memory.

@@ -30,6 +30,9 @@ struct WrittenFile {
   std::string summary;
   std::size_t nonFinite = 0;  // non-finite values found (clamped ones included)
   std::size_t bytes = 0;      // the file's size on disk
+  // Pixels of a half-float target with a channel at half's largest value
+  // (65504) or beyond: the GPU's half target clamped them (saturated light).
+  std::size_t saturatedPixels = 0;
 };
 
 // OpenEXR's lossless compressions (b44, dwa and pxr24 lose data and are not

@@ -1,0 +1,31 @@
+#pragma once
+// An advisory lock on an output folder: two renders into one folder would
+// otherwise interleave their files into a set neither wrote. flock(2) on
+// the folder itself (its directory descriptor: no lock file joins the set),
+// held from before the render until its set is written; the kernel drops it
+// when the process dies, so a killed render never leaves the folder locked.
+// Advisory: only Headlight processes (and anything else that flocks the
+// folder) honour it; a network file system without flock may not.
+#include <filesystem>
+
+namespace headlight::detail {
+
+class OutputFolderLock {
+ public:
+  // Creates `folder` if needed and takes the lock. With `wait` false, a
+  // folder another process holds is an IoError at once, naming the folder
+  // and how to wait (--wait); with `wait` true, blocks until it is free.
+  OutputFolderLock(const std::filesystem::path& folder, bool wait);
+  // Drops the lock; a folder this lock created and nothing was written
+  // into (the render failed) is removed again, as if never touched.
+  ~OutputFolderLock();
+  OutputFolderLock(const OutputFolderLock&) = delete;
+  OutputFolderLock& operator=(const OutputFolderLock&) = delete;
+
+ private:
+  std::filesystem::path folder_;
+  bool created_ = false;
+  int fd_ = -1;
+};
+
+}  // namespace headlight::detail

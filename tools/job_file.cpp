@@ -1,0 +1,342 @@
+// The job model (job_file.hpp): job lines -> Jobs, the command line's
+// scenes x views -> Jobs, output folders checked for clashes, shards, job
+// hashes. Pure: no context, no rendering, no writing.
+#include "job_file.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "headlight/error.hpp"
+#include "headlight/output.hpp"
+#include "output/fingerprint.hpp"
+#include "tooling/command_line.hpp"
+#include "output/bounded_read.hpp"
+#include "scene/gltf_prescan.hpp"
+
+namespace headlight::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+using detail::excerpt;
+
+// A JSON value for a message: never the whole of a long or deep value.
+std::string shown(const json& value) { return excerpt(value.dump(-1, ' ', false, json::error_handler_t::replace)); }
+
+std::string vecText(const glm::vec3& v) {
+  std::ostringstream text;
+  text.precision(9);
+  text << v.x << "," << v.y << "," << v.z;
+  return text.str();
+}
+
+glm::vec3 readVec3(const json& value, const char* key) {
+  if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() || !value[2].is_number())
+    throw SettingsError(std::string("\"") + key + "\": expected [x, y, z] (three numbers), got " + shown(value));
+  glm::vec3 v(value[0].get<float>(), value[1].get<float>(), value[2].get<float>());
+  if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw SettingsError(std::string("\"") + key + "\": not finite");
+  return v;
+}
+
+// A JSON value as the text the setting table parses: strings as they are,
+// numbers as written, booleans as on/off.
+std::string settingText(const std::string& name, const json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
+  if (value.is_number()) return value.dump();
+  throw SettingsError("setting \"" + excerpt(name) + "\": expected a string, number or boolean, got " + shown(value));
+}
+
+// "builtin:cornell" -> "cornell", "a/b/duck.glb" -> "duck".
+std::string sceneStem(const std::string& scene) {
+  if (scene.rfind("builtin:", 0) == 0) return scene.substr(8);
+  return fs::path(scene).stem().string();
+}
+
+// The line parsed, refusing nesting deeper than a scene's JSON may have
+// (gltf::kMaxJsonDepth) as the parser meets it: nlohmann's parser does not
+// recurse, but dump() and error texts over a deeper value would.
+json parseBounded(const std::string& line) {
+  const json::parser_callback_t depthCheck = [](int depth, json::parse_event_t event, json&) {
+    if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
+        depth >= gltf::kMaxJsonDepth)
+      throw SettingsError("JSON nests deeper than " + std::to_string(gltf::kMaxJsonDepth) +
+                          " levels (the limit for scenes too)");
+    return true;
+  };
+  try {
+    return json::parse(line, depthCheck);
+  } catch (const json::exception& e) {
+    throw SettingsError("not valid JSON: " + excerpt(e.what(), 160));
+  }
+}
+
+Job parseJobLine(const std::string& line, const std::string& origin, const RenderSettings& base) {
+  Job job;
+  job.origin = origin;
+  job.settings = base;
+  if (line.size() > detail::kMaxJobLineBytes)
+    throw SettingsError("the line is " + detail::byteSizeText(line.size()) + ", more than the " +
+                        detail::byteSizeText(detail::kMaxJobLineBytes) + " a job line may have");
+  const json j = parseBounded(line);
+  if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
+  static const char* kKeys[] = {"scene", "out", "camera", "eye",           "target",
+                                "up",    "fov", "size",   "settings_file", "settings"};
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();  // a name, not a structured binding: lambdas capture it (clang 14)
+    if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
+      throw SettingsError("unknown key \"" + excerpt(key) +
+                          "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings)");
+  }
+  if (!j.contains("scene") || !j["scene"].is_string() || j["scene"].get<std::string>().empty())
+    throw SettingsError("\"scene\": expected a file path or builtin:NAME");
+  job.scene = j["scene"].get<std::string>();
+  if (!j.contains("out") || !j["out"].is_string() || j["out"].get<std::string>().empty())
+    throw SettingsError("\"out\": expected the job's output folder");
+  job.outDir = j["out"].get<std::string>();
+  for (const std::string* path : {&job.scene, &job.outDir})
+    if (path->find('\0') != std::string::npos)
+      throw SettingsError("a path holds a NUL character: \"" + excerpt(*path) + "\"");
+
+  // A settings file (headlight tune's) first: the line's own keys override it.
+  if (j.contains("settings_file")) {
+    if (!j["settings_file"].is_string() || j["settings_file"].get<std::string>().empty())
+      throw SettingsError("\"settings_file\": expected the path of a settings file");
+    applySettingsFile(job.settings, j["settings_file"].get<std::string>());
+  }
+
+  // Everything a setting row can say goes through the one table.
+  std::map<std::string, std::string> settings;
+  if (j.contains("settings")) {
+    if (!j["settings"].is_object()) throw SettingsError("\"settings\": expected an object of setting names");
+    for (const auto& [name, value] : j["settings"].items()) settings[name] = settingText(name, value);
+  }
+  if (j.contains("size")) {
+    const std::string size = j["size"].is_string() ? j["size"].get<std::string>() : "";
+    const auto x = size.find('x');
+    if (x == std::string::npos) throw SettingsError("\"size\": expected \"WIDTHxHEIGHT\", got " + shown(j["size"]));
+    settings["width"] = size.substr(0, x);
+    settings["height"] = size.substr(x + 1);
+  }
+  if (j.contains("camera")) settings["camera"] = settingText("camera", j["camera"]);
+  applySettingsText(job.settings, settings);
+  job.settings.validate();
+
+  if (j.contains("eye") || j.contains("target")) {
+    if (j.contains("camera")) throw SettingsError("\"camera\" and \"eye\"/\"target\": give one");
+    if (!j.contains("eye") || !j.contains("target")) throw SettingsError("\"eye\" and \"target\" go together");
+    job.camera.kind = JobCamera::Kind::LookAt;
+    job.camera.eye = readVec3(j["eye"], "eye");
+    job.camera.target = readVec3(j["target"], "target");
+    if (j.contains("up")) job.camera.up = readVec3(j["up"], "up");
+    if (j.contains("fov")) {
+      if (!j["fov"].is_number()) throw SettingsError("\"fov\": expected degrees, got " + shown(j["fov"]));
+      job.camera.fovDegrees = j["fov"].get<float>();
+    }
+    if (!(job.camera.fovDegrees > 0.0f && job.camera.fovDegrees < 180.0f))
+      throw SettingsError("\"fov\": expected degrees in (0, 180), got " + std::to_string(job.camera.fovDegrees));
+    if (glm::length(job.camera.eye - job.camera.target) <= 0.0f)
+      throw SettingsError("\"eye\" and \"target\" are the same point");
+    if (glm::length(glm::cross(job.camera.target - job.camera.eye, job.camera.up)) <= 0.0f)
+      throw SettingsError("\"up\" is parallel to the view direction");
+  } else if (j.contains("up") || j.contains("fov")) {
+    throw SettingsError("\"up\" and \"fov\" need \"eye\" and \"target\"");
+  }
+  return job;
+}
+
+}  // namespace
+
+std::string JobCamera::describe() const {
+  switch (kind) {
+    case Kind::Settings:
+      return "settings";
+    case Kind::LookAt:
+      return "eye " + vecText(eye) + " target " + vecText(target) + " up " + vecText(up) + " fov " +
+             std::to_string(fovDegrees);
+    case Kind::Orbit:
+      return "orbit " + std::to_string(orbitIndex) + "/" + std::to_string(orbitViews) + " fov " +
+             std::to_string(fovDegrees);
+  }
+  return "";
+}
+
+std::optional<Camera> JobCamera::build(const Scene& scene, float aspect) const {
+  if (kind == Kind::Settings) return std::nullopt;
+  Camera camera;
+  camera.yfov = glm::radians(fovDegrees);
+  if (kind == Kind::LookAt) {
+    camera.name = "job look-at";
+    camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, up));
+    return camera;
+  }
+  // The turntable: fitCamera's framing (the bounding sphere fits the
+  // narrower field of view, seen a little from above), turned about +Y.
+  const Bounds bounds = scene.worldBounds();
+  const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-30f);
+  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+  const float distance = radius / std::sin(0.5f * camera.yfov * std::min(1.0f, aspect));
+  const float azimuth = 2.0f * glm::pi<float>() * float(orbitIndex) / float(std::max(1, orbitViews));
+  const glm::vec3 direction = glm::normalize(glm::vec3(std::sin(azimuth), 0.25f, std::cos(azimuth)));
+  camera.name = "orbit " + std::to_string(orbitIndex);
+  camera.worldFromCamera = glm::inverse(glm::lookAt(center + direction * distance, center, glm::vec3(0, 1, 0)));
+  return camera;
+}
+
+std::vector<Job> parseJobLines(const std::string& text, const std::string& name, const RenderSettings& base) {
+  std::vector<Job> jobs;
+  int number = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string line = text.substr(start, end - start);
+    start = end + 1;
+    ++number;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    const std::string origin = name + ":" + std::to_string(number);
+    try {
+      jobs.push_back(parseJobLine(line, origin, base));
+    } catch (const std::exception& error) {  // Error, and anything a library throws: one job, not the batch
+      Job bad;
+      bad.origin = origin;
+      bad.error = commandLineMessage(error);
+      jobs.push_back(std::move(bad));
+    }
+  }
+  return jobs;
+}
+
+std::vector<Job> readJobFile(const fs::path& path, const RenderSettings& base) {
+  return parseJobLines(detail::readRegularFile(path, detail::kMaxJobFileBytes, "the job file"), path.string(), base);
+}
+
+std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount) {
+  std::vector<Job> jobs;
+  std::vector<std::string> scenes = command.scenes;
+  if (scenes.empty() && command.jobFiles.empty()) scenes.push_back(command.scene);
+  std::map<std::string, int> stems;
+  for (const std::string& scene : scenes) ++stems[sceneStem(scene)];
+  const bool severalScenes = scenes.size() > 1;
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    const std::string& scene = scenes[s];
+    // Each scene its own folder when there are several (two of one stem get their position).
+    fs::path folder = command.outDir;
+    if (severalScenes)
+      folder /= stems[sceneStem(scene)] > 1 ? sceneStem(scene) + "-" + std::to_string(s) : sceneStem(scene);
+    Job base;
+    base.scene = scene;
+    base.settings = command.settings;
+    base.origin = "command line: " + scene;
+    if (command.orbit) {
+      for (int v = 0; v < command.views; ++v) {
+        Job job = base;
+        job.camera.kind = JobCamera::Kind::Orbit;
+        job.camera.orbitIndex = v;
+        job.camera.orbitViews = command.views;
+        char name[32];
+        std::snprintf(name, sizeof name, "view_%03d", v);
+        job.outDir = (folder / name).string();
+        job.origin += " view " + std::to_string(v);
+        jobs.push_back(job);
+      }
+    } else if (command.camerasAll) {
+      int count = 0;
+      try {
+        count = cameraCount(scene);
+      } catch (const Error& error) {
+        Job bad = base;
+        bad.error = commandLineMessage(error);
+        jobs.push_back(bad);
+        continue;
+      }
+      for (int c = 0; c < count; ++c) {
+        Job job = base;
+        job.settings.camera = c;
+        job.outDir = (folder / ("camera_" + std::to_string(c))).string();
+        job.origin += " camera " + std::to_string(c);
+        jobs.push_back(job);
+      }
+      if (count == 0) {
+        Job bad = base;
+        bad.error = "--cameras all: the scene has no camera";
+        jobs.push_back(bad);
+      }
+    } else {
+      base.outDir = folder.string();
+      jobs.push_back(base);
+    }
+  }
+  for (const std::string& file : command.jobFiles)
+    for (Job& job : readJobFile(file, command.settings)) jobs.push_back(std::move(job));
+  return jobs;
+}
+
+fs::path normalizedOutDir(const std::string& outDir) {
+  std::error_code error;
+  fs::path path = fs::absolute(fs::path(outDir), error);
+  if (error) path = outDir;
+  path = path.lexically_normal();
+  // "a/b/" normalises to "a/b/" (an empty last element): drop it.
+  if (!path.has_filename() && path.has_parent_path() && path != path.root_path()) path = path.parent_path();
+  return path;
+}
+
+void checkDistinctOutDirs(const std::vector<Job>& jobs) {
+  std::map<fs::path, const Job*> seen;
+  for (const Job& job : jobs) {
+    if (!job.error.empty()) continue;
+    const auto [at, inserted] = seen.emplace(normalizedOutDir(job.outDir), &job);
+    if (!inserted)
+      throw SettingsError(at->second->origin + " and " + job.origin + " both write into '" + at->first.string() +
+                          "' (out \"" + excerpt(at->second->outDir) + "\" and \"" + excerpt(job.outDir) +
+                          "\"): their files would mix; give each job its own folder");
+  }
+}
+
+std::vector<Job> selectShard(const std::vector<Job>& jobs, int index, int count) {
+  if (count < 1 || index < 0 || index >= count)
+    throw SettingsError("shard " + std::to_string(index) + "/" + std::to_string(count) + ": expected 0 <= I < N");
+  std::vector<Job> selected;
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    if (int(k % std::size_t(count)) == index) selected.push_back(jobs[k]);
+  return selected;
+}
+
+int resolveShardIndex(const RenderCommand& command) {
+  if (command.shardIndexEnv.empty()) return command.shardIndex;
+  const char* value = std::getenv(command.shardIndexEnv.c_str());
+  const std::string where = "--shard-index-env " + command.shardIndexEnv;
+  if (!value || !*value) throw SettingsError(where + ": the variable is not set");
+  int index = -1;
+  try {
+    std::size_t used = 0;
+    index = std::stoi(value, &used);
+    if (used != std::string(value).size()) index = -1;
+  } catch (const std::exception&) {
+  }
+  if (index < 0 || index >= command.shardCount)
+    throw SettingsError(where + ": expected an index 0.." + std::to_string(command.shardCount - 1) +
+                        " (the N of --shard /" + std::to_string(command.shardCount) + "), got '" + excerpt(value) +
+                        "'");
+  return index;
+}
+
+std::string jobHash(const Job& job, const OutputOptions& output) {
+  std::string text = "scene=" + job.scene + "\n";
+  if (job.scene.rfind("builtin:", 0) != 0) text += "scene-bytes=" + fileFingerprint(job.scene) + "\n";
+  for (const auto& [name, value] : settingsAsText(job.settings)) text += name + "=" + value + "\n";
+  text += "camera=" + job.camera.describe() + "\n";
+  text += "targets=";
+  for (const std::string& target : output.targets) text += target + ",";
+  text += "\nnonfinite=" + std::string(output.nonFinite == NonFinitePolicy::Clamp ? "clamp" : "error") + "\n";
+  return textFingerprint(text);
+}
+
+}  // namespace headlight::cli

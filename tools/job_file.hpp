@@ -1,0 +1,85 @@
+#pragma once
+// The job model of `headlight render` batches, pure and context-free: job
+// lines and files parsed into Jobs, the command line's scenes x views
+// expanded, output folders normalised and checked for clashes, shards
+// selected, job hashes computed. Nothing here renders or writes; the runner
+// (batch.hpp) does. docs/BATCH.md is the user's guide.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cli_options.hpp"
+#include "headlight/scene.hpp"
+
+namespace headlight::cli {
+
+// How a job places its camera.
+struct JobCamera {
+  enum class Kind {
+    Settings,  // settings.camera (an index) or the scene's first / a fitted one
+    LookAt,    // eye, target, up, vertical field of view
+    Orbit,     // view `orbitIndex` of `orbitViews` on a turntable around the bounds
+  };
+  Kind kind = Kind::Settings;
+  glm::vec3 eye{0.0f}, target{0.0f}, up{0.0f, 1.0f, 0.0f};
+  float fovDegrees = 40.0f;  // vertical, LookAt and Orbit
+  int orbitIndex = 0, orbitViews = 1;
+
+  // Text that names the placement exactly (for the job hash and messages).
+  std::string describe() const;
+  // The camera for `scene` at `aspect` (width / height); nullopt for Settings.
+  std::optional<Camera> build(const Scene& scene, float aspect) const;
+};
+
+struct Job {
+  std::string origin;  // "jobs.jsonl:3", or "command line" (+ the view)
+  std::string scene;
+  JobCamera camera;
+  RenderSettings settings;
+  std::string outDir;
+  std::string error;  // a job that could not be parsed: reported, never rendered
+};
+
+// One job per line of `text` (JSON Lines; blank lines and lines starting
+// with '#' are skipped). Each job starts from `base` (the command line's
+// settings); its "settings" object goes through the setting table
+// (applySettingsText). A bad line becomes a Job with `error` set, naming
+// the line: one longer than detail::kMaxJobLineBytes, JSON nested deeper than
+// scenes may nest (gltf::kMaxJsonDepth), an unknown key, a bad value. Echoed
+// input is cut to a short excerpt. `name` is the file's name for origins.
+std::vector<Job> parseJobLines(const std::string& text, const std::string& name, const RenderSettings& base);
+
+// A job file's jobs: read only when it is a regular file of at most
+// detail::kMaxJobFileBytes (IoError naming it otherwise), then parseJobLines.
+std::vector<Job> readJobFile(const std::filesystem::path& path, const RenderSettings& base);
+
+// Jobs from the command: its scenes (x --views/--cameras all; `cameraCount`
+// tells how many cameras a scene has, loading it if needed) then every job
+// file's lines, in order.
+std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount);
+
+// The folder a job writes, as compared for clashes: absolute, normalised,
+// without a trailing separator ("dup", "./dup/" and "$PWD/dup" are one).
+std::filesystem::path normalizedOutDir(const std::string& outDir);
+
+// SettingsError naming both jobs when two jobs (errors aside) write into
+// one folder; nothing has rendered yet when it is called.
+void checkDistinctOutDirs(const std::vector<Job>& jobs);
+
+// Jobs k with k % count == index, in order.
+std::vector<Job> selectShard(const std::vector<Job>& jobs, int index, int count);
+
+// The shard index: `command.shardIndex`, or the value of the environment
+// variable command.shardIndexEnv (a SettingsError when it is unset or not
+// an index below shardCount).
+int resolveShardIndex(const RenderCommand& command);
+
+// What decides whether a finished set is this job's: the scene's bytes (or
+// builtin name), the requested settings, the camera and the output choices.
+std::string jobHash(const Job& job, const OutputOptions& output);
+
+}  // namespace headlight::cli
