@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "diff/flip.hpp"
+#include "diff/image_files.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
@@ -30,6 +31,11 @@ namespace headlight {
 namespace {
 
 namespace fs = std::filesystem;
+using diffio::checkOk;
+using diffio::declaredFloatBytes;
+using diffio::openImage;
+using diffio::readImage;
+using diffio::rgbChannels;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string number(double value) {
@@ -42,63 +48,6 @@ std::string percent(double value) { return number(value) + "%"; }
 
 bool isCoverageChannel(std::string_view name) {
   return name == "A" || (name.size() > 2 && name.substr(name.size() - 2) == ".A");
-}
-
-// Opens an image file for its header: only a regular file (a FIFO or a
-// /dev/zero link named lit.exr would block or never end).
-std::unique_ptr<OIIO::ImageInput> openImage(const fs::path& path, std::string& problem) {
-  std::error_code error;
-  if (!fs::exists(path, error)) {
-    problem = path.string() + ": no such file";
-    return nullptr;
-  }
-  if (const std::string kind = detail::nonRegularKind(path); !kind.empty()) {
-    problem = path.string() + ": is " + kind + ", expected an image file";
-    return nullptr;
-  }
-  auto input = OIIO::ImageInput::open(path.string());
-  if (!input) {
-    problem = path.string() + ": cannot read: " + OIIO::geterror();
-    return nullptr;
-  }
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.deep || spec.depth > 1) {
-    problem = path.string() + ": deep and volume images are not supported";
-    return nullptr;
-  }
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-    problem = path.string() + ": declares " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + "x" +
-              std::to_string(spec.nchannels) + " pixels";
-    return nullptr;
-  }
-  return input;
-}
-
-// Bytes of the image as float, from its header (no overflow: each factor < 2^31).
-double declaredFloatBytes(const OIIO::ImageSpec& spec) {
-  return double(spec.width) * double(spec.height) * double(spec.nchannels) * sizeof(float);
-}
-
-// Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
-// shared ImageCache, which may hand back an older copy of a file that was
-// rewritten under the same name, as regression suites do).
-std::optional<OIIO::ImageBuf> readImage(OIIO::ImageInput& input, const fs::path& path, std::string& problem) {
-  OIIO::ImageSpec spec = input.spec();
-  spec.set_format(OIIO::TypeDesc::FLOAT);
-  OIIO::ImageBuf buffer(spec);
-  if (!input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels())) {
-    problem = path.string() + ": cannot read the pixels: " + input.geterror();
-    return std::nullopt;
-  }
-  return buffer;
-}
-
-// openImage then readImage; `integer`: whether the file stores integer pixels.
-std::optional<OIIO::ImageBuf> loadImage(const fs::path& path, std::string& problem, bool& integer) {
-  const std::unique_ptr<OIIO::ImageInput> input = openImage(path, problem);
-  if (!input) return std::nullopt;
-  integer = !input->spec().format.is_floating_point();
-  return readImage(*input, path, problem);
 }
 
 std::string mebibytes(double bytes) { return number(bytes / double(1 << 20)) + " MiB"; }
@@ -146,9 +95,6 @@ OIIO::ImageBuf pickChannels(const OIIO::ImageBuf& image, const std::vector<std::
   return OIIO::ImageBufAlgo::channels(image, int(names.size()), order, {}, names);
 }
 
-void checkOk(const OIIO::ImageBuf& image, const char* operation) {
-  if (image.has_error()) throw Error(std::string("diff: ImageBufAlgo::") + operation + " failed: " + image.geterror());
-}
 
 // A one-channel float image named `name` holding `values`.
 OIIO::ImageBuf singleChannel(const OIIO::ROI& roi, const std::string& name, const float* values) {
@@ -216,21 +162,6 @@ void chooseScale(const OIIO::ImageBuf& a, const std::vector<std::string>& channe
   }
   result.scale = largest > 0 ? largest : 1.0;
   result.scaleSource = largest > 0 ? "largest |value| in A (no headlight:far)" : "1 (no headlight:far, A is all zero)";
-}
-
-// The indices of R, G and B among `channels` (by name, last component: "R"
-// or "<layer>.R"), or empty when one is missing.
-std::vector<int> rgbChannels(const std::vector<std::string>& channels) {
-  std::vector<int> rgb;
-  for (const char* wanted : {"R", "G", "B"}) {
-    const auto found = std::find_if(channels.begin(), channels.end(), [&](const std::string& name) {
-      const auto dot = name.rfind('.');
-      return (dot == std::string::npos ? name : name.substr(dot + 1)) == wanted;
-    });
-    if (found == channels.end()) return {};
-    rgb.push_back(int(found - channels.begin()));
-  }
-  return rgb;
 }
 
 struct MetricImages {
@@ -418,38 +349,6 @@ void judge(DiffResult& r) {
   }
 }
 
-// An image as the Flip metric saw it, as an 8-bit sRGB PNG at `path`: an
-// integer (display) image as it is, a float one at the middle of the
-// HDR-FLIP exposures, ACES tone mapped.
-void writeFlipView(const fs::path& source, const DiffResult& result, const fs::path& path) {
-  std::string problem;
-  bool integer = false;
-  const std::optional<OIIO::ImageBuf> image = loadImage(source, problem, integer);
-  if (!image) throw IoError(path.string() + ": cannot show " + problem);
-  const std::vector<int> rgb = rgbChannels(image->spec().channelnames);
-  if (rgb.empty()) throw IoError(path.string() + ": " + source.string() + " has no R, G, B channels to show");
-  const OIIO::ImageBuf picked = OIIO::ImageBufAlgo::channels(*image, 3, rgb);
-  checkOk(picked, "channels");
-  std::vector<float> pixels(picked.roi().npixels() * 3);
-  picked.get_pixels(picked.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
-  const bool hdr = !result.flip || result.flip->hdr;
-  const float scale =
-      hdr && result.flip ? float(std::exp2(0.5 * (result.flip->startExposure + result.flip->stopExposure))) : 1.0f;
-  for (float& v : pixels) {
-    const float shown =
-        hdr ? flip::linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
-    v = std::isfinite(shown) ? std::clamp(shown, 0.0f, 1.0f) : 0.0f;
-  }
-  OIIO::ImageSpec spec(picked.spec().width, picked.spec().height, 3, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R", "G", "B"};
-  OIIO::ImageBuf view(spec);
-  view.set_pixels(view.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
-  OIIO::ImageSpec pngSpec = spec;
-  pngSpec.set_format(OIIO::TypeDesc::UINT8);
-  pngSpec.attribute("oiio:ColorSpace", "sRGB");
-  detail::writeImageAtomically(path, view, pngSpec, "png");
-}
-
 }  // namespace
 
 DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& options) {
@@ -628,62 +527,6 @@ DirectoryDiff diffDirectories(const fs::path& a, const fs::path& b, const DiffOp
   }
   for (const DiffResult& target : diff.targets) diff.status = std::max(diff.status, target.status);
   return diff;
-}
-
-std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& exrPath) {
-  namespace iba = OIIO::ImageBufAlgo;
-  const ImageF& diff = result.difference;
-  if (diff.empty())
-    throw Error("writeDiffImages: " + exrPath.string() + ": the comparison ended in '" +
-                std::string(statusName(result.status)) + "', so there is no difference image");
-  OIIO::ImageSpec spec(diff.width, diff.height, diff.channelCount(), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = diff.channels;
-  OIIO::ImageBuf buffer(spec);
-  buffer.set_pixels(buffer.roi(), OIIO::TypeDesc::FLOAT, diff.pixels.data());
-  OIIO::ImageSpec exrSpec = spec;
-  exrSpec.attribute("compression", "zip");
-  exrSpec.attribute("headlight:diff:a", result.a.string());
-  exrSpec.attribute("headlight:diff:b", result.b.string());
-  exrSpec.attribute("headlight:diff:target", result.target);
-  exrSpec.attribute("headlight:diff:metric", std::string(metricName(result.metric)));
-  exrSpec.attribute("headlight:diff:fail", float(result.thresholds.fail));
-  exrSpec.attribute("headlight:diff:status", std::string(statusName(result.status)));
-
-  // Heatmap: error * (0.5 / fail), so the fail threshold sits mid-ramp and
-  // twice it saturates; +inf (NaN/Inf inputs) saturates too.
-  // FLIP maps are shown as the papers show them: 0..1 through magma.
-  const bool flipMap = result.metric == DiffMetric::Flip;
-  const int errorChannel = diff.channelCount() - 1;
-  double fullScale = flipMap ? 1.0 : 2.0 * result.thresholds.fail;
-  if (!(fullScale > 0) || !std::isfinite(fullScale)) {
-    fullScale = 0;
-    for (std::size_t p = std::size_t(errorChannel); p < diff.pixels.size(); p += diff.channels.size())
-      if (std::isfinite(diff.pixels[p])) fullScale = std::max(fullScale, double(diff.pixels[p]));
-    if (fullScale == 0) fullScale = 1;
-  }
-  const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
-  const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / fullScale)), 0.0f, 1.0f);
-  OIIO::ImageBuf heat = iba::color_map(scaled, 0, flipMap ? "magma" : "inferno");
-  if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
-  OIIO::ImageSpec pngSpec = heat.spec();
-  pngSpec.set_format(OIIO::TypeDesc::UINT8);
-  pngSpec.attribute("oiio:ColorSpace", "sRGB");  // the colour map's values are display values
-
-  fs::path pngPath = exrPath;
-  pngPath.replace_extension(".png");
-  detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
-  detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
-  std::vector<fs::path> written{exrPath, pngPath};
-  if (flipMap) {
-    // What FLIP compared, for a report to show beside the map.
-    for (const auto& [source, suffix] : {std::pair{result.a, "_a.png"}, std::pair{result.b, "_b.png"}}) {
-      fs::path path = exrPath;
-      path.replace_filename(exrPath.stem().string() + suffix);
-      writeFlipView(source, result, path);
-      written.push_back(path);
-    }
-  }
-  return written;
 }
 
 }  // namespace headlight
