@@ -13,6 +13,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "color/srgb.hpp"
 #include "diff/flip.hpp"
 #include "diff_command.hpp"
 #include "headlight/diff.hpp"
@@ -741,8 +742,8 @@ TEST_CASE("diff: lit is judged by HDR-FLIP, preview.png by LDR-FLIP, and --metri
   // The same as LDR-FLIP of the decoded 8-bit values.
   std::vector<float> decodedA, decodedB;
   for (std::size_t i = 0; i < preview.pixels.size(); ++i) {
-    decodedA.push_back(flip::srgbToLinear(std::round(preview.pixels[i] * 255.0f) / 255.0f));
-    decodedB.push_back(flip::srgbToLinear(std::round(tinted.pixels[i] * 255.0f) / 255.0f));
+    decodedA.push_back(srgbToLinear(std::round(preview.pixels[i] * 255.0f) / 255.0f));
+    decodedB.push_back(srgbToLinear(std::round(tinted.pixels[i] * 255.0f) / 255.0f));
   }
   const double ldrMean = flip::ldrFlip({decodedA.data(), 32, 32, 3}, {decodedB.data(), 32, 32, 3}).mean;
   CHECK(result.channels[0].meanError == doctest::Approx(ldrMean).epsilon(1e-4));

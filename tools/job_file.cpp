@@ -177,16 +177,10 @@ std::optional<Camera> JobCamera::build(const Scene& scene, float aspect) const {
     camera.worldFromCamera = glm::inverse(glm::lookAt(eye, target, up));
     return camera;
   }
-  // The turntable: fitCamera's framing (the bounding sphere fits the
-  // narrower field of view, seen a little from above), turned about +Y.
-  const Bounds bounds = scene.worldBounds();
-  const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-30f);
-  const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
-  const float distance = radius / std::sin(0.5f * camera.yfov * std::min(1.0f, aspect));
+  // The turntable: fitCamera's framing turned about +Y.
   const float azimuth = 2.0f * glm::pi<float>() * float(orbitIndex) / float(std::max(1, orbitViews));
-  const glm::vec3 direction = glm::normalize(glm::vec3(std::sin(azimuth), 0.25f, std::cos(azimuth)));
+  camera = fitCamera(scene.worldBounds(), aspect, camera.yfov, azimuth);
   camera.name = "orbit " + std::to_string(orbitIndex);
-  camera.worldFromCamera = glm::inverse(glm::lookAt(center + direction * distance, center, glm::vec3(0, 1, 0)));
   return camera;
 }
 

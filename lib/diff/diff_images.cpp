@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "color/srgb.hpp"
 #include "diff/flip.hpp"
 #include "diff/image_files.hpp"
 #include "headlight/diff.hpp"
@@ -40,7 +41,7 @@ void writeFlipView(const fs::path& source, const DiffResult& result, const fs::p
       hdr && result.flip ? float(std::exp2(0.5 * (result.flip->startExposure + result.flip->stopExposure))) : 1.0f;
   for (float& v : pixels) {
     const float shown =
-        hdr ? flip::linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
+        hdr ? linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
     v = std::isfinite(shown) ? std::clamp(shown, 0.0f, 1.0f) : 0.0f;
   }
   OIIO::ImageSpec spec(picked.spec().width, picked.spec().height, 3, OIIO::TypeDesc::FLOAT);

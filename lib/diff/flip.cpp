@@ -394,13 +394,7 @@ double pixelsPerDegree(double distanceMetres, double displayWidthMetres, double 
 
 double defaultPixelsPerDegree() { return pixelsPerDegree(0.7, 0.7, 3840.0); }
 
-float srgbToLinear(float encoded) {
-  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
-}
 
-float linearToSrgb(float linear) {
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
 
 float acesToneMap(float radiance) {
   const double x = radiance;

@@ -81,11 +81,8 @@ FlipResult hdrFlip(const RgbView& reference, const RgbView& test, double pixelsP
 FlipResult hdrFlip(const RgbView& reference, const RgbView& test, const ExposureRange& exposures,
                    double pixelsPerDegree = defaultPixelsPerDegree());
 
-// sRGB transfer function, encoded 0..1 -> linear 0..1 (for 8-bit images such
-// as preview.png, which LDR-FLIP takes linear).
-float srgbToLinear(float encoded);
-// Its inverse, linear 0..1 -> encoded 0..1.
-float linearToSrgb(float linear);
+// (sRGB's transfer curve, which LDR-FLIP's 8-bit inputs are decoded by, is
+// lib/color/srgb.hpp's.)
 
 // The ACES filmic curve HDR-FLIP tone maps with (Narkowicz's fit, with the
 // 0.6 pre-exposure the papers use), not clamped.

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "color/srgb.hpp"
 #include "diff/flip.hpp"
 #include "diff/image_files.hpp"
 #include "headlight/diff.hpp"
@@ -190,8 +191,8 @@ MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const 
   details.pixelsPerDegree = flip::defaultPixelsPerDegree();
   flip::FlipResult flipped;
   if (ldr) {
-    for (float& v : rgbA) v = flip::srgbToLinear(v);
-    for (float& v : rgbB) v = flip::srgbToLinear(v);
+    for (float& v : rgbA) v = srgbToLinear(v);
+    for (float& v : rgbB) v = srgbToLinear(v);
     flipped = flip::ldrFlip(viewA, viewB, details.pixelsPerDegree);
   } else {
     flipped = flip::hdrFlip(viewA, viewB, details.pixelsPerDegree);

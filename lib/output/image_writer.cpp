@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "color/srgb.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
@@ -125,7 +126,7 @@ std::string nonFiniteMessage(std::string_view what, std::size_t count, std::size
 // The one-pass tonemap of the preview, straight to 8-bit sRGB.
 std::uint8_t encodeSrgb8(float linear) {
   const float v = std::clamp(linear, 0.0f, 1.0f);
-  const float encoded = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  const float encoded = linearToSrgb(v);
   return std::uint8_t(encoded * 255.0f + 0.5f);
 }
 

@@ -7,16 +7,21 @@
 
 namespace headlight {
 
-Camera fitCamera(const Bounds& bounds, float aspectRatio) {
+// About 40 degrees, a normal lens.
+Camera fitCamera(const Bounds& bounds, float aspectRatio) { return fitCamera(bounds, aspectRatio, 0.7f, 0.0f); }
+
+Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians) {
   Camera camera;
   camera.name = "fitted";
-  camera.yfov = 0.7f;  // about 40 degrees, a normal lens
+  camera.yfov = yfovRadians;
   const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-30f);
   const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
   // The sphere fits the narrower of the two fields of view.
   const float halfFov = 0.5f * camera.yfov * std::min(1.0f, aspectRatio);
   const float distance = radius / std::sin(halfFov);
-  const glm::vec3 direction = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+  // A little from above.
+  const glm::vec3 direction =
+      glm::normalize(glm::vec3(std::sin(azimuthRadians), 0.25f, std::cos(azimuthRadians)));
   camera.worldFromCamera = glm::inverse(glm::lookAt(center + direction * distance, center, glm::vec3(0, 1, 0)));
   return camera;
 }

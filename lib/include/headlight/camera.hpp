@@ -21,6 +21,9 @@ struct CameraView {
 // A perspective camera that frames `bounds` whole, looking at their centre
 // from the front (+Z), a little above; used when a file has no camera.
 Camera fitCamera(const Bounds& bounds, float aspectRatio);
+// The same framing with a `yfovRadians` lens, turned by `azimuthRadians`
+// about +Y (0: fitCamera's view, from +Z): a turntable's views.
+Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians);
 
 // Near/far planes for looking at `bounds` from `worldFromCamera`: the range
 // of view depths of the box's corners, widened by 1% of its radius, clamped
