@@ -81,8 +81,8 @@ class SceneCache {
 
  private:
   SceneLoadOptions options_;
-  bool quiet_;
   ResourceLimits limits_;
+  bool quiet_;
   std::map<std::string, int> remaining_;
   std::map<std::string, Scene> scenes_;
 };
