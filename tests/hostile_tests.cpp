@@ -644,10 +644,9 @@ TEST_SUITE("hostile") {
     }
     const fs::path scene = writeGltf(folder, document, "amplified.gltf");
     CHECK(fs::file_size(scene) < 150000);
-    const auto start = std::chrono::steady_clock::now();
+    // Refused before any GL work (0.94 s on the 2-core machine, most of it the
+    // loader: docs/RELIABILITY.md; timings are measured there, not asserted).
     expectRefused(scene, {"999000 instances x 2 passes", "--max-draws"});
-    // Measured 0.94 s on the 2-core machine (most of it the loader); 10 s leaves room for sanitizers.
-    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
 
     ResourceLimits limits;
     Scene small = loadGltf(writeGltf(folder, hostile::triangleScene(), "one.gltf"), {}, limits);

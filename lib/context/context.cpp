@@ -57,15 +57,44 @@ void loadGlEntryPoints(const detail::PlatformContext& platform, GladGLContext& t
 // So whatever this thread has current is released through its own API
 // before another platform context is made current. A weak pointer: the
 // context may be destroyed by another thread meanwhile.
-thread_local std::weak_ptr<detail::PlatformContext> tCurrentPlatform;
+// The platform context this thread has current. A thread_local with a
+// destructor: at exit the main thread's copy is destroyed before static
+// objects are (a function-static Context, say), so it is reached through
+// currentPlatformSlot(), which is null once the slot is gone; the flag is
+// trivially destructible and stays readable.
+thread_local bool tCurrentPlatformGone = false;
+struct CurrentPlatformSlot {
+  std::weak_ptr<detail::PlatformContext> platform;
+  ~CurrentPlatformSlot() { tCurrentPlatformGone = true; }
+};
+thread_local CurrentPlatformSlot tCurrentPlatform;
+
+std::weak_ptr<detail::PlatformContext>* currentPlatformSlot() {
+  return tCurrentPlatformGone ? nullptr : &tCurrentPlatform.platform;
+}
+
+// Whether `platform` is the one this thread has current.
+bool isCurrentPlatform(const std::shared_ptr<detail::PlatformContext>& platform) {
+  const auto* slot = currentPlatformSlot();
+  return slot != nullptr && slot->lock() == platform;
+}
 
 // Releases the platform context this thread has current, unless it is `keep`.
 void releaseCurrentPlatform(const detail::PlatformContext* keep = nullptr) {
-  const std::shared_ptr<detail::PlatformContext> current = tCurrentPlatform.lock();
+  auto* slot = currentPlatformSlot();
+  if (slot == nullptr) {
+    gladSetCurrentGLContext(nullptr);
+    return;
+  }
+  const std::shared_ptr<detail::PlatformContext> current = slot->lock();
   if (current.get() == keep && keep != nullptr) return;
   if (current) current->release();
   gladSetCurrentGLContext(nullptr);
-  tCurrentPlatform.reset();
+  slot->reset();
+}
+
+void setCurrentPlatform(const std::shared_ptr<detail::PlatformContext>& platform) {
+  if (auto* slot = currentPlatformSlot()) *slot = platform;
 }
 
 std::mutex& backendMutex(Backend backend) {
@@ -146,7 +175,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     throw ContextError(message);
   }
   auto lock = detail::ContextAccess::lockBackend(*this);
-  tCurrentPlatform = impl_->platform;
+  setCurrentPlatform(impl_->platform);
   loadGlEntryPoints(*impl_->platform, impl_->gl);
   gladSetCurrentGLContext(&impl_->gl);
   try {
@@ -170,7 +199,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 Context::~Context() {
   if (!impl_) return;  // moved from
   auto lock = detail::ContextAccess::lockBackend(*this);
-  if (tCurrentPlatform.lock() == impl_->platform)
+  if (isCurrentPlatform(impl_->platform))
     releaseCurrentPlatform();
   else if (gladGetCurrentGLContext() == &impl_->gl)
     gladSetCurrentGLContext(nullptr);
@@ -192,12 +221,12 @@ void Context::makeCurrent() {
     throw ContextError(impl_->platform->description() +
                        ": could not make the context current on this thread (it is current on another thread: "
                        "call releaseCurrent() there first)");
-  tCurrentPlatform = impl_->platform;
+  setCurrentPlatform(impl_->platform);
   gladSetCurrentGLContext(&impl_->gl);
 }
 
 void Context::releaseCurrent() {
-  if (tCurrentPlatform.lock() == impl_->platform)
+  if (isCurrentPlatform(impl_->platform))
     releaseCurrentPlatform();
   else if (isCurrent())
     gladSetCurrentGLContext(nullptr);
