@@ -64,6 +64,10 @@ void main() {
 #ifdef HAS_BASE_COLOR_TEXTURE
   baseColor *= texture(baseColorTexture, vTexcoord);  // sRGB texture: decoded to linear by the sampler
 #endif
+#ifdef ALPHA_MASK
+  // alphaMode MASK: a cut-out fragment leaves the background (position.a = 0).
+  if (baseColor.a < material.alphaCutoff) discard;
+#endif
 #ifdef HAS_METALLIC_ROUGHNESS_TEXTURE
   const vec4 metallicRoughness = texture(metallicRoughnessTexture, vTexcoord);
   roughness *= metallicRoughness.g;

@@ -135,6 +135,10 @@ HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
   vec4 baseColorFactor;     // linear RGBA
   vec4 emissiveFactor;      // linear RGB, w unused
   vec4 factors;             // metallic, roughness, normalScale, occlusionStrength
+  float alphaCutoff;        // alphaMode MASK (ALPHA_MASK variants): alpha below it is cut out
+  float pad0;
+  float pad1;
+  float pad2;
 HL_BLOCK_END(material)
 
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).

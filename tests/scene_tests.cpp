@@ -452,6 +452,34 @@ TEST_CASE("glTF: an embedded PNG is decoded to RGBA, top row first") {
   CHECK(scene.primitives[0].texcoords.size() == 3);
 }
 
+TEST_CASE("glTF: alphaMode and alphaCutoff are read; MASK is rendered, BLEND named; bad values are refused") {
+  TempFolder folder;
+  GltfParts parts;
+  parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+  auto load = [&](const std::string& material) {
+    parts.extra = R"(,"materials":[)" + material + "]";
+    return loadGltf(writeTriangleGltf(folder, parts));
+  };
+  const Scene masked = load(R"({"alphaMode":"MASK","alphaCutoff":0.25})");
+  CHECK(masked.materials[0].alphaMode == AlphaMode::Mask);
+  CHECK(masked.materials[0].alphaCutoff == 0.25f);
+  CHECK(masked.ignored.empty());
+  const Scene byDefault = load(R"({"alphaMode":"MASK"})");
+  CHECK(byDefault.materials[0].alphaCutoff == 0.5f);
+  CHECK(load("{}").materials[0].alphaMode == AlphaMode::Opaque);
+  const Scene blend = load(R"({"alphaMode":"BLEND"})");
+  CHECK(blend.materials[0].alphaMode == AlphaMode::Blend);
+  REQUIRE(blend.ignored.size() == 1);
+  CHECK(blend.ignored[0].feature == "alphaMode BLEND");
+  CHECK_THROWS_WITH_AS(load(R"({"alphaMode":"CUTOUT"})"),
+                       doctest::Contains("material 0 has alphaMode 'CUTOUT', expected OPAQUE, MASK or BLEND"),
+                       SceneError);
+  CHECK_THROWS_WITH_AS(load(R"({"alphaMode":"MASK","alphaCutoff":1.5})"),
+                       doctest::Contains("material 0 has alphaCutoff 1.5"), SceneError);
+  CHECK_THROWS_WITH_AS(load(R"({"alphaMode":"MASK","alphaCutoff":-0.1})"),
+                       doctest::Contains("material 0 has alphaCutoff -0.1"), SceneError);
+}
+
 TEST_CASE("glTF: a .glb with its BIN chunk loads") {
   TempFolder folder;
   GltfParts parts;

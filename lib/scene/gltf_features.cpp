@@ -93,7 +93,8 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 void findAlphaModes(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     const tinygltf::Material& material = model.materials[index];
-    if (material.alphaMode == "MASK" || material.alphaMode == "BLEND") {
+    // OPAQUE and MASK are rendered (MASK cuts out); BLEND is drawn opaque.
+    if (material.alphaMode == "BLEND") {
       tally.add("alphaMode " + material.alphaMode, "material", named("material", index, material.name),
                 "is not rendered (drawn opaque)");
     }

@@ -61,6 +61,10 @@ struct TextureRef {
   bool present() const { return image >= 0; }
 };
 
+// glTF's alphaMode. MASK cuts out where alpha < alphaCutoff (G-buffer,
+// shadows and the reference); BLEND is drawn opaque and named as not rendered.
+enum class AlphaMode { Opaque, Mask, Blend };
+
 // glTF's metallic-roughness material.
 struct Material {
   std::string name;
@@ -71,6 +75,8 @@ struct Material {
   float normalScale = 1.0f;
   float occlusionStrength = 1.0f;  // 0..1
   bool doubleSided = false;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // MASK only: alpha = baseColorFactor.a x texture alpha; 0..1
   TextureRef baseColorTexture;          // sRGB
   TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic
   TextureRef normalTexture;             // tangent space
@@ -78,6 +84,7 @@ struct Material {
   TextureRef emissiveTexture;           // sRGB
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
+  bool masked() const { return alphaMode == AlphaMode::Mask; }
 };
 
 // One triangle list (geometry only; the material is the instance's). After
