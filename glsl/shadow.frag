@@ -9,6 +9,9 @@ layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec2 vTexcoord;
 layout(binding = kUnitBaseColorTexture) uniform sampler2D baseColorTexture;
 #endif
+#ifdef HAS_VERTEX_COLORS
+layout(location = 2) in float vColorAlpha;
+#endif
 #endif
 
 void main() {
@@ -16,6 +19,9 @@ void main() {
   float alpha = material.baseColorFactor.a;
 #ifdef HAS_BASE_COLOR_TEXTURE
   alpha *= texture(baseColorTexture, vTexcoord).a;
+#endif
+#ifdef HAS_VERTEX_COLORS
+  alpha *= vColorAlpha;
 #endif
   if (alpha < material.alphaCutoff) discard;
 #endif

@@ -10,6 +10,10 @@ layout(location = 0) out vec3 vWorldPosition;
 layout(location = kAttributeTexcoord) in vec2 inTexcoord;
 layout(location = 1) out vec2 vTexcoord;
 #endif
+#if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
+layout(location = kAttributeColor) in vec4 inColor;
+layout(location = 2) out float vColorAlpha;
+#endif
 
 void main() {
   const GpuObject object = objects.objectList[inObjectIndex];
@@ -17,6 +21,9 @@ void main() {
   vWorldPosition = world.xyz;
 #if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS)
   vTexcoord = inTexcoord;
+#endif
+#if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
+  vColorAlpha = inColor.a;
 #endif
   gl_Position = shadowView.lightViewProjection * world;
 }

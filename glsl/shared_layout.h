@@ -255,6 +255,7 @@ HL_CONST(int, kAttributeNormal, 1)
 HL_CONST(int, kAttributeTexcoord, 2)
 HL_CONST(int, kAttributeTangent, 3)
 HL_CONST(int, kAttributeObjectIndex, 4)  // per instance (divisor 1): the entry of ObjectBuffer
+HL_CONST(int, kAttributeColor, 5)        // COLOR_0, linear RGBA (HAS_VERTEX_COLORS)
 
 #ifdef __cplusplus
 }  // namespace headlight::gpu

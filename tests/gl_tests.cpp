@@ -851,6 +851,55 @@ TEST_CASE("conformance: AlphaBlendModeTest's masked planes show background throu
   }
 }
 
+TEST_CASE("COLOR_0 multiplies base colour, and its alpha counts for MASK") {
+  constexpr int size = 64;
+  Scene scene = quadScene();  // base colour (0.5, 0.25, 0.125)
+  scene.primitives[0].colors.assign(scene.primitives[0].positions.size(), glm::vec4(0.2f, 0.4f, 0.8f, 1.0f));
+  const Frame frame = renderScene(scene, smallSettings(size, size));
+  // albedo is 8-bit sRGB: 1/255 of the encoded value is < 0.002 linear here.
+  CHECK(frame.albedo.at(32, 32, 0) == doctest::Approx(0.1f).epsilon(0.03));
+  CHECK(frame.albedo.at(32, 32, 1) == doctest::Approx(0.1f).epsilon(0.03));
+  CHECK(frame.albedo.at(32, 32, 2) == doctest::Approx(0.1f).epsilon(0.03));
+  // A vertex alpha below the cutoff cuts the masked quad out; opaque, it stays.
+  for (glm::vec4& color : scene.primitives[0].colors) color.a = 0.4f;
+  CHECK(renderScene(scene, smallSettings(size, size)).position.at(32, 32, 3) == 1.0f);
+  scene.materials[0].alphaMode = AlphaMode::Mask;
+  CHECK(backgroundPixels(renderScene(scene, smallSettings(size, size))) == std::size_t(size * size));
+}
+
+TEST_CASE("conformance: BoxVertexColors' albedo spans its vertex colours" *
+          doctest::skip(!test::exists(test::sharedFolder() / "gltf-conformance" / "BoxVertexColors"))) {
+  const Scene scene = loadScene(
+      (test::sharedFolder() / "gltf-conformance" / "BoxVertexColors" / "glTF" / "BoxVertexColors.gltf").string());
+  CHECK(std::none_of(scene.ignored.begin(), scene.ignored.end(),
+                     [](const IgnoredFeature& f) { return f.feature == "COLOR_0"; }));
+  REQUIRE(!scene.primitives.empty());
+  REQUIRE(scene.primitives[0].colors.size() == scene.primitives[0].positions.size());
+  const Frame frame = renderScene(scene, smallSettings(96, 96));
+  // The file's colours run 0..1 per channel and its material is the default
+  // (white): each albedo channel stays in 0..1 and spans most of it, where an
+  // ignored COLOR_0 would leave it 1 everywhere.
+  glm::vec3 low(1e9f), high(-1e9f);
+  int geometry = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      ++geometry;
+      const glm::vec3 albedo(frame.albedo.at(x, y, 0), frame.albedo.at(x, y, 1), frame.albedo.at(x, y, 2));
+      low = glm::min(low, albedo);
+      high = glm::max(high, albedo);
+    }
+  REQUIRE(geometry > 96 * 96 / 10);
+  for (int c = 0; c < 3; ++c) {
+    CAPTURE(c);
+    CAPTURE(low[c]);
+    CAPTURE(high[c]);
+    CHECK(low[c] >= 0.0f);
+    CHECK(high[c] <= 1.0f);
+    CHECK(high[c] - low[c] > 0.5f);
+  }
+}
+
 TEST_CASE("a spot light lights its cone and not beyond, with inverse-square falloff") {
   Scene scene;
   scene.source = "test:spot";

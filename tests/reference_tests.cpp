@@ -307,6 +307,10 @@ TEST_CASE("reference: alphaMode MASK cut-outs are holes to the traced rays" *
   const double ao = mean(half.ao, 0);
   CAPTURE(ao);
   CHECK(std::abs(ao - 0.5) < 4.0 * meanStandardError(half.aoMeanStandardError, 64) + 1e-3);
+  // COLOR_0's alpha counts too: a vertex alpha below the cutoff opens the roof.
+  Scene colored = roofed(1.0f, false);
+  colored.primitives[1].colors.assign(colored.primitives[1].positions.size(), glm::vec4(1.0f, 1.0f, 1.0f, 0.4f));
+  for (float value : traceReference(colored, frame, settings).ao.pixels) CHECK(value == 1.0f);
 }
 
 TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("reference") * kNeedsEmbree) {

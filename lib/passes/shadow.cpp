@@ -187,7 +187,8 @@ void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run
     const GpuDrawGroup& group = scene.drawGroups[g];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
     const std::uint32_t features =
-        drawFeatures(primitive, material) & (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture);
+        drawFeatures(primitive, material) &
+        (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors);
     if (features & kFeatureAlphaMask) {
       maskedPrograms_.get(features).use();
       material.block.bindUniform(gpu::MaterialBlock::kBinding);

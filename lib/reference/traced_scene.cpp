@@ -42,6 +42,11 @@ bool cutOut(const InstanceShading& instance, unsigned triangle, float u, float v
                          v * primitive.texcoords[corner[2]];
     alpha *= sampleTexture(*instance.scene, material.baseColorTexture, uv, true).a;
   }
+  if (!primitive.colors.empty()) {
+    const std::uint32_t* corner = &primitive.indices[3 * std::size_t(triangle)];
+    alpha *= (1.0f - u - v) * primitive.colors[corner[0]].a + u * primitive.colors[corner[1]].a +
+             v * primitive.colors[corner[2]].a;
+  }
   return alpha < material.alphaCutoff;
 }
 
@@ -69,10 +74,12 @@ TracedScene buildScene(const Scene& scene, int threads) {
     const std::size_t vertexCount = primitive.positions.size();
     if (triangleCount == 0 || vertexCount == 0) continue;
     if (primitive.normals.size() != vertexCount ||
-        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount))
+        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
+        (!primitive.colors.empty() && primitive.colors.size() != vertexCount))
       throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has " +
                   std::to_string(vertexCount) + " positions but " + std::to_string(primitive.normals.size()) +
-                  " normals and " + std::to_string(primitive.texcoords.size()) + " texcoords");
+                  " normals, " + std::to_string(primitive.texcoords.size()) + " texcoords and " +
+                  std::to_string(primitive.colors.size()) + " colors");
     const std::uint32_t largest =
         *std::max_element(primitive.indices.begin(), primitive.indices.begin() + 3 * triangleCount);
     if (largest >= vertexCount)

@@ -117,7 +117,8 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
     for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
       for (const auto& [attribute, accessor] : model.meshes[mesh].primitives[primitive].attributes) {
-        if (attribute.rfind("COLOR_", 0) == 0) {
+        // COLOR_0 is rendered; further colour sets are not.
+        if (attribute.rfind("COLOR_", 0) == 0 && attribute != "COLOR_0") {
           tally.add(attribute, "primitive", named("mesh", mesh, "") + " primitive " + std::to_string(primitive));
         }
       }

@@ -39,6 +39,10 @@ GpuPrimitive uploadPrimitive(const Primitive& primitive) {
     addAttribute(gpu, gpu::kAttributeTangent, 4, sizeof(glm::vec4), makeBuffer(primitive.tangents));
     gpu.vertexFeatures |= kFeatureTangents;
   }
+  if (!primitive.colors.empty()) {
+    addAttribute(gpu, gpu::kAttributeColor, 4, sizeof(glm::vec4), makeBuffer(primitive.colors));
+    gpu.vertexFeatures |= kFeatureVertexColors;
+  }
   gl::Buffer indices = makeBuffer(primitive.indices);
   glVertexArrayElementBuffer(gpu.vertexArray.id(), indices.id());
   gpu.buffers.push_back(std::move(indices));
@@ -198,6 +202,7 @@ std::vector<std::string> featureDefines(std::uint32_t features) {
       {kFeatureOcclusionTexture, "HAS_OCCLUSION_TEXTURE"},
       {kFeatureEmissiveTexture, "HAS_EMISSIVE_TEXTURE"},
       {kFeatureAlphaMask, "ALPHA_MASK"},
+      {kFeatureVertexColors, "HAS_VERTEX_COLORS"},
   };
   std::vector<std::string> defines;
   for (const auto& [bit, name] : names)

@@ -21,7 +21,8 @@ enum GBufferFeature : std::uint32_t {
   kFeatureNormalTexture = 1u << 4,
   kFeatureOcclusionTexture = 1u << 5,
   kFeatureEmissiveTexture = 1u << 6,
-  kFeatureAlphaMask = 1u << 7,  // alphaMode MASK: discard below the cutoff
+  kFeatureAlphaMask = 1u << 7,     // alphaMode MASK: discard below the cutoff
+  kFeatureVertexColors = 1u << 8,  // COLOR_0 multiplies base colour and alpha
 };
 
 // The #defines that build `features` into a shader (HAS_TEXCOORDS, ...,
@@ -30,9 +31,9 @@ std::vector<std::string> featureDefines(std::uint32_t features);
 
 struct GpuPrimitive {
   gl::VertexArray vertexArray;
-  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], indices
+  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], indices
   GLsizei indexCount = 0;
-  std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents
+  std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors
 };
 
 struct GpuMaterial {

@@ -76,7 +76,7 @@ struct Material {
   float occlusionStrength = 1.0f;  // 0..1
   bool doubleSided = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
-  float alphaCutoff = 0.5f;  // MASK only: alpha = baseColorFactor.a x texture alpha; 0..1
+  float alphaCutoff = 0.5f;  // MASK only: alpha = baseColorFactor.a x texture alpha x COLOR_0 alpha; 0..1
   TextureRef baseColorTexture;          // sRGB
   TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic
   TextureRef normalTexture;             // tangent space
@@ -96,6 +96,7 @@ struct Primitive {
   std::vector<glm::vec3> normals;    // same count as positions, unit length
   std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
   std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
+  std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA (A = 1 for VEC3); empty or same count
   std::vector<std::uint32_t> indices;
   Bounds bounds;  // in the primitive's own space
 };
