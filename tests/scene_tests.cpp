@@ -491,7 +491,8 @@ TEST_CASE("glTF: COLOR_0 is read as float or normalized unsigned integers, RGB o
   // Float RGB: the positions' bytes read as colours, A = 1.
   const Scene rgb = load(R"("componentType":5126,"count":3,"type":"VEC3")");
   REQUIRE(rgb.primitives[0].colors.size() == 3);
-  for (std::size_t v = 0; v < 3; ++v) CHECK(rgb.primitives[0].colors[v] == glm::vec4(rgb.primitives[0].positions[v], 1.0f));
+  for (std::size_t v = 0; v < 3; ++v)
+    CHECK(rgb.primitives[0].colors[v] == glm::vec4(rgb.primitives[0].positions[v], 1.0f));
   CHECK(rgb.ignored.empty());
   // Normalized unsigned bytes and shorts land in 0..1.
   for (const char* color : {R"("componentType":5121,"normalized":true,"count":3,"type":"VEC4")",
@@ -507,6 +508,13 @@ TEST_CASE("glTF: COLOR_0 is read as float or normalized unsigned integers, RGB o
                        SceneError);
   CHECK_THROWS_WITH_AS(load(R"("componentType":5121,"count":3,"type":"VEC3")"), doctest::Contains("COLOR_0"),
                        SceneError);  // unsigned bytes must be normalized
+  // A primitive with COLOR_0 does not share the geometry of one without.
+  parts.primitive =
+      R"({"attributes":{"POSITION":0,"COLOR_0":2},"indices":1},{"attributes":{"POSITION":0},"indices":1})";
+  const Scene both = load(R"("componentType":5126,"count":3,"type":"VEC3")");
+  REQUIRE(both.primitives.size() == 2);
+  CHECK(both.primitives[0].colors.size() == 3);
+  CHECK(both.primitives[1].colors.empty());
   // COLOR_1 stays named as not rendered.
   parts.primitive = R"({"attributes":{"POSITION":0,"COLOR_1":2},"indices":1})";
   const Scene second = load(R"("componentType":5126,"count":3,"type":"VEC3")");
