@@ -11,6 +11,9 @@ layout(location = 2) in vec2 vTexcoord;
 #ifdef HAS_TANGENTS
 layout(location = 3) in vec4 vWorldTangent;
 #endif
+#ifdef HAS_VERTEX_COLORS
+layout(location = 4) in vec4 vColor;  // COLOR_0
+#endif
 
 #ifdef HAS_BASE_COLOR_TEXTURE
 layout(binding = kUnitBaseColorTexture) uniform sampler2D baseColorTexture;
@@ -63,6 +66,13 @@ void main() {
   float occlusion = 1.0;
 #ifdef HAS_BASE_COLOR_TEXTURE
   baseColor *= texture(baseColorTexture, vTexcoord);  // sRGB texture: decoded to linear by the sampler
+#endif
+#ifdef HAS_VERTEX_COLORS
+  baseColor *= vColor;
+#endif
+#ifdef ALPHA_MASK
+  // alphaMode MASK: a cut-out fragment leaves the background (position.a = 0).
+  if (baseColor.a < material.alphaCutoff) discard;
 #endif
 #ifdef HAS_METALLIC_ROUGHNESS_TEXTURE
   const vec4 metallicRoughness = texture(metallicRoughnessTexture, vTexcoord);

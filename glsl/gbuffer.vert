@@ -15,6 +15,11 @@ layout(location = kAttributeTangent) in vec4 inTangent;
 layout(location = 3) out vec4 vWorldTangent;
 #endif
 
+#ifdef HAS_VERTEX_COLORS
+layout(location = kAttributeColor) in vec4 inColor;
+layout(location = 4) out vec4 vColor;
+#endif
+
 layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) out vec3 vWorldNormal;
 
@@ -25,6 +30,9 @@ void main() {
   vWorldNormal = mat3(object.normalFromLocal) * inNormal;
 #ifdef HAS_TEXCOORDS
   vTexcoord = inTexcoord;
+#endif
+#ifdef HAS_VERTEX_COLORS
+  vColor = inColor;
 #endif
 #ifdef HAS_TANGENTS
   vWorldTangent = vec4(mat3(object.worldFromLocal) * inTangent.xyz, inTangent.w);

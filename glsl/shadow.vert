@@ -1,14 +1,29 @@
 // Shadow pass vertex stage: world position for the distance a point light's
-// cube stores, light clip space for rasterisation.
+// cube stores, light clip space for rasterisation. ALPHA_MASK variants (masked
+// materials) also pass the texcoord their cut-out is sampled at.
 #include "shared_layout.h"
 
 layout(location = kAttributePosition) in vec3 inPosition;
 layout(location = kAttributeObjectIndex) in uint inObjectIndex;
 layout(location = 0) out vec3 vWorldPosition;
+#if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS)
+layout(location = kAttributeTexcoord) in vec2 inTexcoord;
+layout(location = 1) out vec2 vTexcoord;
+#endif
+#if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
+layout(location = kAttributeColor) in vec4 inColor;
+layout(location = 2) out float vColorAlpha;
+#endif
 
 void main() {
   const GpuObject object = objects.objectList[inObjectIndex];
   const vec4 world = object.worldFromLocal * vec4(inPosition, 1.0);
   vWorldPosition = world.xyz;
+#if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS)
+  vTexcoord = inTexcoord;
+#endif
+#if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
+  vColorAlpha = inColor.a;
+#endif
   gl_Position = shadowView.lightViewProjection * world;
 }

@@ -135,6 +135,10 @@ HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
   vec4 baseColorFactor;     // linear RGBA
   vec4 emissiveFactor;      // linear RGB, w unused
   vec4 factors;             // metallic, roughness, normalScale, occlusionStrength
+  float alphaCutoff;        // alphaMode MASK (ALPHA_MASK variants): alpha below it is cut out
+  float pad0;
+  float pad1;
+  float pad2;
 HL_BLOCK_END(material)
 
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).
@@ -251,6 +255,7 @@ HL_CONST(int, kAttributeNormal, 1)
 HL_CONST(int, kAttributeTexcoord, 2)
 HL_CONST(int, kAttributeTangent, 3)
 HL_CONST(int, kAttributeObjectIndex, 4)  // per instance (divisor 1): the entry of ObjectBuffer
+HL_CONST(int, kAttributeColor, 5)        // COLOR_0, linear RGBA (HAS_VERTEX_COLORS)
 
 #ifdef __cplusplus
 }  // namespace headlight::gpu

@@ -32,8 +32,10 @@ const std::vector<ProgramSource>& programSources() {
   static const std::vector<ProgramSource> sources = {
       {{"gbuffer.vert", "gbuffer.frag"},
        {"HAS_TEXCOORDS", "HAS_TANGENTS", "HAS_BASE_COLOR_TEXTURE", "HAS_METALLIC_ROUGHNESS_TEXTURE",
-        "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET"}},
+        "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET", "ALPHA_MASK",
+        "HAS_VERTEX_COLORS"}},
       {{"shadow.vert", "shadow.frag"}, {}},
+      {{"shadow.vert", "shadow.frag"}, {"ALPHA_MASK", "HAS_TEXCOORDS", "HAS_BASE_COLOR_TEXTURE", "HAS_VERTEX_COLORS"}},
       {{"fullscreen.vert", "direct_light.frag"},
        {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "WRITE_DIFFUSE_RADIANCE"}},
       {{"fullscreen.vert", "ssgi.frag"}, {"METHOD_RADIANCE"}},

@@ -272,6 +272,47 @@ TEST_CASE("reference: an open plane is unoccluded and receives nothing" *
   CHECK(result.lit.at(0, 0, 3) == 1.0f);
 }
 
+TEST_CASE("reference: alphaMode MASK cut-outs are holes to the traced rays" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
+  // A shading point on a floor under a 100-wide masked roof at height 1.
+  auto roofed = [](float alpha, bool halfTexture) {
+    Scene scene = emptyScene();
+    add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 100.0f), lambert(glm::vec3(0.5f)));
+    Material roof = lambert(glm::vec3(0.5f));
+    roof.alphaMode = AlphaMode::Mask;
+    roof.baseColorFactor.a = alpha;
+    roof.doubleSided = true;
+    if (halfTexture) {  // 2x1: transparent | opaque, nearest, clamped: half the roof is cut out
+      ImageData image;
+      image.width = 2;
+      image.height = 1;
+      image.rgba = {255, 255, 255, 0, 255, 255, 255, 255};
+      scene.images.push_back(image);
+      roof.baseColorTexture.image = 0;
+      roof.baseColorTexture.magFilter = reference::kGlNearest;
+      roof.baseColorTexture.wrapS = roof.baseColorTexture.wrapT = reference::kGlClampToEdge;
+    }
+    add(scene, makeSquare({0, 1, 0}, {0, -1, 0}, 100.0f), roof);
+    return scene;
+  };
+  const Frame frame = uniformFrame(8, 8, ShadingPoint{});
+  const ReferenceSettings settings = referenceSettings(1024, 1e6f);
+  // Alpha below the cutoff: no roof at all, exactly the open plane.
+  for (float value : traceReference(roofed(0.49f, false), frame, settings).ao.pixels) CHECK(value == 1.0f);
+  // At the cutoff the roof is kept: nearly everything is blocked (rays
+  // escape only below 1/100 rad of the horizon: < 1e-3 of the cosine weight).
+  CHECK(mean(traceReference(roofed(0.5f, false), frame, settings).ao, 0) < 1e-3);
+  // Half the roof cut out (a half-space of directions by symmetry): AO 1/2.
+  const ReferenceImages half = traceReference(roofed(1.0f, true), frame, settings);
+  const double ao = mean(half.ao, 0);
+  CAPTURE(ao);
+  CHECK(std::abs(ao - 0.5) < 4.0 * meanStandardError(half.aoMeanStandardError, 64) + 1e-3);
+  // COLOR_0's alpha counts too: a vertex alpha below the cutoff opens the roof.
+  Scene colored = roofed(1.0f, false);
+  colored.primitives[1].colors.assign(colored.primitives[1].positions.size(), glm::vec4(1.0f, 1.0f, 1.0f, 0.4f));
+  for (float value : traceReference(colored, frame, settings).ao.pixels) CHECK(value == 1.0f);
+}
+
 TEST_CASE("reference: an inner corner is half occluded" * doctest::test_suite("reference") * kNeedsEmbree) {
   // A point on the floor 1 mm in front of the wall: the wall covers the half
   // of the hemisphere with direction.z < 0, which is half of the cosine

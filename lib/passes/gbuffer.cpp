@@ -11,27 +11,9 @@ namespace headlight {
 namespace {
 
 std::vector<std::string> definesFor(std::uint32_t features, const std::vector<std::string>& targetDefines) {
-  static const std::pair<std::uint32_t, const char*> names[] = {
-      {kFeatureTexcoords, "HAS_TEXCOORDS"},
-      {kFeatureTangents, "HAS_TANGENTS"},
-      {kFeatureBaseColorTexture, "HAS_BASE_COLOR_TEXTURE"},
-      {kFeatureMetallicRoughnessTexture, "HAS_METALLIC_ROUGHNESS_TEXTURE"},
-      {kFeatureNormalTexture, "HAS_NORMAL_TEXTURE"},
-      {kFeatureOcclusionTexture, "HAS_OCCLUSION_TEXTURE"},
-      {kFeatureEmissiveTexture, "HAS_EMISSIVE_TEXTURE"},
-  };
-  std::vector<std::string> defines;
-  for (const auto& [bit, name] : names)
-    if (features & bit) defines.emplace_back(name);
+  std::vector<std::string> defines = featureDefines(features);
   defines.insert(defines.end(), targetDefines.begin(), targetDefines.end());
   return defines;
-}
-
-// A texture without texcoords to read it by is ignored, as glTF viewers do.
-std::uint32_t usableFeatures(const GpuPrimitive& primitive, const GpuMaterial& material) {
-  std::uint32_t features = primitive.vertexFeatures;
-  if (features & kFeatureTexcoords) features |= material.textureFeatures;
-  return features;
 }
 
 void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, std::uint32_t features) {
@@ -56,7 +38,7 @@ GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
     : programs_("gbuffer.vert", "gbuffer.frag",
                 [](const ProgramKey& key) { return definesFor(key.features, key.targetDefines); }) {
   for (const GpuDrawGroup& group : scene.drawGroups)
-    programs_.get({usableFeatures(scene.primitives[std::size_t(group.primitive)],
+    programs_.get({drawFeatures(scene.primitives[std::size_t(group.primitive)],
                                   scene.materials[std::size_t(group.material)]),
                    variant.defines});
 }
@@ -91,7 +73,7 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   for (const GpuDrawGroup& group : scene.drawGroups) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
-    const std::uint32_t features = usableFeatures(primitive, material);
+    const std::uint32_t features = drawFeatures(primitive, material);
     programs_.get({features, variant.defines}).use();
     if (material.doubleSided)
       glDisable(GL_CULL_FACE);

@@ -96,6 +96,7 @@ std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::spa
 
 ShadowPass::ShadowPass()
     : program_(detail::buildProgram(std::array<std::string_view, 2>{"shadow.vert", "shadow.frag"})),
+      maskedPrograms_("shadow.vert", "shadow.frag", featureDefines),
       block_(gl::Buffer::create(sizeof(gpu::ShadowBlock))),
       framebuffer_(gl::Framebuffer::create()) {
   framebuffer_.setDrawBuffers({});
@@ -161,14 +162,46 @@ void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, in
   glDepthFunc(GL_LESS);
   // Both faces: single-sided walls must still block light from behind.
   glDisable(GL_CULL_FACE);
-  program_.use();
   scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
-  // Every instance of a primitive in one draw, whatever its material.
+  // Every instance of a primitive in one draw, whatever its material, unless
+  // one of its materials cuts out (alphaMode MASK).
   for (const GpuPrimitiveRun& run : scene.primitiveRuns) {
+    if (run.masked) {
+      drawMaskedRun(scene, run);
+      continue;
+    }
     const GpuPrimitive& primitive = scene.primitives[std::size_t(run.primitive)];
+    program_.use();
     primitive.vertexArray.bind();
     glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
                                         run.instanceCount, run.firstInstance);
+  }
+}
+
+// A run with a masked material, group by group: masked groups sample their
+// base colour alpha and discard below the cutoff, the others stay depth only.
+void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run) {
+  const GpuPrimitive& primitive = scene.primitives[std::size_t(run.primitive)];
+  primitive.vertexArray.bind();
+  for (std::size_t g = run.firstGroup; g < run.firstGroup + run.groupCount; ++g) {
+    const GpuDrawGroup& group = scene.drawGroups[g];
+    const GpuMaterial& material = scene.materials[std::size_t(group.material)];
+    const std::uint32_t features =
+        drawFeatures(primitive, material) &
+        (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors);
+    if (features & kFeatureAlphaMask) {
+      maskedPrograms_.get(features).use();
+      material.block.bindUniform(gpu::MaterialBlock::kBinding);
+      if (features & kFeatureBaseColorTexture) {
+        const GpuTexture& texture = scene.textures[std::size_t(material.baseColor)];
+        texture.texture.bind(gpu::kUnitBaseColorTexture);
+        texture.sampler.bind(gpu::kUnitBaseColorTexture);
+      }
+    } else {
+      program_.use();
+    }
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
+                                        group.instanceCount, group.firstInstance);
   }
 }
 

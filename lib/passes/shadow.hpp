@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gl/objects.hpp"
+#include "passes/program_cache.hpp"
 #include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
@@ -54,7 +55,11 @@ class ShadowPass {
  private:
   void renderView(const GpuScene& scene, const gl::Texture& target, int layer, const glm::mat4& viewProjection,
                   const glm::vec4& positionFar);
-  gl::Program program_;
+  void drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run);
+  gl::Program program_;  // every unmasked caster: depth only
+  // Masked casters (alphaMode MASK), by the features they read
+  // (kFeatureAlphaMask [| kFeatureTexcoords [| kFeatureBaseColorTexture]] [| kFeatureVertexColors]).
+  ProgramCache<std::uint32_t> maskedPrograms_;
   gl::Buffer block_;
   gl::Framebuffer framebuffer_;
 };

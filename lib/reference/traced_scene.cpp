@@ -5,6 +5,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "reference/texture_sampler.hpp"
 
 namespace headlight::reference {
 
@@ -16,7 +17,38 @@ const Material& defaultMaterial() {
   return material;
 }
 
+// Embree's intersect and occluded filter: a hit on a cut-out texel is
+// rejected, so the ray goes on through the hole.
+void skipCutOuts(const RTCFilterFunctionNArguments* args) {
+  const auto& instance = *static_cast<const InstanceShading*>(args->geometryUserPtr);
+  for (unsigned lane = 0; lane < args->N; ++lane) {
+    if (args->valid[lane] != -1) continue;
+    if (cutOut(instance, RTCHitN_primID(args->hit, args->N, lane), RTCHitN_u(args->hit, args->N, lane),
+               RTCHitN_v(args->hit, args->N, lane)))
+      args->valid[lane] = 0;
+  }
+}
+
 }  // namespace
+
+bool cutOut(const InstanceShading& instance, unsigned triangle, float u, float v) {
+  const Material& material = *instance.material;
+  if (!material.masked()) return false;
+  float alpha = material.baseColorFactor.a;
+  const Primitive& primitive = *instance.primitive;
+  if (!primitive.texcoords.empty() && material.baseColorTexture.present()) {
+    const std::uint32_t* corner = &primitive.indices[3 * std::size_t(triangle)];
+    const glm::vec2 uv = (1.0f - u - v) * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] +
+                         v * primitive.texcoords[corner[2]];
+    alpha *= sampleTexture(*instance.scene, material.baseColorTexture, uv, true).a;
+  }
+  if (!primitive.colors.empty()) {
+    const std::uint32_t* corner = &primitive.indices[3 * std::size_t(triangle)];
+    alpha *= (1.0f - u - v) * primitive.colors[corner[0]].a + u * primitive.colors[corner[1]].a +
+             v * primitive.colors[corner[2]].a;
+  }
+  return alpha < material.alphaCutoff;
+}
 
 TracedScene buildScene(const Scene& scene, int threads) {
   // "threads=N" also bounds Embree's own BVH-building threads.
@@ -42,10 +74,12 @@ TracedScene buildScene(const Scene& scene, int threads) {
     const std::size_t vertexCount = primitive.positions.size();
     if (triangleCount == 0 || vertexCount == 0) continue;
     if (primitive.normals.size() != vertexCount ||
-        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount))
+        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
+        (!primitive.colors.empty() && primitive.colors.size() != vertexCount))
       throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has " +
                   std::to_string(vertexCount) + " positions but " + std::to_string(primitive.normals.size()) +
-                  " normals and " + std::to_string(primitive.texcoords.size()) + " texcoords");
+                  " normals, " + std::to_string(primitive.texcoords.size()) + " texcoords and " +
+                  std::to_string(primitive.colors.size()) + " colors");
     const std::uint32_t largest =
         *std::max_element(primitive.indices.begin(), primitive.indices.begin() + 3 * triangleCount);
     if (largest >= vertexCount)
@@ -73,12 +107,18 @@ TracedScene buildScene(const Scene& scene, int threads) {
       // indices are shared rather than copied.
       rtcSetSharedGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, primitive.indices.data(),
                                  0, 3 * sizeof(std::uint32_t), triangleCount);
+      if (material.masked()) {
+        rtcSetGeometryUserData(geometry.get(), &traced.instances[id]);
+        rtcSetGeometryIntersectFilterFunction(geometry.get(), skipCutOuts);
+        rtcSetGeometryOccludedFilterFunction(geometry.get(), skipCutOuts);
+      }
       rtcCommitGeometry(geometry.get());
       rtcAttachGeometryByID(traced.scene.get(), geometry.get(), unsigned(id));
     }
     traced.device.check(what + " (" + std::to_string(triangleCount) + " triangles)");
 
     InstanceShading& shading = traced.instances[id];
+    shading.scene = &scene;
     shading.primitive = &primitive;
     shading.material = &material;
     shading.normalFromLocal = normalMatrix(instance.worldFromLocal);

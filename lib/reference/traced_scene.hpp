@@ -1,7 +1,7 @@
 #pragma once
 // The scene as Embree sees it: one triangle geometry per instance, in world
 // space, with what a hit needs to shade itself (geometry id = instance
-// index).
+// index). Masked materials' cut-out texels are holes to every ray.
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -12,6 +12,7 @@
 namespace headlight::reference {
 
 struct InstanceShading {
+  const Scene* scene = nullptr;          // its images, for masked cut-outs
   const Primitive* primitive = nullptr;  // null for an instance with no triangles
   const Material* material = nullptr;
   glm::mat3 normalFromLocal{1.0f};        // headlight::normalMatrix, as gpu_scene.cpp uses
@@ -24,6 +25,11 @@ struct TracedScene {
   EmbreeScene scene;
   std::vector<InstanceShading> instances;  // indexed by geometry id
 };
+
+// True where `instance`'s material is alphaMode MASK and the surface at
+// barycentrics (u, v) of `triangle` has alpha below the cutoff: a hole
+// (gbuffer.frag's discard). Embree's filter functions skip such hits.
+bool cutOut(const InstanceShading& instance, unsigned triangle, float u, float v);
 
 // Flattens `scene` into a committed Embree scene. `threads` > 0 bounds
 // Embree's BVH-building threads. The result points into `scene`, which must

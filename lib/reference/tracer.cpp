@@ -294,6 +294,9 @@ class Tracer {
       uv = w * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] + v * primitive.texcoords[corner[2]];
     if (textured && material.baseColorTexture.present())
       baseColor *= glm::vec3(sampleTexture(in_.scene, material.baseColorTexture, uv, true));
+    if (!primitive.colors.empty())  // COLOR_0, as gbuffer.frag multiplies it
+      baseColor *= glm::vec3(w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] +
+                             v * primitive.colors[corner[2]]);
     if (textured && material.metallicRoughnessTexture.present())
       metallic *= sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false).b;
     if (textured && material.emissiveTexture.present() && material.emissive())

@@ -34,6 +34,13 @@ inline constexpr AccessorFormat kTangentFormats[]{kFloatVec4};
 inline constexpr AccessorFormat kTexcoordFormats[]{
     kFloatVec2, AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC2, true},
     AccessorFormat{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, true}};
+// COLOR_0: float or normalized unsigned byte/short, RGB or RGBA (glTF 3.7.2.1).
+inline constexpr AccessorFormat kColorFormats[]{kFloatVec3,
+                                                kFloatVec4,
+                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC3, true},
+                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_TYPE_VEC4, true},
+                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC3, true},
+                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, true}};
 // KHR_mesh_quantization's additions (its table): integer and normalized
 // integer positions and texcoords, normalized integer normals and tangents.
 inline constexpr AccessorFormat kQuantizedPositionFormats[]{

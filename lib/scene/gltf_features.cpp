@@ -93,7 +93,8 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 void findAlphaModes(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     const tinygltf::Material& material = model.materials[index];
-    if (material.alphaMode == "MASK" || material.alphaMode == "BLEND") {
+    // OPAQUE and MASK are rendered (MASK cuts out); BLEND is drawn opaque.
+    if (material.alphaMode == "BLEND") {
       tally.add("alphaMode " + material.alphaMode, "material", named("material", index, material.name),
                 "is not rendered (drawn opaque)");
     }
@@ -116,7 +117,8 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
     for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
       for (const auto& [attribute, accessor] : model.meshes[mesh].primitives[primitive].attributes) {
-        if (attribute.rfind("COLOR_", 0) == 0) {
+        // COLOR_0 is rendered; further colour sets are not.
+        if (attribute.rfind("COLOR_", 0) == 0 && attribute != "COLOR_0") {
           tally.add(attribute, "primitive", named("mesh", mesh, "") + " primitive " + std::to_string(primitive));
         }
       }

@@ -144,7 +144,7 @@ void repairNormals(Primitive& primitive) {
     }
   }
   if (!allUsable) {
-    Primitive generated{primitive.positions, {}, {}, {}, primitive.indices, {}};
+    Primitive generated{primitive.positions, {}, {}, {}, {}, primitive.indices, {}};
     generateNormals(generated);
     for (std::size_t vertex = 0; vertex < primitive.normals.size(); ++vertex) {
       const float length = glm::length(primitive.normals[vertex]);
@@ -156,6 +156,31 @@ void repairNormals(Primitive& primitive) {
 }
 
 }  // namespace
+
+std::vector<glm::vec4> GeometryReader::readColors(int accessorIndex, const std::string& primitiveName,
+                                                  std::size_t vertexCount, int positionAccessor) {
+  const std::string user = primitiveName + " COLOR_0";
+  const CheckedAccessor accessor = accessors_.check(accessorIndex, user, kColorFormats);
+  if (accessor.count != vertexCount) {
+    source_.fail(user + " accessor " + std::to_string(accessorIndex) + " has " + std::to_string(accessor.count) +
+                 " elements, but POSITION accessor " + std::to_string(positionAccessor) + " has " +
+                 std::to_string(vertexCount));
+  }
+  std::vector<glm::vec4> colors;
+  if (source_.model.accessors[std::size_t(accessorIndex)].type == TINYGLTF_TYPE_VEC3) {
+    for (const glm::vec3& rgb : accessors_.readFloats<3>(accessor)) colors.emplace_back(rgb, 1.0f);
+  } else {
+    colors = accessors_.readFloats<4>(accessor);
+  }
+  for (std::size_t vertex = 0; vertex < colors.size(); ++vertex) {
+    const glm::vec4& c = colors[vertex];
+    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b) || !std::isfinite(c.a)) {
+      source_.fail(user + " (accessor " + std::to_string(accessorIndex) + ") has a non-finite value at element " +
+                   std::to_string(vertex));
+    }
+  }
+  return colors;
+}
 
 Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName, const Pose& pose) {
   using Formats = std::span<const AccessorFormat>;
@@ -184,6 +209,9 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
     primitive.tangents = accessors_.readAttribute<4>(
         tangents, primitiveName + " TANGENT",
         quantized_ ? Formats(kQuantizedTangentFormats) : Formats(kTangentFormats), vertexCount, positionAccessor);
+  }
+  if (const int colors = attributeAccessor(source, "COLOR_0"); colors >= 0) {
+    primitive.colors = readColors(colors, primitiveName, vertexCount, positionAccessor);
   }
   applyMorphTargets(accessors_, source, primitiveName, pose.weights, primitive);
   if (normals >= 0) {

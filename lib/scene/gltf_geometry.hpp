@@ -36,6 +36,8 @@ class GeometryReader {
   void reserveVertices(std::size_t count, int accessorIndex, const std::string& user);
   void reserveTriangles(std::size_t count, const std::string& primitiveName);
   std::vector<glm::vec3> readPositions(int accessorIndex, const std::string& primitiveName);
+  std::vector<glm::vec4> readColors(int accessorIndex, const std::string& primitiveName, std::size_t vertexCount,
+                                    int positionAccessor);
   std::vector<std::uint32_t> readVertexOrder(int accessorIndex, const std::string& primitiveName,
                                              std::size_t vertexCount);
   std::vector<std::uint32_t> readTriangleIndices(const tinygltf::Primitive& source, const std::string& primitiveName,

@@ -45,10 +45,10 @@ std::string lowercase(std::string text) {
   return text;
 }
 
-// Key of a primitive's geometry: its POSITION, NORMAL, TEXCOORD_0, TANGENT and
-// indices accessors, its mode, and the pose (morph weights, skin) it is
+// Key of a primitive's geometry: its POSITION, NORMAL, TEXCOORD_0, TANGENT,
+// COLOR_0 and indices accessors, its mode, and the pose (morph weights, skin) it is
 // drawn in. Primitives with equal keys share decoding work.
-using GeometryKey = std::tuple<int, int, int, int, int, int, std::vector<float>, int>;
+using GeometryKey = std::tuple<int, int, int, int, int, int, int, std::vector<float>, int>;
 // A mesh as one node draws it: mesh, morph weights, skin.
 using MeshKey = std::tuple<int, std::vector<float>, int>;
 
@@ -103,7 +103,7 @@ class GltfReader {
     }
     const GeometryKey key{attributeAccessor(source, "POSITION"), attributeAccessor(source, "NORMAL"),
                           attributeAccessor(source, "TEXCOORD_0"), attributeAccessor(source, "TANGENT"),
-                          source.indices, source.mode, pose.weights, skin};
+                          attributeAccessor(source, "COLOR_0"), source.indices, source.mode, pose.weights, skin};
     // Files often repeat one geometry under many materials (one mesh per
     // material); it is decoded and stored once, and each use is an instance.
     auto [cached, inserted] = geometryCache_.try_emplace(key, static_cast<int>(scene_.primitives.size()));

@@ -161,6 +161,24 @@ void readSpecularGlossiness(const Source& source, const tinygltf::Material& mate
   }
 }
 
+// glTF 2.0 3.9.4: alphaMode is one of three names; alphaCutoff (MASK) is >= 0.
+// Above 1 nothing could pass, so it is refused as the corrupt value it is.
+void readAlpha(const Source& source, const tinygltf::Material& material, const std::string& name, Material& out) {
+  static const std::pair<const char*, AlphaMode> modes[] = {
+      {"OPAQUE", AlphaMode::Opaque}, {"MASK", AlphaMode::Mask}, {"BLEND", AlphaMode::Blend}};
+  const auto mode = std::find_if(std::begin(modes), std::end(modes),
+                                 [&](const auto& row) { return material.alphaMode == row.first; });
+  if (mode == std::end(modes)) {
+    source.fail(name + " has alphaMode '" + material.alphaMode + "', expected OPAQUE, MASK or BLEND");
+  }
+  out.alphaMode = mode->second;
+  const double cutoff = material.alphaCutoff;
+  if (!std::isfinite(cutoff) || cutoff < 0.0 || cutoff > 1.0) {
+    source.fail(name + " has alphaCutoff " + std::to_string(cutoff) + ", expected a number in 0..1");
+  }
+  out.alphaCutoff = static_cast<float>(cutoff);
+}
+
 }  // namespace
 
 Material readMaterial(const Source& source, int materialIndex) {
@@ -169,6 +187,7 @@ Material readMaterial(const Source& source, int materialIndex) {
   Material out;
   out.name = material.name.empty() ? name : material.name;
   readFactors(source, material, name, out);
+  readAlpha(source, material, name, out);
   const auto& pbr = material.pbrMetallicRoughness;
   out.baseColorTexture =
       readTextureRef(source, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, name + " baseColorTexture");

@@ -39,6 +39,10 @@ GpuPrimitive uploadPrimitive(const Primitive& primitive) {
     addAttribute(gpu, gpu::kAttributeTangent, 4, sizeof(glm::vec4), makeBuffer(primitive.tangents));
     gpu.vertexFeatures |= kFeatureTangents;
   }
+  if (!primitive.colors.empty()) {
+    addAttribute(gpu, gpu::kAttributeColor, 4, sizeof(glm::vec4), makeBuffer(primitive.colors));
+    gpu.vertexFeatures |= kFeatureVertexColors;
+  }
   gl::Buffer indices = makeBuffer(primitive.indices);
   glVertexArrayElementBuffer(gpu.vertexArray.id(), indices.id());
   gpu.buffers.push_back(std::move(indices));
@@ -102,7 +106,10 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   block.factors =
       glm::vec4(material.metallicFactor, material.roughnessFactor, material.normalScale, material.occlusionStrength);
   gpu.block = gl::Buffer::create(sizeof(block), &block);
+  block.alphaCutoff = material.alphaCutoff;
+  gpu.block = gl::Buffer::create(sizeof(block), &block);
   gpu.doubleSided = material.doubleSided;
+  if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
   struct Slot {
     const TextureRef& ref;
     bool srgb;
@@ -154,13 +161,17 @@ std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMateria
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
   for (std::size_t position = 0; position < order.size(); ++position) {
     const Key& key = keys[order[position]];
-    if (gpu.drawGroups.empty() || Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material,
-                                      gpu.drawGroups.back().mirrored} != key)
-      gpu.drawGroups.push_back({key.primitive, key.material, key.mirrored, GLuint(position), 0});
-    ++gpu.drawGroups.back().instanceCount;
     if (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive)
-      gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0});
-    ++gpu.primitiveRuns.back().instanceCount;
+      gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0, gpu.drawGroups.size(), 0, false});
+    GpuPrimitiveRun& run = gpu.primitiveRuns.back();
+    ++run.instanceCount;
+    if (gpu.drawGroups.empty() || Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material,
+                                      gpu.drawGroups.back().mirrored} != key) {
+      gpu.drawGroups.push_back({key.primitive, key.material, key.mirrored, GLuint(position), 0});
+      ++run.groupCount;
+      run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+    }
+    ++gpu.drawGroups.back().instanceCount;
   }
   return order;
 }
@@ -180,6 +191,30 @@ void attachDrawOrder(GpuScene& gpu) {
 }
 
 }  // namespace
+
+std::vector<std::string> featureDefines(std::uint32_t features) {
+  static const std::pair<std::uint32_t, const char*> names[] = {
+      {kFeatureTexcoords, "HAS_TEXCOORDS"},
+      {kFeatureTangents, "HAS_TANGENTS"},
+      {kFeatureBaseColorTexture, "HAS_BASE_COLOR_TEXTURE"},
+      {kFeatureMetallicRoughnessTexture, "HAS_METALLIC_ROUGHNESS_TEXTURE"},
+      {kFeatureNormalTexture, "HAS_NORMAL_TEXTURE"},
+      {kFeatureOcclusionTexture, "HAS_OCCLUSION_TEXTURE"},
+      {kFeatureEmissiveTexture, "HAS_EMISSIVE_TEXTURE"},
+      {kFeatureAlphaMask, "ALPHA_MASK"},
+      {kFeatureVertexColors, "HAS_VERTEX_COLORS"},
+  };
+  std::vector<std::string> defines;
+  for (const auto& [bit, name] : names)
+    if (features & bit) defines.emplace_back(name);
+  return defines;
+}
+
+std::uint32_t drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material) {
+  std::uint32_t features = primitive.vertexFeatures | material.alphaFeatures;
+  if (features & kFeatureTexcoords) features |= material.textureFeatures;
+  return features;
+}
 
 GpuScene uploadScene(const Scene& scene) {
   GpuScene gpu;

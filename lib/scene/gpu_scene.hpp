@@ -3,6 +3,7 @@
 // material and per instance, one texture per image and colour space that a
 // material actually uses. Only what the scene has is allocated.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "gl/objects.hpp"
@@ -20,13 +21,19 @@ enum GBufferFeature : std::uint32_t {
   kFeatureNormalTexture = 1u << 4,
   kFeatureOcclusionTexture = 1u << 5,
   kFeatureEmissiveTexture = 1u << 6,
+  kFeatureAlphaMask = 1u << 7,     // alphaMode MASK: discard below the cutoff
+  kFeatureVertexColors = 1u << 8,  // COLOR_0 multiplies base colour and alpha
 };
+
+// The #defines that build `features` into a shader (HAS_TEXCOORDS, ...,
+// ALPHA_MASK): one table for the G-buffer and shadow passes.
+std::vector<std::string> featureDefines(std::uint32_t features);
 
 struct GpuPrimitive {
   gl::VertexArray vertexArray;
-  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], indices
+  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], indices
   GLsizei indexCount = 0;
-  std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents
+  std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors
 };
 
 struct GpuMaterial {
@@ -35,6 +42,7 @@ struct GpuMaterial {
   // kUnit*Texture units.
   int baseColor = -1, metallicRoughness = -1, normal = -1, occlusion = -1, emissive = -1;
   std::uint32_t textureFeatures = 0;
+  std::uint32_t alphaFeatures = 0;  // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
   bool doubleSided = false;
 };
 
@@ -55,11 +63,15 @@ struct GpuDrawGroup {
   GLsizei instanceCount = 0;
 };
 
-// A primitive's instances in draw order, for passes that ignore materials.
+// A primitive's instances in draw order, for passes that ignore materials
+// unless one of them is masked (the shadow pass then draws the run's groups).
 struct GpuPrimitiveRun {
   int primitive = 0;
   GLuint firstInstance = 0;
   GLsizei instanceCount = 0;
+  std::size_t firstGroup = 0;  // the run's draw groups: drawGroups[firstGroup, firstGroup + groupCount)
+  std::size_t groupCount = 0;
+  bool masked = false;  // some group's material is alphaMode MASK
 };
 
 struct GpuScene {
@@ -75,5 +87,9 @@ struct GpuScene {
 };
 
 GpuScene uploadScene(const Scene& scene);
+
+// The features a draw of `primitive` with `material` reads: a texture
+// without texcoords to read it by is ignored, as glTF viewers do.
+std::uint32_t drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material);
 
 }  // namespace headlight

@@ -237,6 +237,7 @@ std::uint64_t estimateSceneBytes(const Scene& scene) {
   for (const Primitive& primitive : scene.primitives) {
     bytes += primitive.positions.size() * sizeof(glm::vec3) + primitive.normals.size() * sizeof(glm::vec3) +
              primitive.texcoords.size() * sizeof(glm::vec2) + primitive.tangents.size() * sizeof(glm::vec4) +
+             primitive.colors.size() * sizeof(glm::vec4) +
              primitive.indices.size() * sizeof(std::uint32_t);
   }
   for (const ImageData& image : scene.images) bytes += image.rgba.size() * 4 / 3;  // with mipmaps on the GPU

@@ -61,6 +61,10 @@ struct TextureRef {
   bool present() const { return image >= 0; }
 };
 
+// glTF's alphaMode. MASK cuts out where alpha < alphaCutoff (G-buffer,
+// shadows and the reference); BLEND is drawn opaque and named as not rendered.
+enum class AlphaMode { Opaque, Mask, Blend };
+
 // glTF's metallic-roughness material.
 struct Material {
   std::string name;
@@ -71,6 +75,8 @@ struct Material {
   float normalScale = 1.0f;
   float occlusionStrength = 1.0f;  // 0..1
   bool doubleSided = false;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // MASK only: alpha = baseColorFactor.a x texture alpha x COLOR_0 alpha; 0..1
   TextureRef baseColorTexture;          // sRGB
   TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic
   TextureRef normalTexture;             // tangent space
@@ -78,6 +84,7 @@ struct Material {
   TextureRef emissiveTexture;           // sRGB
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
+  bool masked() const { return alphaMode == AlphaMode::Mask; }
 };
 
 // One triangle list (geometry only; the material is the instance's). After
@@ -89,6 +96,7 @@ struct Primitive {
   std::vector<glm::vec3> normals;    // same count as positions, unit length
   std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
   std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
+  std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA (A = 1 for VEC3); empty or same count
   std::vector<std::uint32_t> indices;
   Bounds bounds;  // in the primitive's own space
 };
