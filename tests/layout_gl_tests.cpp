@@ -7,6 +7,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <set>
 #include <string>
@@ -156,4 +157,95 @@ TEST_CASE("shared layout: every sampler sits on a listed unit, and every listed 
   context.checkErrors("querying the linked samplers");
 }
 
+}  // namespace headlight
+
+namespace headlight {
+using namespace headlight::test;
+
+namespace {
+
+// What the GL says a uniform block's member offset and the block's size
+// are, for a linked program: the std140 layout the GLSL side really has.
+GLint blockDataSize(GLuint program, const char* block) {
+  const GLuint index = glGetProgramResourceIndex(program, GL_UNIFORM_BLOCK, block);
+  REQUIRE(index != GL_INVALID_INDEX);
+  const GLenum property = GL_BUFFER_DATA_SIZE;
+  GLint size = 0;
+  glGetProgramResourceiv(program, GL_UNIFORM_BLOCK, index, 1, &property, 1, nullptr, &size);
+  return size;
+}
+
+GLint memberOffset(GLuint program, const char* member) {
+  const GLuint index = glGetProgramResourceIndex(program, GL_UNIFORM, member);
+  REQUIRE(index != GL_INVALID_INDEX);
+  const GLenum property = GL_OFFSET;
+  GLint offset = -1;
+  glGetProgramResourceiv(program, GL_UNIFORM, index, 1, &property, 1, nullptr, &offset);
+  return offset;
+}
+
+}  // namespace
+
+TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
+  sharedContext();
+  const std::string_view ssgiFiles[] = {"fullscreen.vert", "ssgi.frag"};
+  const gl::Program ssgi = detail::buildProgram(ssgiFiles);
+  CHECK(blockDataSize(ssgi.id(), "SsgiBlock") == GLint(sizeof(gpu::SsgiBlock)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.radiusWorld") == GLint(offsetof(gpu::SsgiBlock, radiusWorld)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.indirectStrength") == GLint(offsetof(gpu::SsgiBlock, indirectStrength)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.sampleCount") == GLint(offsetof(gpu::SsgiBlock, sampleCount)));
+  CHECK(memberOffset(ssgi.id(), "SsgiBlock.downsample") == GLint(offsetof(gpu::SsgiBlock, downsample)));
+  CHECK(blockDataSize(ssgi.id(), "FrameBlock") == GLint(sizeof(gpu::FrameBlock)));
+  CHECK(memberOffset(ssgi.id(), "FrameBlock.projection") == GLint(offsetof(gpu::FrameBlock, projection)));
+  CHECK(memberOffset(ssgi.id(), "FrameBlock.viewport") == GLint(offsetof(gpu::FrameBlock, viewport)));
+
+  const std::string_view gbufferFiles[] = {"gbuffer.vert", "gbuffer.frag"};
+  const gl::Program gbuffer = detail::buildProgram(gbufferFiles);
+  // The instances' transforms are std430 and read through a struct: its stride and members.
+  const GLuint objects = glGetProgramResourceIndex(gbuffer.id(), GL_BUFFER_VARIABLE, "ObjectBuffer.objectList[0].normalFromLocal");
+  REQUIRE(objects != GL_INVALID_INDEX);
+  const GLenum objectProperties[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+  GLint objectValues[2] = {-1, -1};
+  glGetProgramResourceiv(gbuffer.id(), GL_BUFFER_VARIABLE, objects, 2, objectProperties, 2, nullptr, objectValues);
+  CHECK(objectValues[0] == GLint(offsetof(gpu::GpuObject, normalFromLocal)));
+  CHECK(objectValues[1] == GLint(sizeof(gpu::GpuObject)));
+  CHECK(blockDataSize(gbuffer.id(), "MaterialBlock") == GLint(sizeof(gpu::MaterialBlock)));
+  CHECK(memberOffset(gbuffer.id(), "MaterialBlock.factors") == GLint(offsetof(gpu::MaterialBlock, factors)));
+
+  const std::string_view compositeFiles[] = {"fullscreen.vert", "composite.frag"};
+  const gl::Program composite = detail::buildProgram(compositeFiles);
+  CHECK(blockDataSize(composite.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
+  CHECK(memberOffset(composite.id(), "LightingBlock.skyIntensity") ==
+        GLint(offsetof(gpu::LightingBlock, skyIntensity)));
+
+  const std::string_view blurFiles[] = {"fullscreen.vert", "ssgi_blur.frag"};
+  const gl::Program blur = detail::buildProgram(blurFiles);
+  CHECK(blockDataSize(blur.id(), "SsgiBlurBlock") == GLint(sizeof(gpu::SsgiBlurBlock)));
+  CHECK(memberOffset(blur.id(), "SsgiBlurBlock.ssgiDownsample") == GLint(offsetof(gpu::SsgiBlurBlock, ssgiDownsample)));
+
+  // The lights are std430 and read through a struct: every member's offset.
+  const std::string_view directFiles[] = {"fullscreen.vert", "direct_light.frag"};
+  const std::string directDefines[] = {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"};
+  const gl::Program direct = detail::buildProgram(directFiles, directDefines);
+  CHECK(blockDataSize(direct.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
+  CHECK(memberOffset(direct.id(), "LightingBlock.pcfRadius") == GLint(offsetof(gpu::LightingBlock, pcfRadius)));
+  CHECK(memberOffset(direct.id(), "LightingBlock.shadowMapSize") == GLint(offsetof(gpu::LightingBlock, shadowMapSize)));
+  auto lightOffset = [&](const char* member) {
+    const GLuint index = glGetProgramResourceIndex(direct.id(), GL_BUFFER_VARIABLE, member);
+    REQUIRE(index != GL_INVALID_INDEX);
+    const GLenum properties[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
+    GLint values[2] = {-1, -1};
+    glGetProgramResourceiv(direct.id(), GL_BUFFER_VARIABLE, index, 2, properties, 2, nullptr, values);
+    CHECK(values[1] == GLint(sizeof(gpu::GpuLight)));
+    return values[0];
+  };
+  CHECK(lightOffset("LightBuffer.lightList[0].range") == GLint(offsetof(gpu::GpuLight, range)));
+  CHECK(lightOffset("LightBuffer.lightList[0].type") == GLint(offsetof(gpu::GpuLight, type)));
+  CHECK(lightOffset("LightBuffer.lightList[0].castsShadows") == GLint(offsetof(gpu::GpuLight, castsShadows)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowLayer") == GLint(offsetof(gpu::GpuLight, shadowLayer)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowTexelSize") == GLint(offsetof(gpu::GpuLight, shadowTexelSize)));
+  CHECK(lightOffset("LightBuffer.lightList[0].shadowViewProjection") ==
+        GLint(offsetof(gpu::GpuLight, shadowViewProjection)));
+  sharedContext().checkErrors("querying uniform block layouts");
+}
 }  // namespace headlight

@@ -3,8 +3,33 @@
 #include <thread>
 
 #include "headlight/error.hpp"
+#include "headlight/scene_builder.hpp"
+#include "headlight/shapes.hpp"
 
 namespace headlight::test {
+
+Scene orthoQuadScene() {
+  Scene scene;
+  scene.source = "test:quad";
+  addInstance(scene, makeSquare({0, 0, 0}, {0, 0, 1}, 1.0f),
+              addMaterial(scene, makeMaterial({0.5f, 0.25f, 0.125f}, 0.6f, 0.3f)));
+  scene.cameras.push_back(makeOrthographicCamera({0, 0, 2}, {0, 0, 0}, 1.5f));
+  return scene;
+}
+
+Scene openPlaneScene() {
+  Scene scene;
+  scene.source = "test:plane";
+  addInstance(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 50.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.8f)));
+  scene.cameras.push_back(makeLookAtCamera({0, 2, 6}, {0, 0, -4}, 0.8f));
+  return scene;
+}
+
+Frame renderFresh(Scene scene, const RenderSettings& settings) {
+  Renderer renderer(sharedContext());
+  renderer.setScene(std::move(scene));
+  return renderer.render(settings);
+}
 
 bool canMakeContext(Backend backend) {
   bool made = false;

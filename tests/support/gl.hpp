@@ -40,6 +40,15 @@ std::string takeGlErrors(Context& context);
 double meanWhere(const Frame& frame, const ImageF& image, int channel,
                  const std::function<bool(glm::vec3 position, glm::vec3 normal)>& select, int& count);
 
+// A 1x1 quad at the origin facing +Z (albedo 0.5, 0.25, 0.125; roughness
+// 0.6, metallic 0.3) seen by an orthographic camera from +Z, 3 units tall:
+// the quad fills the middle 2/3 of the image.
+Scene orthoQuadScene();
+// A 100x100 open plane (albedo 0.8) seen from above at a slant.
+Scene openPlaneScene();
+// `scene` rendered by a fresh renderer on sharedContext().
+Frame renderFresh(Scene scene, const RenderSettings& settings);
+
 // Settings for a small test render.
 inline RenderSettings smallSettings(int width = 96, int height = 96) {
   RenderSettings settings;
