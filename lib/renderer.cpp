@@ -124,8 +124,9 @@ struct Renderer::Impl {
       const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
       if (!plan.allocates(row.id))
         texture = gl::Texture();
-      else if (texture.width() != w || texture.height() != h)
-        texture = gl::Texture::create2D(gl::internalFormat(row.format), w, h);
+      else if (const GLenum format = gl::internalFormat(plan.formatOf(row.id));
+               texture.width() != w || texture.height() != h || texture.internalFormat() != format)
+        texture = gl::Texture::create2D(format, w, h);
     }
   }
 

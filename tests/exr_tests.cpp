@@ -3,13 +3,19 @@
 // atomic and failures leave nothing behind.
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <OpenImageIO/imagebuf.h>
 
 #include <filesystem>
+#include <thread>
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
+#include "output/folder_lock.hpp"
 #include "support/gl.hpp"
 #include "support/temp_folder.hpp"
 
@@ -108,5 +114,40 @@ TEST_CASE("writes are atomic: no temporary file stays, and a failed write leaves
   const fs::path blocked = folder / "lit.exr" / "sub";
   CHECK_THROWS_AS(writeFrame(frame, blocked), IoError);
   CHECK_FALSE(fs::exists(blocked));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("writeFrame holds the folder's lock: a folder locked elsewhere is refused, one this process holds is shared") {
+  const Frame& frame = cornellFrame();
+  const fs::path folder = test::freshFolder("exr_lock");
+  OutputOptions options;
+  options.targets = {"lit"};
+  {
+    // Another holder of the folder's flock, as another process's render is.
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    REQUIRE(fd >= 0);
+    REQUIRE(::flock(fd, LOCK_EX) == 0);
+    try {
+      writeFrame(frame, folder, options);
+      FAIL("a locked folder was written");
+    } catch (const IoError& error) {
+      CHECK(std::string(error.what()).find(folder.string()) != std::string::npos);
+      CHECK(std::string(error.what()).find("wait for it") != std::string::npos);
+      CHECK(error.settings() == std::vector<std::string>{"wait"});
+    }
+    CHECK(!fs::exists(folder / "lit.exr"));
+    ::close(fd);
+  }
+  // The CLI's way: its own lock from before the render, then writeFrame on
+  // another thread; the nested lock must not wait for the first.
+  {
+    const detail::OutputFolderLock held(folder, false);
+    std::thread([&] { CHECK(writeFrame(frame, folder, options).size() == 1); }).join();
+  }
+  CHECK(fs::exists(folder / "lit.exr"));
+  // Released: a second flock succeeds at once.
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  CHECK(::flock(fd, LOCK_EX | LOCK_NB) == 0);
+  ::close(fd);
   fs::remove_all(folder);
 }

@@ -297,21 +297,30 @@ TEST_SUITE("hostile") {
 }
 
 TEST_SUITE("hostile") {
-  TEST_CASE("no silent saturation: a half-float target that clamps is counted and warned about") {
+  TEST_CASE("no silent saturation: a bright scene is float; half that clamps is counted and names the way out") {
     TempFolder folder("hostile");
     const fs::path scene =
         writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 1e8), "bright.gltf");
-    const ProcessResult run =
+    // radiance-precision auto: a light this bright makes lit, emissive and ssgi float.
+    ProcessResult run =
         runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
+    CHECK(run.output.find("out/lit.exr: 32x24 float") != std::string::npos);
+    CHECK(run.output.find("saturated") == std::string::npos);
+    // Half asked for: what it clamps is counted, and the warning says how to keep it.
+    run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --radiance-precision half --out " +
+                       quote(folder.path() / "half"));
+    CHECK(run.exitCode == 0);
     CHECK(run.output.find("pixels saturated at half float's 65504") != std::string::npos);
-    CHECK(run.output.find("warning: " + (folder.path() / "out" / "lit.exr").string()) != std::string::npos);
-    // A light within half's range: no note.
+    CHECK(run.output.find("warning: " + (folder.path() / "half" / "lit.exr").string()) != std::string::npos);
+    CHECK(run.output.find("--radiance-precision float") != std::string::npos);
+    // A light within half's range: half, and no note.
     const fs::path dim = writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 10), "dim.gltf");
     const ProcessResult dimRun =
         runHeadlight("render " + quote(dim) + " --width 32 --height 24 --out " + quote(folder.path() / "dim"));
     CHECK(dimRun.exitCode == 0);
+    CHECK(dimRun.output.find("dim/lit.exr: 32x24 half") != std::string::npos);
     CHECK(dimRun.output.find("saturated") == std::string::npos);
   }
 }

@@ -201,8 +201,7 @@ void warnSaturated(const std::vector<WrittenFile>& files) {
     if (file.saturatedPixels)
       std::cerr << "headlight: warning: " << file.path.string() << ": " << file.saturatedPixels
                 << " pixels saturated at 65504, half float's largest value: the scene's light exceeds the "
-                   "half-float target's range (lower light intensities or emissive strengths; float output for "
-                   "such scenes is not available yet, docs/RELIABILITY.md)\n";
+                   "half-float target's range (render with --radiance-precision float to keep it)\n";
 }
 
 // The renderer draws only what the output needs (the preview reads lit).
@@ -241,6 +240,7 @@ int runSingleRender(const RenderCommand& command) {
   if (command.verbosity == Verbosity::Verbose) printFrameDetails(frame);
   OutputOptions output = command.output;
   output.jobHash = jobHash(job, command.output);
+  output.waitForFolder = command.wait;
   const std::vector<WrittenFile> files = writeFrame(frame, job.outDir, output);
   if (command.verbosity != Verbosity::Quiet)
     for (const WrittenFile& file : files) std::cout << file.summary << "\n";
@@ -350,6 +350,7 @@ int runRenderBatch(const RenderCommand& command) {
       waitForWrite();
       OutputOptions output = command.output;
       output.jobHash = jobHash(job, command.output);
+      output.waitForFolder = command.wait;
       pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock] {
         const auto writeStart = std::chrono::steady_clock::now();
         try {

@@ -19,23 +19,23 @@ constexpr SsgiMethodTraits kSsgiMethods[] = {
 
 using F = GpuFormat;
 // The one table of GPU formats: a target's format is the format of the
-// attachment that holds it. Direct light is internal, and half float holds
-// its HDR radiance.
+// attachment that holds it. Direct light is internal. The rows marked
+// radiance hold light: half float, or float32 with radiance-precision float.
 constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", false, &Frame::position},
     {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", false, &Frame::normal},
     {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", false, &Frame::albedo},
     {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", false, &Frame::material},
     {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, 4, "HAS_EMISSIVE_TARGET", false,
-     &Frame::emissive},
+     &Frame::emissive, true},
     {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", false, &Frame::depth},
-    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", false, nullptr},
-    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", false, nullptr},
-    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", true, nullptr},
+    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", false, nullptr, true},
+    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", false, nullptr, true},
+    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", true, nullptr, true},
     {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", true, nullptr},
-    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi},
+    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi, true},
     {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", false, &Frame::ssgi},
-    {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit},
+    {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -215,6 +215,9 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   plan.skyTables = skips.runs(Work::Sky);
   if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
   planAttachments(plan);
+  const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
+  for (const AttachmentRow& row : kAttachmentRows)
+    plan.format[std::size_t(row.id)] = row.radiance && floatRadiance ? GpuFormat::Rgba32F : row.format;
   planReads(plan, wanted);
   return plan;
 }

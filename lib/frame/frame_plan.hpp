@@ -92,6 +92,9 @@ struct AttachmentRow {
   // The frame target it holds (several rows: channels 4k..4k+3 in the k-th);
   // null for internal attachments.
   ImageF Frame::*target = nullptr;
+  // Holds light (HDR radiance): `format` is half float, and the frame's
+  // radiance-precision may make it Rgba32F (FramePlan::format).
+  bool radiance = false;
 };
 // Every attachment, in Attachment order.
 std::span<const AttachmentRow> attachmentRows();
@@ -142,10 +145,12 @@ struct FramePlan {
   std::optional<CompositeVariant> composite;
 
   std::array<bool, kAttachmentCount> allocate{};  // by Attachment
+  std::array<GpuFormat, kAttachmentCount> format{};  // by Attachment: the row's, or Rgba32F for radiance in float
   std::vector<TargetRead> reads;                  // the targets read back, in frameTargets() order
   std::vector<SkippedWork> skipped;               // the work left out, and why (--verbose)
 
   bool allocates(Attachment id) const { return allocate[std::size_t(id)]; }
+  GpuFormat formatOf(Attachment id) const { return format[std::size_t(id)]; }
   std::vector<std::string_view> passNames() const;
 };
 

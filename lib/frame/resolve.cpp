@@ -34,6 +34,25 @@ float autoThickness(const Scene& scene, float diagonal, float radius) {
                     radius);
 }
 
+float brightestRadianceEstimate(const Scene& scene, float diagonal) {
+  constexpr float kPi = 3.14159265f;
+  float brightest = 0.0f;
+  for (const Material& material : scene.materials)
+    brightest = std::max({brightest, material.emissiveFactor.r, material.emissiveFactor.g, material.emissiveFactor.b});
+  const float near = kNearLightFraction * diagonal;
+  for (const Light& light : scene.lights) {
+    const float power = light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+    brightest = std::max(brightest, light.type == Light::Type::Directional ? power / kPi : power / (kPi * near * near));
+  }
+  return brightest;
+}
+
+RadiancePrecision autoRadiancePrecision(const Scene& scene, float diagonal) {
+  constexpr float kHalfMax = 65504.0f;
+  return brightestRadianceEstimate(scene, diagonal) * kHalfHeadroom > kHalfMax ? RadiancePrecision::Float
+                                                                               : RadiancePrecision::Half;
+}
+
 RenderSettings resolveSettings(const RenderSettings& settings, const Scene& scene) {
   settings.validate();
   RenderSettings used = settings;
@@ -45,6 +64,7 @@ RenderSettings resolveSettings(const RenderSettings& settings, const Scene& scen
   if (!used.ssgi.thickness) used.ssgi.thickness = autoThickness(scene, diagonal, *used.ssgi.radius);
   if (!used.lighting.shadowMapSize) used.lighting.shadowMapSize = autoShadowMapSize(used.width, used.height);
   if (!used.lighting.skyIntensity) used.lighting.skyIntensity = scene.sky.intensity;
+  if (!used.radiancePrecision) used.radiancePrecision = autoRadiancePrecision(scene, diagonal);
   if (!used.ssgi.indirectStrength)
     used.ssgi.indirectStrength = ssgiMethodTraits(used.ssgi.method).defaultIndirectStrength;
   return used;

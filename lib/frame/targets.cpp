@@ -60,19 +60,19 @@ const FrameTarget kTargets[] = {
      thresholds(1e-5, 1e-3, 0.5, 5e-3),
      "view-space depth (distance along -Z), far plane on background; float32 like position. Error over the far "
      "distance: depth precision scales with distance."},
-    {"emissive", &Frame::emissive, kEmissiveChannels, E::Half, M::RelativeToValue,
+    {"emissive", &Frame::emissive, kEmissiveChannels, E::Radiance, M::RelativeToValue,
      thresholds(2e-3, 2e-2, 0.5, 2e-2),
      "emitted radiance, only for scenes that glow. HDR (emissiveStrength can be large): absolute below 1, relative "
-     "above; half storage rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
-    {"ssgi", &Frame::ssgi, kSsgiChannels, E::Half, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
+     "above; half storage (radiance-precision half) rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
+    {"ssgi", &Frame::ssgi, kSsgiChannels, E::Radiance, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
      "AO within R, one-bounce indirect within R, sky visibility at any distance and indirect from beyond R, 0..~1; "
      "absent with SSGI off. Two GPU textures (ao + indirect, then sky + indirectFar). Seeded and repeatable on one "
      "driver, but one of 64 kernel samples "
      "landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade, and sky.Y is "
      "held to the same: its long-range samples flip the same way, one slab of a 32-sector mask moves it by ~1/32. "
      "1 % of pixels: samples flip at every depth discontinuity."},
-    {"lit", &Frame::lit, kLitChannels, E::Half, M::Flip, thresholds(0.02, 0.1, 0.5, 0.005),
-     "linear HDR radiance, A = coverage (absolute). HDR-FLIP (0..1), the difference a viewer flipping between "
+    {"lit", &Frame::lit, kLitChannels, E::Radiance, M::Flip, thresholds(0.02, 0.1, 0.5, 0.005),
+     "linear HDR radiance, A = coverage (absolute); half, or float with radiance-precision float. HDR-FLIP (0..1), the difference a viewer flipping between "
      "the images sees over the exposures that span the golden's range: brightness errors the eye ignores cost "
      "little, and a wrong pixel's error spreads over its neighbours. Reruns and osmesa against EGL give 0 "
      "(llvmpipe); 0.02 is far below a visible change; a pixel above 0.1 may be noticed; 0.5 % of pixels for "

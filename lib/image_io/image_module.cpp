@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "output/folder_lock.hpp"
 
 namespace headlight::detail {
 namespace {
@@ -108,6 +109,9 @@ void preloadImageIo() { detail::startLoading(); }
 
 std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::path& outDir,
                                     const OutputOptions& options) {
+  // Taken on this side of the module: the lock's per-process count must be
+  // the one the CLI's own lock (held from before the render) added to.
+  const detail::OutputFolderLock lock(outDir, options.waitForFolder);
   return imageModule().writeFrame(frame, outDir, options);
 }
 

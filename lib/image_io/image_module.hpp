@@ -26,7 +26,7 @@ namespace headlight::detail {
 
 // Bumped whenever the table or a type crossing it changes: a module from
 // another build is refused, not called.
-inline constexpr std::uint32_t kImageModuleAbi = 2;  // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels
+inline constexpr std::uint32_t kImageModuleAbi = 3;  // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: OutputOptions::waitForFolder
 
 struct ImageModuleTable {
   std::uint32_t abi;

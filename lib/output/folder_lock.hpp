@@ -6,7 +6,15 @@
 // when the process dies, so a killed render never leaves the folder locked.
 // Advisory: only Headlight processes (and anything else that flocks the
 // folder) honour it; a network file system without flock may not.
+//
+// Within one process the lock is shared: the CLI holds a folder's lock from
+// before the render, and writeFrame (which every embedder calls) takes it
+// again on its writer thread. flock would make that second taking wait for
+// the first forever, so a process-wide count per folder lets a nested lock
+// through; the flock is dropped with the last one. Two threads of one
+// process writing one folder at once are therefore not kept apart.
 #include <filesystem>
+#include <string>
 
 namespace headlight::detail {
 
@@ -14,7 +22,7 @@ class OutputFolderLock {
  public:
   // Creates `folder` if needed and takes the lock. With `wait` false, a
   // folder another process holds is an IoError at once, naming the folder
-  // and how to wait (--wait); with `wait` true, blocks until it is free.
+  // and the `wait` setting; with `wait` true, blocks until it is free.
   OutputFolderLock(const std::filesystem::path& folder, bool wait);
   // Drops the lock; a folder this lock created and nothing was written
   // into (the render failed) is removed again, as if never touched.
@@ -24,8 +32,8 @@ class OutputFolderLock {
 
  private:
   std::filesystem::path folder_;
+  std::string key_;  // the folder's device and inode: one entry per folder however it is spelled
   bool created_ = false;
-  int fd_ = -1;
 };
 
 }  // namespace headlight::detail

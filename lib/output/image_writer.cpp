@@ -151,6 +151,13 @@ void runParallel(const std::vector<std::function<void()>>& tasks, int threads) {
     if (error) std::rethrow_exception(error);
 }
 
+// Light is half unless the frame was rendered with float radiance: then its
+// GPU target held float32, and half would clamp what it kept.
+bool halfStorage(const FrameTarget& target, const Frame& frame) {
+  if (target.storage == ExrStorage::Radiance) return frame.settings.radiancePrecision != RadiancePrecision::Float;
+  return target.storage == ExrStorage::Half;
+}
+
 bool wanted(const OutputOptions& options, std::string_view name) {
   return options.targets.empty() ||
          std::find(options.targets.begin(), options.targets.end(), name) != options.targets.end();
@@ -245,6 +252,7 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   const bool preview = wanted(options, "preview") && !frame.lit.empty();
   if (preview) jobs.push_back({nullptr, {}});
 
+  // The caller's side of the module holds the folder's lock (image_module.cpp).
   std::error_code error;
   fs::create_directories(outDir, error);
   if (error) throw IoError(outDir.string() + ": cannot create the output folder: " + error.message());
@@ -268,7 +276,7 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
       const Job& job = jobs[i];
       written[i] = job.target ? writeExrChecked(frame, frame.*job.target->image,
                                                 outDir / (std::string(job.target->name) + ".exr"),
-                                                job.target->storage == ExrStorage::Half, {}, options.compression,
+                                                halfStorage(*job.target, frame), {}, options.compression,
                                                 options.nonFinite, job.stats)
                               : writePreview(frame, outDir / "preview.png");
     });

@@ -21,6 +21,7 @@ namespace {
 constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance", "bitmask"};
 constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
 constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
+constexpr std::string_view kRadiancePrecisionNames[] = {"half", "float"};
 constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
 
 // The largest image side; width x height is further bounded in validate().
@@ -187,6 +188,13 @@ const std::vector<Row>& table() {
            .minimum = -20,
            .maximum = 20},
           [](auto& s) -> auto& { return s.exposure; }),
+      row(
+          {.name = "radiance-precision",
+           .type = T::Choice,
+           .help = "storage of lit, emissive and ssgi, on the GPU and in the EXRs (half holds up to 65504)",
+           .choices = kRadiancePrecisionNames,
+           .autoMeaning = "float when the scene's lights or emitters may exceed half's range"},
+          [](auto& s) -> auto& { return s.radiancePrecision; }),
   };
   return rows;
 }

@@ -56,13 +56,18 @@ struct OutputOptions {
   // Recorded in frame.json as "job": what a caller needs to decide later
   // whether this set is what it would render now (headlight render --resume).
   std::string jobHash;
+  // The folder is locked while the set is written (flock on the folder, as
+  // the CLI's renders do): a folder another process is writing is an
+  // IoError at once, or, with this set, waited for.
+  bool waitForFolder = false;
 };
 
 // The names OutputOptions::targets accepts: every frame target and "preview".
 std::vector<std::string_view> outputTargetNames();
 
 // Writes the frame's targets as <outDir>/<target>.exr, preview.png and
-// frame.json (last). Creates outDir if needed, and first removes temporary
+// frame.json (last), holding the folder's lock (waitForFolder). Creates
+// outDir if needed, and first removes temporary
 // files there whose writing process is gone (left by a killed writer). Throws IoError naming the file
 // (with the system's reason, e.g. "No space left on device"), or naming the
 // target and the count of non-finite values under NonFinitePolicy::Error.

@@ -79,6 +79,12 @@ struct LightingSettings {
 
 enum class Tonemap { Aces, Reinhard };
 
+// How the light images (lit, emissive, ssgi, and the direct light they are
+// made from) are stored, on the GPU and in the EXRs: half float holds values
+// up to 65504 at 2^-11 relative precision and halves memory, bandwidth and
+// file size; float holds any light a scene can give.
+enum class RadiancePrecision { Half, Float };
+
 struct RenderSettings {
   int width = 640;            // pixels; width x height at most 2^26
   int height = 480;           // pixels
@@ -87,6 +93,9 @@ struct RenderSettings {
   LightingSettings lighting;
   Tonemap tonemap = Tonemap::Aces;  // preview.png only; lit.exr stays linear
   float exposure = 0.0f;            // EV, preview.png only
+  // Auto: float when the scene has a light or an emitter bright enough that
+  // half may clamp (resolve: autoRadiancePrecision), else half.
+  std::optional<RadiancePrecision> radiancePrecision;
 
   // Checks every row's range and the rules between settings; throws
   // SettingsError naming the setting, the allowed range and the value.

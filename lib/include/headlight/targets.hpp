@@ -44,8 +44,9 @@ struct DiffThresholds {
   double hardWarn = std::numeric_limits<double>::infinity();  // >= 0
 };
 
-// What the EXR stores: float32 where half's 11 bits are too few.
-enum class ExrStorage { Half, Float };
+// What the EXR stores: float32 where half's 11 bits are too few; light is
+// half, or float32 when the frame's radiance-precision is float.
+enum class ExrStorage { Half, Float, Radiance };
 
 struct FrameTarget {
   std::string_view name;                       // file stem (<name>.exr), and headlight diff's row name
