@@ -31,12 +31,16 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
+#ifdef BLEND_FORWARD
+#include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
+#else
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
 layout(location = 4) out vec4 outEmissive;
+#endif
 #endif
 
 #ifdef HAS_NORMAL_TEXTURE
@@ -91,15 +95,21 @@ void main() {
   normal = normalize(tangentFrame(normal) * tangentNormal);
 #endif
 
+#if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD)
+  vec3 emissive = material.emissiveFactor.rgb;
+#ifdef HAS_EMISSIVE_TEXTURE
+  emissive *= texture(emissiveTexture, vTexcoord).rgb;
+#endif
+#endif
+#ifdef BLEND_FORWARD
+  shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
+#else
   outPosition = vec4(vWorldPosition, 1.0);
   outNormal = vec4(normal, 0.0);
   outAlbedo = vec4(baseColor.rgb, 1.0);
   outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), 1.0);
 #ifdef HAS_EMISSIVE_TARGET
-  vec3 emissive = material.emissiveFactor.rgb;
-#ifdef HAS_EMISSIVE_TEXTURE
-  emissive *= texture(emissiveTexture, vTexcoord).rgb;
-#endif
   outEmissive = vec4(emissive, 1.0);
+#endif
 #endif
 }

@@ -56,6 +56,7 @@ TracedScene buildScene(const Scene& scene, int threads) {
       EmbreeDevice(threads > 0 ? "threads=" + std::to_string(threads) : std::string()), EmbreeScene(), {}};
   traced.device.check("rtcNewDevice");
   traced.scene = EmbreeScene(traced.device.get());
+  traced.blended = EmbreeScene(traced.device.get());
   traced.device.check("rtcNewScene");
   traced.instances.resize(scene.instances.size());
   for (std::size_t id = 0; id < scene.instances.size(); ++id) {
@@ -113,7 +114,9 @@ TracedScene buildScene(const Scene& scene, int threads) {
         rtcSetGeometryOccludedFilterFunction(geometry.get(), skipCutOuts);
       }
       rtcCommitGeometry(geometry.get());
-      rtcAttachGeometryByID(traced.scene.get(), geometry.get(), unsigned(id));
+      rtcAttachGeometryByID(material.blended() ? traced.blended.get() : traced.scene.get(), geometry.get(),
+                            unsigned(id));
+      traced.hasBlended = traced.hasBlended || material.blended();
     }
     traced.device.check(what + " (" + std::to_string(triangleCount) + " triangles)");
 
@@ -126,6 +129,7 @@ TracedScene buildScene(const Scene& scene, int threads) {
     shading.frontSign = mirrors(instance.worldFromLocal) ? -1.0f : 1.0f;
   }
   rtcCommitScene(traced.scene.get());
+  rtcCommitScene(traced.blended.get());
   traced.device.check("building the BVH of " + scene.source);
   return traced;
 }

@@ -90,17 +90,6 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 
 // ---- Detectors: one per feature that is not rendered -------------------------
 
-void findAlphaModes(const tinygltf::Model& model, Tally& tally) {
-  for (std::size_t index = 0; index < model.materials.size(); ++index) {
-    const tinygltf::Material& material = model.materials[index];
-    // OPAQUE and MASK are rendered (MASK cuts out); BLEND is drawn opaque.
-    if (material.alphaMode == "BLEND") {
-      tally.add("alphaMode " + material.alphaMode, "material", named("material", index, material.name),
-                "is not rendered (drawn opaque)");
-    }
-  }
-}
-
 void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     for (const auto& [texture, texCoord] : textureCoordinates(model.materials[index])) {
@@ -200,8 +189,8 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
 
 // The table: remove a row when its feature becomes rendered.
 constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
-    findAlphaModes, findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,
-    findAnimations, findElementExtensions,  findListedExtensions,
+    findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,  findAnimations,
+    findElementExtensions,  findListedExtensions,
 };
 
 }  // namespace

@@ -62,7 +62,9 @@ struct TextureRef {
 };
 
 // glTF's alphaMode. MASK cuts out where alpha < alphaCutoff (G-buffer,
-// shadows and the reference); BLEND is drawn opaque and named as not rendered.
+// shadows and the reference); BLEND is drawn after the opaque surfaces, back
+// to front over lit, casts no shadow and is not in the G-buffer
+// (docs/PIPELINE.md, the blend pass).
 enum class AlphaMode { Opaque, Mask, Blend };
 
 // glTF's metallic-roughness material.
@@ -85,6 +87,7 @@ struct Material {
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
   bool masked() const { return alphaMode == AlphaMode::Mask; }
+  bool blended() const { return alphaMode == AlphaMode::Blend; }
 };
 
 // One triangle list (geometry only; the material is the instance's). After
@@ -186,6 +189,7 @@ struct Scene {
 
   Bounds worldBounds() const;
   bool hasEmissive() const;
+  bool hasBlended() const;  // an instance's material is alphaMode BLEND
   std::size_t triangleCount() const;  // as drawn: per instance
 };
 
