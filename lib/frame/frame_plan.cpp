@@ -90,9 +90,9 @@ constexpr SkipRule kSkipRules[] = {
     {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
     {Work::Emissive, "no material emits (no emissive target, no emission term)",
      [](const FrameFacts& f) { return !f.sceneEmits; }},
-    {Work::Blend, "no material blends (no blend pass, no coverage target)",
-     [](const FrameFacts& f) { return !f.sceneBlends; }},
-    {Work::Blend, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
+    // A scene without BLEND has no blend pass to skip (planFrame): nothing listed.
+    {Work::Blend, "lit not asked for (no coverage target)",
+     [](const FrameFacts& f) { return f.sceneBlends && !f.wantLit; }},
 };
 
 struct SkipDecisions {
@@ -226,7 +226,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and sky term (the direct pass's variant decides both).
-  if (skips.runs(Work::Blend))
+  if (scene.blended && skips.runs(Work::Blend))
     plan.blend = BlendVariant{plan.shadows && scene.planarShadowCasters > 0,
                               plan.shadows && scene.cubeShadowCasters > 0, plan.skyTables};
   planAttachments(plan);
