@@ -87,8 +87,13 @@ void main() {
   occlusion = 1.0 + material.factors.w * (texture(occlusionTexture, vTexcoord).r - 1.0);
 #endif
 
-  // The back of a double-sided surface faces the other way.
+  // The back of a double-sided surface faces the other way. Points and
+  // lines without a normal (0, gltf_geometry.cpp) face the camera.
   vec3 normal = normalize(vWorldNormal) * (gl_FrontFacing ? 1.0 : -1.0);
+  if (dot(vWorldNormal, vWorldNormal) < 1e-24) {
+    normal = frame.cameraPosition.w > 0.5 ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])
+                                          : normalize(frame.cameraPosition.xyz - vWorldPosition);
+  }
 #ifdef HAS_NORMAL_TEXTURE
   vec3 tangentNormal = texture(normalTexture, vTexcoord).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
   tangentNormal.xy *= material.factors.z;

@@ -112,7 +112,7 @@ void BlendPass::run(const BlendInputs& inputs, const BlendTargets& targets, cons
     material.block.bindUniform(gpu::MaterialBlock::kBinding);
     bindMaterialTextures(scene, material, features);
     primitive.vertexArray.bind();
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr, 1,
+    glDrawElementsInstancedBaseInstance(primitive.mode, primitive.indexCount, GL_UNSIGNED_INT, nullptr, 1,
                                         draw.drawPosition);
   }
   glDisable(GL_BLEND);

@@ -73,7 +73,9 @@ TracedScene buildScene(const Scene& scene, int threads) {
         instance.material >= 0 ? scene.materials[std::size_t(instance.material)] : defaultMaterial();
     const std::size_t triangleCount = primitive.indices.size() / 3;
     const std::size_t vertexCount = primitive.positions.size();
-    if (triangleCount == 0 || vertexCount == 0) continue;
+    // Rays cannot hit a point or a line: the reference does not see them
+    // (their G-buffer pixels are still shading points).
+    if (triangleCount == 0 || vertexCount == 0 || primitive.mode != PrimitiveMode::Triangles) continue;
     if (primitive.normals.size() != vertexCount ||
         (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
         (!primitive.colors.empty() && primitive.colors.size() != vertexCount))

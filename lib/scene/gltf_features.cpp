@@ -115,18 +115,6 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
   }
 }
 
-void findUnrenderedModes(const tinygltf::Model& model, Tally& tally) {
-  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
-    for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
-      const int mode = model.meshes[mesh].primitives[primitive].mode;
-      if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-        tally.add("mode " + modeName(mode), "primitive",
-                  named("mesh", mesh, "") + " primitive " + std::to_string(primitive), "is not rendered (skipped)");
-      }
-    }
-  }
-}
-
 void findAnimations(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.animations.size(); ++index) {
     tally.add("animation", "animation", named("animation", index, model.animations[index].name),
@@ -189,7 +177,7 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
 
 // The table: remove a row when its feature becomes rendered.
 constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
-    findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,  findAnimations,
+    findSecondaryTexcoords, findVertexColors,     findAnimations,
     findElementExtensions,  findListedExtensions,
 };
 

@@ -47,6 +47,9 @@ GpuPrimitive uploadPrimitive(const Primitive& primitive) {
   glVertexArrayElementBuffer(gpu.vertexArray.id(), indices.id());
   gpu.buffers.push_back(std::move(indices));
   gpu.indexCount = GLsizei(primitive.indices.size());
+  gpu.mode = primitive.mode == PrimitiveMode::Lines    ? GL_LINES
+             : primitive.mode == PrimitiveMode::Points ? GL_POINTS
+                                                       : GL_TRIANGLES;
   return gpu;
 }
 
@@ -166,15 +169,19 @@ std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMateria
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
   for (std::size_t position = 0; position < order.size(); ++position) {
     const Key& key = keys[order[position]];
-    if (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive)
+    // Points and lines are in no run: the shadow pass draws runs only.
+    const bool casts = gpu.primitives[std::size_t(key.primitive)].mode == GL_TRIANGLES;
+    if (casts && (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive))
       gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0, gpu.drawGroups.size(), 0, false});
-    GpuPrimitiveRun& run = gpu.primitiveRuns.back();
-    ++run.instanceCount;
+    if (casts) ++gpu.primitiveRuns.back().instanceCount;
     if (gpu.drawGroups.empty() || Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material,
                                       gpu.drawGroups.back().mirrored} != key) {
       gpu.drawGroups.push_back({key.primitive, key.material, key.mirrored, GLuint(position), 0});
-      ++run.groupCount;
-      run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+      if (casts) {
+        GpuPrimitiveRun& run = gpu.primitiveRuns.back();
+        ++run.groupCount;
+        run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+      }
     }
     ++gpu.drawGroups.back().instanceCount;
   }

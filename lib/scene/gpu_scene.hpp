@@ -33,6 +33,7 @@ struct GpuPrimitive {
   gl::VertexArray vertexArray;
   std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], indices
   GLsizei indexCount = 0;
+  GLenum mode = GL_TRIANGLES;  // GL_LINES, GL_POINTS: drawn 1 pixel wide, in no shadow map
   std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors
 };
 
@@ -66,6 +67,7 @@ struct GpuDrawGroup {
 
 // A primitive's instances in draw order, for passes that ignore materials
 // unless one of them is masked (the shadow pass then draws the run's groups).
+// Triangle primitives only: points and lines cast no shadow.
 struct GpuPrimitiveRun {
   int primitive = 0;
   GLuint firstInstance = 0;

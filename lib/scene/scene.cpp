@@ -82,7 +82,8 @@ bool Scene::hasBlended() const {
 std::size_t Scene::triangleCount() const {
   std::size_t triangles = 0;
   for (const Instance& instance : instances) {
-    triangles += primitives[instance.primitive].indices.size() / 3;
+    const Primitive& primitive = primitives[instance.primitive];
+    if (primitive.mode == PrimitiveMode::Triangles) triangles += primitive.indices.size() / 3;
   }
   return triangles;
 }

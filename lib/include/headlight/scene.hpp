@@ -90,7 +90,12 @@ struct Material {
   bool blended() const { return alphaMode == AlphaMode::Blend; }
 };
 
-// One triangle list (geometry only; the material is the instance's). After
+// What a primitive's indices list: triangles (3 each; glTF's strips and fans
+// become lists), line segments (2 each; LINE_STRIP and LINE_LOOP become
+// lists) or points (1 each). Lines and points are drawn 1 pixel wide.
+enum class PrimitiveMode { Triangles, Lines, Points };
+
+// One triangle, line or point list (geometry only; the material is the instance's). After
 // loading it is always indexed and always has normals; texcoords and
 // tangents are present only if the file had them (or a material drawn with
 // it needs them), so the G-buffer shader is built for what exists.
@@ -102,6 +107,7 @@ struct Primitive {
   std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA (A = 1 for VEC3); empty or same count
   std::vector<std::uint32_t> indices;
   Bounds bounds;  // in the primitive's own space
+  PrimitiveMode mode = PrimitiveMode::Triangles;  // lines and points: normals 0 where the file gives none
 };
 
 // A primitive placed in the world by the flattened node hierarchy, with
@@ -190,7 +196,7 @@ struct Scene {
   Bounds worldBounds() const;
   bool hasEmissive() const;
   bool hasBlended() const;  // an instance's material is alphaMode BLEND
-  std::size_t triangleCount() const;  // as drawn: per instance
+  std::size_t triangleCount() const;  // as drawn: per instance (lines and points are not triangles)
 };
 
 }  // namespace HEADLIGHT_PUBLIC
