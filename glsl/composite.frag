@@ -9,46 +9,15 @@
 #include "sampling.glsl"
 #include "brdf.glsl"
 #include "surface.glsl"
+#include "ambient.glsl"
 
 layout(binding = kUnitDirect) uniform sampler2D directTexture;
 #ifdef HAS_SSGI
 layout(binding = kUnitSsgi) uniform sampler2D ssgiTexture;
 layout(binding = kUnitSsgiSky) uniform sampler2D ssgiSkyTexture;
 #endif
-layout(binding = kUnitBrdfLut) uniform sampler2D brdfLut;
-layout(binding = kUnitSkyPrefiltered) uniform sampler2D skyPrefiltered;
-layout(binding = kUnitSkyIrradiance) uniform sampler2D skyIrradiance;
 
 layout(location = 0) out vec4 outRadiance;
-
-// Texture coordinate of value v in [low, high] for a table whose first and
-// last texel centres stand for low and high (see tableValue()).
-float tableCoordinate(float v, float low, float high, float size) {
-  return (clamp((v - low) / (high - low), 0.0, 1.0) * (size - 1.0) + 0.5) / size;
-}
-
-vec3 prefilteredSky(vec3 direction, float roughness) {
-  const vec2 size = vec2(textureSize(skyPrefiltered, 0));
-  return texture(skyPrefiltered, vec2(tableCoordinate(direction.y, -1.0, 1.0, size.x),
-                                      tableCoordinate(roughness, 0.0, 1.0, size.y))).rgb;
-}
-
-vec3 skyIrradianceOverPi(vec3 normal) {
-  const float width = float(textureSize(skyIrradiance, 0).x);
-  return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
-}
-
-vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
-  const float size = float(kBrdfLutSize);
-  const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
-                                               tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
-  const vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
-  const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
-  const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
-  const vec3 reflected = reflect(-surface.view, surface.normal);
-  const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
-}
 
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);

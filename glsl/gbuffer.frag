@@ -31,12 +31,16 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
+#ifdef BLEND_FORWARD
+#include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
+#else
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
 layout(location = 4) out vec4 outEmissive;
+#endif
 #endif
 
 #ifdef HAS_NORMAL_TEXTURE
@@ -83,23 +87,34 @@ void main() {
   occlusion = 1.0 + material.factors.w * (texture(occlusionTexture, vTexcoord).r - 1.0);
 #endif
 
-  // The back of a double-sided surface faces the other way.
+  // The back of a double-sided surface faces the other way. Points and
+  // lines without a normal (0, gltf_geometry.cpp) face the camera.
   vec3 normal = normalize(vWorldNormal) * (gl_FrontFacing ? 1.0 : -1.0);
+  if (dot(vWorldNormal, vWorldNormal) < 1e-24) {
+    normal = frame.cameraPosition.w > 0.5 ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])
+                                          : normalize(frame.cameraPosition.xyz - vWorldPosition);
+  }
 #ifdef HAS_NORMAL_TEXTURE
   vec3 tangentNormal = texture(normalTexture, vTexcoord).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
   tangentNormal.xy *= material.factors.z;
   normal = normalize(tangentFrame(normal) * tangentNormal);
 #endif
 
+#if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD)
+  vec3 emissive = material.emissiveFactor.rgb;
+#ifdef HAS_EMISSIVE_TEXTURE
+  emissive *= texture(emissiveTexture, vTexcoord).rgb;
+#endif
+#endif
+#ifdef BLEND_FORWARD
+  shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
+#else
   outPosition = vec4(vWorldPosition, 1.0);
   outNormal = vec4(normal, 0.0);
   outAlbedo = vec4(baseColor.rgb, 1.0);
   outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), 1.0);
 #ifdef HAS_EMISSIVE_TARGET
-  vec3 emissive = material.emissiveFactor.rgb;
-#ifdef HAS_EMISSIVE_TEXTURE
-  emissive *= texture(emissiveTexture, vTexcoord).rgb;
-#endif
   outEmissive = vec4(emissive, 1.0);
+#endif
 #endif
 }

@@ -1,5 +1,6 @@
 // The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
-// direct light -> SSGI (-> blur) -> composite -> read back. What runs, with
+// direct light -> SSGI (-> blur) -> composite -> blend (scenes with
+// alphaMode BLEND) -> read back. What runs, with
 // which shader variant and into which attachments, is the frame plan's
 // (frame/frame_plan.hpp); this file executes it. Each pass is timed between
 // glFinish calls and checked for GL errors.
@@ -21,6 +22,7 @@
 #include "gl/target_formats.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
+#include "passes/blend.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
@@ -96,6 +98,7 @@ struct Renderer::Impl {
   ShadowPass shadow;
   DirectLightPass directLight;
   CompositePass composite;
+  BlendPass blend;
   gl::Buffer frameBlock = gl::Buffer::create(sizeof(gpu::FrameBlock));
   gl::Buffer lightingBlock = gl::Buffer::create(sizeof(gpu::LightingBlock));
 
@@ -315,6 +318,7 @@ void Renderer::Impl::loadScene(Scene newScene) {
   if (plan.direct) impl.directLight.prepare(*plan.direct);
   if (plan.ssgi) impl.ssgi.prepare(plan.ssgi->method->method);
   if (plan.composite) impl.composite.prepare(*plan.composite);
+  if (plan.blend) impl.blend.prepare(*impl.gpuScene, *plan.blend);
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
@@ -369,6 +373,13 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),
                                  plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
     timer.run("composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite); });
+  }
+  if (plan.blend) {
+    const BlendInputs inputs{*impl.gpuScene, frame.view, impl.texture(Attachment::GbufferDepth), impl.shadowMaps,
+                             impl.environment.tables()};
+    const BlendTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::BlendCoverage), impl.width,
+                               impl.height};
+    timer.run("blend", [&] { impl.blend.run(inputs, targets, *plan.blend); });
   }
   timer.run("readback", [&] { impl.readTargets(plan, frame); });
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -37,7 +38,10 @@ fs::path modelPath(const std::string& model) { return conformanceFolder() / mode
 const std::set<std::string> kRendered{"KHR_lights_punctual",   "KHR_materials_emissive_strength",
                                       "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
                                       "skin",                  "morph targets",
-                                      "alphaMode MASK",        "COLOR_0"};
+                                      "alphaMode MASK",        "alphaMode BLEND",
+                                      "COLOR_0",               "mode POINTS",
+                                      "mode LINES",            "mode LINE_LOOP",
+                                      "mode LINE_STRIP"};
 
 bool nonZero(const json& weights) {
   return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });
@@ -131,7 +135,7 @@ TEST_CASE("conformance: --strict-gltf refuses a model naming what is not rendere
   CHECK(loadGltf(modelPath("NormalTangentTest"), strict).ignored.empty());
 }
 
-TEST_CASE("conformance: MeshPrimitiveModes draws its strip and fan as triangles, skips points and lines" *
+TEST_CASE("conformance: MeshPrimitiveModes loads its strip and fan as triangles, its points and lines as lists" *
           doctest::skip(!haveConformance())) {
   const Scene scene = loadGltf(modelPath("MeshPrimitiveModes"));
   std::ifstream file(modelPath("MeshPrimitiveModes"));
@@ -152,9 +156,18 @@ TEST_CASE("conformance: MeshPrimitiveModes draws its strip and fan as triangles,
   }
   CHECK(expected > 0);
   CHECK(scene.triangleCount() == expected);
-  std::set<std::string> named;
-  for (const IgnoredFeature& feature : scene.ignored) named.insert(feature.feature);
-  CHECK(named == std::set<std::string>{"mode POINTS", "mode LINES", "mode LINE_LOOP", "mode LINE_STRIP"});
+  CHECK(scene.ignored.empty());
+  // Every mode is an instance: 7 vertices as 7 points, 12 indices as 6
+  // segments, a loop of 7 as 7 segments, a strip of 7 as 6.
+  REQUIRE(scene.instances.size() == 7);
+  std::map<PrimitiveMode, std::vector<std::size_t>> indexCounts;
+  for (const Instance& instance : scene.instances) {
+    const Primitive& primitive = scene.primitives[std::size_t(instance.primitive)];
+    indexCounts[primitive.mode].push_back(primitive.indices.size());
+  }
+  CHECK(indexCounts[PrimitiveMode::Points] == std::vector<std::size_t>{7});
+  CHECK(indexCounts[PrimitiveMode::Lines] == std::vector<std::size_t>{12, 14, 12});
+  CHECK(indexCounts[PrimitiveMode::Triangles].size() == 3);
 }
 
 namespace {

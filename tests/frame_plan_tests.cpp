@@ -51,6 +51,10 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   const FramePlan plan = planFrame(litScene(), resolvedDefaults(), {});
   CHECK(plan.skipped.size() == 1);  // emissive: the scene has no emission
   CHECK(skips(plan, "emissive", "no material emits"));
+  CHECK(!skips(plan, "blend"));  // no BLEND material: no blend pass, and nothing to list
+  CHECK(!plan.blend);
+  CHECK(!plan.allocates(Attachment::BlendCoverage));
+  CHECK(readOf(plan, "coverage") == nullptr);
   REQUIRE(plan.shadows);
   CHECK(plan.shadows->mapSize == 1024);
   REQUIRE(plan.direct);
@@ -72,6 +76,36 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   REQUIRE(ssgi);
   CHECK(ssgi->sources == std::vector<Attachment>{Attachment::Ssgi, Attachment::SsgiSky});
   for (const char* name : {"position", "normal", "albedo", "material", "depth", "lit"}) CHECK(readOf(plan, name));
+}
+
+TEST_CASE("frame plan: a scene that blends gets the blend pass after the composite, and the coverage target") {
+  SceneSummary scene = litScene();
+  scene.blended = true;
+  FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  REQUIRE(plan.blend);
+  CHECK(*plan.blend == BlendVariant{true, false, true});  // the planar caster's map, the sky term
+  CHECK(!skips(plan, "blend"));
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky",
+                                                          "composite", "blend", "readback"});
+  CHECK(plan.allocates(Attachment::BlendCoverage));
+  CHECK(plan.allocates(Attachment::Lit));
+  const TargetRead* coverage = readOf(plan, "coverage");
+  REQUIRE(coverage);
+  CHECK(coverage->sources == std::vector<Attachment>{Attachment::BlendCoverage});
+  // It follows the composite's choices: no shadows, no sky.
+  RenderSettings settings = resolvedDefaults();
+  settings.lighting.shadows = false;
+  settings.lighting.skyIntensity = 0.0f;
+  plan = planFrame(scene, settings, {});
+  REQUIRE(plan.blend);
+  CHECK(*plan.blend == BlendVariant{false, false, false});
+  // Without lit there is nothing to blend over.
+  const std::vector<std::string> gbufferOnly{"albedo", "coverage"};
+  plan = planFrame(scene, resolvedDefaults(), gbufferOnly);
+  CHECK(!plan.blend);
+  CHECK(skips(plan, "blend", "lit not asked for"));
+  CHECK(!plan.allocates(Attachment::BlendCoverage));
+  CHECK(readOf(plan, "coverage") == nullptr);
 }
 
 TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its define and its target") {

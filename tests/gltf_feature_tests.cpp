@@ -67,7 +67,6 @@ TEST_CASE("glTF: each feature that is not rendered is named once, with a count a
   std::vector<std::string> lines;
   for (const IgnoredFeature& feature : scene.ignored) lines.push_back(feature.describe());
   const std::vector<std::string> expected{
-      "alphaMode BLEND on 1 material (first: material 0 'A') is not rendered (drawn opaque)",
       "2 animations (first: animation 0 'Walk') are not played (the static pose is drawn)",
       "KHR_materials_sheen on 2 materials (first: material 1 'Cloth') is not rendered",
       "KHR_materials_unlit on 1 material (first: material 1 'Cloth') is not rendered",
@@ -78,11 +77,11 @@ TEST_CASE("glTF: each feature that is not rendered is named once, with a count a
   SceneLoadOptions strict;
   strict.strictGltf = true;
   const std::string message = loadError(folder.path() / "scene.gltf", strict);
-  CHECK(message.find("scene.gltf: strict-gltf: alphaMode BLEND on 1 material") != std::string::npos);
+  CHECK(message.find("scene.gltf: strict-gltf: 2 animations") != std::string::npos);
   CHECK(message.find("; KHR_xmp (listed in extensionsUsed) is not rendered") != std::string::npos);
 }
 
-TEST_CASE("glTF: points and lines are skipped and named; strips and fans become triangle lists") {
+TEST_CASE("glTF: line strips become segment lists; triangle strips and fans become triangle lists") {
   TempFolder folder;
   // Four vertices of a unit quad: (0,0) (1,0) (0,1) (1,1), indices 0 1 2 3.
   const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
@@ -113,11 +112,12 @@ TEST_CASE("glTF: points and lines are skipped and named; strips and fans become 
     REQUIRE(scene.primitives.size() == 1);
     CHECK(scene.primitives[0].indices == std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
   }
-  SUBCASE("LINE_STRIP: no instance, named") {
+  SUBCASE("LINE_STRIP: drawn as a list of segments, nothing named") {
     const Scene scene = loadGltf(write(3));
-    CHECK(scene.instances.empty());
-    REQUIRE(scene.ignored.size() == 1);
-    CHECK(scene.ignored[0].describe() == "mode LINE_STRIP on 1 primitive (first: mesh 0 primitive 0) is not rendered (skipped)");
+    CHECK(scene.instances.size() == 1);
+    REQUIRE(scene.primitives.size() == 1);
+    CHECK(scene.primitives[0].indices == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3});
+    CHECK(scene.ignored.empty());
   }
 }
 

@@ -36,6 +36,8 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi, true},
     {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", false, &Frame::ssgi},
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
+    // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
+    {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -52,14 +54,15 @@ struct FrameFacts {
   bool shadowCasters = true;  // a light of the scene casts shadows
   bool skyLit = true;         // sky intensity > 0
   bool sceneEmits = true;     // a material has a non-zero emissiveFactor
+  bool sceneBlends = true;    // a material is alphaMode BLEND
 };
 
 bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
 bool directNeeded(const FrameFacts& f) { return f.wantLit || (ssgiRuns(f) && f.ssgiReadsDirect); }
 
 // Work a frame can leave out, each named in --verbose.
-enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Count };
-constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive"};
+enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Blend, Count };
+constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive", "blend"};
 static_assert(std::size(kWorkNames) == std::size_t(Work::Count));
 
 // The one table of what a frame skips and why: work runs unless a row says
@@ -87,6 +90,9 @@ constexpr SkipRule kSkipRules[] = {
     {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
     {Work::Emissive, "no material emits (no emissive target, no emission term)",
      [](const FrameFacts& f) { return !f.sceneEmits; }},
+    // A scene without BLEND has no blend pass to skip (planFrame): nothing listed.
+    {Work::Blend, "lit not asked for (no coverage target)",
+     [](const FrameFacts& f) { return f.sceneBlends && !f.wantLit; }},
 };
 
 struct SkipDecisions {
@@ -130,6 +136,7 @@ void planAttachments(FramePlan& plan) {
     }
   }
   if (plan.composite) allocate(Attachment::Lit);
+  if (plan.blend) allocate(Attachment::BlendCoverage);
 }
 
 // Each wanted target is read from the allocated attachments that hold it.
@@ -153,6 +160,7 @@ SceneSummary summarizeScene(const Scene& scene) {
   for (const Light& light : scene.lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
+  summary.blended = scene.hasBlended();
   return summary;
 }
 
@@ -174,6 +182,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   if (ssgi && ssgi->blur) names.push_back("ssgi-blur");
   if (skyTables) names.push_back("sky");
   if (composite) names.push_back("composite");
+  if (blend) names.push_back("blend");
   names.push_back("readback");
   return names;
 }
@@ -190,6 +199,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   facts.shadowCasters = scene.planarShadowCasters + scene.cubeShadowCasters > 0;
   facts.skyLit = settings.lighting.skyIntensity.value_or(0.0f) > 0.0f;
   facts.sceneEmits = scene.emissive;
+  facts.sceneBlends = scene.blended;
   const SkipDecisions skips = decideSkips(facts);
 
   FramePlan plan;
@@ -214,6 +224,11 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
                                      plan.ssgi && method.readsDirectDiffuse};
   plan.skyTables = skips.runs(Work::Sky);
   if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
+  // Blended surfaces are drawn over the composite's lit target, with the
+  // same shadow maps and sky term (the direct pass's variant decides both).
+  if (scene.blended && skips.runs(Work::Blend))
+    plan.blend = BlendVariant{plan.shadows && scene.planarShadowCasters > 0,
+                              plan.shadows && scene.cubeShadowCasters > 0, plan.skyTables};
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

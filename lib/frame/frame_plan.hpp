@@ -28,6 +28,7 @@ struct SceneSummary {
   int planarShadowCasters = 0;  // directional and spot lights that cast shadows
   int cubeShadowCasters = 0;    // point lights that cast shadows
   bool emissive = false;        // a material emits (emissiveFactor != 0)
+  bool blended = false;         // an instance's material is alphaMode BLEND (the blend pass)
 };
 // `scene.lights` as drawn: with the default key light when the file has none.
 SceneSummary summarizeScene(const Scene& scene);
@@ -76,6 +77,7 @@ enum class Attachment {
   Ssgi,  // after the blur: what the composite reads and ssgi.exr holds
   SsgiSky,
   Lit,
+  BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
@@ -117,6 +119,13 @@ struct CompositeVariant {
   auto operator<=>(const CompositeVariant&) const = default;
 };
 
+// The forward pass of alphaMode BLEND surfaces over lit (lib/passes/blend.hpp):
+// lit by the lights, shadows and sky the composite uses.
+struct BlendVariant {
+  bool planarShadows, cubeShadows, sky;
+  auto operator<=>(const BlendVariant&) const = default;
+};
+
 struct ShadowStep {
   int mapSize = 0;  // texels per side
 };
@@ -143,6 +152,7 @@ struct FramePlan {
   std::optional<SsgiStep> ssgi;
   bool skyTables = false;  // the sky's prefiltered tables are (made if needed and) read
   std::optional<CompositeVariant> composite;
+  std::optional<BlendVariant> blend;  // after the composite, over lit
 
   std::array<bool, kAttachmentCount> allocate{};  // by Attachment
   std::array<GpuFormat, kAttachmentCount> format{};  // by Attachment: the row's, or Rgba32F for radiance in float

@@ -36,6 +36,7 @@ constexpr std::string_view kEmissiveChannels[] = {"emissive.R", "emissive.G", "e
 constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirect.G",    "indirect.B",
                                               "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B"};
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
+constexpr std::string_view kCoverageChannels[] = {"coverage.Y"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -78,6 +79,10 @@ const FrameTarget kTargets[] = {
      "(llvmpipe); 0.02 is far below a visible change; a pixel above 0.1 may be noticed; 0.5 % of pixels for "
      "silhouette flips; mean 0.005 is a third of the smallest setting change measured (spheres 128x96 with "
      "--ssgi-resolution half: mean 0.015, 3.4 % of pixels > 0.1; cornell with --ssgi-steps 4: 0.043)."},
+    {"coverage", &Frame::coverage, kCoverageChannels, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "alphaMode BLEND surfaces' accumulated alpha 1 - prod(1 - a) over the pixel, 0..1, whatever lies behind them; "
+     "only for scenes that blend. Alpha comes from 8-bit textures and factors (one step 3.9e-3), like albedo: any "
+     "step warns, more than two fail."},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -85,7 +85,7 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
     material.block.bindUniform(gpu::MaterialBlock::kBinding);
     bindMaterialTextures(scene, material, features);
     primitive.vertexArray.bind();
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
+    glDrawElementsInstancedBaseInstance(primitive.mode, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
                                         group.instanceCount, group.firstInstance);
   }
   glDisable(GL_FRAMEBUFFER_SRGB);

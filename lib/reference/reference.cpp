@@ -145,6 +145,7 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
                            frame,
                            settings,
                            traced.scene.get(),
+                           traced.hasBlended ? traced.blended.get() : nullptr,
                            traced.instances,
                            rayEpsilon(scene),
                            frame.settings.lighting.skyIntensity.value_or(scene.sky.intensity),

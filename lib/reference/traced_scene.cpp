@@ -56,6 +56,7 @@ TracedScene buildScene(const Scene& scene, int threads) {
       EmbreeDevice(threads > 0 ? "threads=" + std::to_string(threads) : std::string()), EmbreeScene(), {}};
   traced.device.check("rtcNewDevice");
   traced.scene = EmbreeScene(traced.device.get());
+  traced.blended = EmbreeScene(traced.device.get());
   traced.device.check("rtcNewScene");
   traced.instances.resize(scene.instances.size());
   for (std::size_t id = 0; id < scene.instances.size(); ++id) {
@@ -72,7 +73,9 @@ TracedScene buildScene(const Scene& scene, int threads) {
         instance.material >= 0 ? scene.materials[std::size_t(instance.material)] : defaultMaterial();
     const std::size_t triangleCount = primitive.indices.size() / 3;
     const std::size_t vertexCount = primitive.positions.size();
-    if (triangleCount == 0 || vertexCount == 0) continue;
+    // Rays cannot hit a point or a line: the reference does not see them
+    // (their G-buffer pixels are still shading points).
+    if (triangleCount == 0 || vertexCount == 0 || primitive.mode != PrimitiveMode::Triangles) continue;
     if (primitive.normals.size() != vertexCount ||
         (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
         (!primitive.colors.empty() && primitive.colors.size() != vertexCount))
@@ -113,7 +116,9 @@ TracedScene buildScene(const Scene& scene, int threads) {
         rtcSetGeometryOccludedFilterFunction(geometry.get(), skipCutOuts);
       }
       rtcCommitGeometry(geometry.get());
-      rtcAttachGeometryByID(traced.scene.get(), geometry.get(), unsigned(id));
+      rtcAttachGeometryByID(material.blended() ? traced.blended.get() : traced.scene.get(), geometry.get(),
+                            unsigned(id));
+      traced.hasBlended = traced.hasBlended || material.blended();
     }
     traced.device.check(what + " (" + std::to_string(triangleCount) + " triangles)");
 
@@ -126,6 +131,7 @@ TracedScene buildScene(const Scene& scene, int threads) {
     shading.frontSign = mirrors(instance.worldFromLocal) ? -1.0f : 1.0f;
   }
   rtcCommitScene(traced.scene.get());
+  rtcCommitScene(traced.blended.get());
   traced.device.check("building the BVH of " + scene.source);
   return traced;
 }

@@ -2,6 +2,9 @@
 // The scene as Embree sees it: one triangle geometry per instance, in world
 // space, with what a hit needs to shade itself (geometry id = instance
 // index). Masked materials' cut-out texels are holes to every ray.
+// alphaMode BLEND instances go into a scene of their own, which only the
+// primary rays composite (tracer.cpp): as in the rasteriser, they cast no
+// shadow and block no AO, sky or indirect ray.
 #include <glm/glm.hpp>
 
 #include <vector>
@@ -22,7 +25,9 @@ struct InstanceShading {
 
 struct TracedScene {
   EmbreeDevice device;
-  EmbreeScene scene;
+  EmbreeScene scene;    // every instance but the blended ones
+  EmbreeScene blended;  // the alphaMode BLEND instances (empty scene when none)
+  bool hasBlended = false;
   std::vector<InstanceShading> instances;  // indexed by geometry id
 };
 

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "headlight/error.hpp"
 #include "reference/shading.hpp"
@@ -20,6 +22,10 @@ namespace headlight::reference {
 namespace {
 
 bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Blended layers composited along one primary ray, nearest first; more are
+// ignored (32 layers of alpha 0.1 leave 3 % of what is behind).
+constexpr int kMaxBlendLayers = 32;
 
 // One worker's tracer: its own Embree intersect context over the shared
 // inputs.
@@ -38,6 +44,10 @@ class Tracer {
       ao[0] = ao[1] = 1.0f;
       std::fill(indirect, indirect + 6, 0.0f);
       lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
+      if (in_.blendedScene) {
+        Pcg32 random = pixelStream(in_.settings.seed, pixel);
+        compositeBlended(x, y, nullptr, lit, random);
+      }
       return;
     }
 
@@ -111,6 +121,9 @@ class Tracer {
     if (!frame.emissive.empty())
       radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
     lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
+    // After the opaque surface's samples, so its numbers do not depend on
+    // whether the scene blends.
+    if (in_.blendedScene) compositeBlended(x, y, &position, lit, random);
   }
 
  private:
@@ -189,6 +202,125 @@ class Tracer {
     const glm::vec4 viewFar = glm::inverse(view.projection) * clip;
     const glm::vec3 rayView = view.orthographic ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(viewFar) / viewFar.w;
     return glm::normalize(glm::transpose(glm::mat3(view.view)) * rayView);
+  }
+
+  // The primary ray through the centre of top-first pixel (x, y), from the
+  // near plane (perspective and orthographic alike).
+  std::pair<glm::vec3, glm::vec3> primaryRay(int x, int y) const {
+    const CameraView& view = in_.frame.view;
+    const float width = float(in_.frame.position.width), height = float(in_.frame.position.height);
+    const glm::vec2 ndc((float(x) + 0.5f) / width * 2.0f - 1.0f, (height - float(y) - 0.5f) / height * 2.0f - 1.0f);
+    const glm::mat4 worldFromClip = glm::inverse(view.projection * view.view);
+    const glm::vec4 nearPoint = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
+    const glm::vec4 farPoint = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
+    return {origin, glm::normalize(glm::vec3(farPoint) / farPoint.w - origin)};
+  }
+
+  // alphaMode BLEND along the primary ray: every blended layer in front of
+  // the G-buffer's surface (`opaque`; null on background) is shaded and
+  // composited over `lit` back to front, colour a L + (1 - a) behind and
+  // alpha a + (1 - a) behind, as the blend pass does, but in the exact
+  // order of the hits (no per-instance sort).
+  void compositeBlended(int x, int y, const glm::vec3* opaque, float* lit, Pcg32& random) {
+    const auto [origin, direction] = primaryRay(x, y);
+    if (!isFinite(origin) || !isFinite(direction)) return;
+    const float limit = opaque ? glm::dot(*opaque - origin, direction) - in_.epsilon
+                               : std::numeric_limits<float>::infinity();
+    if (!(limit > 0.0f)) return;
+    struct Layer {
+      glm::vec3 radiance;
+      float alpha;
+    };
+    std::vector<Layer> layers;
+    float tnear = 0.0f;
+    for (int i = 0; i < kMaxBlendLayers; ++i) {
+      RTCRayHit rayHit = makeRayHit(origin, direction, limit);
+      rayHit.ray.tnear = tnear;
+      rtcIntersect1(in_.blendedScene, &context_, &rayHit);
+      if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      tnear = std::nextafter(rayHit.ray.tfar, std::numeric_limits<float>::infinity());
+      Layer layer;
+      if (shadeBlendedHit(rayHit, direction, random, layer.radiance, layer.alpha)) layers.push_back(layer);
+    }
+    glm::vec3 color(lit[0], lit[1], lit[2]);
+    float coverage = lit[3];
+    for (auto layer = layers.rbegin(); layer != layers.rend(); ++layer) {
+      color = layer->alpha * layer->radiance + (1.0f - layer->alpha) * color;
+      coverage = layer->alpha + (1.0f - layer->alpha) * coverage;
+    }
+    lit[0] = color.r, lit[1] = color.g, lit[2] = color.b, lit[3] = coverage;
+  }
+
+  // One blended layer: its alpha and the radiance it sends along the ray
+  // (emission, direct light with shadow rays, sky ambient with true
+  // visibility and one-bounce indirect, from the same cosine rays as a
+  // G-buffer pixel). False for the back of a single-sided surface, which
+  // the rasteriser culls. Normal maps are not read (as radianceLeaving).
+  bool shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirection, Pcg32& random, glm::vec3& radiance,
+                       float& alpha) {
+    const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
+    const Primitive& primitive = *instance.primitive;
+    const Material& material = *instance.material;
+    const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
+    const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
+    auto world = [&](std::uint32_t index) {
+      const float* p = &instance.worldPositions[std::size_t(index) * 3];
+      return glm::vec3(p[0], p[1], p[2]);
+    };
+    const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
+    const glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;
+    const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+    if (!front && !material.doubleSided) return false;
+    glm::vec3 normal = instance.normalFromLocal * (w * primitive.normals[corner[0]] + u * primitive.normals[corner[1]] +
+                                                   v * primitive.normals[corner[2]]);
+    const float normalLength = glm::length(normal);
+    normal = normalLength > 0.0f ? normal / normalLength : -rayDirection;
+    if (!front) normal = -normal;
+
+    glm::vec4 baseColor = material.baseColorFactor;
+    float metallic = material.metallicFactor, roughness = material.roughnessFactor;
+    glm::vec3 emission = material.emissiveFactor;
+    const bool textured = !primitive.texcoords.empty();
+    glm::vec2 uv(0.0f);
+    if (textured)
+      uv = w * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] + v * primitive.texcoords[corner[2]];
+    if (textured && material.baseColorTexture.present())
+      baseColor *= sampleTexture(in_.scene, material.baseColorTexture, uv, true);
+    if (!primitive.colors.empty())
+      baseColor *= w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] + v * primitive.colors[corner[2]];
+    if (textured && material.metallicRoughnessTexture.present()) {
+      const glm::vec4 texel = sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false);
+      roughness *= texel.g;
+      metallic *= texel.b;
+    }
+    if (textured && material.emissiveTexture.present() && material.emissive())
+      emission *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
+    alpha = std::clamp(baseColor.a, 0.0f, 1.0f);  // as blend.glsl
+    metallic = std::clamp(metallic, 0.0f, 1.0f);
+    roughness = std::clamp(roughness, 0.0f, 1.0f);
+
+    const glm::vec3 position = w * p0 + u * p1 + v * p2;
+    const glm::vec3 view = -rayDirection;
+    const glm::vec3 origin = position + normal * in_.epsilon;
+    const Basis basis = basisAround(normal);
+    const glm::vec3 diffuseWeight = (1.0f - metallic) * glm::vec3(baseColor);
+    const int n = in_.settings.samplesPerPixel;
+    glm::dvec3 skySum(0.0), indirectSum(0.0);
+    for (int i = 0; i < n; ++i) {
+      const float xi0 = random.uniform(), xi1 = random.uniform();
+      const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
+      const RTCRayHit bounce = traceFromSurface(origin, direction, view);
+      if (bounce.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+      else
+        indirectSum += glm::dvec3(diffuseWeight * radianceLeaving(bounce, direction));
+    }
+    const Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+    radiance = emission + directLight(surface, position, origin) +
+               ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
+               glm::vec3(indirectSum / double(n));
+    return true;
   }
 
   // Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.

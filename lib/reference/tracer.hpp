@@ -19,6 +19,7 @@ struct TraceInputs {
   const Frame& frame;
   const ReferenceSettings& settings;
   RTCScene rtcScene;
+  RTCScene blendedScene;  // alphaMode BLEND instances, composited along primary rays; null when none
   const std::vector<InstanceShading>& instances;
   float epsilon;       // world units: how far ray origins leave their surface
   float skyIntensity;  // the frame's, resolved

@@ -90,17 +90,6 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 
 // ---- Detectors: one per feature that is not rendered -------------------------
 
-void findAlphaModes(const tinygltf::Model& model, Tally& tally) {
-  for (std::size_t index = 0; index < model.materials.size(); ++index) {
-    const tinygltf::Material& material = model.materials[index];
-    // OPAQUE and MASK are rendered (MASK cuts out); BLEND is drawn opaque.
-    if (material.alphaMode == "BLEND") {
-      tally.add("alphaMode " + material.alphaMode, "material", named("material", index, material.name),
-                "is not rendered (drawn opaque)");
-    }
-  }
-}
-
 void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     for (const auto& [texture, texCoord] : textureCoordinates(model.materials[index])) {
@@ -121,18 +110,6 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
         if (attribute.rfind("COLOR_", 0) == 0 && attribute != "COLOR_0") {
           tally.add(attribute, "primitive", named("mesh", mesh, "") + " primitive " + std::to_string(primitive));
         }
-      }
-    }
-  }
-}
-
-void findUnrenderedModes(const tinygltf::Model& model, Tally& tally) {
-  for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
-    for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
-      const int mode = model.meshes[mesh].primitives[primitive].mode;
-      if (mode >= TINYGLTF_MODE_POINTS && mode <= TINYGLTF_MODE_LINE_STRIP) {
-        tally.add("mode " + modeName(mode), "primitive",
-                  named("mesh", mesh, "") + " primitive " + std::to_string(primitive), "is not rendered (skipped)");
       }
     }
   }
@@ -200,8 +177,8 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
 
 // The table: remove a row when its feature becomes rendered.
 constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
-    findAlphaModes, findSecondaryTexcoords, findVertexColors,      findUnrenderedModes,
-    findAnimations, findElementExtensions,  findListedExtensions,
+    findSecondaryTexcoords, findVertexColors,     findAnimations,
+    findElementExtensions,  findListedExtensions,
 };
 
 }  // namespace

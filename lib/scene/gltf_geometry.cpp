@@ -112,21 +112,58 @@ static std::vector<std::uint32_t> triangleList(std::vector<std::uint32_t> order,
   return triangles;
 }
 
-std::vector<std::uint32_t> GeometryReader::readTriangleIndices(const tinygltf::Primitive& source,
-                                                               const std::string& primitiveName,
-                                                               std::size_t vertexCount) {
+// Line strips and loops as line lists (segment i is (i, i+1); a loop adds
+// (n-1, 0)); points and lines stay as they are.
+static std::vector<std::uint32_t> lineList(std::vector<std::uint32_t> order, int mode) {
+  if (mode != TINYGLTF_MODE_LINE_LOOP && mode != TINYGLTF_MODE_LINE_STRIP) {
+    return order;
+  }
+  if (order.size() < 2) {
+    return {};
+  }
+  std::vector<std::uint32_t> lines;
+  lines.reserve(order.size() * 2);
+  for (std::size_t i = 0; i + 1 < order.size(); ++i) {
+    lines.insert(lines.end(), {order[i], order[i + 1]});
+  }
+  if (mode == TINYGLTF_MODE_LINE_LOOP) {
+    lines.insert(lines.end(), {order.back(), order.front()});
+  }
+  return lines;
+}
+
+// How many elements (points, segments, triangles) `orderCount` vertices
+// make in `mode`; each counts once against max-triangles.
+static std::size_t elementCount(int mode, std::size_t orderCount) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS: return orderCount;
+    case TINYGLTF_MODE_LINE: return orderCount / 2;
+    case TINYGLTF_MODE_LINE_LOOP: return orderCount >= 2 ? orderCount : 0;
+    case TINYGLTF_MODE_LINE_STRIP: return orderCount >= 2 ? orderCount - 1 : 0;
+    case TINYGLTF_MODE_TRIANGLES: return orderCount / 3;
+    default: return orderCount >= 3 ? orderCount - 2 : 0;  // strips and fans
+  }
+}
+
+std::vector<std::uint32_t> GeometryReader::readElementIndices(const tinygltf::Primitive& source,
+                                                              const std::string& primitiveName,
+                                                              std::size_t vertexCount) {
   const int accessorIndex = source.indices;
   const std::size_t orderCount =
       accessorIndex < 0 ? vertexCount : accessors_.check(accessorIndex, primitiveName + " indices", kIndexFormats).count;
-  const std::size_t triangleCount =
-      source.mode == TINYGLTF_MODE_TRIANGLES ? orderCount / 3 : (orderCount >= 3 ? orderCount - 2 : 0);
-  reserveTriangles(triangleCount, primitiveName);
-  if (source.mode == TINYGLTF_MODE_TRIANGLES && orderCount % 3 != 0) {
+  reserveTriangles(elementCount(source.mode, orderCount), primitiveName);
+  const std::size_t multiple =
+      source.mode == TINYGLTF_MODE_TRIANGLES ? 3 : (source.mode == TINYGLTF_MODE_LINE ? 2 : 1);
+  if (orderCount % multiple != 0) {
     source_.fail(primitiveName + " has " + std::to_string(orderCount) +
                  (accessorIndex < 0 ? " vertices and no indices" : " indices in accessor " + std::to_string(accessorIndex)) +
-                 ", expected a multiple of 3 for TRIANGLES");
+                 ", expected a multiple of " + std::to_string(multiple) + " for " + modeName(source.mode));
   }
-  return triangleList(readVertexOrder(accessorIndex, primitiveName, vertexCount), source.mode);
+  std::vector<std::uint32_t> order = readVertexOrder(accessorIndex, primitiveName, vertexCount);
+  if (source.mode <= TINYGLTF_MODE_LINE_STRIP) {
+    return lineList(std::move(order), source.mode);
+  }
+  return triangleList(std::move(order), source.mode);
 }
 
 namespace {
@@ -134,6 +171,9 @@ namespace {
 // Normals from the file are normalised; any that cannot be (zero, NaN) are
 // replaced by generated ones rather than reaching the shader.
 void repairNormals(Primitive& primitive) {
+  // Points and lines have no faces to generate from: an unusable normal
+  // becomes 0, which gbuffer.frag turns toward the camera.
+  const bool faces = primitive.mode == PrimitiveMode::Triangles;
   bool allUsable = true;
   for (glm::vec3& normal : primitive.normals) {
     const float length = glm::length(normal);
@@ -141,9 +181,10 @@ void repairNormals(Primitive& primitive) {
       normal /= length;
     } else {
       allUsable = false;
+      if (!faces) normal = glm::vec3(0.0f);
     }
   }
-  if (!allUsable) {
+  if (!allUsable && faces) {
     Primitive generated{primitive.positions, {}, {}, {}, {}, primitive.indices, {}};
     generateNormals(generated);
     for (std::size_t vertex = 0; vertex < primitive.normals.size(); ++vertex) {
@@ -191,7 +232,10 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   }
   primitive.positions = readPositions(positionAccessor, primitiveName);
   const std::size_t vertexCount = primitive.positions.size();
-  primitive.indices = readTriangleIndices(source, primitiveName, vertexCount);
+  primitive.mode = source.mode == TINYGLTF_MODE_POINTS  ? PrimitiveMode::Points
+                   : source.mode <= TINYGLTF_MODE_LINE_STRIP ? PrimitiveMode::Lines
+                                                             : PrimitiveMode::Triangles;
+  primitive.indices = readElementIndices(source, primitiveName, vertexCount);
   const int normals = attributeAccessor(source, "NORMAL");
   if (normals >= 0) {
     primitive.normals = accessors_.readAttribute<3>(
@@ -223,8 +267,12 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
       repairNormals(primitive);  // skinning scales them
     }
   }
-  if (normals < 0) {
+  if (normals < 0 && primitive.mode == PrimitiveMode::Triangles) {
     generateNormals(primitive);
+  } else if (normals < 0) {
+    // Points and lines without NORMAL: 0, faced toward the camera by
+    // gbuffer.frag (docs/PIPELINE.md §2.2).
+    primitive.normals.assign(vertexCount, glm::vec3(0.0f));
   }
   for (const glm::vec3& position : primitive.positions) {
     primitive.bounds.extend(position);

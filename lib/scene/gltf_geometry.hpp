@@ -40,8 +40,8 @@ class GeometryReader {
                                     int positionAccessor);
   std::vector<std::uint32_t> readVertexOrder(int accessorIndex, const std::string& primitiveName,
                                              std::size_t vertexCount);
-  std::vector<std::uint32_t> readTriangleIndices(const tinygltf::Primitive& source, const std::string& primitiveName,
-                                                 std::size_t vertexCount);
+  std::vector<std::uint32_t> readElementIndices(const tinygltf::Primitive& source, const std::string& primitiveName,
+                                                std::size_t vertexCount);
 
   const Source& source_;
   AccessorReader accessors_;

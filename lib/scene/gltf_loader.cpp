@@ -88,10 +88,6 @@ class GltfReader {
     int material;
   };
 
-  // Points and lines are not drawn (gltf_features names them): no instance.
-  static bool drawn(int mode) {
-    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN;
-  }
 
   PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex, const gltf::Pose& pose, int skin) {
     const tinygltf::Primitive& source =
@@ -113,7 +109,8 @@ class GltfReader {
     Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
     // A normal map needs tangents; without TANGENT they are made as
     // MikkTSpace makes them (the glTF spec's rule for missing tangents).
-    if (primitive.tangents.empty() && !primitive.texcoords.empty() && source.material >= 0 &&
+    if (primitive.mode == PrimitiveMode::Triangles && primitive.tangents.empty() && !primitive.texcoords.empty() &&
+        source.material >= 0 &&
         scene_.materials[static_cast<std::size_t>(source.material)].normalTexture.present()) {
       generateTangents(primitive);
     }
@@ -147,9 +144,7 @@ class GltfReader {
           source_.fail("mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitive) + " has mode " +
                        std::to_string(mode) + ", expected 0..6");
         }
-        if (drawn(mode)) {
-          entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive), pose, skin));
-        }
+        entry->second.push_back(addPrimitive(meshIndex, static_cast<int>(primitive), pose, skin));
       }
     }
     return entry->second;

@@ -47,6 +47,9 @@ GpuPrimitive uploadPrimitive(const Primitive& primitive) {
   glVertexArrayElementBuffer(gpu.vertexArray.id(), indices.id());
   gpu.buffers.push_back(std::move(indices));
   gpu.indexCount = GLsizei(primitive.indices.size());
+  gpu.mode = primitive.mode == PrimitiveMode::Lines    ? GL_LINES
+             : primitive.mode == PrimitiveMode::Points ? GL_POINTS
+                                                       : GL_TRIANGLES;
   return gpu;
 }
 
@@ -109,6 +112,7 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   block.alphaCutoff = material.alphaCutoff;
   gpu.block = gl::Buffer::create(sizeof(block), &block);
   gpu.doubleSided = material.doubleSided;
+  gpu.blended = material.blended();
   if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
   struct Slot {
     const TextureRef& ref;
@@ -142,8 +146,9 @@ gl::Buffer uploadObjects(const Scene& scene) {
 }
 
 // Sorts the instances into draw order and groups them: one instanced draw
-// per (primitive, material, winding), one run per primitive. Returns the
-// draw order (instance indices).
+// per (primitive, material, winding), one run per primitive, for the
+// instances that are not blended; the blended ones follow, one draw each
+// (GpuScene::blendDraws). Returns the draw order (instance indices).
 std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMaterial, GpuScene& gpu) {
   struct Key {
     int primitive, material;
@@ -155,23 +160,39 @@ std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMateria
   for (const Instance& instance : scene.instances)
     keys.push_back({instance.primitive, instance.material >= 0 ? instance.material : defaultMaterial,
                     mirrors(instance.worldFromLocal)});
-  std::vector<std::uint32_t> order(scene.instances.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
+  auto blended = [&](std::uint32_t instance) { return gpu.materials[std::size_t(keys[instance].material)].blended; };
+  std::vector<std::uint32_t> order;
+  order.reserve(scene.instances.size());
+  for (std::size_t i = 0; i < scene.instances.size(); ++i)
+    if (!blended(std::uint32_t(i))) order.push_back(std::uint32_t(i));
   // Stable: instances of one group keep the file's order (depth ties resolve as before).
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
   for (std::size_t position = 0; position < order.size(); ++position) {
     const Key& key = keys[order[position]];
-    if (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive)
+    // Points and lines are in no run: the shadow pass draws runs only.
+    const bool casts = gpu.primitives[std::size_t(key.primitive)].mode == GL_TRIANGLES;
+    if (casts && (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive))
       gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0, gpu.drawGroups.size(), 0, false});
-    GpuPrimitiveRun& run = gpu.primitiveRuns.back();
-    ++run.instanceCount;
+    if (casts) ++gpu.primitiveRuns.back().instanceCount;
     if (gpu.drawGroups.empty() || Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material,
                                       gpu.drawGroups.back().mirrored} != key) {
       gpu.drawGroups.push_back({key.primitive, key.material, key.mirrored, GLuint(position), 0});
-      ++run.groupCount;
-      run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+      if (casts) {
+        GpuPrimitiveRun& run = gpu.primitiveRuns.back();
+        ++run.groupCount;
+        run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+      }
     }
     ++gpu.drawGroups.back().instanceCount;
+  }
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    if (!blended(std::uint32_t(i))) continue;
+    const Instance& instance = scene.instances[i];
+    const Bounds world =
+        scene.primitives[std::size_t(instance.primitive)].bounds.transformed(instance.worldFromLocal);
+    gpu.blendDraws.push_back({keys[i].primitive, keys[i].material, keys[i].mirrored, GLuint(order.size()),
+                              world.empty() ? glm::vec3(instance.worldFromLocal[3]) : world.center()});
+    order.push_back(std::uint32_t(i));
   }
   return order;
 }

@@ -33,6 +33,7 @@ struct GpuPrimitive {
   gl::VertexArray vertexArray;
   std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], indices
   GLsizei indexCount = 0;
+  GLenum mode = GL_TRIANGLES;  // GL_LINES, GL_POINTS: drawn 1 pixel wide, in no shadow map
   std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors
 };
 
@@ -44,6 +45,7 @@ struct GpuMaterial {
   std::uint32_t textureFeatures = 0;
   std::uint32_t alphaFeatures = 0;  // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
   bool doubleSided = false;
+  bool blended = false;  // alphaMode BLEND: drawn by the blend pass only (not the G-buffer, no shadow)
 };
 
 struct GpuTexture {
@@ -65,6 +67,7 @@ struct GpuDrawGroup {
 
 // A primitive's instances in draw order, for passes that ignore materials
 // unless one of them is masked (the shadow pass then draws the run's groups).
+// Triangle primitives only: points and lines cast no shadow.
 struct GpuPrimitiveRun {
   int primitive = 0;
   GLuint firstInstance = 0;
@@ -74,12 +77,24 @@ struct GpuPrimitiveRun {
   bool masked = false;  // some group's material is alphaMode MASK
 };
 
+// One instance of an alphaMode BLEND material: the blend pass sorts these
+// by view depth every frame and draws them one by one, back to front.
+struct GpuBlendDraw {
+  int primitive = 0;
+  int material = 0;
+  bool mirrored = false;
+  GLuint drawPosition = 0;  // its position in the draw order (the draw's base instance)
+  glm::vec3 worldCenter{0.0f};  // the centre of its world bounds: the sort key's point
+};
+
 struct GpuScene {
   std::vector<GpuPrimitive> primitives;
   std::vector<GpuMaterial> materials;  // the scene's, then glTF's default material last
   std::vector<GpuTexture> textures;
+  // Opaque and masked instances only: blended ones are in blendDraws.
   std::vector<GpuDrawGroup> drawGroups;      // in draw order
   std::vector<GpuPrimitiveRun> primitiveRuns;  // in draw order
+  std::vector<GpuBlendDraw> blendDraws;      // after the others in the draw order, in Scene::instances order
   gl::Buffer objects;    // GpuObject per instance, in Scene::instances order (ObjectBuffer)
   gl::Buffer drawOrder;  // per draw-order position, its instance's index into objects (kAttributeObjectIndex)
   Bounds bounds;

@@ -71,10 +71,19 @@ bool Scene::hasEmissive() const {
   return false;
 }
 
+bool Scene::hasBlended() const {
+  for (const Instance& instance : instances)
+    if (instance.material >= 0 && std::size_t(instance.material) < materials.size() &&
+        materials[std::size_t(instance.material)].blended())
+      return true;
+  return false;
+}
+
 std::size_t Scene::triangleCount() const {
   std::size_t triangles = 0;
   for (const Instance& instance : instances) {
-    triangles += primitives[instance.primitive].indices.size() / 3;
+    const Primitive& primitive = primitives[instance.primitive];
+    if (primitive.mode == PrimitiveMode::Triangles) triangles += primitive.indices.size() / 3;
   }
   return triangles;
 }

@@ -51,6 +51,7 @@ struct Frame {
   ImageF
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
+  ImageF coverage;  // coverage.Y: alphaMode BLEND's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers

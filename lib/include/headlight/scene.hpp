@@ -62,7 +62,9 @@ struct TextureRef {
 };
 
 // glTF's alphaMode. MASK cuts out where alpha < alphaCutoff (G-buffer,
-// shadows and the reference); BLEND is drawn opaque and named as not rendered.
+// shadows and the reference); BLEND is drawn after the opaque surfaces, back
+// to front over lit, casts no shadow and is not in the G-buffer
+// (docs/PIPELINE.md, the blend pass).
 enum class AlphaMode { Opaque, Mask, Blend };
 
 // glTF's metallic-roughness material.
@@ -85,9 +87,15 @@ struct Material {
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
   bool masked() const { return alphaMode == AlphaMode::Mask; }
+  bool blended() const { return alphaMode == AlphaMode::Blend; }
 };
 
-// One triangle list (geometry only; the material is the instance's). After
+// What a primitive's indices list: triangles (3 each; glTF's strips and fans
+// become lists), line segments (2 each; LINE_STRIP and LINE_LOOP become
+// lists) or points (1 each). Lines and points are drawn 1 pixel wide.
+enum class PrimitiveMode { Triangles, Lines, Points };
+
+// One triangle, line or point list (geometry only; the material is the instance's). After
 // loading it is always indexed and always has normals; texcoords and
 // tangents are present only if the file had them (or a material drawn with
 // it needs them), so the G-buffer shader is built for what exists.
@@ -99,6 +107,7 @@ struct Primitive {
   std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA (A = 1 for VEC3); empty or same count
   std::vector<std::uint32_t> indices;
   Bounds bounds;  // in the primitive's own space
+  PrimitiveMode mode = PrimitiveMode::Triangles;  // lines and points: normals 0 where the file gives none
 };
 
 // A primitive placed in the world by the flattened node hierarchy, with
@@ -186,7 +195,8 @@ struct Scene {
 
   Bounds worldBounds() const;
   bool hasEmissive() const;
-  std::size_t triangleCount() const;  // as drawn: per instance
+  bool hasBlended() const;  // an instance's material is alphaMode BLEND
+  std::size_t triangleCount() const;  // as drawn: per instance (lines and points are not triangles)
 };
 
 }  // namespace HEADLIGHT_PUBLIC

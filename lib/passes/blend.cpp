@@ -1,0 +1,127 @@
+#include "passes/blend.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include "shared_layout.h"
+
+namespace headlight {
+
+namespace {
+
+std::vector<std::string> blendDefines(std::uint32_t features, const BlendVariant& variant) {
+  std::vector<std::string> defines = featureDefines(features);
+  defines.emplace_back("BLEND_FORWARD");
+  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
+  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
+  if (variant.sky) defines.emplace_back("HAS_SKY");
+  return defines;
+}
+
+// The material's textures on the units gbuffer.frag reads (gbuffer.cpp
+// binds the same; a texture without texcoords is not read).
+void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, std::uint32_t features) {
+  if (!(features & kFeatureTexcoords)) return;
+  const std::pair<int, int> unitTexture[] = {
+      {gpu::kUnitBaseColorTexture, material.baseColor},
+      {gpu::kUnitMetallicRoughnessTexture, material.metallicRoughness},
+      {gpu::kUnitNormalTexture, material.normal},
+      {gpu::kUnitOcclusionTexture, material.occlusion},
+      {gpu::kUnitEmissiveTexture, material.emissive},
+  };
+  for (const auto& [unit, texture] : unitTexture) {
+    if (texture < 0) continue;
+    scene.textures[std::size_t(texture)].texture.bind(unit);
+    scene.textures[std::size_t(texture)].sampler.bind(unit);
+  }
+}
+
+void bindLightingInputs(const BlendInputs& inputs, const BlendVariant& variant) {
+  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
+  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  if (variant.sky) {
+    inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+    inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
+    inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
+  }
+}
+
+// Premultiplied "over" on both targets: colour by alpha, alpha as coverage.
+void setBlendState() {
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFuncSeparatei(0, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glBlendFunci(1, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+}
+
+}  // namespace
+
+std::vector<std::size_t> blendOrder(const std::vector<GpuBlendDraw>& draws, const CameraView& view) {
+  std::vector<float> viewZ(draws.size());
+  for (std::size_t i = 0; i < draws.size(); ++i) viewZ[i] = (view.view * glm::vec4(draws[i].worldCenter, 1.0f)).z;
+  std::vector<std::size_t> order(draws.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  // The camera looks down -Z: the most negative z is the farthest.
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return viewZ[a] < viewZ[b]; });
+  return order;
+}
+
+BlendPass::BlendPass()
+    : programs_("gbuffer.vert", "gbuffer.frag",
+                [](const ProgramKey& key) { return blendDefines(key.features, key.variant); }) {}
+
+void BlendPass::prepare(const GpuScene& scene, const BlendVariant& variant) {
+  for (const GpuBlendDraw& draw : scene.blendDraws)
+    programs_.get({drawFeatures(scene.primitives[std::size_t(draw.primitive)],
+                                scene.materials[std::size_t(draw.material)]),
+                   variant});
+}
+
+void BlendPass::run(const BlendInputs& inputs, const BlendTargets& targets, const BlendVariant& variant) {
+  const GpuScene& scene = inputs.scene;
+  framebuffer_.attach(GL_COLOR_ATTACHMENT0, targets.lit);
+  framebuffer_.attach(GL_COLOR_ATTACHMENT1, targets.coverage);
+  framebuffer_.attach(GL_DEPTH_ATTACHMENT, inputs.depth);
+  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  framebuffer_.setDrawBuffers(drawBuffers);
+  framebuffer_.checkComplete("blend");
+  framebuffer_.bind();
+  glViewport(0, 0, targets.width, targets.height);
+  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  // Tested against the opaque surfaces, not written: blended layers do not
+  // hide each other, the sort orders them.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_FALSE);
+  setBlendState();
+  bindLightingInputs(inputs, variant);
+  scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
+
+  for (std::size_t index : blendOrder(scene.blendDraws, inputs.view)) {
+    const GpuBlendDraw& draw = scene.blendDraws[index];
+    const GpuPrimitive& primitive = scene.primitives[std::size_t(draw.primitive)];
+    const GpuMaterial& material = scene.materials[std::size_t(draw.material)];
+    const std::uint32_t features = drawFeatures(primitive, material);
+    programs_.get({features, variant}).use();
+    if (material.doubleSided)
+      glDisable(GL_CULL_FACE);
+    else
+      glEnable(GL_CULL_FACE);
+    glFrontFace(draw.mirrored ? GL_CW : GL_CCW);
+    material.block.bindUniform(gpu::MaterialBlock::kBinding);
+    bindMaterialTextures(scene, material, features);
+    primitive.vertexArray.bind();
+    glDrawElementsInstancedBaseInstance(primitive.mode, primitive.indexCount, GL_UNSIGNED_INT, nullptr, 1,
+                                        draw.drawPosition);
+  }
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT1);
+  framebuffer_.detach(GL_DEPTH_ATTACHMENT);
+}
+
+}  // namespace headlight
