@@ -4,7 +4,10 @@
 // room see it), + SSGI's indirect term:
 //   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
 // Background pixels show the sky, alpha 0. Without HAS_SKY (sky intensity
-// 0) the sky term is left out: what it would add is exactly 0.
+// 0) the sky term is left out: what it would add is exactly 0. With
+// HAS_ENVIRONMENT the environment map's tables stand in for the sky's
+// (environment.glsl), and the background is the map (or 0 with
+// environment-background off).
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -18,6 +21,9 @@ layout(binding = kUnitSsgiSky) uniform sampler2D ssgiSkyTexture;
 layout(binding = kUnitBrdfLut) uniform sampler2D brdfLut;
 layout(binding = kUnitSkyPrefiltered) uniform sampler2D skyPrefiltered;
 layout(binding = kUnitSkyIrradiance) uniform sampler2D skyIrradiance;
+#ifdef HAS_ENVIRONMENT
+#include "environment.glsl"
+#endif
 
 layout(location = 0) out vec4 outRadiance;
 
@@ -28,12 +34,18 @@ float tableCoordinate(float v, float low, float high, float size) {
 }
 
 vec3 prefilteredSky(vec3 direction, float roughness) {
+#ifdef HAS_ENVIRONMENT
+  return environmentPrefiltered(direction, roughness);
+#endif
   const vec2 size = vec2(textureSize(skyPrefiltered, 0));
   return texture(skyPrefiltered, vec2(tableCoordinate(direction.y, -1.0, 1.0, size.x),
                                       tableCoordinate(roughness, 0.0, 1.0, size.y))).rgb;
 }
 
 vec3 skyIrradianceOverPi(vec3 normal) {
+#ifdef HAS_ENVIRONMENT
+  return environmentIrradianceOverPi(normal);
+#endif
   const float width = float(textureSize(skyIrradiance, 0).x);
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }
@@ -60,7 +72,11 @@ void main() {
     const vec4 viewFar = inverse(frame.projection) * clip;
     const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
     const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
-#ifdef HAS_SKY
+#if defined(HAS_ENVIRONMENT)
+    // The map at full resolution, not its 128 x 64 roughness-0 layer.
+    outRadiance = vec4(lighting.environmentBackground != 0 ? environmentRadiance(rayWorld) * lighting.skyIntensity
+                                                           : vec3(0.0), 0.0);
+#elif defined(HAS_SKY)
     outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
 #else
     outRadiance = vec4(0.0);

@@ -51,6 +51,8 @@ struct FrameFacts {
   bool shadowsOn = true;      // --shadows
   bool shadowCasters = true;  // a light of the scene casts shadows
   bool skyLit = true;         // sky intensity > 0
+  bool environment = false;   // an environment map replaces the sky
+  bool environmentLit = true; // environment intensity > 0
   bool sceneEmits = true;     // a material has a non-zero emissiveFactor
 };
 
@@ -83,7 +85,10 @@ constexpr SkipRule kSkipRules[] = {
     {Work::Ssgi, "setting ssgi is off", [](const FrameFacts& f) { return !f.ssgiOn; }},
     {Work::Ssgi, "neither ssgi nor lit asked for", [](const FrameFacts& f) { return !ssgiRuns(f); }},
     {Work::Composite, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
-    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)", [](const FrameFacts& f) { return !f.skyLit; }},
+    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)",
+     [](const FrameFacts& f) { return !f.environment && !f.skyLit; }},
+    {Work::Sky, "environment intensity 0 (no environment tables, no ambient term)",
+     [](const FrameFacts& f) { return f.environment && !f.environmentLit; }},
     {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
     {Work::Emissive, "no material emits (no emissive target, no emission term)",
      [](const FrameFacts& f) { return !f.sceneEmits; }},
@@ -153,6 +158,7 @@ SceneSummary summarizeScene(const Scene& scene) {
   for (const Light& light : scene.lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
+  summary.environment = scene.environment != nullptr;
   return summary;
 }
 
@@ -173,6 +179,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   if (ssgi) names.push_back("ssgi");
   if (ssgi && ssgi->blur) names.push_back("ssgi-blur");
   if (skyTables) names.push_back("sky");
+  if (environmentTables) names.push_back("environment");
   if (composite) names.push_back("composite");
   names.push_back("readback");
   return names;
@@ -189,6 +196,8 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   facts.shadowsOn = settings.lighting.shadows;
   facts.shadowCasters = scene.planarShadowCasters + scene.cubeShadowCasters > 0;
   facts.skyLit = settings.lighting.skyIntensity.value_or(0.0f) > 0.0f;
+  facts.environment = scene.environment;
+  facts.environmentLit = settings.lighting.environmentIntensity > 0.0f;
   facts.sceneEmits = scene.emissive;
   const SkipDecisions skips = decideSkips(facts);
 
@@ -212,8 +221,10 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
                                      plan.shadows && scene.cubeShadowCasters > 0,
                                      plan.ssgi && method.readsDirectDiffuse};
-  plan.skyTables = skips.runs(Work::Sky);
-  if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
+  plan.skyTables = skips.runs(Work::Sky) && !scene.environment;
+  plan.environmentTables = skips.runs(Work::Sky) && scene.environment;
+  if (skips.runs(Work::Composite))
+    plan.composite = CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables};
   planAttachments(plan);
   planReads(plan, wanted);
   return plan;
