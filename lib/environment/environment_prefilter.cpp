@@ -41,35 +41,48 @@ glm::vec3 trilinear(const std::vector<EquirectImage>& chain, const glm::vec2& uv
   return glm::mix(chain[std::size_t(low)].bilinear(uv), chain[std::size_t(high)].bilinear(uv), lod - float(low));
 }
 
+// One GGX sample of a level, in the frame around R (N = V = R = +Z): the
+// light direction, its N.L weight and the mip level it reads. The same for
+// every texel of the level, so computed once.
+struct LobeSample {
+  glm::vec3 light;
+  float nDotL;
+  float lod;
+};
+
+std::vector<LobeSample> lobeSamples(float roughness, float baseTexelSolidAngle) {
+  const float alpha = std::max(roughness * roughness, 1e-4f);
+  const int sampleCount = kEnvironmentSpecularSamples;
+  std::vector<LobeSample> samples;
+  for (int i = 0; i < sampleCount; ++i) {
+    const float xi0 = (float(i) + 0.5f) / float(sampleCount), xi1 = radicalInverse(unsigned(i));
+    const float cosH = std::sqrt((1.0f - xi1) / (1.0f + (alpha * alpha - 1.0f) * xi1));
+    const float sinH = std::sqrt(std::max(0.0f, 1.0f - cosH * cosH)), phi = 2.0f * kPi * xi0;
+    const glm::vec3 h(sinH * std::cos(phi), sinH * std::sin(phi), cosH);
+    const glm::vec3 l = 2.0f * cosH * h - glm::vec3(0.0f, 0.0f, 1.0f);  // reflect(-R, H)
+    if (l.z <= 0.0f) continue;
+    // pdf(L) = D(H) N.H / (4 V.H) = D / 4 with N = V.
+    const float d = alpha * alpha / (kPi * std::pow(cosH * cosH * (alpha * alpha - 1.0f) + 1.0f, 2.0f));
+    const float sampleSolidAngle = 1.0f / (float(sampleCount) * d * 0.25f + 1e-8f);
+    samples.push_back({glm::normalize(l), l.z, 0.5f * std::log2(sampleSolidAngle / baseTexelSolidAngle) + 1.0f});
+  }
+  return samples;
+}
+
 // One roughness level: each texel's direction R filtered by the GGX lobe
 // around it (N = V = R), samples drawn from the mip level whose texels
 // match the sample's share of the lobe (Karis 2013, filtered importance
 // sampling), so 64 samples do not alias a bright texel.
-void filterLevel(const std::vector<EquirectImage>& chain, float roughness, EquirectImage& out, int firstRow,
-                 int rowStep) {
-  const float alpha = std::max(roughness * roughness, 1e-4f);
-  const int sampleCount = kEnvironmentSpecularSamples;
-  const float texelSolidAngle = 4.0f * kPi / float(chain.front().width * chain.front().height);
+void filterLevel(const std::vector<EquirectImage>& chain, std::span<const LobeSample> samples, EquirectImage& out,
+                 int firstRow, int rowStep) {
   for (int y = firstRow; y < out.height; y += rowStep)
     for (int x = 0; x < out.width; ++x) {
-      const glm::vec3 r = uvToDirection((float(x) + 0.5f) / float(out.width), (float(y) + 0.5f) / float(out.height));
-      const glm::mat3 frame = frameAround(r);
+      const glm::mat3 frame = frameAround(out.texelDirection(x, y));
       glm::vec3 sum(0.0f);
       float weight = 0.0f;
-      for (int i = 0; i < sampleCount; ++i) {
-        const float xi0 = (float(i) + 0.5f) / float(sampleCount), xi1 = radicalInverse(unsigned(i));
-        const float cosH = std::sqrt((1.0f - xi1) / (1.0f + (alpha * alpha - 1.0f) * xi1));
-        const float sinH = std::sqrt(std::max(0.0f, 1.0f - cosH * cosH)), phi = 2.0f * kPi * xi0;
-        const glm::vec3 h = frame * glm::vec3(sinH * std::cos(phi), sinH * std::sin(phi), cosH);
-        const glm::vec3 l = 2.0f * glm::dot(r, h) * h - r;
-        const float nDotL = glm::dot(r, l);
-        if (nDotL <= 0.0f) continue;
-        // pdf(L) = D(H) N.H / (4 V.H) = D / 4 with N = V.
-        const float d = alpha * alpha / (kPi * std::pow(cosH * cosH * (alpha * alpha - 1.0f) + 1.0f, 2.0f));
-        const float sampleSolidAngle = 1.0f / (float(sampleCount) * d * 0.25f + 1e-8f);
-        const float lod = 0.5f * std::log2(sampleSolidAngle / texelSolidAngle) + 1.0f;
-        sum += trilinear(chain, directionToUv(glm::normalize(l)), lod) * nDotL;
-        weight += nDotL;
+      for (const LobeSample& sample : samples) {
+        sum += trilinear(chain, directionToUv(frame * sample.light), sample.lod) * sample.nDotL;
+        weight += sample.nDotL;
       }
       const glm::vec3 value = sum / std::max(weight, 1e-7f);
       float* p = &out.rgb[(std::size_t(y) * std::size_t(out.width) + std::size_t(x)) * 3];
@@ -127,8 +140,10 @@ EnvironmentTables prefilterEnvironment(const EnvironmentMap& map) {
     // Rows split over two threads (the reference machine's cores); each
     // writes its own rows.
     const float roughness = float(level) / float(kEnvironmentRoughnessLevels - 1);
-    std::thread second([&] { filterLevel(chain, roughness, out, 1, 2); });
-    filterLevel(chain, roughness, out, 0, 2);
+    const std::vector<LobeSample> samples =
+        lobeSamples(roughness, 4.0f * kPi / float(chain.front().width * chain.front().height));
+    std::thread second([&] { filterLevel(chain, samples, out, 1, 2); });
+    filterLevel(chain, samples, out, 0, 2);
     second.join();
     tables.specular.push_back(std::move(out));
   }
