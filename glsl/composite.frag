@@ -7,7 +7,7 @@
 // 0) the sky term is left out: what it would add is exactly 0. With
 // HAS_ENVIRONMENT the environment map's tables stand in for the sky's
 // (environment.glsl), and the background is the map (or 0 with
-// environment-background off).
+// --no-environment-background).
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
