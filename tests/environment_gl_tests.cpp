@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
@@ -146,4 +148,44 @@ TEST_CASE("environment: the tables are made once per map, and only with a map") 
   const Frame sky = renderer.render(ambientOnly());
   CHECK(timed(sky, "sky"));
   CHECK(!timed(sky, "environment"));
+}
+
+TEST_CASE("environment: SSGI's sky visibility occludes the map's light") {
+  // A white floor under a uniform map with a box standing on it: with SSGI
+  // on, the floor right beside the box sees less of the map than the floor
+  // far from it; with SSGI off, both reflect the map's radiance.
+  const TempFolder folder("environment-gl");
+  Scene scene;
+  scene.source = "test:environment-occlusion";
+  const int white = addMaterial(scene, makeMaterial(glm::vec3(1.0f), 1.0f, 0.0f));
+  addInstance(scene, makeFloor(4.0f), white);
+  addInstance(scene, makeBox(glm::vec3(1.0f, 2.0f, 1.0f)), white, glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}));
+  Light dark;
+  dark.type = Light::Type::Directional;
+  dark.intensity = 0.0f;
+  dark.castsShadows = false;
+  scene.lights.push_back(dark);
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 4.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, 0.9f));
+  scene.environment =
+      loadEnvironmentMap(writeEnvironmentMap(folder.path() / "uniform.exr", 64, 32, uniformRadiance));
+  Renderer renderer(sharedContext());
+  renderer.setScene(std::move(scene));
+  auto floorMean = [](const Frame& frame, float nearest, float farthest) {
+    int count = 0;
+    const double mean = meanWhere(frame, frame.lit, 1, [&](glm::vec3 p, glm::vec3 n) {
+      const float distance = std::max(std::abs(p.x), std::abs(p.z));
+      return n.y > 0.9f && p.y < 0.01f && distance > nearest && distance < farthest;
+    }, count);
+    REQUIRE(count > 20);
+    return mean;
+  };
+  RenderSettings settings = smallSettings(96, 96);
+  settings.ssgi.enabled = false;
+  const Frame open = renderer.render(settings);
+  CHECK(floorMean(open, 0.52f, 0.7f) == doctest::Approx(0.5).epsilon(0.01));
+  settings.ssgi.enabled = true;
+  const Frame occluded = renderer.render(settings);
+  const double beside = floorMean(occluded, 0.52f, 0.7f), far = floorMean(occluded, 2.5f, 3.5f);
+  CHECK(beside < 0.85 * far);
+  CHECK(far > 0.45);
 }
