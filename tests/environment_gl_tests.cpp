@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "batch.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
@@ -188,4 +189,21 @@ TEST_CASE("environment: SSGI's sky visibility occludes the map's light") {
   const double beside = floorMean(occluded, 0.52f, 0.7f), far = floorMean(occluded, 2.5f, 3.5f);
   CHECK(beside < 0.85 * far);
   CHECK(far > 0.45);
+}
+
+TEST_CASE("environment: a batch job's hash covers the environment map's bytes, and no map adds nothing") {
+  // --resume skips a set whose job hash matches: a set rendered with another
+  // map (or none) must not match.
+  const TempFolder folder("environment-gl");
+  cli::Job job;
+  job.scene = "builtin:cornell";
+  job.outDir = "x";
+  const std::string none = cli::jobHash(job, {});
+  CHECK(cli::jobHash(job, {}, {}) == none);
+  const auto a = writeEnvironmentMap(folder.path() / "a.exr", 8, 4, uniformRadiance);
+  const auto b = writeEnvironmentMap(folder.path() / "b.exr", 8, 4, horizonSplitRadiance);
+  const std::string withA = cli::jobHash(job, {}, a.string());
+  CHECK(withA != none);
+  CHECK(cli::jobHash(job, {}, b.string()) != withA);
+  CHECK(cli::jobHash(job, {}, a.string()) == withA);
 }
