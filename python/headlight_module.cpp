@@ -513,7 +513,8 @@ PYBIND11_MODULE(headlight, m) {
           py::arg("scene"), py::arg("allow_external_paths") = false, py::arg("environment") = py::none(),
           "set_scene(scene, allow_external_paths=False, environment=None, **limits): a glTF file (.gltf/.glb) or "
           "'builtin:cornell' / 'builtin:spheres'; environment: an equirectangular .hdr/.exr that replaces the sky "
-          "(render's environment_intensity, environment_rotation, environment_background apply); limits are limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
+          "(render's environment_intensity, environment_rotation, environment_background apply); limits are "
+          "limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
           "max_triangles, max_texels; over one: LimitError")
       .def(
           "render",

@@ -142,8 +142,9 @@ TEST_CASE("environment: the tables are made once per map, and only with a map") 
   // Intensity 0: no tables, no ambient term.
   renderer.setScene(whiteSphere(map));
   const Frame off = renderer.render(ambientOnly(0.0f));
-  CHECK(std::any_of(off.skipped.begin(), off.skipped.end(),
-                    [](const SkippedWork& s) { return s.reason.find("environment intensity 0") != std::string::npos; }));
+  CHECK(std::any_of(off.skipped.begin(), off.skipped.end(), [](const SkippedWork& s) {
+    return s.reason.find("environment intensity 0") != std::string::npos;
+  }));
   // Without a map: the sky, as before.
   renderer.setScene(whiteSphere(nullptr));
   const Frame sky = renderer.render(ambientOnly());

@@ -29,8 +29,9 @@ fs::path hdrDeclaring(const TempFolder& folder, const std::string& name, long wi
 }
 
 ProcessResult renderWith(const TempFolder& folder, const fs::path& environment, const std::string& extra = {}) {
-  return runHeadlight("render builtin:cornell --width 32 --height 24 --environment " + shellQuote(environment.string()) +
-                      " --out " + shellQuote((folder.path() / "out").string()) + " " + extra);
+  return runHeadlight("render builtin:cornell --width 32 --height 24 --environment " +
+                      shellQuote(environment.string()) + " --out " + shellQuote((folder.path() / "out").string()) +
+                      " " + extra);
 }
 
 }  // namespace

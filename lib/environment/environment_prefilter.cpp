@@ -115,7 +115,8 @@ EquirectImage irradianceOverPi(const EquirectImage& source) {
     for (std::size_t i = 0; i < directions.size(); ++i) {
       const float w = solidAngles[i] * glm::dot(normal, directions[i]);
       if (w <= 0.0f) continue;
-      sum += glm::dvec3(coarse.texel(int(i % std::size_t(coarse.width)), int(i / std::size_t(coarse.width)))) * double(w);
+      const int x = int(i % std::size_t(coarse.width)), y = int(i / std::size_t(coarse.width));
+      sum += glm::dvec3(coarse.texel(x, y)) * double(w);
       weight += w;
     }
     const glm::dvec3 value = sum / weight;

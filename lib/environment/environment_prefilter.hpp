@@ -22,7 +22,8 @@ inline constexpr int kEnvironmentSpecularWidth = 128;  // 2.8 degrees a texel: b
 inline constexpr int kEnvironmentSpecularHeight = 64;
 inline constexpr int kEnvironmentIrradianceWidth = 64;  // a cosine lobe is smooth; 64 x 32 keeps bilinear error < 0.5%
 inline constexpr int kEnvironmentIrradianceHeight = 32;
-inline constexpr int kEnvironmentSpecularSamples = 64;  // per texel and level, from a mip chain (filtered importance sampling)
+// Per texel and level, each read from a mip chain (filtered importance sampling).
+inline constexpr int kEnvironmentSpecularSamples = 64;
 
 struct EnvironmentTables {
   std::vector<EquirectImage> specular;  // kEnvironmentRoughnessLevels images

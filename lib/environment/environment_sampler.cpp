@@ -45,13 +45,15 @@ EnvironmentSampler::EnvironmentSampler(const EquirectImage& map)
   // A black map: all its weight is the uniform share's.
   for (int y = 0; y < kGridHeight; ++y) {
     double* columns = &columnCdfs_[std::size_t(y) * (kGridWidth + 1)];
-    for (int x = 0; x < kGridWidth; ++x) columns[x + 1] = columns[x] + weights[std::size_t(y) * kGridWidth + std::size_t(x)];
+    const double* rowWeights = &weights[std::size_t(y) * kGridWidth];
+    for (int x = 0; x < kGridWidth; ++x) columns[x + 1] = columns[x] + rowWeights[x];
     const double rowSum = columns[kGridWidth];
     rowCdf_[std::size_t(y) + 1] = rowCdf_[std::size_t(y)] + rowSum;
     for (int x = 0; x <= kGridWidth; ++x) columns[x] = rowSum > 0.0 ? columns[x] / rowSum : double(x) / kGridWidth;
   }
   for (double& value : rowCdf_) value = total > 0.0 ? value / total : 0.0;
-  for (std::size_t i = 0; i < weights.size(); ++i) texelProbability_[i] = total > 0.0 ? float(weights[i] / total) : 0.0f;
+  for (std::size_t i = 0; i < weights.size(); ++i)
+    texelProbability_[i] = total > 0.0 ? float(weights[i] / total) : 0.0f;
 }
 
 glm::vec3 EnvironmentSampler::sample(float xi0, float xi1, float& pdf) const {
@@ -64,7 +66,8 @@ glm::vec3 EnvironmentSampler::sample(float xi0, float xi1, float& pdf) const {
   } else {
     const double xi = (double(xi0) - kUniformShare) / (1.0 - kUniformShare);
     const int y = findCell(rowCdf_.data(), kGridHeight, xi);
-    const double rowShare = (xi - rowCdf_[std::size_t(y)]) / std::max(rowCdf_[std::size_t(y) + 1] - rowCdf_[std::size_t(y)], 1e-300);
+    const double rowLow = rowCdf_[std::size_t(y)], rowHigh = rowCdf_[std::size_t(y) + 1];
+    const double rowShare = (xi - rowLow) / std::max(rowHigh - rowLow, 1e-300);
     const double* columns = &columnCdfs_[std::size_t(y) * (kGridWidth + 1)];
     const int x = findCell(columns, kGridWidth, double(xi1));
     const double columnShare = (double(xi1) - columns[x]) / std::max(columns[x + 1] - columns[x], 1e-300);

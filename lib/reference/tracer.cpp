@@ -111,7 +111,8 @@ class Tracer {
     const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
-    glm::vec3 radiance = directLight(surface, position, origin) + ambientLight(surface, origin, basis, skyMean, random) +
+    glm::vec3 radiance = directLight(surface, position, origin) +
+                         ambientLight(surface, origin, basis, skyMean, random) +
                          glm::vec3(indirectMean);
     if (!frame.emissive.empty())
       radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));

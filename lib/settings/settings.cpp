@@ -170,7 +170,7 @@ const std::vector<Row>& table() {
       row(
           {.name = "sky-intensity",
            .type = T::Float,
-           .help = "sky (ambient) intensity",
+           .help = "sky (ambient) intensity (an environment map replaces the sky: --environment-intensity)",
            .maximum = 1000,
            .autoMeaning = "the scene's"},
           [](auto& s) -> auto& { return s.lighting.skyIntensity; }),

@@ -22,7 +22,8 @@ inline std::filesystem::path writeEnvironmentMap(const std::filesystem::path& pa
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const glm::vec3 value = radiance(x, y);
-      for (int c = 0; c < 3; ++c) pixels[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3 + std::size_t(c)] = value[c];
+      float* texel = &pixels[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 3];
+      for (int c = 0; c < 3; ++c) texel[c] = value[c];
     }
   auto output = OIIO::ImageOutput::create(path.string());
   if (!output || !output->open(path.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)) ||

@@ -150,8 +150,9 @@ struct Light {
 };
 
 // The procedural sky that lights the scene from everywhere (image-based
-// ambient). It depends only on the direction's height, which lets the
-// prefiltered sky be a small 2D table (docs/PIPELINE.md).
+// ambient), unless Scene::environment replaces it. It depends only on the
+// direction's height, which lets the prefiltered sky be a small 2D table
+// (docs/PIPELINE.md).
 struct Sky {
   glm::vec3 zenith{0.35f, 0.5f, 0.8f};   // linear radiance straight up
   glm::vec3 horizon{0.8f, 0.85f, 0.9f};  // linear radiance at the horizon
