@@ -1,11 +1,15 @@
-// Image-based ambient light from the procedural sky (split sum: the BRDF
-// table and the sky tables of lib/passes/environment.hpp), shared by the
+// Image-based ambient light from the procedural sky, or from an environment
+// map under HAS_ENVIRONMENT (split sum: the BRDF table and the sky tables of
+// lib/passes/environment.hpp, or the map's, environment.glsl), shared by the
 // composite pass (G-buffer surfaces) and the blend pass (alphaMode BLEND
 // surfaces). Needs brdf.glsl and the lighting block.
 
 layout(binding = kUnitBrdfLut) uniform sampler2D brdfLut;
 layout(binding = kUnitSkyPrefiltered) uniform sampler2D skyPrefiltered;
 layout(binding = kUnitSkyIrradiance) uniform sampler2D skyIrradiance;
+#ifdef HAS_ENVIRONMENT
+#include "environment.glsl"
+#endif
 
 // Texture coordinate of value v in [low, high] for a table whose first and
 // last texel centres stand for low and high (see tableValue()).
@@ -14,12 +18,18 @@ float tableCoordinate(float v, float low, float high, float size) {
 }
 
 vec3 prefilteredSky(vec3 direction, float roughness) {
+#ifdef HAS_ENVIRONMENT
+  return environmentPrefiltered(direction, roughness);
+#endif
   const vec2 size = vec2(textureSize(skyPrefiltered, 0));
   return texture(skyPrefiltered, vec2(tableCoordinate(direction.y, -1.0, 1.0, size.x),
                                       tableCoordinate(roughness, 0.0, 1.0, size.y))).rgb;
 }
 
 vec3 skyIrradianceOverPi(vec3 normal) {
+#ifdef HAS_ENVIRONMENT
+  return environmentIrradianceOverPi(normal);
+#endif
   const float width = float(textureSize(skyIrradiance, 0).x);
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }

@@ -4,7 +4,10 @@
 // room see it), + SSGI's indirect term:
 //   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
 // Background pixels show the sky, alpha 0. Without HAS_SKY (sky intensity
-// 0) the sky term is left out: what it would add is exactly 0.
+// 0) the sky term is left out: what it would add is exactly 0. With
+// HAS_ENVIRONMENT the environment map's tables stand in for the sky's
+// (environment.glsl), and the background is the map (or 0 with
+// --no-environment-background).
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -29,7 +32,11 @@ void main() {
     const vec4 viewFar = inverse(frame.projection) * clip;
     const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
     const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
-#ifdef HAS_SKY
+#if defined(HAS_ENVIRONMENT)
+    // The map at full resolution, not its 128 x 64 roughness-0 layer.
+    outRadiance = vec4(lighting.environmentBackground != 0 ? environmentRadiance(rayWorld) * lighting.skyIntensity
+                                                           : vec3(0.0), 0.0);
+#elif defined(HAS_SKY)
     outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
 #else
     outRadiance = vec4(0.0);

@@ -68,7 +68,10 @@ using mat4 = glm::mat4;
   X(kUnitDirect, 17)                        \
   X(kUnitDirectDiffuse, 18)                 \
   X(kUnitGbufferDepth, 19)                  \
-  X(kUnitSsgiSky, 20)
+  X(kUnitSsgiSky, 20)                       \
+  X(kUnitEnvironmentSpecular, 21)           \
+  X(kUnitEnvironmentIrradiance, 22)         \
+  X(kUnitEnvironmentBackground, 23)
 
 // Image units (X(name, unit)), for image load/store: none yet.
 #define HL_IMAGE_UNITS(X)
@@ -180,14 +183,14 @@ HL_BLOCK_END(blur)
 
 // Direct-light and composite passes.
 HL_BLOCK_BEGIN(LightingBlock, kBindingLighting)
-  float skyIntensity;       // scales the sky's radiance (ambient and background)
+  float skyIntensity;       // scales the sky's radiance, or the environment map's (ambient and background)
   int lightCount;           // entries of the light buffer
   float pcfRadius;          // shadow filter radius, shadow-map texels
   float shadowNormalOffset; // how far a shadow lookup moves along the normal, in texels of the map there
   int shadowMapSize;        // texels per side of every shadow map; 0 without maps
-  int pad0;
-  int pad1;
-  int pad2;
+  float environmentRotationCos; // the environment map's turn about +Y (environment/equirect.hpp worldToMap)
+  float environmentRotationSin;
+  int environmentBackground;    // 1: the map shows behind the scene; 0: the background is 0
 HL_BLOCK_END(lighting)
 
 // Shadow pass: one light view per draw batch.

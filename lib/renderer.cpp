@@ -10,6 +10,7 @@
 #include <array>
 #include <bit>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "gl/target_formats.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
+#include "image_io/environment_decode.hpp"
 #include "passes/blend.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
@@ -179,9 +181,16 @@ struct Renderer::Impl {
   }
 
   // The block the direct-light and composite passes read, and the lights.
-  void bindLighting(float skyIntensity, float pcfRadius) {
+  // The ambient's intensity is the environment map's when there is one
+  // (it replaces the sky), else the sky's.
+  void bindLighting(const LightingSettings& lighting) {
     gpu::LightingBlock block{};
-    block.skyIntensity = skyIntensity;
+    const float pcfRadius = lighting.pcfRadius;
+    block.skyIntensity = scene.environment ? lighting.environmentIntensity : *lighting.skyIntensity;
+    const float turn = glm::radians(lighting.environmentRotation);
+    block.environmentRotationCos = std::cos(turn);
+    block.environmentRotationSin = std::sin(turn);
+    block.environmentBackground = lighting.environmentBackground ? 1 : 0;
     block.lightCount = int(scene.lights.size());
     block.pcfRadius = pcfRadius;
     // 1.5 texels of normal offset: enough to clear acne at the PCF radius's
@@ -297,6 +306,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   checkSceneRanges(newScene);
   checkDrawBudget(newScene, impl.limits);
   impl.sceneBytes = estimateSceneBytes(newScene);
+  if (newScene.environment)
+    impl.sceneBytes += std::uint64_t(newScene.environment->width) * std::uint64_t(newScene.environment->height) *
+                       detail::kEnvironmentBytesPerTexel;
   if (impl.sceneBytes > maxMemoryBytes(impl.limits))
     throw LimitError(newScene.source + ": the scene needs about " + std::to_string(impl.sceneBytes >> 20) +
                          " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(impl.limits) >> 20) +
@@ -315,6 +327,9 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.uploadLights({});
   impl.shadowMaps = ShadowMaps{};
   impl.shadowMapSize = 0;
+  // A map's tables are kept across scenes that share it (a batch); a scene
+  // without one releases them.
+  if (!impl.scene.environment) impl.environment.dropEnvironment();
   if (plan.direct) impl.directLight.prepare(*plan.direct);
   if (plan.ssgi) impl.ssgi.prepare(plan.ssgi->method->method);
   if (plan.composite) impl.composite.prepare(*plan.composite);
@@ -354,7 +369,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   if (plan.dropShadowMaps) impl.dropShadows();
   if (plan.shadows && impl.shadowMapSize != plan.shadows->mapSize)
     timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize); });
-  impl.bindLighting(*used.lighting.skyIntensity, used.lighting.pcfRadius);
+  impl.bindLighting(used.lighting);
   timer.run("gbuffer",
             [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
   const GBuffer gbuffer = impl.gbuffer();
@@ -368,6 +383,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   // only when the sky's colours change).
   if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
     timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky); });
+  if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
+    timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
   if (plan.composite) {
     const SsgiTextures ssgi = impl.ssgiOutput(false);
     const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),

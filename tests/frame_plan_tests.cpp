@@ -83,7 +83,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   scene.blended = true;
   FramePlan plan = planFrame(scene, resolvedDefaults(), {});
   REQUIRE(plan.blend);
-  CHECK(*plan.blend == BlendVariant{true, false, true});  // the planar caster's map, the sky term
+  CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky",
                                                           "composite", "blend", "readback"});
@@ -98,7 +98,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   settings.lighting.skyIntensity = 0.0f;
   plan = planFrame(scene, settings, {});
   REQUIRE(plan.blend);
-  CHECK(*plan.blend == BlendVariant{false, false, false});
+  CHECK(*plan.blend == BlendVariant{false, false, false, false});
   // Without lit there is nothing to blend over.
   const std::vector<std::string> gbufferOnly{"albedo", "coverage"};
   plan = planFrame(scene, resolvedDefaults(), gbufferOnly);

@@ -43,6 +43,7 @@ const std::vector<ProgramSource>& programSources() {
       {{"fullscreen.vert", "ssgi_bitmask.frag"}, {}},
       {{"fullscreen.vert", "ssgi_blur.frag"}, {}},
       {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY"}},
+      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY", "HAS_ENVIRONMENT"}},
       {{"fullscreen.vert", "brdf_lut.frag"}, {}},
       {{"fullscreen.vert", "sky_prefilter.frag"}, {}},
       {{"fullscreen.vert", "sky_irradiance.frag"}, {}},

@@ -138,10 +138,10 @@ json summaryJson(const std::vector<Job>& jobs, const std::vector<JobResult>& res
 
 }  // namespace
 
-bool jobAlreadyDone(const Job& job, const OutputOptions& output) {
+bool jobAlreadyDone(const Job& job, const OutputOptions& output, const std::string& environment) {
   try {
     const std::optional<FrameManifest> manifest = readManifest(job.outDir);
-    if (!manifest || !manifest->complete || manifest->jobHash != jobHash(job, output)) return false;
+    if (!manifest || !manifest->complete || manifest->jobHash != jobHash(job, output, environment)) return false;
     return checkFrameSet(job.outDir).state == FrameSetState::Complete;
   } catch (const Error&) {
     return false;  // unreadable: render it again
@@ -218,7 +218,7 @@ int runSingleRender(const RenderCommand& command) {
       command, [](const std::string&) -> int { throw SettingsError("internal: a single render has no camera list"); });
   const Job& job = jobs.at(0);
   if (const std::string refusal = outputFolderRefusal(job, command.force); !refusal.empty()) throw IoError(refusal);
-  if (command.resume && jobAlreadyDone(job, command.output)) {
+  if (command.resume && jobAlreadyDone(job, command.output, command.sceneLoad.environment)) {
     if (command.verbosity != Verbosity::Quiet)
       std::cout << job.outDir << ": skipped (--resume: complete set of the same job)\n";
     return 0;
@@ -239,7 +239,7 @@ int runSingleRender(const RenderCommand& command) {
   const Frame frame = renderer.render(job.settings, camera ? &*camera : nullptr, renderTargetsFor(command.output));
   if (command.verbosity == Verbosity::Verbose) printFrameDetails(frame);
   OutputOptions output = command.output;
-  output.jobHash = jobHash(job, command.output);
+  output.jobHash = jobHash(job, command.output, command.sceneLoad.environment);
   output.waitForFolder = command.wait;
   const std::vector<WrittenFile> files = writeFrame(frame, job.outDir, output);
   if (command.verbosity != Verbosity::Quiet)
@@ -313,7 +313,7 @@ int runRenderBatch(const RenderCommand& command) {
       report(i);
       continue;
     }
-    if (command.resume && jobAlreadyDone(job, command.output)) {
+    if (command.resume && jobAlreadyDone(job, command.output, command.sceneLoad.environment)) {
       result.status = JobResult::Status::Skipped;
       cache.release(job.scene);
       report(i);
@@ -349,7 +349,7 @@ int runRenderBatch(const RenderCommand& command) {
       cache.release(job.scene);
       waitForWrite();
       OutputOptions output = command.output;
-      output.jobHash = jobHash(job, command.output);
+      output.jobHash = jobHash(job, command.output, command.sceneLoad.environment);
       output.waitForFolder = command.wait;
       pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock] {
         const auto writeStart = std::chrono::steady_clock::now();

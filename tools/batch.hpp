@@ -14,8 +14,9 @@
 namespace headlight::cli {
 
 // True when `job.outDir` holds a complete set (checkFrameSet) written for
-// the same job hash: --resume skips it.
-bool jobAlreadyDone(const Job& job, const OutputOptions& output);
+// the same job hash (with `environment`, the --environment file: jobHash):
+// --resume skips it.
+bool jobAlreadyDone(const Job& job, const OutputOptions& output, const std::string& environment = {});
 
 // Why a job may not write into its folder, or "" when it may: the folder
 // holds the scene file (out = the scene's folder), or, without `force`, a

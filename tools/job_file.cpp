@@ -322,9 +322,10 @@ int resolveShardIndex(const RenderCommand& command) {
   return index;
 }
 
-std::string jobHash(const Job& job, const OutputOptions& output) {
+std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment) {
   std::string text = "scene=" + job.scene + "\n";
   if (job.scene.rfind("builtin:", 0) != 0) text += "scene-bytes=" + fileFingerprint(job.scene) + "\n";
+  if (!environment.empty()) text += "environment-bytes=" + fileFingerprint(environment) + "\n";
   for (const auto& [name, value] : settingsAsText(job.settings)) text += name + "=" + value + "\n";
   text += "camera=" + job.camera.describe() + "\n";
   text += "targets=";

@@ -79,7 +79,9 @@ std::vector<Job> selectShard(const std::vector<Job>& jobs, int index, int count)
 int resolveShardIndex(const RenderCommand& command);
 
 // What decides whether a finished set is this job's: the scene's bytes (or
-// builtin name), the requested settings, the camera and the output choices.
-std::string jobHash(const Job& job, const OutputOptions& output);
+// builtin name), the requested settings, the camera, the output choices and,
+// when one is given, the environment map's bytes (--environment; none adds
+// nothing, so sets rendered without one keep their hash).
+std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment = {});
 
 }  // namespace headlight::cli

@@ -53,6 +53,8 @@ struct FrameFacts {
   bool shadowsOn = true;      // --shadows
   bool shadowCasters = true;  // a light of the scene casts shadows
   bool skyLit = true;         // sky intensity > 0
+  bool environment = false;   // an environment map replaces the sky
+  bool environmentLit = true; // environment intensity > 0
   bool sceneEmits = true;     // a material has a non-zero emissiveFactor
   bool sceneBlends = true;    // a material is alphaMode BLEND
 };
@@ -86,7 +88,10 @@ constexpr SkipRule kSkipRules[] = {
     {Work::Ssgi, "setting ssgi is off", [](const FrameFacts& f) { return !f.ssgiOn; }},
     {Work::Ssgi, "neither ssgi nor lit asked for", [](const FrameFacts& f) { return !ssgiRuns(f); }},
     {Work::Composite, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
-    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)", [](const FrameFacts& f) { return !f.skyLit; }},
+    {Work::Sky, "sky intensity 0 (no sky tables, no sky term)",
+     [](const FrameFacts& f) { return !f.environment && !f.skyLit; }},
+    {Work::Sky, "environment intensity 0 (no environment tables, no ambient term)",
+     [](const FrameFacts& f) { return f.environment && !f.environmentLit; }},
     {Work::Sky, "lit not asked for", [](const FrameFacts& f) { return !f.wantLit; }},
     {Work::Emissive, "no material emits (no emissive target, no emission term)",
      [](const FrameFacts& f) { return !f.sceneEmits; }},
@@ -161,6 +166,7 @@ SceneSummary summarizeScene(const Scene& scene) {
     if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
   summary.blended = scene.hasBlended();
+  summary.environment = scene.environment != nullptr;
   return summary;
 }
 
@@ -181,6 +187,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   if (ssgi) names.push_back("ssgi");
   if (ssgi && ssgi->blur) names.push_back("ssgi-blur");
   if (skyTables) names.push_back("sky");
+  if (environmentTables) names.push_back("environment");
   if (composite) names.push_back("composite");
   if (blend) names.push_back("blend");
   names.push_back("readback");
@@ -198,6 +205,8 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   facts.shadowsOn = settings.lighting.shadows;
   facts.shadowCasters = scene.planarShadowCasters + scene.cubeShadowCasters > 0;
   facts.skyLit = settings.lighting.skyIntensity.value_or(0.0f) > 0.0f;
+  facts.environment = scene.environment;
+  facts.environmentLit = settings.lighting.environmentIntensity > 0.0f;
   facts.sceneEmits = scene.emissive;
   facts.sceneBlends = scene.blended;
   const SkipDecisions skips = decideSkips(facts);
@@ -222,13 +231,16 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
                                      plan.shadows && scene.cubeShadowCasters > 0,
                                      plan.ssgi && method.readsDirectDiffuse};
-  plan.skyTables = skips.runs(Work::Sky);
-  if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
+  plan.skyTables = skips.runs(Work::Sky) && !scene.environment;
+  plan.environmentTables = skips.runs(Work::Sky) && scene.environment;
+  if (skips.runs(Work::Composite))
+    plan.composite = CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables};
   // Blended surfaces are drawn over the composite's lit target, with the
-  // same shadow maps and sky term (the direct pass's variant decides both).
+  // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))
     plan.blend = BlendVariant{plan.shadows && scene.planarShadowCasters > 0,
-                              plan.shadows && scene.cubeShadowCasters > 0, plan.skyTables};
+                              plan.shadows && scene.cubeShadowCasters > 0, skips.runs(Work::Sky),
+                              plan.environmentTables};
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

@@ -29,6 +29,7 @@ struct SceneSummary {
   int cubeShadowCasters = 0;    // point lights that cast shadows
   bool emissive = false;        // a material emits (emissiveFactor != 0)
   bool blended = false;         // an instance's material is alphaMode BLEND (the blend pass)
+  bool environment = false;     // an environment map replaces the procedural sky (Scene::environment)
 };
 // `scene.lights` as drawn: with the default key light when the file has none.
 SceneSummary summarizeScene(const Scene& scene);
@@ -115,14 +116,15 @@ struct DirectLightVariant {
 };
 
 struct CompositeVariant {
-  bool ssgi, sky;
+  bool ssgi, sky;            // sky: the ambient term is drawn (from the sky's or the environment's tables)
+  bool environment = false;  // the ambient and the background come from the environment map's tables
   auto operator<=>(const CompositeVariant&) const = default;
 };
 
 // The forward pass of alphaMode BLEND surfaces over lit (lib/passes/blend.hpp):
 // lit by the lights, shadows and sky the composite uses.
 struct BlendVariant {
-  bool planarShadows, cubeShadows, sky;
+  bool planarShadows, cubeShadows, sky, environment;  // sky and environment as the composite's
   auto operator<=>(const BlendVariant&) const = default;
 };
 
@@ -151,6 +153,10 @@ struct FramePlan {
   std::optional<DirectLightVariant> direct;
   std::optional<SsgiStep> ssgi;
   bool skyTables = false;  // the sky's prefiltered tables are (made if needed and) read
+  // The environment map's tables (its prefiltered levels, irradiance and
+  // the map itself as the background) are (made if needed and) read: only
+  // with an environment map, which then replaces the sky's tables.
+  bool environmentTables = false;
   std::optional<CompositeVariant> composite;
   std::optional<BlendVariant> blend;  // after the composite, over lit
 

@@ -29,6 +29,8 @@ static_assert(sizeof(LightingBlock) == 32);
 static_assert(offsetof(LightingBlock, pcfRadius) == 8);
 static_assert(offsetof(LightingBlock, shadowNormalOffset) == 12);
 static_assert(offsetof(LightingBlock, shadowMapSize) == 16);
+static_assert(offsetof(LightingBlock, environmentRotationCos) == 20);
+static_assert(offsetof(LightingBlock, environmentBackground) == 28);
 static_assert(sizeof(SsgiBlurBlock) == 16);
 static_assert(offsetof(SsgiBlurBlock, ssgiDownsample) == 4);
 static_assert(sizeof(ShadowBlock) == 80);

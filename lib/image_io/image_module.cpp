@@ -72,7 +72,8 @@ const ImageModuleTable* loadImageModule() {
                                      reinterpret_cast<const void*>(table->diffImages),
                                      reinterpret_cast<const void*>(table->diffDirectories),
                                      reinterpret_cast<const void*>(table->writeDiffImages),
-                                     reinterpret_cast<const void*>(table->decodeTexture)};
+                                     reinterpret_cast<const void*>(table->decodeTexture),
+                                     reinterpret_cast<const void*>(table->decodeEnvironment)};
     for (const void* function : functions)
       if (!function) throw IoError(path.string() + ": broken image module: its table has a null function");
     return table;  // never unloaded: OpenImageIO keeps threads and caches
@@ -97,6 +98,10 @@ const ImageModuleTable& imageModule() { return *startLoading().get(); }
 std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureDecodeLimits& limits,
                           DecodedTexture& texture, bool& overBudget) {
   return imageModule().decodeTexture(bytes, size, limits, texture, overBudget);
+}
+
+std::string decodeEnvironment(const char* path, std::uint64_t maxBytes, int maxSide, DecodedEnvironment& map) {
+  return imageModule().decodeEnvironment(path, maxBytes, maxSide, map);
 }
 
 }  // namespace headlight::detail

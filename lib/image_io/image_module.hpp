@@ -12,7 +12,7 @@
 //
 // The public functions it implements (writeFrame, writeExr, writePreview,
 // readSettingAttributes, diffImages, diffDirectories, writeDiffImages and
-// detail::decodeTexture) keep their declarations; in the library and the CLI
+// detail::decodeTexture, detail::decodeEnvironment) keep their declarations; in the library and the CLI
 // they are forwarders (image_module.cpp) to the module's table below.
 #include <cstdint>
 #include <filesystem>
@@ -20,13 +20,15 @@
 
 #include "headlight/diff.hpp"
 #include "headlight/output.hpp"
+#include "image_io/environment_decode.hpp"
 #include "image_io/texture_decode.hpp"
 
 namespace headlight::detail {
 
 // Bumped whenever the table or a type crossing it changes: a module from
 // another build is refused, not called.
-inline constexpr std::uint32_t kImageModuleAbi = 3;  // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: OutputOptions::waitForFolder
+// 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder
+inline constexpr std::uint32_t kImageModuleAbi = 4;
 
 struct ImageModuleTable {
   std::uint32_t abi;
@@ -39,6 +41,7 @@ struct ImageModuleTable {
   decltype(&headlight::diffDirectories) diffDirectories;
   decltype(&headlight::writeDiffImages) writeDiffImages;
   decltype(&detail::decodeTexture) decodeTexture;
+  decltype(&detail::decodeEnvironment) decodeEnvironment;
 };
 
 // The module's one exported symbol.

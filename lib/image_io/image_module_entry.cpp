@@ -15,6 +15,7 @@ constexpr headlight::detail::ImageModuleTable kTable{
     &headlight::diffDirectories,
     &headlight::writeDiffImages,
     &headlight::detail::decodeTexture,
+    &headlight::detail::decodeEnvironment,
 };
 
 }  // namespace

@@ -15,6 +15,7 @@ std::vector<std::string> blendDefines(std::uint32_t features, const BlendVariant
   if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
   if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
   if (variant.sky) defines.emplace_back("HAS_SKY");
+  if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
   return defines;
 }
 
@@ -39,8 +40,14 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 void bindLightingInputs(const BlendInputs& inputs, const BlendVariant& variant) {
   if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
   if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  if (variant.sky) {
-    inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+  // The composite's bindings (composite.cpp): the map's tables stand in for the sky's.
+  if (variant.environment) {
+    inputs.environment.environmentSpecular.bind(gpu::kUnitEnvironmentSpecular);
+    inputs.environment.environmentIrradiance.bind(gpu::kUnitEnvironmentIrradiance);
+    inputs.environment.environmentBackground.bind(gpu::kUnitEnvironmentBackground);
+  }
+  if (variant.sky) inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+  if (variant.sky && !variant.environment) {
     inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
     inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
   }

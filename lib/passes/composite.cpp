@@ -9,6 +9,7 @@ CompositePass::CompositePass()
         std::vector<std::string> defines;
         if (variant.ssgi) defines.emplace_back("HAS_SSGI");
         if (variant.sky) defines.emplace_back("HAS_SKY");
+        if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
         return defines;
       }) {}
 
@@ -22,8 +23,13 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
     inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
     inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
   }
-  if (variant.sky) {
-    inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+  if (variant.environment) {
+    inputs.environment.environmentSpecular.bind(gpu::kUnitEnvironmentSpecular);
+    inputs.environment.environmentIrradiance.bind(gpu::kUnitEnvironmentIrradiance);
+    inputs.environment.environmentBackground.bind(gpu::kUnitEnvironmentBackground);
+  }
+  if (variant.sky) inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+  if (variant.sky && !variant.environment) {
     inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
     inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
   }

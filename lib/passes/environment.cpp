@@ -1,5 +1,6 @@
 #include "passes/environment.hpp"
 
+#include "environment/environment_prefilter.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -36,6 +37,47 @@ void EnvironmentPass::updateSky(const Sky& sky) {
   skyBlock_.bindUniform(gpu::SkyBlock::kBinding);
   draw_.draw("prefiltered sky table", prefilterProgram_, tables_.skyPrefiltered);
   draw_.draw("sky irradiance table", irradianceProgram_, tables_.skyIrradiance);
+}
+
+namespace {
+
+// Equirectangular lookups: bilinear, around in azimuth, clamped at the poles.
+void setEquirectSampling(const gl::Texture& texture) {
+  glTextureParameteri(texture.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+gl::Texture uploadEquirect(const environment::EquirectImage& image) {
+  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height);
+  glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, image.rgb.data());
+  setEquirectSampling(texture);
+  return texture;
+}
+
+}  // namespace
+
+void EnvironmentPass::updateEnvironment(const EnvironmentMap& map) {
+  if (holdsEnvironment(map)) return;
+  const environment::EnvironmentTables prefiltered = environment::prefilterEnvironment(map);
+  const environment::EquirectImage& level0 = prefiltered.specular.front();
+  tables_.environmentSpecular = gl::Texture::create2DArray(GL_RGBA16F, level0.width, level0.height,
+                                                           int(prefiltered.specular.size()));
+  for (std::size_t layer = 0; layer < prefiltered.specular.size(); ++layer)
+    glTextureSubImage3D(tables_.environmentSpecular.id(), 0, 0, 0, GLint(layer), level0.width, level0.height, 1,
+                        GL_RGB, GL_FLOAT, prefiltered.specular[layer].rgb.data());
+  setEquirectSampling(tables_.environmentSpecular);
+  tables_.environmentIrradiance = uploadEquirect(prefiltered.irradianceOverPi);
+  tables_.environmentBackground = uploadEquirect(environment::equirectOf(map));
+  environmentHash_ = map.sourceHash;
+}
+
+void EnvironmentPass::dropEnvironment() {
+  tables_.environmentSpecular = gl::Texture();
+  tables_.environmentIrradiance = gl::Texture();
+  tables_.environmentBackground = gl::Texture();
+  environmentHash_.clear();
 }
 
 }  // namespace headlight

@@ -8,7 +8,13 @@
 //  - the sky's irradiance: 64 x 1 RGBA16F, normal.y -> E / pi (the radiance a
 //    white Lambertian surface reflects).
 // Both sky tables are recomputed only when the sky changes.
+// With an environment map (Scene::environment) the sky's tables are not
+// made; instead the map's: its GGX-prefiltered levels (a 2D array, one layer
+// a roughness level), its irradiance over pi and the map itself (the
+// background), prefiltered on the CPU (environment/environment_prefilter.hpp)
+// once per map content: a batch of scenes with the same map reuses them.
 #include <optional>
+#include <string>
 
 #include "gl/objects.hpp"
 #include "headlight/scene.hpp"
@@ -20,6 +26,10 @@ struct EnvironmentTables {
   gl::Texture brdfLut;
   gl::Texture skyPrefiltered;
   gl::Texture skyIrradiance;
+  // Only while an environment map is held (updateEnvironment):
+  gl::Texture environmentSpecular;    // 128 x 64 x 8 layers RGBA16F, equirectangular, layer = roughness level
+  gl::Texture environmentIrradiance;  // 64 x 32 RGBA16F, equirectangular, E / pi
+  gl::Texture environmentBackground;  // the map as given, RGBA16F
 };
 
 class EnvironmentPass {
@@ -28,6 +38,11 @@ class EnvironmentPass {
   void updateSky(const Sky& sky);    // recomputes the sky tables if the sky's colours changed
   bool holds(const Sky& sky) const;  // the sky tables are this sky's (intensity aside)
   const EnvironmentTables& tables() const { return tables_; }
+  // Prefilters and uploads the map's tables unless they are this map's
+  // (same content hash) already.
+  void updateEnvironment(const EnvironmentMap& map);
+  bool holdsEnvironment(const EnvironmentMap& map) const { return environmentHash_ == map.sourceHash; }
+  void dropEnvironment();  // a scene without a map: its textures are released
 
  private:
   gl::Program brdfProgram_;
@@ -37,6 +52,7 @@ class EnvironmentPass {
   FullscreenDraw draw_;
   EnvironmentTables tables_;
   std::optional<Sky> tabulatedSky_;  // the colours the sky tables hold
+  std::string environmentHash_;      // the map the environment tables hold; empty: none
 };
 
 }  // namespace headlight

@@ -12,6 +12,7 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <utility>
@@ -141,6 +142,15 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
   std::vector<double> aoStandardError(pixelCount, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> indirectStandardError(pixelCount, std::numeric_limits<double>::quiet_NaN());
 
+  // An environment map replaces the sky, with its own intensity (as the renderer's composite).
+  std::optional<EnvironmentLight> environmentLight;
+  const LightingSettings& lighting = frame.settings.lighting;
+  if (scene.environment) {
+    environment::EquirectImage map{scene.environment->width, scene.environment->height, scene.environment->rgb};
+    const float turn = lighting.environmentRotation * 3.14159265358979f / 180.0f;
+    environmentLight.emplace(EnvironmentLight{map, environment::EnvironmentSampler(map), std::cos(turn),
+                                              std::sin(turn), lighting.environmentBackground});
+  }
   const TraceInputs inputs{scene,
                            frame,
                            settings,
@@ -148,8 +158,10 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
                            traced.hasBlended ? traced.blended.get() : nullptr,
                            traced.instances,
                            rayEpsilon(scene),
-                           frame.settings.lighting.skyIntensity.value_or(scene.sky.intensity),
-                           std::max(kMinSpecularSamples, settings.samplesPerPixel / 4)};
+                           environmentLight ? lighting.environmentIntensity
+                                            : lighting.skyIntensity.value_or(scene.sky.intensity),
+                           std::max(kMinSpecularSamples, settings.samplesPerPixel / 4),
+                           environmentLight ? &*environmentLight : nullptr};
   const Outputs outputs{images, aoStandardError, indirectStandardError};
 
   // Rows handed out one at a time: a row's cost varies with what it sees.

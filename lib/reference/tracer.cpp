@@ -40,7 +40,11 @@ class Tracer {
     float* indirect = &out.images.indirect.pixels[pixel * 6];
     float* lit = &out.images.lit.pixels[pixel * 4];
     if (frame.position.at(x, y, 3) == 0.0f) {
-      const glm::vec3 sky = skyRadiance(in_.scene.sky, backgroundRay(x, y)) * in_.skyIntensity;
+      const glm::vec3 ray = backgroundRay(x, y);
+      const glm::vec3 sky =
+          (!in_.environment ? skyRadiance(in_.scene.sky, ray)
+                            : in_.environment->background ? in_.environment->radiance(ray) : glm::vec3(0.0f)) *
+          in_.skyIntensity;
       ao[0] = ao[1] = 1.0f;
       std::fill(indirect, indirect + 6, 0.0f);
       lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
@@ -82,7 +86,7 @@ class Tracer {
       if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         ++open;
         ++escaped;
-        skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+        if (!in_.environment) skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
         continue;
       }
       const float t = rayHit.ray.tfar;
@@ -115,8 +119,10 @@ class Tracer {
     }
 
     const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    const glm::vec3 skyMean =
+        in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
     glm::vec3 radiance = directLight(surface, position, origin) +
-                         ambientLight(surface, origin, basis, glm::vec3(skySum / count), random) +
+                         ambientLight(surface, origin, basis, skyMean, random) +
                          glm::vec3(indirectMean);
     if (!frame.emissive.empty())
       radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
@@ -379,11 +385,36 @@ class Tracer {
       const glm::vec3 direction = glm::normalize(toLight);
       if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
         specular +=
-            glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * skyRadiance(in_.scene.sky, direction));
+            glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * ambientRadiance(direction));
     }
     const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + float(bias / m);
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
     return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;
+  }
+
+  // The ambient light arriving from `direction` (unit), before intensity.
+  glm::vec3 ambientRadiance(const glm::vec3& direction) const {
+    return in_.environment ? in_.environment->radiance(direction) : skyRadiance(in_.scene.sky, direction);
+  }
+
+  // E / pi from the environment map with true visibility, by importance
+  // sampling the map (environment_sampler.hpp): each of `count` directions
+  // drawn in proportion to the map's luminance adds L V cos / (pi pdf).
+  // Cosine-weighted rays would rarely find a small bright source.
+  glm::vec3 environmentIrradianceOverPi(const glm::vec3& normal, const glm::vec3& origin, int count, Pcg32& random) {
+    const EnvironmentLight& light = *in_.environment;
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < count; ++i) {
+      const float xi0 = random.uniform(), xi1 = random.uniform();
+      float pdf = 0.0f;
+      const glm::vec3 mapDirection = light.sampler.sample(xi0, xi1, pdf);
+      const glm::vec3 direction = environment::mapToWorld(mapDirection, light.cosRotation, light.sinRotation);
+      const float cosine = glm::dot(normal, direction);
+      if (cosine <= 0.0f || pdf <= 0.0f) continue;
+      if (!unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
+      sum += glm::dvec3(light.map.lookup(mapDirection)) * double(cosine / (kPi * pdf));
+    }
+    return glm::vec3(sum / double(count));
   }
 
   // Ld(h): the Lambertian radiance that the hit surface sends back along the

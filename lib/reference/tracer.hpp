@@ -8,10 +8,25 @@
 #include <atomic>
 #include <vector>
 
+#include "environment/environment_sampler.hpp"
 #include "headlight/reference.hpp"
 #include "reference/traced_scene.hpp"
 
 namespace headlight::reference {
+
+// An environment map as the reference sees it: the map (looked up bilinear,
+// as the renderer's background is), its importance sampler, its turn about
+// +Y and whether it shows as the background. Intensity: TraceInputs::skyIntensity.
+struct EnvironmentLight {
+  environment::EquirectImage map;
+  environment::EnvironmentSampler sampler;
+  float cosRotation = 1.0f, sinRotation = 0.0f;
+  bool background = true;
+
+  glm::vec3 radiance(const glm::vec3& worldDirection) const {
+    return map.lookup(environment::worldToMap(worldDirection, cosRotation, sinRotation));
+  }
+};
 
 // Everything a worker reads; nothing here changes while tracing.
 struct TraceInputs {
@@ -22,8 +37,9 @@ struct TraceInputs {
   RTCScene blendedScene;  // alphaMode BLEND instances, composited along primary rays; null when none
   const std::vector<InstanceShading>& instances;
   float epsilon;       // world units: how far ray origins leave their surface
-  float skyIntensity;  // the frame's, resolved
+  float skyIntensity;  // the frame's, resolved; with an environment map, its intensity
   int specularSamples;
+  const EnvironmentLight* environment = nullptr;  // null: the procedural sky
 };
 
 // Where a worker writes: each pixel only its own entries, so workers need

@@ -268,10 +268,11 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
 }
 
 Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options, const ResourceLimits& limits) {
-  if (nameOrPath.rfind(kBuiltinPrefix, 0) == 0) {
-    return makeBuiltinScene(std::string_view(nameOrPath).substr(kBuiltinPrefix.size()));
-  }
-  return loadGltf(nameOrPath, options, limits);
+  Scene scene = nameOrPath.rfind(kBuiltinPrefix, 0) == 0
+                    ? makeBuiltinScene(std::string_view(nameOrPath).substr(kBuiltinPrefix.size()))
+                    : loadGltf(nameOrPath, options, limits);
+  if (!options.environment.empty()) scene.environment = loadEnvironmentMap(options.environment, limits);
+  return scene;
 }
 
 }  // namespace headlight

@@ -20,6 +20,12 @@ std::span<const Option<SceneLoadOptions>> sceneLoadOptions() {
                              "`scene`, else 0)",
                      .valueName = "N|NAME"},
                     [](auto& o) -> auto& { return o.gltfScene; }),
+      bindOption<O>({.name = "environment",
+                     .type = T::Text,
+                     .help = "an equirectangular HDR image (.hdr, .exr; width = 2 x height) that lights the scene "
+                             "and shows behind it instead of the procedural sky",
+                     .valueName = "FILE"},
+                    [](auto& o) -> auto& { return o.environment; }),
   };
   return rows;
 }

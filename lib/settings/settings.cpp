@@ -171,10 +171,28 @@ const std::vector<Row>& table() {
       row(
           {.name = "sky-intensity",
            .type = T::Float,
-           .help = "sky (ambient) intensity",
+           .help = "sky (ambient) intensity (an environment map replaces the sky: --environment-intensity)",
            .maximum = 1000,
            .autoMeaning = "the scene's"},
           [](auto& s) -> auto& { return s.lighting.skyIntensity; }),
+      row(
+          {.name = "environment-intensity",
+           .type = T::Float,
+           .help = "multiplies the environment map's radiance (ambient and background; with --environment)",
+           .maximum = 1e6},
+          [](auto& s) -> auto& { return s.lighting.environmentIntensity; }),
+      row(
+          {.name = "environment-rotation",
+           .type = T::Float,
+           .help = "turns the environment map about +Y, in degrees (right-handed: at 90 the map's -Z lies at -X)",
+           .minimum = -360,
+           .maximum = 360},
+          [](auto& s) -> auto& { return s.lighting.environmentRotation; }),
+      row(
+          {.name = "environment-background",
+           .type = T::Bool,
+           .help = "show the environment map behind the scene in lit and preview.png (off: black, alpha 0)"},
+          [](auto& s) -> auto& { return s.lighting.environmentBackground; }),
       row(
           {.name = "tonemap",
            .type = T::Choice,

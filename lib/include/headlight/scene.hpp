@@ -8,6 +8,7 @@
 // units (metres unless the file says otherwise); cameras look down their -Z.
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -158,13 +159,30 @@ struct Light {
 };
 
 // The procedural sky that lights the scene from everywhere (image-based
-// ambient). It depends only on the direction's height, which lets the
-// prefiltered sky be a small 2D table (docs/PIPELINE.md).
+// ambient), unless Scene::environment replaces it. It depends only on the
+// direction's height, which lets the prefiltered sky be a small 2D table
+// (docs/PIPELINE.md).
 struct Sky {
   glm::vec3 zenith{0.35f, 0.5f, 0.8f};   // linear radiance straight up
   glm::vec3 horizon{0.8f, 0.85f, 0.9f};  // linear radiance at the horizon
   glm::vec3 ground{0.25f, 0.22f, 0.2f};  // linear radiance below the horizon
   float intensity = 1.0f;                // multiplies all three
+};
+
+// An equirectangular HDR environment map (`--environment FILE`,
+// headlight/environment.hpp): linear RGB radiance, width = 2 x height, rows
+// top first. Texel (x, y) of a W x H map covers azimuth phi = 2 pi ((x+0.5)/W
+// - 0.5) about +Y and polar angle theta = pi (y+0.5)/H from +Y; direction
+// (sin theta sin phi, cos theta, -sin theta cos phi): the top row is up, the
+// image's centre looks along -Z (where the fitted camera looks) and +X lies
+// to its right. When present it replaces the procedural sky as the ambient
+// light and the background.
+struct EnvironmentMap {
+  std::string source;      // the file's path
+  std::string sourceHash;  // hex fingerprint of the decoded texels (tables are cached by it)
+  int width = 0;           // 2 x height
+  int height = 0;
+  std::vector<float> rgb;  // width x height x 3, finite, >= 0
 };
 
 // A glTF feature the file uses that Headlight does not render (or only
@@ -191,6 +209,9 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   Sky sky;
+  // Null: the procedural sky lights the scene. Shared: a batch's scenes hold
+  // one decoded map.
+  std::shared_ptr<const EnvironmentMap> environment;
   std::vector<IgnoredFeature> ignored;  // glTF only; in the order first met
 
   Bounds worldBounds() const;

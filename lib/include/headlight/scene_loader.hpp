@@ -24,9 +24,13 @@ struct SceneLoadOptions {
   // Which of the file's scenes: an index or a name; empty: the file's
   // `scene` (else scene 0).
   std::string gltfScene;
+  // An equirectangular .hdr or .exr (width = 2 x height) that lights the
+  // scene and shows as its background instead of the procedural sky; empty:
+  // none. Read by loadEnvironmentMap into Scene::environment.
+  std::string environment;
 };
 
-// The rows (strict-gltf, scene), for the CLI and settings files.
+// The rows (strict-gltf, scene, environment), for the CLI and settings files.
 std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
@@ -34,6 +38,16 @@ std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 // `limits` caps what the file may make the loader allocate (instances,
 // triangles, texels, memory); exceeding one throws LimitError.
 Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options = {}, const ResourceLimits& limits = {});
+
+// Reads an equirectangular environment map (.hdr, .exr: what OpenImageIO
+// reads) as linear RGB. Only a regular file is opened; its header's size is
+// checked (width = 2 x height, at most 16384 wide, the decoded size within
+// limits.maxMemoryMiB) before any pixel is decoded, then every value must be
+// finite and >= 0. Throws IoError (missing, not a regular file), LimitError
+// (max-memory) or SceneError (unreadable, truncated, not 2:1, a bad value),
+// each naming the file and the value.
+std::shared_ptr<const EnvironmentMap> loadEnvironmentMap(const std::filesystem::path& path,
+                                                         const ResourceLimits& limits = {});
 
 // Reads a .gltf or .glb file. Every accessor, bufferView, index and image is
 // validated before it is read, the JSON's structure before anything is

@@ -75,6 +75,10 @@ struct LightingSettings {
   std::optional<int> shadowMapSize;   // texels per side; auto: longer image side to the next power of two, 512..2048
   float pcfRadius = 1.5f;             // shadow filter radius in texels
   std::optional<float> skyIntensity;  // auto: the scene's sky intensity
+  // With an environment map (Scene::environment), which replaces the sky:
+  float environmentIntensity = 1.0f;  // multiplies its radiance, 0..1e6
+  float environmentRotation = 0.0f;   // degrees about +Y, -360..360 (right-handed: at 90 the map's -Z lies at -X)
+  bool environmentBackground = true;  // shown behind the scene (off: background 0, alpha 0 as always)
 };
 
 enum class Tonemap { Aces, Reinhard };

@@ -1,0 +1,74 @@
+// The frame plan with and without an environment map (no GL): the map's
+// tables and composite variant exist only when a map is given, and replace
+// the sky's.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "frame/frame_plan.hpp"
+
+namespace headlight {
+namespace {
+
+RenderSettings resolved() {
+  RenderSettings settings;
+  settings.ssgi.radius = 0.5f;
+  settings.ssgi.bias = 0.025f;
+  settings.ssgi.thickness = 0.1f;
+  settings.ssgi.indirectStrength = 1.0f;
+  settings.lighting.shadowMapSize = 1024;
+  settings.lighting.skyIntensity = 1.0f;
+  return settings;
+}
+
+bool skips(const FramePlan& plan, std::string_view work, std::string_view reason) {
+  return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
+    return skipped.work == work && skipped.reason.find(reason) != std::string::npos;
+  });
+}
+
+bool runs(const FramePlan& plan, std::string_view pass) {
+  const auto names = plan.passNames();
+  return std::find(names.begin(), names.end(), pass) != names.end();
+}
+
+}  // namespace
+
+TEST_CASE("frame plan: an environment map's tables and variant exist only with a map, in place of the sky's") {
+  SceneSummary withMap;
+  withMap.environment = true;
+  const FramePlan mapped = planFrame(withMap, resolved(), {});
+  CHECK(mapped.environmentTables);
+  CHECK(!mapped.skyTables);
+  REQUIRE(mapped.composite);
+  CHECK(mapped.composite->sky);
+  CHECK(mapped.composite->environment);
+  CHECK(runs(mapped, "environment"));
+  CHECK(!runs(mapped, "sky"));
+
+  const FramePlan plain = planFrame(SceneSummary{}, resolved(), {});
+  CHECK(!plain.environmentTables);
+  CHECK(plain.skyTables);
+  CHECK(!plain.composite->environment);
+  CHECK(!runs(plain, "environment"));
+
+  // Intensity 0: no tables and no ambient term, named; the sky's intensity
+  // no longer matters.
+  RenderSettings dark = resolved();
+  dark.lighting.environmentIntensity = 0.0f;
+  const FramePlan unlit = planFrame(withMap, dark, {});
+  CHECK(!unlit.environmentTables);
+  CHECK(!unlit.composite->sky);
+  CHECK(skips(unlit, "sky", "environment intensity 0"));
+  RenderSettings noSky = resolved();
+  noSky.lighting.skyIntensity = 0.0f;
+  CHECK(planFrame(withMap, noSky, {}).environmentTables);
+
+  // Only G-buffer targets: no tables either.
+  const std::vector<std::string> normalOnly{"normal"};
+  CHECK(!planFrame(withMap, resolved(), normalOnly).environmentTables);
+}
+
+}  // namespace headlight
