@@ -37,7 +37,9 @@ fs::path modelPath(const std::string& model) { return conformanceFolder() / mode
 const std::set<std::string> kRendered{"KHR_lights_punctual",   "KHR_materials_emissive_strength",
                                       "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
                                       "skin",                  "morph targets",
-                                      "alphaMode MASK",        "COLOR_0"};
+                                      "alphaMode MASK",        "COLOR_0",
+                                      "KHR_texture_transform", "KHR_materials_unlit",
+                                      "TEXCOORD_1"};
 
 bool nonZero(const json& weights) {
   return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });

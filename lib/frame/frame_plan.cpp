@@ -133,10 +133,12 @@ void planAttachments(FramePlan& plan) {
 }
 
 // Each wanted target is read from the allocated attachments that hold it.
-void planReads(FramePlan& plan, const TargetWanted& wanted) {
+void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& scene) {
   for (const FrameTarget& target : frameTargets()) {
     if (!target.image || !wanted(target.name)) continue;
-    TargetRead read{&target, {}};
+    TargetRead read{&target, {}, {target.channels.begin(), target.channels.end()}};
+    // The material attachment's A holds the unlit flag (gbuffer.frag).
+    if (target.image == &Frame::material && scene.unlit) read.channels.emplace_back(kMaterialUnlitChannel);
     for (const AttachmentRow& row : kAttachmentRows)
       if (row.target == target.image && plan.allocates(row.id)) read.sources.push_back(row.id);
     // Asked for by name and drawn by nothing the scene needs (the emissive
@@ -153,6 +155,7 @@ SceneSummary summarizeScene(const Scene& scene) {
   for (const Light& light : scene.lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
+  summary.unlit = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
   return summary;
 }
 
@@ -215,7 +218,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   plan.skyTables = skips.runs(Work::Sky);
   if (skips.runs(Work::Composite)) plan.composite = CompositeVariant{plan.ssgi.has_value(), plan.skyTables};
   planAttachments(plan);
-  planReads(plan, wanted);
+  planReads(plan, wanted, scene);
   return plan;
 }
 

@@ -28,7 +28,13 @@ struct SceneSummary {
   int planarShadowCasters = 0;  // directional and spot lights that cast shadows
   int cubeShadowCasters = 0;    // point lights that cast shadows
   bool emissive = false;        // a material emits (emissiveFactor != 0)
+  bool unlit = false;           // a material is KHR_materials_unlit: material.exr gains kMaterialUnlitChannel
 };
+
+// material.exr's fourth channel, written only for scenes with an unlit
+// material (so other scenes' files keep their three channels): 1 where the
+// pixel's material is KHR_materials_unlit (lit = its albedo), else 0.
+inline constexpr std::string_view kMaterialUnlitChannel = "material.unlit";
 // `scene.lights` as drawn: with the default key light when the file has none.
 SceneSummary summarizeScene(const Scene& scene);
 
@@ -129,6 +135,7 @@ struct SsgiStep {
 struct TargetRead {
   const FrameTarget* target = nullptr;
   std::vector<Attachment> sources;  // empty: written as zeros (asked for by name, nothing draws it)
+  std::vector<std::string> channels;  // the EXR's: the target's, then material.unlit where the scene has unlit materials
 };
 
 struct FramePlan {

@@ -108,6 +108,7 @@ void generateTangents(Primitive& primitive) {
         primitive.positions.push_back(primitive.positions[v]);
         primitive.normals.push_back(primitive.normals[v]);
         primitive.texcoords.push_back(primitive.texcoords[v]);
+        if (!primitive.texcoords1.empty()) primitive.texcoords1.push_back(primitive.texcoords1[v]);
         if (!primitive.colors.empty()) primitive.colors.push_back(primitive.colors[v]);
         primitive.tangents.push_back(tangent);
       }
