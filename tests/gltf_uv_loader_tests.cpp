@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "frame/frame_plan.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
 #include "reference/texture_sampler.hpp"
@@ -301,4 +302,27 @@ TEST_CASE("glTF: KHR_materials_unlit is read, and accepted as required" * doctes
   test::TempFolder folder;
   const Scene plain = loadDocument(folder, uvTriangle({{"index", 0}}));
   CHECK(!plain.materials[0].unlit);
+}
+
+TEST_CASE("frame plan: material.exr gains material.unlit only for a scene with an unlit material") {
+  RenderSettings settings;
+  settings.lighting.shadowMapSize = 1024;
+  settings.lighting.skyIntensity = 1.0f;
+  const auto materialChannels = [&](bool unlit) {
+    SceneSummary scene;
+    scene.unlit = unlit;
+    const std::vector<std::string> targets{"material"};
+    const FramePlan plan = planFrame(scene, settings, targets);
+    REQUIRE(plan.reads.size() == 1);
+    return plan.reads[0].channels;
+  };
+  CHECK(materialChannels(false) ==
+        std::vector<std::string>{"material.metallic", "material.roughness", "material.occlusion"});
+  CHECK(materialChannels(true) == std::vector<std::string>{"material.metallic", "material.roughness",
+                                                           "material.occlusion", "material.unlit"});
+  Scene scene;
+  scene.materials.emplace_back();
+  CHECK(!summarizeScene(scene).unlit);
+  scene.materials.back().unlit = true;
+  CHECK(summarizeScene(scene).unlit);
 }

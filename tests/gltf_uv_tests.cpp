@@ -13,7 +13,9 @@
 
 #include "context/context_access.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/shapes.hpp"
 #include "reference/texture_sampler.hpp"
 #include "support/assets.hpp"
 #include "support/gl.hpp"
@@ -387,4 +389,119 @@ TEST_CASE("UnlitTest: the reference's lit is the albedo on unlit pixels" *
       for (int c = 0; c < 3; ++c) CHECK(images.lit.at(x, y, c) == frame.albedo.at(x, y, c));
     }
   CHECK(unlitPixels > 100);
+}
+
+// ---- Shadows of masked materials ----------------------------------------------
+
+TEST_CASE("a masked material's shadow is cut out through its texture transform, as in the G-buffer") {
+  // A floor under a masked square (at height 1; its texture's u runs along
+  // +z) whose 2x1 texture is clear at u < 0.5 and opaque above, lit from 45
+  // degrees so that the shadow falls beside it (x 0..2), where a camera
+  // looking down sees the floor (x > 1). The transform mirrors u: the
+  // shadow moves from z > 0 to z < 0.
+  Scene scene;
+  scene.source = "test:masked-shadow";
+  scene.sky.intensity = 0.0f;
+  addInstance(scene, makeFloor(3.0f), addMaterial(scene, makeMaterial({1.0f, 1.0f, 1.0f}, 0.9f)));
+  ImageData image;
+  image.name = "half";
+  image.width = 2;
+  image.height = 1;
+  image.rgba = {255, 255, 255, 0, 255, 255, 255, 255};
+  scene.images.push_back(image);
+  Material mask = makeMaterial({1.0f, 1.0f, 1.0f}, 0.9f);
+  mask.alphaMode = AlphaMode::Mask;
+  mask.doubleSided = true;
+  mask.baseColorTexture.image = 0;
+  mask.baseColorTexture.minFilter = mask.baseColorTexture.magFilter = 0x2600;  // GL_NEAREST
+  mask.baseColorTexture.wrapS = mask.baseColorTexture.wrapT = 0x812F;           // GL_CLAMP_TO_EDGE
+  mask.baseColorTexture.transform.offset = {1.0f, 0.0f};
+  mask.baseColorTexture.transform.scale = {-1.0f, 1.0f};
+  addInstance(scene, makeSquare({0.0f, 1.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, 1.0f), addMaterial(scene, mask));
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(1.0f, -1.0f, 0.0f));
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  scene.cameras.push_back(makeOrthographicCamera({0.0f, 5.0f, 0.001f}, {0.0f, 0.0f, 0.0f}, 2.5f));
+
+  RenderSettings settings = test::smallSettings(64, 64);
+  settings.ssgi.enabled = false;
+  // The floor's lit radiance in the shadow of the square's z < 0 ("left")
+  // and z > 0 ("right") half, beside the square: x 1.1..1.9, |z| 0.2..0.8.
+  const auto floorHalves = [&](const Scene& s, double& left, double& right) {
+    const Frame frame = renderTargets(s, {"position", "normal", "lit"}, settings);
+    int count = 0;
+    left = test::meanWhere(frame, frame.lit, 0, [](glm::vec3 p, glm::vec3) {
+      return p.y < 0.01f && p.x > 1.1f && p.x < 1.9f && p.z < -0.2f && p.z > -0.8f;
+    }, count);
+    const int leftCount = count;
+    right = test::meanWhere(frame, frame.lit, 0, [](glm::vec3 p, glm::vec3) {
+      return p.y < 0.01f && p.x > 1.1f && p.x < 1.9f && p.z > 0.2f && p.z < 0.8f;
+    }, count);
+    CHECK(leftCount > 20);
+    CHECK(count > 20);
+  };
+  double left = 0.0, right = 0.0, bakedLeft = 0.0, bakedRight = 0.0, plainLeft = 0.0, plainRight = 0.0;
+  floorHalves(scene, left, right);
+  floorHalves(bakeBaseColorTransforms(scene), bakedLeft, bakedRight);
+  Scene plain = scene;
+  plain.materials.back().baseColorTexture.transform = TextureTransform{};
+  floorHalves(plain, plainLeft, plainRight);
+  MESSAGE("floor under the left/right half: transformed " << left << "/" << right << ", baked " << bakedLeft << "/"
+                                                          << bakedRight << ", untransformed " << plainLeft << "/"
+                                                          << plainRight);
+  // One half shadowed, the other lit; the transform swaps them, as baking it does.
+  CHECK(plainLeft > 4.0 * plainRight);  // untransformed: u < 0.5 (z < 0) is clear, z > 0 casts
+  CHECK(right > 4.0 * left);
+  CHECK(left == doctest::Approx(bakedLeft).epsilon(0.02));
+  CHECK(right == doctest::Approx(bakedRight).epsilon(0.02));
+  CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
+}
+
+TEST_CASE("the reference: a ray that hits an unlit surface brings back its base colour" *
+          doctest::skip(!referenceAvailable())) {
+  // A white floor under an unlit orange square facing it, sky off: the
+  // floor's one-bounce indirect light comes from the square alone, and is
+  // the square's base colour (1, 0.5, 0) times the floor's view of it. Lit,
+  // the same square's underside would send nothing back (no light reaches it
+  // but the default key light from above).
+  Scene scene;
+  scene.source = "test:unlit-bounce";
+  scene.sky.intensity = 0.0f;
+  addInstance(scene, makeFloor(2.0f), addMaterial(scene, makeMaterial({1.0f, 1.0f, 1.0f}, 0.9f)));
+  Material orange = makeMaterial({1.0f, 0.5f, 0.0f}, 0.9f);
+  orange.unlit = true;
+  addInstance(scene, makeSquare({0.0f, 0.6f, 0.0f}, {0.0f, -1.0f, 0.0f}, 1.0f), addMaterial(scene, orange));
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 0.3f, 3.0f}, {0.0f, 0.0f, 0.0f}, 0.8f));
+  RenderSettings settings = test::smallSettings(32, 24);
+  settings.ssgi.enabled = false;
+  ReferenceSettings reference;
+  reference.samplesPerPixel = 64;
+  reference.radius = 1.0f;
+  const auto floorIndirect = [&](const Scene& s) {
+    const Frame frame = renderTargets(s, {}, settings);
+    const ReferenceImages images = traceReference(s, frame, reference);
+    glm::dvec3 sum(0.0);
+    int count = 0;
+    for (int y = 0; y < frame.position.height; ++y)
+      for (int x = 0; x < frame.position.width; ++x) {
+        if (frame.position.at(x, y, 3) == 0.0f || frame.position.at(x, y, 1) > 0.01f) continue;
+        if (std::abs(frame.position.at(x, y, 0)) > 0.5f || std::abs(frame.position.at(x, y, 2)) > 0.5f) continue;
+        ++count;
+        for (int c = 0; c < 3; ++c) sum[c] += images.indirect.at(x, y, 3 + c);
+      }
+    REQUIRE(count > 10);
+    return sum / double(count);
+  };
+  const glm::dvec3 unlit = floorIndirect(scene);
+  Scene lit = scene;
+  lit.materials.back().unlit = false;
+  const glm::dvec3 dark = floorIndirect(lit);
+  MESSAGE("floor indirect under the square: unlit " << unlit.r << " " << unlit.g << " " << unlit.b << "; lit "
+                                                    << dark.r << " " << dark.g << " " << dark.b);
+  CHECK(unlit.r > 0.2);
+  CHECK(unlit.g == doctest::Approx(0.5 * unlit.r).epsilon(1e-4));
+  CHECK(unlit.b == 0.0);
+  CHECK(dark.r < 0.01 * unlit.r);
 }
