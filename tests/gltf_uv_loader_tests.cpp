@@ -326,3 +326,29 @@ TEST_CASE("frame plan: material.exr gains material.unlit only for a scene with a
   scene.materials.back().unlit = true;
   CHECK(summarizeScene(scene).unlit);
 }
+
+TEST_CASE("generated tangents follow the normal map's set and transform") {
+  Primitive primitive;
+  primitive.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  primitive.normals.assign(3, glm::vec3(0, 0, 1));
+  primitive.indices = {0, 1, 2};
+  for (const glm::vec3& p : primitive.positions) {
+    primitive.texcoords.emplace_back(p.x, 1.0f - p.y);  // u along +x
+    primitive.texcoords1.emplace_back(1.0f - p.y, p.x);  // u along -y
+  }
+  const auto tangentOf = [&](const TextureRef& ref) {
+    Primitive copy = primitive;
+    generateTangents(copy, ref);
+    REQUIRE(copy.tangents.size() == 3);
+    return glm::vec3(copy.tangents[0]);
+  };
+  TextureRef ref;
+  ref.image = 0;
+  CHECK(glm::length(tangentOf(ref) - glm::vec3(1, 0, 0)) < 1e-5f);
+  ref.texCoord = 1;
+  CHECK(glm::length(tangentOf(ref) - glm::vec3(0, -1, 0)) < 1e-5f);
+  // Set 0 turned by 90 degrees: u' = v, which grows toward -y.
+  ref.texCoord = 0;
+  ref.transform.rotation = 1.5707963f;
+  CHECK(glm::length(tangentOf(ref) - glm::vec3(0, -1, 0)) < 1e-5f);
+}

@@ -134,15 +134,10 @@ class GltfReader {
     Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
     // A normal map needs tangents; without TANGENT they are made as
     // MikkTSpace makes them (the glTF spec's rule for missing tangents),
-    // from the set the normal map samples.
+    // from the UVs the normal map samples (its set, through its transform).
     if (primitive.tangents.empty() && source.material >= 0) {
       const TextureRef& normalMap = scene_.materials[static_cast<std::size_t>(source.material)].normalTexture;
-      const bool fromTexcoord1 = normalMap.texCoord == 1;
-      if (normalMap.present() && !(fromTexcoord1 ? primitive.texcoords1 : primitive.texcoords).empty()) {
-        if (fromTexcoord1) std::swap(primitive.texcoords, primitive.texcoords1);
-        generateTangents(primitive);
-        if (fromTexcoord1) std::swap(primitive.texcoords, primitive.texcoords1);
-      }
+      if (normalMap.present()) generateTangents(primitive, normalMap);
     }
     // A textured material samples UVs; without the set it names it samples
     // (0, 0), which is glTF's answer too, so the shader always has texcoords
