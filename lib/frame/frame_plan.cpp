@@ -155,7 +155,8 @@ SceneSummary summarizeScene(const Scene& scene) {
   for (const Light& light : scene.lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
-  summary.unlit = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
+  summary.unlit =
+      std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
   return summary;
 }
 

@@ -135,7 +135,8 @@ struct SsgiStep {
 struct TargetRead {
   const FrameTarget* target = nullptr;
   std::vector<Attachment> sources;  // empty: written as zeros (asked for by name, nothing draws it)
-  std::vector<std::string> channels;  // the EXR's: the target's, then material.unlit where the scene has unlit materials
+  // The EXR's channels: the target's, then material.unlit where the scene has unlit materials.
+  std::vector<std::string> channels;
 };
 
 struct FramePlan {

@@ -304,7 +304,8 @@ class Tracer {
     auto sample = [&](const TextureRef& ref, bool srgb) {
       return sampleTexture(in_.scene, ref, textureUv(primitive, ref, corner, u, v), srgb);
     };
-    if (textured && material.baseColorTexture.present()) baseColor *= glm::vec3(sample(material.baseColorTexture, true));
+    if (textured && material.baseColorTexture.present())
+      baseColor *= glm::vec3(sample(material.baseColorTexture, true));
     if (!primitive.colors.empty())  // COLOR_0, as gbuffer.frag multiplies it
       baseColor *= glm::vec3(w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] +
                              v * primitive.colors[corner[2]]);

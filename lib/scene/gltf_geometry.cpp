@@ -207,9 +207,9 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   for (int set = 0; set < (readTexcoord1 ? 2 : 1); ++set) {
     const std::string attribute = "TEXCOORD_" + std::to_string(set);
     if (const int texcoords = attributeAccessor(source, attribute.c_str()); texcoords >= 0) {
-      *sets[set] = accessors_.readAttribute<2>(texcoords, primitiveName + " " + attribute,
-                                               quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats),
-                                               vertexCount, positionAccessor);
+      const Formats formats = quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats);
+      *sets[set] = accessors_.readAttribute<2>(texcoords, primitiveName + " " + attribute, formats, vertexCount,
+                                               positionAccessor);
     }
   }
   // Missing tangents stay missing: the G-buffer shader derives a tangent
