@@ -7,7 +7,9 @@
 // 0) the sky term is left out: what it would add is exactly 0. With
 // HAS_ENVIRONMENT the environment map's tables stand in for the sky's
 // (environment.glsl), and the background is the map (or 0 with
-// --no-environment-background).
+// --no-environment-background). An unlit pixel (KHR_materials_unlit:
+// material A = 1) shows its base colour alone, untouched by lights,
+// shadows, sky, SSGI and emission.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -43,6 +45,11 @@ void main() {
 #endif
     return;
   }
+  const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
+  if (material.a > 0.5) {
+    outRadiance = vec4(texelFetch(gbufferAlbedo, pixel, 0).rgb, 1.0);
+    return;
+  }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_SSGI
   const vec4 sky = texelFetch(ssgiSkyTexture, pixel, 0);
@@ -53,7 +60,7 @@ void main() {
   const vec3 indirect = vec3(0.0);
   const float skyVisibility = 1.0;
 #endif
-  const float materialOcclusion = texelFetch(gbufferMaterial, pixel, 0).z;
+  const float materialOcclusion = material.z;
 #ifdef HAS_SKY
   const vec3 radiance =
       texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, skyVisibility, indirect);

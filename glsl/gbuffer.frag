@@ -1,6 +1,8 @@
 // G-buffer fragment stage: glTF metallic-roughness inputs to the targets
 // described in lib/passes/gbuffer.hpp. Feature #defines say which textures
-// and vertex attributes this variant reads.
+// and vertex attributes this variant reads, which texture set each texture
+// samples (<NAME>_TEXCOORD_1) and whether the material transforms its UVs
+// (HAS_TEXTURE_TRANSFORM, KHR_texture_transform) or is unlit (UNLIT).
 #include "shared_layout.h"
 
 layout(location = 0) in vec3 vWorldPosition;
@@ -13,6 +15,53 @@ layout(location = 3) in vec4 vWorldTangent;
 #endif
 #ifdef HAS_VERTEX_COLORS
 layout(location = 4) in vec4 vColor;  // COLOR_0
+#endif
+#ifdef HAS_TEXCOORDS_1
+layout(location = 5) in vec2 vTexcoord1;  // TEXCOORD_1
+#endif
+
+#ifdef HAS_TEXCOORDS
+// The UV a texture samples: its set (TEXCOORD_1 where the material names it;
+// (0, 0) if the primitive has none, as for TEXCOORD_0), through its
+// KHR_texture_transform rows. Variants without HAS_TEXTURE_TRANSFORM skip the
+// matrix: most materials have none, and identity rows would cost the same.
+vec2 textureUv(bool secondSet, vec4 rowU, vec4 rowV) {
+#ifdef HAS_TEXCOORDS_1
+  const vec2 uv = secondSet ? vTexcoord1 : vTexcoord;
+#else
+  const vec2 uv = secondSet ? vec2(0.0) : vTexcoord;
+#endif
+#ifdef HAS_TEXTURE_TRANSFORM
+  return vec2(dot(rowU.xyz, vec3(uv, 1.0)), dot(rowV.xyz, vec3(uv, 1.0)));
+#else
+  return uv;
+#endif
+}
+#endif
+#ifdef BASE_COLOR_TEXCOORD_1
+#define BASE_COLOR_SET true
+#else
+#define BASE_COLOR_SET false
+#endif
+#ifdef METALLIC_ROUGHNESS_TEXCOORD_1
+#define METALLIC_ROUGHNESS_SET true
+#else
+#define METALLIC_ROUGHNESS_SET false
+#endif
+#ifdef NORMAL_TEXCOORD_1
+#define NORMAL_SET true
+#else
+#define NORMAL_SET false
+#endif
+#ifdef OCCLUSION_TEXCOORD_1
+#define OCCLUSION_SET true
+#else
+#define OCCLUSION_SET false
+#endif
+#ifdef EMISSIVE_TEXCOORD_1
+#define EMISSIVE_SET true
+#else
+#define EMISSIVE_SET false
 #endif
 
 #ifdef HAS_BASE_COLOR_TEXTURE
@@ -47,13 +96,13 @@ layout(location = 4) out vec4 outEmissive;
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
-mat3 tangentFrame(vec3 normal) {
+mat3 tangentFrame(vec3 normal, vec2 normalUv) {
 #ifdef HAS_TANGENTS
   const vec3 tangent = normalize(vWorldTangent.xyz - normal * dot(normal, vWorldTangent.xyz));
   return mat3(tangent, cross(normal, tangent) * vWorldTangent.w, normal);
 #else
   const vec3 dp1 = dFdx(vWorldPosition), dp2 = dFdy(vWorldPosition);
-  const vec2 duv1 = dFdx(vTexcoord), duv2 = dFdy(vTexcoord);
+  const vec2 duv1 = dFdx(normalUv), duv2 = dFdy(normalUv);
   const vec3 dp2perp = cross(dp2, normal), dp1perp = cross(normal, dp1);
   const vec3 tangent = dp2perp * duv1.x + dp1perp * duv2.x;
   const vec3 bitangent = dp2perp * duv1.y + dp1perp * duv2.y;
@@ -69,7 +118,9 @@ void main() {
   float roughness = material.factors.y;
   float occlusion = 1.0;
 #ifdef HAS_BASE_COLOR_TEXTURE
-  baseColor *= texture(baseColorTexture, vTexcoord);  // sRGB texture: decoded to linear by the sampler
+  // sRGB texture: decoded to linear by the sampler.
+  baseColor *= texture(baseColorTexture,
+                       textureUv(BASE_COLOR_SET, material.baseColorTransformU, material.baseColorTransformV));
 #endif
 #ifdef HAS_VERTEX_COLORS
   baseColor *= vColor;
@@ -79,12 +130,15 @@ void main() {
   if (baseColor.a < material.alphaCutoff) discard;
 #endif
 #ifdef HAS_METALLIC_ROUGHNESS_TEXTURE
-  const vec4 metallicRoughness = texture(metallicRoughnessTexture, vTexcoord);
+  const vec4 metallicRoughness =
+      texture(metallicRoughnessTexture, textureUv(METALLIC_ROUGHNESS_SET, material.metallicRoughnessTransformU,
+                                                  material.metallicRoughnessTransformV));
   roughness *= metallicRoughness.g;
   metallic *= metallicRoughness.b;
 #endif
 #ifdef HAS_OCCLUSION_TEXTURE
-  occlusion = 1.0 + material.factors.w * (texture(occlusionTexture, vTexcoord).r - 1.0);
+  const vec2 occlusionUv = textureUv(OCCLUSION_SET, material.occlusionTransformU, material.occlusionTransformV);
+  occlusion = 1.0 + material.factors.w * (texture(occlusionTexture, occlusionUv).r - 1.0);
 #endif
 
   // The back of a double-sided surface faces the other way. Points and
@@ -95,15 +149,17 @@ void main() {
                                           : normalize(frame.cameraPosition.xyz - vWorldPosition);
   }
 #ifdef HAS_NORMAL_TEXTURE
-  vec3 tangentNormal = texture(normalTexture, vTexcoord).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
+  const vec2 normalUv = textureUv(NORMAL_SET, material.normalTransformU, material.normalTransformV);
+  vec3 tangentNormal = texture(normalTexture, normalUv).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
   tangentNormal.xy *= material.factors.z;
-  normal = normalize(tangentFrame(normal) * tangentNormal);
+  normal = normalize(tangentFrame(normal, normalUv) * tangentNormal);
 #endif
 
 #if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD)
   vec3 emissive = material.emissiveFactor.rgb;
 #ifdef HAS_EMISSIVE_TEXTURE
-  emissive *= texture(emissiveTexture, vTexcoord).rgb;
+  emissive *= texture(emissiveTexture, textureUv(EMISSIVE_SET, material.emissiveTransformU,
+                                                material.emissiveTransformV)).rgb;
 #endif
 #endif
 #ifdef BLEND_FORWARD
@@ -112,7 +168,14 @@ void main() {
   outPosition = vec4(vWorldPosition, 1.0);
   outNormal = vec4(normal, 0.0);
   outAlbedo = vec4(baseColor.rgb, 1.0);
-  outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), 1.0);
+  // A = the unlit flag (KHR_materials_unlit): the composite then writes the
+  // base colour as the pixel's radiance.
+#ifdef UNLIT
+  const float unlit = 1.0;
+#else
+  const float unlit = 0.0;
+#endif
+  outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), unlit);
 #ifdef HAS_EMISSIVE_TARGET
   outEmissive = vec4(emissive, 1.0);
 #endif

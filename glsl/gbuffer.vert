@@ -19,6 +19,10 @@ layout(location = 3) out vec4 vWorldTangent;
 layout(location = kAttributeColor) in vec4 inColor;
 layout(location = 4) out vec4 vColor;
 #endif
+#ifdef HAS_TEXCOORDS_1
+layout(location = kAttributeTexcoord1) in vec2 inTexcoord1;
+layout(location = 5) out vec2 vTexcoord1;
+#endif
 
 layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) out vec3 vWorldNormal;
@@ -33,6 +37,9 @@ void main() {
 #endif
 #ifdef HAS_VERTEX_COLORS
   vColor = inColor;
+#endif
+#ifdef HAS_TEXCOORDS_1
+  vTexcoord1 = inTexcoord1;
 #endif
 #ifdef HAS_TANGENTS
   vWorldTangent = vec4(mat3(object.worldFromLocal) * inTangent.xyz, inTangent.w);

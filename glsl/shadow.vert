@@ -1,6 +1,8 @@
 // Shadow pass vertex stage: world position for the distance a point light's
 // cube stores, light clip space for rasterisation. ALPHA_MASK variants (masked
-// materials) also pass the texcoord their cut-out is sampled at.
+// materials) also pass the texcoord their cut-out is sampled at: the base
+// colour's set and KHR_texture_transform, as gbuffer.frag's textureUv (the
+// transform is affine, so applying it per vertex is the same).
 #include "shared_layout.h"
 
 layout(location = kAttributePosition) in vec3 inPosition;
@@ -9,6 +11,9 @@ layout(location = 0) out vec3 vWorldPosition;
 #if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS)
 layout(location = kAttributeTexcoord) in vec2 inTexcoord;
 layout(location = 1) out vec2 vTexcoord;
+#endif
+#if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS_1)
+layout(location = kAttributeTexcoord1) in vec2 inTexcoord1;
 #endif
 #if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
 layout(location = kAttributeColor) in vec4 inColor;
@@ -20,7 +25,17 @@ void main() {
   const vec4 world = object.worldFromLocal * vec4(inPosition, 1.0);
   vWorldPosition = world.xyz;
 #if defined(ALPHA_MASK) && defined(HAS_TEXCOORDS)
-  vTexcoord = inTexcoord;
+#if defined(BASE_COLOR_TEXCOORD_1) && defined(HAS_TEXCOORDS_1)
+  vec2 uv = inTexcoord1;
+#elif defined(BASE_COLOR_TEXCOORD_1)
+  vec2 uv = vec2(0.0);  // no such set: (0, 0), as gbuffer.frag
+#else
+  vec2 uv = inTexcoord;
+#endif
+#ifdef HAS_TEXTURE_TRANSFORM
+  uv = vec2(dot(material.baseColorTransformU.xyz, vec3(uv, 1.0)), dot(material.baseColorTransformV.xyz, vec3(uv, 1.0)));
+#endif
+  vTexcoord = uv;
 #endif
 #if defined(ALPHA_MASK) && defined(HAS_VERTEX_COLORS)
   vColorAlpha = inColor.a;

@@ -142,6 +142,19 @@ HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
   float pad0;
   float pad1;
   float pad2;
+  // KHR_texture_transform per texture (read only by HAS_TEXTURE_TRANSFORM
+  // variants): the affine 2x3 matrix's rows, u' = dot(xyz, (u, v, 1)) and
+  // v' likewise; w unused. Identity rows for untransformed textures.
+  vec4 baseColorTransformU;
+  vec4 baseColorTransformV;
+  vec4 metallicRoughnessTransformU;
+  vec4 metallicRoughnessTransformV;
+  vec4 normalTransformU;
+  vec4 normalTransformV;
+  vec4 occlusionTransformU;
+  vec4 occlusionTransformV;
+  vec4 emissiveTransformU;
+  vec4 emissiveTransformV;
 HL_BLOCK_END(material)
 
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).
@@ -259,6 +272,7 @@ HL_CONST(int, kAttributeTexcoord, 2)
 HL_CONST(int, kAttributeTangent, 3)
 HL_CONST(int, kAttributeObjectIndex, 4)  // per instance (divisor 1): the entry of ObjectBuffer
 HL_CONST(int, kAttributeColor, 5)        // COLOR_0, linear RGBA (HAS_VERTEX_COLORS)
+HL_CONST(int, kAttributeTexcoord1, 6)    // TEXCOORD_1 (HAS_TEXCOORDS_1)
 
 #ifdef __cplusplus
 }  // namespace headlight::gpu

@@ -222,7 +222,7 @@ struct Renderer::Impl {
     for (const TargetRead& read : plan.reads) {
       const FrameTarget& target = *read.target;
       ImageF& image = frame.*target.image;
-      const std::vector<std::string> channels(target.channels.begin(), target.channels.end());
+      const std::vector<std::string>& channels = read.channels;
       if (read.sources.empty()) {
         image.width = width;
         image.height = height;

@@ -145,10 +145,12 @@ void planAttachments(FramePlan& plan) {
 }
 
 // Each wanted target is read from the allocated attachments that hold it.
-void planReads(FramePlan& plan, const TargetWanted& wanted) {
+void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& scene) {
   for (const FrameTarget& target : frameTargets()) {
     if (!target.image || !wanted(target.name)) continue;
-    TargetRead read{&target, {}};
+    TargetRead read{&target, {}, {target.channels.begin(), target.channels.end()}};
+    // The material attachment's A holds the unlit flag (gbuffer.frag).
+    if (target.image == &Frame::material && scene.unlit) read.channels.emplace_back(kMaterialUnlitChannel);
     for (const AttachmentRow& row : kAttachmentRows)
       if (row.target == target.image && plan.allocates(row.id)) read.sources.push_back(row.id);
     // Asked for by name and drawn by nothing the scene needs (the emissive
@@ -167,6 +169,8 @@ SceneSummary summarizeScene(const Scene& scene) {
   summary.emissive = scene.hasEmissive();
   summary.blended = scene.hasBlended();
   summary.environment = scene.environment != nullptr;
+  summary.unlit =
+      std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
   return summary;
 }
 
@@ -245,7 +249,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)
     plan.format[std::size_t(row.id)] = row.radiance && floatRadiance ? GpuFormat::Rgba32F : row.format;
-  planReads(plan, wanted);
+  planReads(plan, wanted, scene);
   return plan;
 }
 

@@ -30,7 +30,13 @@ struct SceneSummary {
   bool emissive = false;        // a material emits (emissiveFactor != 0)
   bool blended = false;         // an instance's material is alphaMode BLEND (the blend pass)
   bool environment = false;     // an environment map replaces the procedural sky (Scene::environment)
+  bool unlit = false;           // a material is KHR_materials_unlit: material.exr gains kMaterialUnlitChannel
 };
+
+// material.exr's fourth channel, written only for scenes with an unlit
+// material (so other scenes' files keep their three channels): 1 where the
+// pixel's material is KHR_materials_unlit (lit = its albedo), else 0.
+inline constexpr std::string_view kMaterialUnlitChannel = "material.unlit";
 // `scene.lights` as drawn: with the default key light when the file has none.
 SceneSummary summarizeScene(const Scene& scene);
 
@@ -143,6 +149,8 @@ struct SsgiStep {
 struct TargetRead {
   const FrameTarget* target = nullptr;
   std::vector<Attachment> sources;  // empty: written as zeros (asked for by name, nothing draws it)
+  // The EXR's channels: the target's, then material.unlit where the scene has unlit materials.
+  std::vector<std::string> channels;
 };
 
 struct FramePlan {

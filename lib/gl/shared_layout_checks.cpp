@@ -12,9 +12,11 @@ static_assert(offsetof(FrameBlock, projection) == 64);
 static_assert(offsetof(FrameBlock, cameraPosition) == 192);
 static_assert(offsetof(FrameBlock, depthToViewZ) == 224);
 static_assert(sizeof(GpuObject) == 128);  // std430 array stride: two mat4
-static_assert(sizeof(MaterialBlock) == 64);
+static_assert(sizeof(MaterialBlock) == 224);
 static_assert(offsetof(MaterialBlock, factors) == 32);
 static_assert(offsetof(MaterialBlock, alphaCutoff) == 48);
+static_assert(offsetof(MaterialBlock, baseColorTransformU) == 64);
+static_assert(offsetof(MaterialBlock, emissiveTransformV) == 208);
 static_assert(sizeof(SsgiBlock) == kMaxKernelSamples * 16 + 32);
 static_assert(offsetof(SsgiBlock, radiusWorld) == kMaxKernelSamples * 16);
 static_assert(offsetof(SsgiBlock, indirectStrength) == kMaxKernelSamples * 16 + 12);

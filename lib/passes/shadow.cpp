@@ -188,7 +188,8 @@ void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
     const std::uint32_t features =
         drawFeatures(primitive, material) &
-        (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors);
+        (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors |
+         kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 | kFeatureTextureTransform);
     if (features & kFeatureAlphaMask) {
       maskedPrograms_.get(features).use();
       material.block.bindUniform(gpu::MaterialBlock::kBinding);

@@ -58,7 +58,8 @@ class ShadowPass {
   void drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run);
   gl::Program program_;  // every unmasked caster: depth only
   // Masked casters (alphaMode MASK), by the features they read
-  // (kFeatureAlphaMask [| kFeatureTexcoords [| kFeatureBaseColorTexture]] [| kFeatureVertexColors]).
+  // (kFeatureAlphaMask [| kFeatureTexcoords [| kFeatureBaseColorTexture]] [| kFeatureVertexColors]
+  // [| kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 | kFeatureTextureTransform]).
   ProgramCache<std::uint32_t> maskedPrograms_;
   gl::Buffer block_;
   gl::Framebuffer framebuffer_;

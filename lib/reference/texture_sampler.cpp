@@ -68,4 +68,11 @@ glm::vec4 sampleTexture(const Scene& scene, const TextureRef& ref, glm::vec2 uv,
                   glm::mix(texel(ix, iy + 1), texel(ix + 1, iy + 1), fx), fy);
 }
 
+glm::vec2 textureUv(const Primitive& primitive, const TextureRef& ref, const std::uint32_t* corner, float u, float v) {
+  const std::vector<glm::vec2>& set = ref.texCoord == 1 ? primitive.texcoords1 : primitive.texcoords;
+  if (set.empty()) return ref.transform.apply(glm::vec2(0.0f));
+  const glm::vec2 uv = (1.0f - u - v) * set[corner[0]] + u * set[corner[1]] + v * set[corner[2]];
+  return ref.transform.apply(uv);
+}
+
 }  // namespace headlight::reference

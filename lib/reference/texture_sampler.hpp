@@ -2,6 +2,8 @@
 // The reference's texture lookups: what the renderer's sampler returns for
 // one texture coordinate, computed on the CPU from the scene's decoded
 // RGBA8 images. Needs no Embree and no GL.
+#include <cstdint>
+
 #include <glm/glm.hpp>
 
 #include "headlight/scene.hpp"
@@ -19,5 +21,11 @@ int wrapTexel(int i, int size, int mode);
 // from, and the mean over many rays is the filtered value anyway. An image
 // with no texels reads as white. `ref.image` must index scene.images.
 glm::vec4 sampleTexture(const Scene& scene, const TextureRef& ref, glm::vec2 uv, bool srgb);
+
+// The UV `ref` samples at barycentrics (u, v) of the triangle whose three
+// vertex indices start at `corner`, as gbuffer.frag's textureUv computes it:
+// TEXCOORD_1 for texCoord 1, else TEXCOORD_0 ((0, 0) where the primitive has
+// no such set), then KHR_texture_transform's matrix.
+glm::vec2 textureUv(const Primitive& primitive, const TextureRef& ref, const std::uint32_t* corner, float u, float v);
 
 }  // namespace headlight::reference

@@ -38,9 +38,9 @@ bool cutOut(const InstanceShading& instance, unsigned triangle, float u, float v
   const Primitive& primitive = *instance.primitive;
   if (!primitive.texcoords.empty() && material.baseColorTexture.present()) {
     const std::uint32_t* corner = &primitive.indices[3 * std::size_t(triangle)];
-    const glm::vec2 uv = (1.0f - u - v) * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] +
-                         v * primitive.texcoords[corner[2]];
-    alpha *= sampleTexture(*instance.scene, material.baseColorTexture, uv, true).a;
+    alpha *= sampleTexture(*instance.scene, material.baseColorTexture,
+                           textureUv(primitive, material.baseColorTexture, corner, u, v), true)
+                 .a;
   }
   if (!primitive.colors.empty()) {
     const std::uint32_t* corner = &primitive.indices[3 * std::size_t(triangle)];
@@ -78,6 +78,7 @@ TracedScene buildScene(const Scene& scene, int threads) {
     if (triangleCount == 0 || vertexCount == 0 || primitive.mode != PrimitiveMode::Triangles) continue;
     if (primitive.normals.size() != vertexCount ||
         (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
+        (!primitive.texcoords1.empty() && primitive.texcoords1.size() != vertexCount) ||
         (!primitive.colors.empty() && primitive.colors.size() != vertexCount))
       throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has " +
                   std::to_string(vertexCount) + " positions but " + std::to_string(primitive.normals.size()) +

@@ -118,6 +118,12 @@ class Tracer {
       out.indirectStandardError[pixel] = std::numeric_limits<double>::quiet_NaN();
     }
 
+    // KHR_materials_unlit (material.exr's material.unlit): lit is the albedo,
+    // as the composite writes it.
+    if (unlitPixel(x, y)) {
+      lit[0] = albedo.r, lit[1] = albedo.g, lit[2] = albedo.b, lit[3] = 1.0f;
+      return;
+    }
     const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
@@ -133,6 +139,11 @@ class Tracer {
   }
 
  private:
+  bool unlitPixel(int x, int y) const {
+    const ImageF& material = in_.frame.material;
+    return material.channelCount() > 3 && material.channels[3] == "material.unlit" && material.at(x, y, 3) > 0.5f;
+  }
+
   static RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& direction, float far) {
     RTCRayHit rayHit;
     rayHit.ray.org_x = origin.x, rayHit.ray.org_y = origin.y, rayHit.ray.org_z = origin.z;
@@ -451,19 +462,23 @@ class Tracer {
     glm::vec3 baseColor(material.baseColorFactor);
     float metallic = material.metallicFactor;
     glm::vec3 emissive = material.emissiveFactor;
+    // gbuffer.frag samples textures only where the primitive has texcoords.
     const bool textured = !primitive.texcoords.empty();
-    glm::vec2 uv(0.0f);
-    if (textured)
-      uv = w * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] + v * primitive.texcoords[corner[2]];
+    auto sample = [&](const TextureRef& ref, bool srgb) {
+      return sampleTexture(in_.scene, ref, textureUv(primitive, ref, corner, u, v), srgb);
+    };
     if (textured && material.baseColorTexture.present())
-      baseColor *= glm::vec3(sampleTexture(in_.scene, material.baseColorTexture, uv, true));
+      baseColor *= glm::vec3(sample(material.baseColorTexture, true));
     if (!primitive.colors.empty())  // COLOR_0, as gbuffer.frag multiplies it
       baseColor *= glm::vec3(w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] +
                              v * primitive.colors[corner[2]]);
+    // KHR_materials_unlit: the surface shows its base colour, as the
+    // composite writes it, whatever lights it.
+    if (material.unlit) return baseColor;
     if (textured && material.metallicRoughnessTexture.present())
-      metallic *= sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false).b;
+      metallic *= sample(material.metallicRoughnessTexture, false).b;
     if (textured && material.emissiveTexture.present() && material.emissive())
-      emissive *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
+      emissive *= glm::vec3(sample(material.emissiveTexture, true));
     metallic = std::clamp(metallic, 0.0f, 1.0f);
 
     const glm::vec3 diffuse = (1.0f - metallic) * baseColor / kPi;

@@ -10,16 +10,15 @@ namespace headlight::gltf {
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 4> kRenderedExtensions{
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization"};
+constexpr std::array<std::string_view, 6> kRenderedExtensions{
+    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing",
+    "KHR_mesh_quantization", "KHR_texture_transform",           "KHR_materials_unlit"};
 
 // Extensions that are not rendered but leave the geometry right, so a file
 // that requires them still loads (and names them): the picture is wrong only
 // in the named way. Any other required extension (Draco, meshopt, BasisU:
 // geometry or images that cannot be read without it) refuses the file.
-constexpr std::array<std::string_view, 3> kDrawableWithout{
-    "KHR_texture_transform",               // textures drawn untransformed
-    "KHR_materials_unlit",                 // drawn lit
+constexpr std::array<std::string_view, 1> kDrawableWithout{
     "KHR_materials_pbrSpecularGlossiness"  // approximated as metallic-roughness (gltf_materials.cpp)
 };
 
@@ -79,13 +78,22 @@ std::array<std::pair<const char*, const tinygltf::ExtensionMap*>, 5> textureExte
            {"emissiveTexture", &m.emissiveTexture.extensions}}};
 }
 
+// The texture set each core texture reference samples: its texCoord, or
+// KHR_texture_transform's texCoord where that overrides it.
+int sampledSet(int texCoord, const tinygltf::ExtensionMap& extensions) {
+  const auto transform = extensions.find("KHR_texture_transform");
+  if (transform != extensions.end() && transform->second.Has("texCoord") &&
+      transform->second.Get("texCoord").IsInt()) {
+    return transform->second.Get("texCoord").GetNumberAsInt();
+  }
+  return texCoord;
+}
+
 std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& m) {
   const auto& pbr = m.pbrMetallicRoughness;
-  return {{{pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord},
-           {pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord},
-           {m.normalTexture.index, m.normalTexture.texCoord},
-           {m.occlusionTexture.index, m.occlusionTexture.texCoord},
-           {m.emissiveTexture.index, m.emissiveTexture.texCoord}}};
+  const auto entry = [](const auto& info) { return std::pair{info.index, sampledSet(info.texCoord, info.extensions)}; };
+  return {{entry(pbr.baseColorTexture), entry(pbr.metallicRoughnessTexture), entry(m.normalTexture),
+           entry(m.occlusionTexture), entry(m.emissiveTexture)}};
 }
 
 // ---- Detectors: one per feature that is not rendered -------------------------
@@ -93,7 +101,8 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     for (const auto& [texture, texCoord] : textureCoordinates(model.materials[index])) {
-      if (texture >= 0 && texCoord != 0) {
+      // TEXCOORD_0 and TEXCOORD_1 are rendered (kTexcoordSets); further sets are not.
+      if (texture >= 0 && texCoord >= kTexcoordSets) {
         tally.add("TEXCOORD_" + std::to_string(texCoord), "material",
                   named("material", index, model.materials[index].name),
                   "is not rendered (TEXCOORD_0 is sampled instead)");

@@ -185,7 +185,9 @@ void repairNormals(Primitive& primitive) {
     }
   }
   if (!allUsable && faces) {
-    Primitive generated{primitive.positions, {}, {}, {}, {}, primitive.indices, {}};
+    Primitive generated;
+    generated.positions = primitive.positions;
+    generated.indices = primitive.indices;
     generateNormals(generated);
     for (std::size_t vertex = 0; vertex < primitive.normals.size(); ++vertex) {
       const float length = glm::length(primitive.normals[vertex]);
@@ -223,7 +225,8 @@ std::vector<glm::vec4> GeometryReader::readColors(int accessorIndex, const std::
   return colors;
 }
 
-Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName, const Pose& pose) {
+Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::string& primitiveName, const Pose& pose,
+                               bool readTexcoord1) {
   using Formats = std::span<const AccessorFormat>;
   Primitive primitive;
   const int positionAccessor = attributeAccessor(source, "POSITION");
@@ -242,10 +245,16 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
         normals, primitiveName + " NORMAL", quantized_ ? Formats(kQuantizedNormalFormats) : Formats(kNormalFormats),
         vertexCount, positionAccessor);
   }
-  if (const int texcoords = attributeAccessor(source, "TEXCOORD_0"); texcoords >= 0) {
-    primitive.texcoords = accessors_.readAttribute<2>(
-        texcoords, primitiveName + " TEXCOORD_0",
-        quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats), vertexCount, positionAccessor);
+  // Every set is read through the same formats and checks (TEXCOORD_1 only
+  // when a material samples it).
+  std::vector<glm::vec2>* sets[kTexcoordSets] = {&primitive.texcoords, &primitive.texcoords1};
+  for (int set = 0; set < (readTexcoord1 ? 2 : 1); ++set) {
+    const std::string attribute = "TEXCOORD_" + std::to_string(set);
+    if (const int texcoords = attributeAccessor(source, attribute.c_str()); texcoords >= 0) {
+      const Formats formats = quantized_ ? Formats(kQuantizedTexcoordFormats) : Formats(kTexcoordFormats);
+      *sets[set] = accessors_.readAttribute<2>(texcoords, primitiveName + " " + attribute, formats, vertexCount,
+                                               positionAccessor);
+    }
   }
   // Missing tangents stay missing: the G-buffer shader derives a tangent
   // frame from screen-space derivatives instead.

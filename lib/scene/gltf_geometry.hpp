@@ -27,8 +27,10 @@ class GeometryReader {
 
   // The geometry of `primitive` (named `primitiveName` in messages), whose
   // mode must be TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN (made a triangle
-  // list), in `pose`. Throws SceneError or LimitError.
-  Primitive read(const tinygltf::Primitive& primitive, const std::string& primitiveName, const Pose& pose = {});
+  // list), in `pose`. TEXCOORD_1 is decoded only with `readTexcoord1` (a
+  // material drawn with it samples that set). Throws SceneError or LimitError.
+  Primitive read(const tinygltf::Primitive& primitive, const std::string& primitiveName, const Pose& pose = {},
+                 bool readTexcoord1 = false);
 
   const AccessorReader& accessors() const { return accessors_; }
 

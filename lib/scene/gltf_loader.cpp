@@ -46,9 +46,10 @@ std::string lowercase(std::string text) {
 }
 
 // Key of a primitive's geometry: its POSITION, NORMAL, TEXCOORD_0, TANGENT,
-// COLOR_0 and indices accessors, its mode, and the pose (morph weights, skin) it is
-// drawn in. Primitives with equal keys share decoding work.
-using GeometryKey = std::tuple<int, int, int, int, int, int, int, std::vector<float>, int>;
+// COLOR_0 and indices accessors, its mode, the pose (morph weights, skin) it is
+// drawn in, and its TEXCOORD_1 accessor when its material samples that set
+// (else -1: not decoded). Primitives with equal keys share decoding work.
+using GeometryKey = std::tuple<int, int, int, int, int, int, int, std::vector<float>, int, int>;
 // A mesh as one node draws it: mesh, morph weights, skin.
 using MeshKey = std::tuple<int, std::vector<float>, int>;
 
@@ -81,6 +82,18 @@ class GltfReader {
            m.occlusionTexture.present() || m.emissiveTexture.present();
   }
 
+  bool materialSamplesTexcoord1(int material) const {
+    if (material < 0) {
+      return false;
+    }
+    const Material& m = scene_.materials[static_cast<std::size_t>(material)];
+    for (const TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                  &m.occlusionTexture, &m.emissiveTexture}) {
+      if (ref->present() && ref->texCoord == 1) return true;
+    }
+    return false;
+  }
+
   // The geometry of a glTF primitive (decoded once per distinct set of
   // accessors) and the material it is drawn with.
   struct PlacedPrimitive {
@@ -97,27 +110,39 @@ class GltfReader {
     if (source.material != -1) {
       source_.checkIndex(source.material, model_.materials, primitiveName, "material");
     }
-    const GeometryKey key{attributeAccessor(source, "POSITION"), attributeAccessor(source, "NORMAL"),
-                          attributeAccessor(source, "TEXCOORD_0"), attributeAccessor(source, "TANGENT"),
-                          attributeAccessor(source, "COLOR_0"), source.indices, source.mode, pose.weights, skin};
+    const bool readsTexcoord1 = materialSamplesTexcoord1(source.material);
+    const GeometryKey key{attributeAccessor(source, "POSITION"),
+                          attributeAccessor(source, "NORMAL"),
+                          attributeAccessor(source, "TEXCOORD_0"),
+                          attributeAccessor(source, "TANGENT"),
+                          attributeAccessor(source, "COLOR_0"),
+                          source.indices,
+                          source.mode,
+                          pose.weights,
+                          skin,
+                          readsTexcoord1 ? attributeAccessor(source, "TEXCOORD_1") : -1};
     // Files often repeat one geometry under many materials (one mesh per
     // material); it is decoded and stored once, and each use is an instance.
     auto [cached, inserted] = geometryCache_.try_emplace(key, static_cast<int>(scene_.primitives.size()));
     if (inserted) {
-      scene_.primitives.push_back(geometry_.read(source, primitiveName, pose));
+      scene_.primitives.push_back(geometry_.read(source, primitiveName, pose, readsTexcoord1));
     }
     Primitive& primitive = scene_.primitives[static_cast<std::size_t>(cached->second)];
     // A normal map needs tangents; without TANGENT they are made as
-    // MikkTSpace makes them (the glTF spec's rule for missing tangents).
-    if (primitive.mode == PrimitiveMode::Triangles && primitive.tangents.empty() && !primitive.texcoords.empty() &&
-        source.material >= 0 &&
-        scene_.materials[static_cast<std::size_t>(source.material)].normalTexture.present()) {
-      generateTangents(primitive);
+    // MikkTSpace makes them (the glTF spec's rule for missing tangents),
+    // from the UVs the normal map samples (its set, through its transform).
+    if (primitive.mode == PrimitiveMode::Triangles && primitive.tangents.empty() && source.material >= 0) {
+      const TextureRef& normalMap = scene_.materials[static_cast<std::size_t>(source.material)].normalTexture;
+      if (normalMap.present()) generateTangents(primitive, normalMap);
     }
-    // A textured material samples UVs; without TEXCOORD_0 it samples (0, 0),
-    // which is glTF's answer too, so the shader always has texcoords to read.
+    // A textured material samples UVs; without the set it names it samples
+    // (0, 0), which is glTF's answer too, so the shader always has texcoords
+    // to read.
     if (primitive.texcoords.empty() && materialHasTextures(source.material)) {
       primitive.texcoords.assign(primitive.positions.size(), glm::vec2(0.0f));
+    }
+    if (primitive.texcoords1.empty() && readsTexcoord1) {
+      primitive.texcoords1.assign(primitive.positions.size(), glm::vec2(0.0f));
     }
     return {cached->second, source.material};
   }

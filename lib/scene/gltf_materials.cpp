@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 
 #include "image_io/texture_decode.hpp"
 
@@ -43,17 +44,76 @@ void readSampler(const Source& source, int samplerIndex, TextureRef& ref) {
   }
 }
 
-TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, const std::string& user) {
+// A number of KHR_texture_transform that must be finite as a float: 1e39
+// is a valid JSON number but overflows the GPU's float.
+float transformNumber(const Source& source, const tinygltf::Value& value, const std::string& what) {
+  if (!value.IsNumber() && !value.IsInt()) {
+    source.fail(what + " is not a number");
+  }
+  const double number = value.GetNumberAsDouble();
+  if (!std::isfinite(static_cast<float>(number))) {
+    std::ostringstream text;
+    text << what << " is " << number << ", expected a finite number";
+    source.fail(text.str());
+  }
+  return static_cast<float>(number);
+}
+
+glm::vec2 transformPair(const Source& source, const tinygltf::Value& holder, const char* key, glm::vec2 fallback,
+                        const std::string& user) {
+  if (!holder.Has(key)) return fallback;
+  const tinygltf::Value& pair = holder.Get(key);
+  const std::string what = user + " KHR_texture_transform " + key;
+  if (!pair.IsArray() || pair.ArrayLen() != 2) {
+    source.fail(what + " is not an array of 2 numbers");
+  }
+  return {transformNumber(source, pair.Get(0), what + "[0]"), transformNumber(source, pair.Get(1), what + "[1]")};
+}
+
+// KHR_texture_transform (`extension` may be null): offset, rotation, scale,
+// and the texCoord it overrides.
+void readTransform(const Source& source, const tinygltf::Value* extension, const std::string& user, TextureRef& ref) {
+  if (extension == nullptr) return;
+  if (!extension->IsObject()) {
+    source.fail(user + " KHR_texture_transform is not an object");
+  }
+  ref.transform.offset = transformPair(source, *extension, "offset", glm::vec2(0.0f), user);
+  ref.transform.scale = transformPair(source, *extension, "scale", glm::vec2(1.0f), user);
+  if (extension->Has("rotation")) {
+    ref.transform.rotation =
+        transformNumber(source, extension->Get("rotation"), user + " KHR_texture_transform rotation");
+  }
+  if (extension->Has("texCoord")) {
+    const tinygltf::Value& texCoord = extension->Get("texCoord");
+    if (!texCoord.IsInt() || texCoord.GetNumberAsInt() < 0) {
+      source.fail(user + " KHR_texture_transform texCoord is not an integer >= 0");
+    }
+    ref.texCoord = texCoord.GetNumberAsInt();
+  }
+}
+
+const tinygltf::Value* transformExtension(const tinygltf::ExtensionMap& extensions) {
+  const auto found = extensions.find("KHR_texture_transform");
+  return found == extensions.end() ? nullptr : &found->second;
+}
+
+// `user` names the reference ("material 2 baseColorTexture"); messages about
+// it add the texture: "material 2 baseColorTexture (texture 0)".
+TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, const tinygltf::Value* transform,
+                          const std::string& user) {
   TextureRef ref;
   if (textureIndex < 0) {
     return ref;
   }
   const tinygltf::Model& model = source.model;
   source.checkIndex(textureIndex, model.textures, user, "texture");
-  // Another texCoord is sampled from TEXCOORD_0 (gltf_features names it).
+  // A texCoord of kTexcoordSets or more is sampled from TEXCOORD_0
+  // (gltf_features names it).
   if (texCoord < 0) {
     source.fail(user + " has texCoord " + std::to_string(texCoord) + ", expected >= 0");
   }
+  ref.texCoord = texCoord;
+  readTransform(source, transform, user + " (texture " + std::to_string(textureIndex) + ")", ref);
   const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(textureIndex)];
   const std::string textureName = "texture " + std::to_string(textureIndex);
   if (texture.source < 0) {
@@ -155,8 +215,12 @@ void readSpecularGlossiness(const Source& source, const tinygltf::Material& mate
   }
   if (specGloss.Has("diffuseTexture") && specGloss.Get("diffuseTexture").Has("index")) {
     const tinygltf::Value& texture = specGloss.Get("diffuseTexture");
+    const tinygltf::Value* transform = nullptr;
+    if (texture.Has("extensions") && texture.Get("extensions").Has("KHR_texture_transform")) {
+      transform = &texture.Get("extensions").Get("KHR_texture_transform");
+    }
     out.baseColorTexture = readTextureRef(source, texture.Get("index").GetNumberAsInt(),
-                                          static_cast<int>(numberOr(texture, "texCoord", 0.0)),
+                                          static_cast<int>(numberOr(texture, "texCoord", 0.0)), transform,
                                           name + " KHR_materials_pbrSpecularGlossiness diffuseTexture");
   }
 }
@@ -189,17 +253,16 @@ Material readMaterial(const Source& source, int materialIndex) {
   readFactors(source, material, name, out);
   readAlpha(source, material, name, out);
   const auto& pbr = material.pbrMetallicRoughness;
-  out.baseColorTexture =
-      readTextureRef(source, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, name + " baseColorTexture");
-  out.metallicRoughnessTexture =
-      readTextureRef(source, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                     name + " metallicRoughnessTexture");
-  out.normalTexture = readTextureRef(source, material.normalTexture.index, material.normalTexture.texCoord,
-                                     name + " normalTexture");
-  out.occlusionTexture = readTextureRef(source, material.occlusionTexture.index, material.occlusionTexture.texCoord,
-                                        name + " occlusionTexture");
-  out.emissiveTexture = readTextureRef(source, material.emissiveTexture.index, material.emissiveTexture.texCoord,
-                                       name + " emissiveTexture");
+  const auto reference = [&](const auto& info, const char* slot) {
+    return readTextureRef(source, info.index, info.texCoord, transformExtension(info.extensions), name + " " + slot);
+  };
+  out.baseColorTexture = reference(pbr.baseColorTexture, "baseColorTexture");
+  out.metallicRoughnessTexture = reference(pbr.metallicRoughnessTexture, "metallicRoughnessTexture");
+  out.normalTexture = reference(material.normalTexture, "normalTexture");
+  out.occlusionTexture = reference(material.occlusionTexture, "occlusionTexture");
+  out.emissiveTexture = reference(material.emissiveTexture, "emissiveTexture");
+  // KHR_materials_unlit: its object has no properties; being there is the flag.
+  out.unlit = material.extensions.count("KHR_materials_unlit") != 0;
   readSpecularGlossiness(source, material, name, out);
   return out;
 }

@@ -43,6 +43,10 @@ GpuPrimitive uploadPrimitive(const Primitive& primitive) {
     addAttribute(gpu, gpu::kAttributeColor, 4, sizeof(glm::vec4), makeBuffer(primitive.colors));
     gpu.vertexFeatures |= kFeatureVertexColors;
   }
+  if (!primitive.texcoords1.empty()) {
+    addAttribute(gpu, gpu::kAttributeTexcoord1, 2, sizeof(glm::vec2), makeBuffer(primitive.texcoords1));
+    gpu.vertexFeatures |= kFeatureTexcoords1;
+  }
   gl::Buffer indices = makeBuffer(primitive.indices);
   glVertexArrayElementBuffer(gpu.vertexArray.id(), indices.id());
   gpu.buffers.push_back(std::move(indices));
@@ -108,29 +112,43 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   block.emissiveFactor = glm::vec4(material.emissiveFactor, 0.0f);
   block.factors =
       glm::vec4(material.metallicFactor, material.roughnessFactor, material.normalScale, material.occlusionStrength);
-  gpu.block = gl::Buffer::create(sizeof(block), &block);
   block.alphaCutoff = material.alphaCutoff;
-  gpu.block = gl::Buffer::create(sizeof(block), &block);
   gpu.doubleSided = material.doubleSided;
   gpu.blended = material.blended();
   if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
+  if (material.unlit) gpu.shadingFeatures |= kFeatureUnlit;
   struct Slot {
     const TextureRef& ref;
     bool srgb;
     int& index;
     GBufferFeature feature;
+    GBufferFeature texcoord1;
+    glm::vec4& transformU;
+    glm::vec4& transformV;
   };
   const Slot slots[] = {
-      {material.baseColorTexture, true, gpu.baseColor, kFeatureBaseColorTexture},
-      {material.metallicRoughnessTexture, false, gpu.metallicRoughness, kFeatureMetallicRoughnessTexture},
-      {material.normalTexture, false, gpu.normal, kFeatureNormalTexture},
-      {material.occlusionTexture, false, gpu.occlusion, kFeatureOcclusionTexture},
-      {material.emissiveTexture, true, gpu.emissive, kFeatureEmissiveTexture},
+      {material.baseColorTexture, true, gpu.baseColor, kFeatureBaseColorTexture, kFeatureBaseColorTexcoord1,
+       block.baseColorTransformU, block.baseColorTransformV},
+      {material.metallicRoughnessTexture, false, gpu.metallicRoughness, kFeatureMetallicRoughnessTexture,
+       kFeatureMetallicRoughnessTexcoord1, block.metallicRoughnessTransformU, block.metallicRoughnessTransformV},
+      {material.normalTexture, false, gpu.normal, kFeatureNormalTexture, kFeatureNormalTexcoord1,
+       block.normalTransformU, block.normalTransformV},
+      {material.occlusionTexture, false, gpu.occlusion, kFeatureOcclusionTexture, kFeatureOcclusionTexcoord1,
+       block.occlusionTransformU, block.occlusionTransformV},
+      {material.emissiveTexture, true, gpu.emissive, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
+       block.emissiveTransformU, block.emissiveTransformV},
   };
   for (const Slot& slot : slots) {
+    slot.transformU = glm::vec4(slot.ref.transform.rowU(), 0.0f);
+    slot.transformV = glm::vec4(slot.ref.transform.rowV(), 0.0f);
     slot.index = textures.get(slot.ref, slot.srgb);
-    if (slot.index >= 0) gpu.textureFeatures |= slot.feature;
+    if (slot.index < 0) continue;
+    gpu.textureFeatures |= slot.feature;
+    if (slot.ref.texCoord == 1) gpu.textureFeatures |= slot.texcoord1;
+    // Only a material that transforms some texture pays for the matrix.
+    if (!slot.ref.transform.identity()) gpu.textureFeatures |= kFeatureTextureTransform;
   }
+  gpu.block = gl::Buffer::create(sizeof(block), &block);
   return gpu;
 }
 
@@ -224,6 +242,14 @@ std::vector<std::string> featureDefines(std::uint32_t features) {
       {kFeatureEmissiveTexture, "HAS_EMISSIVE_TEXTURE"},
       {kFeatureAlphaMask, "ALPHA_MASK"},
       {kFeatureVertexColors, "HAS_VERTEX_COLORS"},
+      {kFeatureTexcoords1, "HAS_TEXCOORDS_1"},
+      {kFeatureTextureTransform, "HAS_TEXTURE_TRANSFORM"},
+      {kFeatureUnlit, "UNLIT"},
+      {kFeatureBaseColorTexcoord1, "BASE_COLOR_TEXCOORD_1"},
+      {kFeatureMetallicRoughnessTexcoord1, "METALLIC_ROUGHNESS_TEXCOORD_1"},
+      {kFeatureNormalTexcoord1, "NORMAL_TEXCOORD_1"},
+      {kFeatureOcclusionTexcoord1, "OCCLUSION_TEXCOORD_1"},
+      {kFeatureEmissiveTexcoord1, "EMISSIVE_TEXCOORD_1"},
   };
   std::vector<std::string> defines;
   for (const auto& [bit, name] : names)
@@ -232,7 +258,7 @@ std::vector<std::string> featureDefines(std::uint32_t features) {
 }
 
 std::uint32_t drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material) {
-  std::uint32_t features = primitive.vertexFeatures | material.alphaFeatures;
+  std::uint32_t features = primitive.vertexFeatures | material.alphaFeatures | material.shadingFeatures;
   if (features & kFeatureTexcoords) features |= material.textureFeatures;
   return features;
 }

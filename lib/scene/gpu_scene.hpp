@@ -23,6 +23,15 @@ enum GBufferFeature : std::uint32_t {
   kFeatureEmissiveTexture = 1u << 6,
   kFeatureAlphaMask = 1u << 7,     // alphaMode MASK: discard below the cutoff
   kFeatureVertexColors = 1u << 8,  // COLOR_0 multiplies base colour and alpha
+  kFeatureTexcoords1 = 1u << 9,    // the primitive has TEXCOORD_1 (a material drawn with it samples that set)
+  kFeatureTextureTransform = 1u << 10,  // KHR_texture_transform: some texture's UVs go through its matrix
+  kFeatureUnlit = 1u << 11,             // KHR_materials_unlit: flagged in the material target's A
+  // The texture reads TEXCOORD_1 instead of TEXCOORD_0, one bit per texture.
+  kFeatureBaseColorTexcoord1 = 1u << 12,
+  kFeatureMetallicRoughnessTexcoord1 = 1u << 13,
+  kFeatureNormalTexcoord1 = 1u << 14,
+  kFeatureOcclusionTexcoord1 = 1u << 15,
+  kFeatureEmissiveTexcoord1 = 1u << 16,
 };
 
 // The #defines that build `features` into a shader (HAS_TEXCOORDS, ...,
@@ -31,10 +40,11 @@ std::vector<std::string> featureDefines(std::uint32_t features);
 
 struct GpuPrimitive {
   gl::VertexArray vertexArray;
-  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], indices
+  std::vector<gl::Buffer> buffers;  // positions, normals, [texcoords], [tangents], [colors], [texcoords1], indices
   GLsizei indexCount = 0;
   GLenum mode = GL_TRIANGLES;  // GL_LINES, GL_POINTS: drawn 1 pixel wide, in no shadow map
-  std::uint32_t vertexFeatures = 0;  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors
+  // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors | kFeatureTexcoords1
+  std::uint32_t vertexFeatures = 0;
 };
 
 struct GpuMaterial {
@@ -42,8 +52,11 @@ struct GpuMaterial {
   // Texture indices into GpuScene::textures, -1 = none; in the order of the
   // kUnit*Texture units.
   int baseColor = -1, metallicRoughness = -1, normal = -1, occlusion = -1, emissive = -1;
+  // The textures (kFeature*Texture), the set each reads (kFeature*Texcoord1)
+  // and kFeatureTextureTransform: read only where the primitive has texcoords.
   std::uint32_t textureFeatures = 0;
-  std::uint32_t alphaFeatures = 0;  // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
+  std::uint32_t alphaFeatures = 0;    // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
+  std::uint32_t shadingFeatures = 0;  // kFeatureUnlit
   bool doubleSided = false;
   bool blended = false;  // alphaMode BLEND: drawn by the blend pass only (not the G-buffer, no shadow)
 };

@@ -236,7 +236,8 @@ std::uint64_t estimateSceneBytes(const Scene& scene) {
   std::uint64_t bytes = 0;
   for (const Primitive& primitive : scene.primitives) {
     bytes += primitive.positions.size() * sizeof(glm::vec3) + primitive.normals.size() * sizeof(glm::vec3) +
-             primitive.texcoords.size() * sizeof(glm::vec2) + primitive.tangents.size() * sizeof(glm::vec4) +
+             (primitive.texcoords.size() + primitive.texcoords1.size()) * sizeof(glm::vec2) +
+             primitive.tangents.size() * sizeof(glm::vec4) +
              primitive.colors.size() * sizeof(glm::vec4) +
              primitive.indices.size() * sizeof(std::uint32_t);
   }

@@ -41,10 +41,19 @@ using VertexKey = std::array<float, 9>;
 
 }  // namespace
 
-void generateTangents(Primitive& primitive) {
+void generateTangents(Primitive& primitive) { generateTangents(primitive, TextureRef{}); }
+
+void generateTangents(Primitive& primitive, const TextureRef& normalMap) {
   const std::size_t vertexCount = primitive.positions.size();
-  if (primitive.normals.size() != vertexCount || primitive.texcoords.size() != vertexCount) {
+  const std::vector<glm::vec2>& set = normalMap.texCoord == 1 ? primitive.texcoords1 : primitive.texcoords;
+  if (primitive.normals.size() != vertexCount || set.size() != vertexCount) {
     return;
+  }
+  // The UVs the normal map is sampled at: a transformed map's tangent space
+  // turns with its UVs.
+  std::vector<glm::vec2> uvs = set;
+  if (!normalMap.transform.identity()) {
+    for (glm::vec2& uv : uvs) uv = normalMap.transform.apply(uv);
   }
   const std::size_t cornerCount = primitive.indices.size();
   // Group of each (welded vertex, handedness), its angle-weighted sum.
@@ -56,8 +65,8 @@ void generateTangents(Primitive& primitive) {
     const std::uint32_t i[3] = {primitive.indices[corner], primitive.indices[corner + 1], primitive.indices[corner + 2]};
     const glm::vec3 e1 = primitive.positions[i[1]] - primitive.positions[i[0]];
     const glm::vec3 e2 = primitive.positions[i[2]] - primitive.positions[i[0]];
-    const glm::vec2 d1 = primitive.texcoords[i[1]] - primitive.texcoords[i[0]];
-    const glm::vec2 d2 = primitive.texcoords[i[2]] - primitive.texcoords[i[0]];
+    const glm::vec2 d1 = uvs[i[1]] - uvs[i[0]];
+    const glm::vec2 d2 = uvs[i[2]] - uvs[i[0]];
     const float uvArea = d1.x * d2.y - d2.x * d1.y;
     if (!(std::abs(uvArea) > kMinUvArea)) continue;
     // The directions of increasing u and v on the triangle's plane.
@@ -75,7 +84,7 @@ void generateTangents(Primitive& primitive) {
       // the tangents in the Khronos sample models (NormalTangentMirrorTest) do.
       const bool flipped = glm::dot(glm::cross(normal, tangent), bitangent) > 0.0f;
       const glm::vec3& p = primitive.positions[v];
-      const glm::vec2& uv = primitive.texcoords[v];
+      const glm::vec2& uv = uvs[v];
       const VertexKey key{p.x, p.y, p.z, normal.x, normal.y, normal.z, uv.x, uv.y, 0.0f};
       auto [group, inserted] = groupOf.try_emplace({key, flipped}, sums.size());
       if (inserted) sums.emplace_back(0.0f);
@@ -107,7 +116,8 @@ void generateTangents(Primitive& primitive) {
       if (inserted) {
         primitive.positions.push_back(primitive.positions[v]);
         primitive.normals.push_back(primitive.normals[v]);
-        primitive.texcoords.push_back(primitive.texcoords[v]);
+        if (!primitive.texcoords.empty()) primitive.texcoords.push_back(primitive.texcoords[v]);
+        if (!primitive.texcoords1.empty()) primitive.texcoords1.push_back(primitive.texcoords1[v]);
         if (!primitive.colors.empty()) primitive.colors.push_back(primitive.colors[v]);
         primitive.tangents.push_back(tangent);
       }

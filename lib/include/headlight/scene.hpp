@@ -6,6 +6,7 @@
 //
 // Conventions (see docs/PIPELINE.md): right-handed world space, +Y up, glTF
 // units (metres unless the file says otherwise); cameras look down their -Z.
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -51,10 +52,35 @@ struct ImageData {
   std::vector<std::uint8_t> rgba;
 };
 
+// KHR_texture_transform on one texture reference: the UV a texture is
+// sampled at is T(offset) * R(rotation) * S(scale) * (u, v, 1). In UV space
+// (v down the image) the rotation turns (u, v) by -rotation, so the image
+// appears turned clockwise on screen, as the extension's test model
+// (TextureTransformTest) shows. Every value finite (the loader checks).
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians
+  glm::vec2 scale{1.0f};
+
+  bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+  // The 2x3 affine matrix's rows: u' = dot(rowU, (u, v, 1)), v' = dot(rowV, (u, v, 1)).
+  glm::vec3 rowU() const { return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x}; }
+  glm::vec3 rowV() const { return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+  glm::vec2 apply(glm::vec2 uv) const {
+    const glm::vec3 p(uv, 1.0f);
+    return {glm::dot(rowU(), p), glm::dot(rowV(), p)};
+  }
+};
+
+// How many TEXCOORD_n sets are rendered: a texCoord of kTexcoordSets or more
+// samples TEXCOORD_0 (gltf_features names it).
+inline constexpr int kTexcoordSets = 2;
+
 // glTF's sampler codes are the GL enum values, so they are kept as is.
 struct TextureRef {
-  int image = -1;  // index into Scene::images; -1 = no texture
-  int texCoord = 0;
+  int image = -1;     // index into Scene::images; -1 = no texture
+  int texCoord = 0;   // the TEXCOORD_n set (KHR_texture_transform's texCoord, when given, already applied)
+  TextureTransform transform;  // KHR_texture_transform; identity when absent
   int wrapS = 0x2901;      // GL_REPEAT
   int wrapT = 0x2901;      // GL_REPEAT
   int minFilter = 0x2703;  // GL_LINEAR_MIPMAP_LINEAR
@@ -85,6 +111,7 @@ struct Material {
   TextureRef normalTexture;             // tangent space
   TextureRef occlusionTexture;          // R
   TextureRef emissiveTexture;           // sRGB
+  bool unlit = false;  // KHR_materials_unlit: lit = base colour (factor x texture x COLOR_0), untouched by light
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
   bool masked() const { return alphaMode == AlphaMode::Mask; }
@@ -104,6 +131,9 @@ struct Primitive {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // same count as positions, unit length
   std::vector<glm::vec2> texcoords;  // TEXCOORD_0; empty or same count
+  // TEXCOORD_1, only when a material drawn with the primitive samples it
+  // (zeros where the file has none, as for TEXCOORD_0); empty or same count.
+  std::vector<glm::vec2> texcoords1;
   std::vector<glm::vec4> tangents;   // xyz + handedness w; empty or same count
   std::vector<glm::vec4> colors;     // COLOR_0, linear RGBA (A = 1 for VEC3); empty or same count
   std::vector<std::uint32_t> indices;

@@ -73,5 +73,9 @@ void generateNormals(Primitive& primitive);
 // used with both handednesses is split (positions, normals and texcoords
 // grow, indices are remapped). Does nothing without normals and texcoords.
 void generateTangents(Primitive& primitive);
+// The same from the set `normalMap` samples (TEXCOORD_1 for texCoord 1) as
+// its KHR_texture_transform maps it, so the tangent space follows the UVs
+// the normal map is read at. Does nothing without normals and that set.
+void generateTangents(Primitive& primitive, const TextureRef& normalMap);
 
 }  // namespace HEADLIGHT_PUBLIC
