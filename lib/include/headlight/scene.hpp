@@ -183,6 +183,8 @@ struct Scene {
   std::vector<Light> lights;
   Sky sky;
   std::vector<IgnoredFeature> ignored;  // glTF only; in the order first met
+  // glTF KHR_materials_variants' names, in file order (SceneLoadOptions::materialVariant picks one).
+  std::vector<std::string> materialVariants;
 
   Bounds worldBounds() const;
   bool hasEmissive() const;

@@ -24,9 +24,12 @@ struct SceneLoadOptions {
   // Which of the file's scenes: an index or a name; empty: the file's
   // `scene` (else scene 0).
   std::string gltfScene;
+  // KHR_materials_variants: the variant whose materials the primitives take;
+  // empty: the file's default materials. A name the file lacks is a SceneError.
+  std::string materialVariant;
 };
 
-// The rows (strict-gltf, scene), for the CLI and settings files.
+// The rows (strict-gltf, scene, material-variant), for the CLI and settings files.
 std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
