@@ -59,7 +59,7 @@ int mappedMaterial(const tinygltf::Primitive& primitive, const Source& source, c
       const tinygltf::Value& variant = variants.Get(int(k));
       if (!isIndex(variant) || std::size_t(variant.GetNumberAsInt()) >= variantCount) {
         source.fail(mappingName + " lists variant " +
-                    (variant.IsNumber() ? std::to_string(variant.GetNumberAsDouble()) : std::string("(not a number)")) +
+                    (isIndex(variant) ? std::to_string(variant.GetNumberAsInt()) : std::string("(not an index)")) +
                     ", but the file has " + countOf(variantCount, "variant"));
       }
       if (variant.GetNumberAsInt() == chosen) material = mapped;
