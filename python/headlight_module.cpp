@@ -493,8 +493,9 @@ PYBIND11_MODULE(headlight, m) {
       .def(
           "set_scene",
           [](PyRenderer& self, const py::object& scene, const py::object& allowExternalPaths,
-             const py::kwargs& kwargs) {
+             const std::string& materialVariant, const py::kwargs& kwargs) {
             SceneLoadOptions options;
+            options.materialVariant = materialVariant;
             if (!py::isinstance<py::bool_>(allowExternalPaths))
               throw SettingsError("allow_external_paths: expected True or False, got " +
                                       py::repr(allowExternalPaths).cast<std::string>(),
@@ -509,9 +510,10 @@ PYBIND11_MODULE(headlight, m) {
               self.renderer->setScene(std::move(loaded));
             });
           },
-          py::arg("scene"), py::arg("allow_external_paths") = false,
-          "set_scene(scene, allow_external_paths=False, **limits): a glTF file (.gltf/.glb) or 'builtin:cornell' / "
-          "'builtin:spheres'; limits are limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
+          py::arg("scene"), py::arg("allow_external_paths") = false, py::arg("material_variant") = "",
+          "set_scene(scene, allow_external_paths=False, material_variant='', **limits): a glTF file (.gltf/.glb) or "
+          "'builtin:cornell' / 'builtin:spheres'; material_variant: a KHR_materials_variants name ('': the file's "
+          "default materials); limits are limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
           "max_triangles, max_texels; over one: LimitError")
       .def(
           "render",
