@@ -134,3 +134,39 @@ TEST_CASE("--verbose lists a file's material variants; without the flag nothing 
   CHECK(verbose.output.find("material variants (--material-variant; default: the file's default materials): "
                             "'Night' 'Day'") != std::string::npos);
 }
+
+TEST_CASE("a job file's material_variant picks the variant for its job only") {
+  TempFolder folder("variants-jobs");
+  nlohmann::json document = compressed::plainGltf(compressed::torus());
+  document["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 1}}}}},
+                           {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 1, 0, 1}}}}}};
+  document["meshes"][0]["primitives"][0]["material"] = 0;
+  document["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+      {{"material", 1}, {"variants", {0}}}};
+  document["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "Green"}}};
+  document["extensionsUsed"] = {"KHR_materials_variants"};
+  const fs::path scene = folder.write("variants.gltf", document.dump());
+  const fs::path a = folder.path() / "a", b = folder.path() / "b", c = folder.path() / "c";
+  auto job = [&](const fs::path& out, const std::string& variant) {
+    nlohmann::json line = {{"scene", scene.string()}, {"out", out.string()}, {"size", "32x32"}};
+    if (!variant.empty()) line["material_variant"] = variant;
+    return line.dump() + "\n";
+  };
+  const fs::path jobs = folder.write("jobs.jsonl", job(a, "") + job(b, "Green") + job(c, "Blue"));
+  const ProcessResult run = runHeadlight("render --jobs " + shellQuote(jobs.string()));
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("3 jobs: 2 rendered, 0 skipped, 1 failed") != std::string::npos);
+  CHECK(run.output.find("material variant 'Blue' is not in the file: its variants are 'Green'") != std::string::npos);
+  // Summed over the frame, the default draws red and the variant green.
+  auto redMinusGreen = [](const fs::path& out) {
+    OIIO::ImageBuf albedo((out / "albedo.exr").string());
+    REQUIRE(albedo.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    double sum = 0;
+    for (int y = 0; y < albedo.spec().height; ++y)
+      for (int x = 0; x < albedo.spec().width; ++x) sum += albedo.getchannel(x, y, 0, 0) - albedo.getchannel(x, y, 0, 1);
+    return sum;
+  };
+  CHECK(redMinusGreen(a) > 1.0);
+  CHECK(redMinusGreen(b) < -1.0);
+}

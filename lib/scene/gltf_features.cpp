@@ -262,10 +262,10 @@ void checkRequiredExtensions(const Source& source) {
   if (count == 0) {
     return;
   }
+  std::string reasons;  // "; KHR_texture_basisu (texture 0): its KTX2 ..."
   for (const auto& [name, reason] : kRefusalReasons) {
     if (refused.find(name) != std::string::npos) {
-      source.fail((count == 1 ? "requires extension " : "requires extensions ") + refused + ", which cannot be drawn: " +
-                  std::string(name) + usersOf(source.model, std::string(name)) + ": " + reason);
+      reasons += "; " + std::string(name) + usersOf(source.model, std::string(name)) + ": " + reason;
     }
   }
   std::string accepted;
@@ -275,7 +275,8 @@ void checkRequiredExtensions(const Source& source) {
   }
   for (std::string_view name : kDrawableWithout) accepted += ", " + std::string(name) + " (not rendered)";
   source.fail(std::string(count == 1 ? "requires extension " : "requires extensions ") + refused +
-              (count == 1 ? ", which is" : ", which are") + " not supported (accepted as required: " + accepted + ")");
+              (count == 1 ? ", which is" : ", which are") + " not supported" + reasons + " (accepted as required: " +
+              accepted + ")");
 }
 
 }  // namespace headlight::gltf
