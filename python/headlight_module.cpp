@@ -493,9 +493,10 @@ PYBIND11_MODULE(headlight, m) {
       .def(
           "set_scene",
           [](PyRenderer& self, const py::object& scene, const py::object& allowExternalPaths,
-             const py::object& environment, const py::kwargs& kwargs) {
+             const py::object& environment, const std::string& materialVariant, const py::kwargs& kwargs) {
             SceneLoadOptions options;
             if (!environment.is_none()) options.environment = pathArgument(environment, "environment");
+            options.materialVariant = materialVariant;
             if (!py::isinstance<py::bool_>(allowExternalPaths))
               throw SettingsError("allow_external_paths: expected True or False, got " +
                                       py::repr(allowExternalPaths).cast<std::string>(),
@@ -511,9 +512,11 @@ PYBIND11_MODULE(headlight, m) {
             });
           },
           py::arg("scene"), py::arg("allow_external_paths") = false, py::arg("environment") = py::none(),
-          "set_scene(scene, allow_external_paths=False, environment=None, **limits): a glTF file (.gltf/.glb) or "
-          "'builtin:cornell' / 'builtin:spheres'; environment: an equirectangular .hdr/.exr that replaces the sky "
-          "(render's environment_intensity, environment_rotation, environment_background apply); limits are "
+          py::arg("material_variant") = "",
+          "set_scene(scene, allow_external_paths=False, environment=None, material_variant='', **limits): a glTF "
+          "file (.gltf/.glb) or 'builtin:cornell' / 'builtin:spheres'; environment: an equirectangular .hdr/.exr that "
+          "replaces the sky (render's environment_intensity, environment_rotation, environment_background apply); "
+          "material_variant: a KHR_materials_variants name ('': the file's default materials); limits are "
           "limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
           "max_triangles, max_texels; over one: LimitError")
       .def(

@@ -297,17 +297,16 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
   }
   SUBCASE("unsupported required extension") {
     GltfParts parts;
-    parts.extra =
-        R"(,"extensionsUsed":["KHR_draco_mesh_compression"],"extensionsRequired":["KHR_draco_mesh_compression"])";
+    parts.extra = R"(,"extensionsUsed":["EXT_made_up"],"extensionsRequired":["EXT_made_up"])";
     const std::string message = loadError(writeTriangleGltf(folder, parts));
-    CHECK(message.find("requires extension KHR_draco_mesh_compression, which is not supported") != std::string::npos);
+    CHECK(message.find("requires extension EXT_made_up, which is not supported") != std::string::npos);
   }
   SUBCASE("every unsupported required extension is named at once") {
     GltfParts parts;
-    parts.extra = R"(,"extensionsUsed":["KHR_draco_mesh_compression","KHR_texture_basisu","KHR_texture_transform"],
-                    "extensionsRequired":["KHR_draco_mesh_compression","KHR_texture_transform","KHR_texture_basisu"])";
+    parts.extra = R"(,"extensionsUsed":["EXT_made_up","KHR_texture_basisu","KHR_texture_transform"],
+                    "extensionsRequired":["EXT_made_up","KHR_texture_transform","KHR_texture_basisu"])";
     const std::string message = loadError(writeTriangleGltf(folder, parts));
-    CHECK(message.find("requires extensions KHR_draco_mesh_compression, KHR_texture_basisu, which are not supported") !=
+    CHECK(message.find("requires extensions EXT_made_up, KHR_texture_basisu, which are not supported") !=
           std::string::npos);
   }
 }

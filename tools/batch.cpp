@@ -53,18 +53,30 @@ long peakRssKb() {
   return usage.ru_maxrss;  // kilobytes on Linux
 }
 
+// The command's scene-load options with the job's material_variant.
+SceneLoadOptions loadOptionsFor(const Job& job, SceneLoadOptions options) {
+  if (job.materialVariant) options.materialVariant = *job.materialVariant;
+  return options;
+}
+
+// A scene as loaded for a job: its name, and the job's variant when it sets one.
+std::string sceneKey(const Job& job) {
+  return job.materialVariant ? job.scene + "\n#material-variant=" + *job.materialVariant : job.scene;
+}
+
 // Scenes stay loaded while a later job of this shard uses them.
 class SceneCache {
  public:
   SceneCache(const std::vector<Job>& jobs, const SceneLoadOptions& options, const ResourceLimits& limits, bool quiet)
       : options_(options), limits_(limits), quiet_(quiet) {
     for (const Job& job : jobs)
-      if (job.error.empty()) ++remaining_[job.scene];
+      if (job.error.empty()) ++remaining_[sceneKey(job)];
   }
-  const Scene& get(const std::string& name) {
+  const Scene& get(const Job& job) {
+    const std::string name = sceneKey(job);
     auto found = scenes_.find(name);
     if (found == scenes_.end()) {
-      Scene scene = loadCommandScene(name, options_, limits_, quiet_);
+      Scene scene = loadCommandScene(job.scene, loadOptionsFor(job, options_), limits_, quiet_);
       checkDrawBudget(scene, limits_);  // before the context: a refusal costs no GL start-up
       found = scenes_.emplace(name, std::move(scene)).first;
     }
@@ -74,8 +86,9 @@ class SceneCache {
   void adopt(const std::string& name, Scene scene) {
     if (remaining_[name] > 0) scenes_.emplace(name, std::move(scene));
   }
-  // A job of `name` is done: drop the scene when no later job needs it.
-  void release(const std::string& name) {
+  // A job is done: drop its scene when no later job needs it.
+  void release(const Job& job) {
+    const std::string name = sceneKey(job);
     if (--remaining_[name] <= 0) scenes_.erase(name);
   }
 
@@ -223,7 +236,8 @@ int runSingleRender(const RenderCommand& command) {
       std::cout << job.outDir << ": skipped (--resume: complete set of the same job)\n";
     return 0;
   }
-  Scene scene = loadCommandScene(job.scene, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
+  Scene scene = loadCommandScene(job.scene, loadOptionsFor(job, command.sceneLoad), command.limits,
+                                 command.verbosity == Verbosity::Quiet);
   checkDrawBudget(scene, command.limits);  // before the context: a refusal costs no GL start-up
   Context context(command.context);
   preloadImageIo();  // OpenImageIO loads on the other core while this one compiles shaders and renders
@@ -315,12 +329,12 @@ int runRenderBatch(const RenderCommand& command) {
     }
     if (command.resume && jobAlreadyDone(job, command.output, command.sceneLoad.environment)) {
       result.status = JobResult::Status::Skipped;
-      cache.release(job.scene);
+      cache.release(job);
       report(i);
       continue;
     }
     try {
-      const Scene& scene = cache.get(job.scene);
+      const Scene& scene = cache.get(job);
       if (!context) {
         context.emplace(command.context);
         renderer.emplace(*context);
@@ -330,11 +344,11 @@ int runRenderBatch(const RenderCommand& command) {
         // shaders and renders.
         preloadImageIo();
       }
-      if (currentScene != job.scene) {
+      if (currentScene != sceneKey(job)) {
         if (verbose) std::cerr << verboseHeader(*context, scene);
         currentScene.clear();
         renderer->setScene(scene);
-        currentScene = job.scene;
+        currentScene = sceneKey(job);
       }
       // Held from before the render until the writer thread has written the set.
       auto folderLock = std::make_shared<detail::OutputFolderLock>(job.outDir, command.wait);
@@ -346,7 +360,7 @@ int runRenderBatch(const RenderCommand& command) {
       result.passes = frame->timings;
       result.peakRssKb = peakRssKb();
       if (verbose) printFrameDetails(*frame);
-      cache.release(job.scene);
+      cache.release(job);
       waitForWrite();
       OutputOptions output = command.output;
       output.jobHash = jobHash(job, command.output, command.sceneLoad.environment);
@@ -366,7 +380,7 @@ int runRenderBatch(const RenderCommand& command) {
     } catch (const ContextError&) {
       throw;  // no job can render without a context: the batch stops
     } catch (const std::exception& error) {
-      cache.release(job.scene);
+      cache.release(job);
       result.status = JobResult::Status::Failed;
       result.error = commandLineMessage(error);
       // A scene that failed to load fails every job of it, each with its line.

@@ -32,7 +32,8 @@ corpus="$out/corpus"
 [[ "$target" != gltf-loader ]] && corpus="$out/corpus-$target"
 mkdir -p "$out/obj" "$corpus"
 flags=(-std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-       -Ilib/include -Ilib -Iglsl -Itools -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0)
+       -Ilib/include -Ilib -Iglsl -Itools -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0
+       -DHEADLIGHT_HAS_DRACO=1 -DHEADLIGHT_HAS_MESHOPT=1)
 # Only what each target needs: no GL, no context.
 common=(lib/settings/options.cpp lib/output/fingerprint.cpp lib/output/bounded_read.cpp)
 case "$target" in
@@ -40,7 +41,7 @@ case "$target" in
     sources=("${common[@]}" lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp lib/scene/shapes.cpp
              lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp
              lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
-    libs=($(pkg-config --libs OpenImageIO libxxhash) -ltinygltf) ;;
+    libs=($(pkg-config --libs OpenImageIO libxxhash draco) -ltinygltf -lmeshoptimizer) ;;
   job-file)
     sources=("${common[@]}" lib/settings/settings.cpp lib/scene/scene.cpp lib/scene/camera.cpp tools/job_file.cpp
              tests/fuzz/job_file_fuzz.cpp)

@@ -88,12 +88,13 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
   const json j = parseBounded(line);
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
   static const char* kKeys[] = {"scene", "out", "camera", "eye",           "target",
-                                "up",    "fov", "size",   "settings_file", "settings"};
+                                "up",    "fov", "size",   "settings_file", "settings", "material_variant"};
   for (const auto& item : j.items()) {
     const std::string& key = item.key();  // a name, not a structured binding: lambdas capture it (clang 14)
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
       throw SettingsError("unknown key \"" + excerpt(key) +
-                          "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings)");
+                          "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings, "
+                          "material_variant)");
   }
   if (!j.contains("scene") || !j["scene"].is_string() || j["scene"].get<std::string>().empty())
     throw SettingsError("\"scene\": expected a file path or builtin:NAME");
@@ -101,6 +102,11 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
   if (!j.contains("out") || !j["out"].is_string() || j["out"].get<std::string>().empty())
     throw SettingsError("\"out\": expected the job's output folder");
   job.outDir = j["out"].get<std::string>();
+  if (j.contains("material_variant")) {
+    if (!j["material_variant"].is_string() || j["material_variant"].get<std::string>().empty())
+      throw SettingsError("\"material_variant\": expected the name of one of the scene's KHR_materials_variants");
+    job.materialVariant = j["material_variant"].get<std::string>();
+  }
   for (const std::string* path : {&job.scene, &job.outDir})
     if (path->find('\0') != std::string::npos)
       throw SettingsError("a path holds a NUL character: \"" + excerpt(*path) + "\"");
@@ -328,6 +334,7 @@ std::string jobHash(const Job& job, const OutputOptions& output, const std::stri
   if (!environment.empty()) text += "environment-bytes=" + fileFingerprint(environment) + "\n";
   for (const auto& [name, value] : settingsAsText(job.settings)) text += name + "=" + value + "\n";
   text += "camera=" + job.camera.describe() + "\n";
+  if (job.materialVariant) text += "material-variant=" + *job.materialVariant + "\n";
   text += "targets=";
   for (const std::string& target : output.targets) text += target + ",";
   text += "\nnonfinite=" + std::string(output.nonFinite == NonFinitePolicy::Clamp ? "clamp" : "error") + "\n";

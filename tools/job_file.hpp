@@ -38,6 +38,9 @@ struct JobCamera {
 struct Job {
   std::string origin;  // "jobs.jsonl:3", or "command line" (+ the view)
   std::string scene;
+  // "material_variant": the glTF KHR_materials_variants variant, over the
+  // command's --material-variant (SceneLoadOptions::materialVariant).
+  std::optional<std::string> materialVariant;
   JobCamera camera;
   RenderSettings settings;
   std::string outDir;

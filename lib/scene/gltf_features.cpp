@@ -5,14 +5,34 @@
 #include <map>
 #include <string_view>
 
+#include "scene/gltf_draco.hpp"
+#include "scene/gltf_meshopt.hpp"
+#include "scene/gltf_texture_sources.hpp"
+
 namespace headlight::gltf {
 
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 6> kRenderedExtensions{
-    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing",
-    "KHR_mesh_quantization", "KHR_texture_transform",           "KHR_materials_unlit"};
+constexpr std::array<std::string_view, 8> kRenderedExtensions{
+    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
+    "KHR_texture_transform", "KHR_materials_unlit",
+    "KHR_materials_variants",  // the default materials, or --material-variant's (gltf_variants.cpp)
+    kTextureWebp};             // decoded by OpenImageIO (gltf_texture_sources.cpp)
+
+// Rendered when the build has their decoder (meson options draco, meshopt).
+bool decoderBuilt(const std::string& name) {
+  return (name == "KHR_draco_mesh_compression" && dracoDecoding()) ||
+         (name == "EXT_meshopt_compression" && meshoptDecoding());
+}
+
+// Why a required extension refuses the file, where more can be said than
+// "not supported".
+constexpr std::pair<std::string_view, const char*> kRefusalReasons[]{
+    {kTextureBasisu, "its KTX2 Basis Universal images are not decoded: no Debian package decodes Basis Universal"},
+    {"KHR_draco_mesh_compression", "this build has no Draco decoder (built with -Ddraco=disabled)"},
+    {"EXT_meshopt_compression", "this build has no meshoptimizer decoder (built with -Dmeshopt=disabled)"},
+};
 
 // Extensions that are not rendered but leave the geometry right, so a file
 // that requires them still loads (and names them): the picture is wrong only
@@ -27,6 +47,9 @@ constexpr std::pair<std::string_view, const char*> kApproximatedExtensions[]{
     {"KHR_materials_pbrSpecularGlossiness",
      "is approximated (diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and "
      "specularGlossinessTexture are not rendered)"},
+    {kTextureBasisu, "is not rendered (KTX2 is not decoded; the texture's core source image is drawn)"},
+    {"KHR_draco_mesh_compression", "is not rendered (no Draco decoder in this build; the uncompressed accessors are drawn)"},
+    {"EXT_meshopt_compression", "is not rendered (no meshoptimizer in this build; the fallback buffers are drawn)"},
 };
 
 const char* effectOf(const std::string& extension) {
@@ -190,9 +213,20 @@ constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
     findElementExtensions,  findListedExtensions,
 };
 
+// " (texture 0, texture 2)": the textures that carry `extension`.
+std::string usersOf(const tinygltf::Model& model, const std::string& extension) {
+  std::string users;
+  for (std::size_t index = 0; index < model.textures.size(); ++index) {
+    if (model.textures[index].extensions.count(extension) != 0) {
+      users += (users.empty() ? " (" : ", ") + named("texture", index, model.textures[index].name);
+    }
+  }
+  return users.empty() ? "" : users + ")";
+}
+
 }  // namespace
 
-bool extensionRendered(const std::string& name) { return listed(kRenderedExtensions, name); }
+bool extensionRendered(const std::string& name) { return listed(kRenderedExtensions, name) || decoderBuilt(name); }
 
 std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model) {
   Tally tally;
@@ -214,11 +248,21 @@ void checkRequiredExtensions(const Source& source) {
   if (count == 0) {
     return;
   }
+  std::string reasons;  // "; KHR_texture_basisu (texture 0): its KTX2 ..."
+  for (const auto& [name, reason] : kRefusalReasons) {
+    if (refused.find(name) != std::string::npos) {
+      reasons += "; " + std::string(name) + usersOf(source.model, std::string(name)) + ": " + reason;
+    }
+  }
   std::string accepted;
   for (std::string_view name : kRenderedExtensions) accepted += (accepted.empty() ? "" : ", ") + std::string(name);
+  for (std::string_view name : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"}) {
+    if (decoderBuilt(std::string(name))) accepted += ", " + std::string(name);
+  }
   for (std::string_view name : kDrawableWithout) accepted += ", " + std::string(name) + " (not rendered)";
   source.fail(std::string(count == 1 ? "requires extension " : "requires extensions ") + refused +
-              (count == 1 ? ", which is" : ", which are") + " not supported (accepted as required: " + accepted + ")");
+              (count == 1 ? ", which is" : ", which are") + " not supported" + reasons + " (accepted as required: " +
+              accepted + ")");
 }
 
 }  // namespace headlight::gltf

@@ -1,6 +1,9 @@
 #include "scene/gltf_files.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -152,6 +155,25 @@ fs::path canonicalFolderOf(const fs::path& path) {
   return (error ? fs::absolute(path, error).lexically_normal() : canonical).parent_path();
 }
 
+// Debian's libdraco.so exports a tinygltf of its own (another version, built
+// with Draco), and tinygltf's calls bind to whichever library was loaded
+// first. Bound to Draco's, parsing writes a Model of another layout and
+// corrupts memory; so that binding is refused, once, with the cause.
+void checkTinygltfBinding(const std::string& file) {
+  static const std::string bound = [] {
+    bool (tinygltf::TinyGLTF::*entry)(tinygltf::Model*, std::string*, std::string*, const char*, unsigned int,
+                                       const std::string&, unsigned int) = &tinygltf::TinyGLTF::LoadASCIIFromString;
+    void* address = nullptr;
+    std::memcpy(&address, &entry, sizeof address);  // the Itanium ABI: a non-virtual member's first word
+    Dl_info info{};
+    return dladdr(address, &info) != 0 && info.dli_fname != nullptr ? std::string(info.dli_fname) : std::string();
+  }();
+  if (bound.find("libdraco") != std::string::npos) {
+    throw SceneError(file + ": tinygltf's functions are bound to " + bound +
+                     "'s copy of tinygltf, not libtinygltf.so's; link libtinygltf before libdraco");
+  }
+}
+
 }  // namespace
 
 std::vector<unsigned char> readAssetBytes(const fs::path& path, const std::string& file, const std::string& extension) {
@@ -179,6 +201,7 @@ std::vector<unsigned char> readAssetBytes(const fs::path& path, const std::strin
 
 void parseSandboxed(tinygltf::Model& model, const std::vector<unsigned char>& bytes, bool binary, const fs::path& path,
                     bool allowExternalPaths, const std::string& file, std::string& warnings) {
+  checkTinygltfBinding(file);
   FileAccess access;
   access.assetFolder = canonicalFolderOf(path);
   access.uriPrefix = access.assetFolder.string();

@@ -21,13 +21,18 @@
 #include "headlight/limits.hpp"
 #include "output/fingerprint.hpp"
 #include "headlight/scene_loader.hpp"
+#include "scene/gltf_draco.hpp"
 #include "scene/gltf_features.hpp"
 #include "scene/gltf_files.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_materials.hpp"
+#include "scene/gltf_meshopt.hpp"
 #include "scene/gltf_nodes.hpp"
 #include "scene/gltf_pose.hpp"
 #include "scene/gltf_prescan.hpp"
+#include "scene/gltf_stand_ins.hpp"
+#include "scene/gltf_texture_sources.hpp"
+#include "scene/gltf_variants.hpp"
 
 namespace headlight {
 
@@ -266,13 +271,22 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
 
   tinygltf::Model model;
   std::string warnings;
-  gltf::parseSandboxed(model, bytes, extension == ".glb", path, options.allowExternalPaths, file, warnings);
+  // Compressed files' parts that tinygltf cannot parse (gltf_stand_ins.hpp).
+  const gltf::StandIns standIns = gltf::standInsForTinygltf(bytes, json, extension == ".glb");
+  gltf::parseSandboxed(model, standIns.bytes ? *standIns.bytes : bytes, extension == ".glb", path,
+                       options.allowExternalPaths, file, warnings);
 
   Scene scene;
   scene.source = file;
   scene.sourceHash = textFingerprint(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
   const gltf::Source source{file, model};
   gltf::checkRequiredExtensions(source);
+  // What the extensions change in the model, before anything reads it:
+  // compressed bytes decoded into plain buffers, texture sources, variants.
+  gltf::decodeMeshoptViews(model, source, standIns.placeholderBuffers, limits);
+  gltf::decodeDracoPrimitives(model, source, limits);
+  gltf::resolveTextureSources(model, source);
+  scene.materialVariants = gltf::applyMaterialVariant(model, source, options.materialVariant);
   scene.ignored = gltf::findIgnoredFeatures(model);
   if (options.strictGltf && !scene.ignored.empty()) {
     std::string list;

@@ -1,5 +1,5 @@
 // SceneLoadOptions' rows in the one options table (headlight/options.hpp):
-// the CLI's --strict-gltf and --scene, and settings files, read them.
+// the CLI's --strict-gltf, --scene and --material-variant, and settings files, read them.
 #include "headlight/scene_loader.hpp"
 #include "settings/option_binding.hpp"
 
@@ -26,6 +26,12 @@ std::span<const Option<SceneLoadOptions>> sceneLoadOptions() {
                              "and shows behind it instead of the procedural sky",
                      .valueName = "FILE"},
                     [](auto& o) -> auto& { return o.environment; }),
+      bindOption<O>({.name = "material-variant",
+                     .type = T::Text,
+                     .help = "the glTF file's KHR_materials_variants variant to draw (default: the file's default "
+                             "materials; --verbose lists the variants)",
+                     .valueName = "NAME"},
+                    [](auto& o) -> auto& { return o.materialVariant; }),
   };
   return rows;
 }

@@ -62,7 +62,10 @@ std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& d
   std::string line = left + std::string(spec.help);
   if (!spec.autoMeaning.empty()) line += " (auto: " + std::string(spec.autoMeaning) + ")";
   if (spec.type == OptionType::Int || spec.type == OptionType::Float) line += " [" + optionRangeText(spec) + "]";
-  if (defaultValue) line += " [default: " + formatOptionValue(spec, *defaultValue) + "]";
+  // An empty text default says nothing; such rows say their default in their help.
+  const bool emptyText = defaultValue && std::holds_alternative<std::string>(*defaultValue) &&
+                         std::get<std::string>(*defaultValue).empty();
+  if (defaultValue && !emptyText) line += " [default: " + formatOptionValue(spec, *defaultValue) + "]";
   return line + "\n";
 }
 

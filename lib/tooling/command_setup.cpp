@@ -24,6 +24,11 @@ std::string verboseHeader(const Context& context, const Scene& scene) {
   text += "scene: " + scene.source + ": " + std::to_string(scene.instances.size()) + " instances, " +
           std::to_string(scene.triangleCount()) + " triangles, " + std::to_string(scene.lights.size()) + " lights, " +
           std::to_string(scene.cameras.size()) + " cameras\n";
+  if (!scene.materialVariants.empty()) {
+    text += "material variants (--material-variant; default: the file's default materials):";
+    for (const std::string& name : scene.materialVariants) text += " '" + name + "'";
+    text += "\n";
+  }
   return text;
 }
 

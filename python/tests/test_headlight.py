@@ -332,6 +332,39 @@ def test_numpy_scalars_are_numbers_and_wrong_types_get_the_librarys_words():
     expect(headlight.SettingsError, lambda: frame.write(3), "folder: expected a path")
 
 
+def test_set_scene_material_variant_picks_the_variants_materials():
+    import base64
+    import json
+    import struct
+    positions = struct.pack("<9f", -1, -1, 0, 1, -1, 0, 0, 1, 0)
+    document = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(positions).decode()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 3,
+                       "min": [-1, -1, 0], "max": [1, 1, 0]}],
+        "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}},
+                      {"pbrMetallicRoughness": {"baseColorFactor": [0, 1, 0, 1]}}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0, "extensions": {
+            "KHR_materials_variants": {"mappings": [{"material": 1, "variants": [0]}]}}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
+        "extensionsUsed": ["KHR_materials_variants"],
+        "extensions": {"KHR_materials_variants": {"variants": [{"name": "Green"}]}},
+    }
+    r = osmesa_renderer()
+    with tempfile.TemporaryDirectory() as folder:
+        path = pathlib.Path(folder) / "variants.gltf"
+        path.write_text(json.dumps(document))
+        r.set_scene(path)
+        default = r.render(**SMALL)["albedo"][24, 32]
+        r.set_scene(path, material_variant="Green")
+        green = r.render(**SMALL)["albedo"][24, 32]
+        expect(headlight.SceneError, lambda: r.set_scene(path, material_variant="Blue"), "'Blue'", "'Green'")
+    assert default[0] > 0.9 and default[1] < 0.1
+    assert green[1] > 0.9 and green[0] < 0.1
+
+
 if __name__ == "__main__":
     tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
     for name, test in tests:

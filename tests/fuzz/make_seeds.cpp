@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "compressed_inputs.hpp"
 #include "hostile_inputs.hpp"
 
 int main(int argc, char** argv) {
@@ -53,6 +54,23 @@ int main(int argc, char** argv) {
   normalMapped["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"type", "VEC2"}, {"count", 3}});
   normalMapped["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 1;
   write("normal-mapped.gltf", normalMapped.dump());
+  // Compressed geometry (when the build has the encoders), and material variants.
+  namespace compressed = headlight::test::compressed;
+  const compressed::KnownMesh torus = compressed::torus();
+  if (compressed::kDracoAvailable) {
+    write("draco-edgebreaker.gltf", compressed::dracoGltf(torus, true).dump());
+    write("draco-sequential.gltf", compressed::dracoGltf(torus, false).dump());
+  }
+  if (compressed::kMeshoptAvailable) {
+    const auto meshopt = compressed::meshoptGlb(torus);
+    write("meshopt.glb", std::string(meshopt.begin(), meshopt.end()));
+  }
+  nlohmann::json variants = compressed::plainGltf(torus);
+  variants["materials"] = {{{"name", "a"}}, {{"name", "b"}}};
+  variants["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"] = {
+      {{"material", 1}, {"variants", {0}}}};
+  variants["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "v"}}};
+  write("variants.gltf", variants.dump());
   std::cout << "seeds written to " << folder.string() << "\n";
   return 0;
 }

@@ -243,6 +243,8 @@ struct Scene {
   // one decoded map.
   std::shared_ptr<const EnvironmentMap> environment;
   std::vector<IgnoredFeature> ignored;  // glTF only; in the order first met
+  // glTF KHR_materials_variants' names, in file order (SceneLoadOptions::materialVariant picks one).
+  std::vector<std::string> materialVariants;
 
   Bounds worldBounds() const;
   bool hasEmissive() const;

@@ -28,9 +28,12 @@ struct SceneLoadOptions {
   // scene and shows as its background instead of the procedural sky; empty:
   // none. Read by loadEnvironmentMap into Scene::environment.
   std::string environment;
+  // KHR_materials_variants: the variant whose materials the primitives take;
+  // empty: the file's default materials. A name the file lacks is a SceneError.
+  std::string materialVariant;
 };
 
-// The rows (strict-gltf, scene, environment), for the CLI and settings files.
+// The rows (strict-gltf, scene, environment, material-variant), for the CLI and settings files.
 std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
