@@ -142,7 +142,7 @@ const std::vector<Row>& table() {
       row(
           {.name = "ssgi-blur",
            .type = T::Bool,
-           .help = "average out the SSGI pass's 4x4 noise pattern (a depth- and normal-aware blur)"},
+           .help = "average out the SSGI pass's noise (a depth- and normal-aware 7x7 blur)"},
           [](auto& s) -> auto& { return s.ssgi.blur; }),
       row(
           {.name = "ssgi-resolution",

@@ -45,7 +45,7 @@ struct SsgiSettings {
   // hemisphere, 1 (the estimator itself) for radiance.
   std::optional<float> indirectStrength;
   unsigned seed = 1;  // kernel and noise random seed (fixed: renders are repeatable)
-  bool blur = true;   // average out the 4x4 noise tile (a depth- and normal-aware 4x4 box)
+  bool blur = true;   // average out the SSGI noise (a depth- and normal-aware 7x7 Gaussian)
   SsgiResolution resolution = SsgiResolution::Full;
   // The bitmask method's: directions per pixel, depth samples per direction
   // and side, and the depth assumed behind every visible surface (world
