@@ -296,6 +296,7 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi = defaults.ssgi;
     settings.ssgi.sliceCount = 1;
     settings.ssgi.stepCount = 8;
+    settings.ssgi.skyStepCount = 8;  // the default's before issue 16: fast keeps its cost
     settings.ssgi.resolution = SsgiResolution::Half;
     settings.ssgi.blur = true;
     settings.lighting.shadowMapSize = 1024;
