@@ -96,9 +96,26 @@ float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
 }
 
-// A 4x4 Bayer matrix: the 16 pixels of a tile (what the blur averages) get
-// 16 stratified rotations.
+// The slices' rotations and the steps' jitter: a 4x4 Bayer tile gives the 16
+// pixels of a tile 16 stratified values, each tile shifted by its own hashed
+// offset. The blur (ssgi_blur.frag) averages about one of each. The tile
+// alone repeated every 4 pixels: each of its 16 rotations marched its few
+// samples along the same directions across the whole screen, and where
+// those hit or missed a bright surface the blur showed 4x4 blocks, diagonal
+// streaks and a staircase shadow in the light from beyond R (builtin:cornell;
+// docs/BENCHMARKS.md, "Structured artefacts"). Offset per tile, what is left
+// is noise without a pattern. Jimenez's interleaved gradient noise per pixel
+// instead was unstructured too but, not stratified, lost 0.02 HDR-FLIP.
 const int kBayer[16] = int[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+
+// PCG's output permutation (Jarzynski and Olano 2020): a well-mixed 32-bit
+// hash of the tile's index.
+uint pcgHash(uint value) {
+  const uint state = value * 747796405u + 2891336453u;
+  const uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+float unitFromHash(uint hash) { return float(hash >> 8) * (1.0 / 16777216.0); }
 
 // A slice through the shaded point: the plane through the eye's ray to the
 // point and a screen direction, and what its marches have found so far.
@@ -205,11 +222,14 @@ void main() {
       0.5 * frame.viewport.y * frame.projection[1][1] / (orthographicView() ? 1.0 : max(-position.z, 1e-30));
   const float radiusPixels = bitmask.radiusWorld * pixelsPerUnit;
 
-  const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
   // The seed and accumulated frames turn both by irrational steps (R2 sequence).
   const float rotationIndex = float(bitmask.rotationIndex);
-  const float rotation = fract((float(bayer) + 0.5) / 16.0 + 0.7548777 * rotationIndex);
-  const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + 0.5698403 * rotationIndex);
+  const int bayer = kBayer[(outputPixel.y & 3) * 4 + (outputPixel.x & 3)];
+  const uint tileHash = pcgHash(uint(outputPixel.x >> 2) + 4099u * uint(outputPixel.y >> 2));
+  const float rotation =
+      fract((float(bayer) + 0.5) / 16.0 + unitFromHash(tileHash) + 0.7548777 * rotationIndex);
+  const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + unitFromHash(pcgHash(tileHash)) +
+                             0.5698403 * rotationIndex);
 
   const int sliceCount = bitmask.sliceCount;
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
@@ -235,8 +255,12 @@ void main() {
     slice.farIndirect = vec3(0.0);
     for (int sign = -1; sign <= 1; sign += 2) {
       const vec2 stepDirection = slice.direction * float(sign);
-      marchWithinRadius(slice, edges, stepDirection, pixel, position, radiusPixels, jitter);
-      marchBeyondRadius(slice, edges, stepDirection, pixel, position, radiusPixels, jitter);
+      // Each march its own jitter (golden-ratio steps): with one shared
+      // jitter every march of a pixel put its samples at the same distances.
+      const float march = float(4 * s + sign + 1);
+      marchWithinRadius(slice, edges, stepDirection, pixel, position, radiusPixels, fract(jitter + 0.618034 * march));
+      marchBeyondRadius(slice, edges, stepDirection, pixel, position, radiusPixels,
+                        fract(jitter + 0.618034 * (march + 1.0)));
     }
     indirect += slice.indirect;
     farIndirect += slice.farIndirect;

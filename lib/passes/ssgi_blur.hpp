@@ -1,6 +1,6 @@
 #pragma once
-// Removes the SSGI pass's 4x4 noise pattern: a 4x4 box (the noise tile, so
-// every rotation is averaged once) weighted by how alike the neighbour's
+// Removes the SSGI pass's noise: a 7x7 Gaussian window (about two of the
+// bitmask pass's 4x4 noise tiles) weighted by how alike the neighbour's
 // normal and depth are, so AO does not bleed across silhouettes.
 // Below full resolution it is also the upsample, with the same weights.
 // Input and output: SsgiTextures (both filtered with the same weights).

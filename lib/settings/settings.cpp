@@ -143,7 +143,7 @@ const std::vector<Row>& table() {
       row(
           {.name = "ssgi-blur",
            .type = T::Bool,
-           .help = "average out the SSGI pass's 4x4 noise pattern (a depth- and normal-aware blur)"},
+           .help = "average out the SSGI pass's noise (a depth- and normal-aware 7x7 blur)"},
           [](auto& s) -> auto& { return s.ssgi.blur; }),
       row(
           {.name = "ssgi-resolution",
@@ -322,6 +322,7 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi = defaults.ssgi;
     settings.ssgi.sliceCount = 1;
     settings.ssgi.stepCount = 8;
+    settings.ssgi.skyStepCount = 8;  // the default's before issue 16: fast keeps its cost
     settings.ssgi.resolution = SsgiResolution::Half;
     settings.ssgi.blur = true;
     settings.lighting.shadowMapSize = 1024;
