@@ -1,7 +1,8 @@
 // Shared by C++ and GLSL: texture units, buffer bindings and the std140
-// uniform blocks. Each layout is written once here; C++ checks its offsets
-// with static_asserts (lib/gl/shared_layout_checks.cpp) and GLSL declares the same
-// block with the same binding. Each value has its own named member; members
+// uniform blocks. Each layout is written once here and GLSL declares the same
+// block with the same binding; the GL layout test proves every offset from
+// the block's size (why: lib/gl/shared_layout_checks.cpp), so a new member
+// needs no check of its own. Each value has its own named member; members
 // fill whole 16-byte rows (a vec4, ivec4 or mat4, a vec3 and one scalar, or
 // four scalars, spare ones named padN), so std140 and C++ agree with no
 // hidden padding. No scalar arrays: std140 strides their elements by 16.
@@ -86,6 +87,23 @@ using mat4 = glm::mat4;
   X(SkyBlock, kBindingSky, 6)               \
   X(SsgiBlurBlock, kBindingSsgiBlur, 7)     \
   X(SsgiBitmaskBlock, kBindingSsgiBitmask, 8)
+
+// Block members that carry a render setting unchanged (X(block, member,
+// setting row), the row's '-' written as is): filled from the settings table
+// by fillSettingFields (lib/settings/setting_fields.hpp), so such a setting
+// needs no line in its pass. C++ only; GLSL never expands it.
+#define HL_SETTING_FIELDS(X)                                \
+  X(SsgiBlock, radiusWorld, ssgi-radius)                    \
+  X(SsgiBlock, biasWorld, ssgi-bias)                        \
+  X(SsgiBlock, intensity, ssgi-intensity)                   \
+  X(SsgiBlock, indirectStrength, ssgi-indirect)             \
+  X(SsgiBitmaskBlock, radiusWorld, ssgi-radius)             \
+  X(SsgiBitmaskBlock, thicknessWorld, ssgi-thickness)       \
+  X(SsgiBitmaskBlock, intensity, ssgi-intensity)            \
+  X(SsgiBitmaskBlock, indirectStrength, ssgi-indirect)      \
+  X(SsgiBitmaskBlock, sliceCount, ssgi-slices)              \
+  X(SsgiBitmaskBlock, stepCount, ssgi-steps)                \
+  X(SsgiBitmaskBlock, skyStepCount, ssgi-sky-steps)
 
 // Storage blocks (X(block, binding name, binding)): std430, below.
 #define HL_STORAGE_BLOCKS(X)                \

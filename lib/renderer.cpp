@@ -242,7 +242,7 @@ struct Renderer::Impl {
     const SsgiStep& step = *plan.ssgi;
     const GBuffer gb = gbuffer();
     SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr,
-                      used.ssgi};
+                      used};
     inputs.downsample = step.downsample;
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.

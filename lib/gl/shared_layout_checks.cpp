@@ -1,5 +1,15 @@
-// std140 offsets the GLSL side assumes, checked where C++ compiles them:
-// a member added to glsl/shared_layout.h with a hidden padding fails here.
+// std140 offsets the GLSL side assumes, checked where C++ compiles them.
+//
+// Why a new member needs no line here: C++ and GLSL declare each block from
+// the same member list (glsl/shared_layout.h), glm's types align to 4 bytes
+// and std140's alignments are never smaller, so every std140 offset is at
+// least the C++ one, and equal for all members exactly when std140 inserts
+// no padding; then, and only then, the GL's block size equals sizeof. The GL
+// layout test (tests/layout_gl_tests.cpp) checks that size for every block
+// of HL_UNIFORM_BLOCKS on every program, so it proves every offset. The
+// generated check below catches the commonest slip (a block that does not
+// end on a 16-byte row) without GL; the member asserts after it are kept as
+// compile-time documentation of the layouts passes rely on.
 #include <cstddef>
 #include <initializer_list>
 
@@ -49,6 +59,11 @@ static_assert(offsetof(GpuLight, cosOuterCone) == 48);
 static_assert(offsetof(GpuLight, shadowLayer) == 56);
 static_assert(offsetof(GpuLight, shadowTexelSize) == 64);
 static_assert(offsetof(GpuLight, shadowViewProjection) == 80);
+
+#define HL_BLOCK_FILLS_ROWS(block, name, binding) \
+  static_assert(sizeof(block) % 16 == 0, #block " does not end on a 16-byte std140 row");
+HL_UNIFORM_BLOCKS(HL_BLOCK_FILLS_ROWS)
+#undef HL_BLOCK_FILLS_ROWS
 
 // Two passes' inputs must never share a unit, nor two blocks a binding:
 // checked over the lists themselves, so a new row is checked too.

@@ -6,6 +6,7 @@
 #include "frame/frame_plan.hpp"
 #include "gl/shader_library.hpp"
 #include "headlight/error.hpp"
+#include "settings/setting_fields.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -73,7 +74,7 @@ void SsgiPass::prepare(SsgiMethod method) {
 }
 
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
-  const SsgiSettings& settings = inputs.settings;
+  const SsgiSettings& settings = inputs.settings.ssgi;
   const SsgiMethodTraits& method = ssgiMethodTraits(settings.method);
   if (method.program == SsgiProgram::Bitmask) {
     prepare(settings.method);
@@ -81,10 +82,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
     return;
   }
   updateKernel(settings.sampleCount, settings.seed);
-  block_.radiusWorld = *settings.radius;
-  block_.biasWorld = *settings.bias;
-  block_.intensity = settings.intensity;
-  block_.indirectStrength = *settings.indirectStrength;
+  fillSettingFields(block_, inputs.settings);
   block_.downsample = inputs.downsample;
   blockBuffer_.update(block_);
   blockBuffer_.bindUniform(gpu::SsgiBlock::kBinding);

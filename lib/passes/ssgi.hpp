@@ -39,7 +39,7 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 struct SsgiInputs {
   const GBuffer& gbuffer;            // depth, normal, albedo, material; position for the kernel methods
   const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by the methods that gather direct light
-  const SsgiSettings& settings;      // resolved
+  const RenderSettings& settings;    // resolved: the block members that carry settings are filled from it
   int downsample = 1;                // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
   int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
   float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result

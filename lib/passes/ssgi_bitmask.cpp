@@ -2,6 +2,7 @@
 
 #include "passes/ssgi.hpp"
 
+#include "settings/setting_fields.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -12,18 +13,11 @@ SsgiBitmaskPass::SsgiBitmaskPass()
 
 void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
-  const SsgiSettings& settings = inputs.settings;
   gpu::SsgiBitmaskBlock block{};
-  block.radiusWorld = *settings.radius;
-  block.thicknessWorld = *settings.thickness;
-  block.intensity = settings.intensity;
-  block.indirectStrength = *settings.indirectStrength;
-  block.sliceCount = settings.sliceCount;
-  block.stepCount = settings.stepCount;
+  fillSettingFields(block, inputs.settings);
   block.downsample = inputs.downsample;
   // The seed and the frame index together turn the slices and the step jitter.
-  block.rotationIndex = int(settings.seed % 65536u) + inputs.frameIndex;
-  block.skyStepCount = settings.skyStepCount;
+  block.rotationIndex = int(inputs.settings.ssgi.seed % 65536u) + inputs.frameIndex;
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   const GBuffer& gbuffer = inputs.gbuffer;

@@ -12,6 +12,7 @@
 #include "headlight/error.hpp"
 #include "output/bounded_read.hpp"
 #include "settings/option_binding.hpp"
+#include "settings/setting_fields.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -231,6 +232,18 @@ std::map<std::string, std::string> settingsAsText(const RenderSettings& settings
   for (const Row& option : settingOptions())
     values[std::string(option.spec.name)] = formatOptionValue(option.spec, option.get(settings));
   return values;
+}
+
+double settingNumber(const RenderSettings& settings, std::string_view name) {
+  const Row& option = findOption(settingOptions(), name);
+  const OptionValue value = option.get(settings);
+  if (const auto* number = std::get_if<double>(&value)) return *number;
+  if (const auto* integer = std::get_if<std::int64_t>(&value)) return double(*integer);
+  if (const auto* flag = std::get_if<bool>(&value)) return *flag ? 1.0 : 0.0;
+  throw SettingsError(std::string(name) + ": " +
+                          (std::holds_alternative<AutoValue>(value) ? "still auto where a shader needs its value"
+                                                                    : "not a number a shader can take"),
+                      {std::string(name)});
 }
 
 void applySettingsText(RenderSettings& settings, const std::map<std::string, std::string>& values) {
