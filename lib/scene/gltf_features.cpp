@@ -5,6 +5,7 @@
 #include <map>
 #include <string_view>
 
+#include "scene/gltf_animation_pose.hpp"
 #include "scene/gltf_draco.hpp"
 #include "scene/gltf_meshopt.hpp"
 #include "scene/gltf_texture_sources.hpp"
@@ -147,8 +148,11 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
   }
 }
 
+// Only animations that start away from the static pose change what a still
+// frame should show (gltf_animation_pose.hpp).
 void findAnimations(const tinygltf::Model& model, Tally& tally) {
   for (std::size_t index = 0; index < model.animations.size(); ++index) {
+    if (!animationLeavesStaticPose(model, index)) continue;
     tally.add("animation", "animation", named("animation", index, model.animations[index].name),
               "is not played (the static pose is drawn)");
   }
