@@ -2,7 +2,7 @@
 // The static pose, computed on the CPU at load: morph targets blended by the
 // node's (else the mesh's) weights, skins posed by their joints' own node
 // transforms, and EXT_mesh_gpu_instancing's per-instance transforms.
-// Animations are not played (gltf_features names them).
+// Animations are not played (gltf_features names those whose first keyframe leaves this pose).
 #include <vector>
 
 #include <glm/glm.hpp>
