@@ -40,7 +40,8 @@ case "$target" in
   gltf-loader)
     sources=("${common[@]}" lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp lib/scene/shapes.cpp
              lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp
-             lib/image_io/texture_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp)
+             lib/image_io/texture_decode.cpp lib/environment/environment_load.cpp lib/image_io/environment_decode.cpp
+             tests/fuzz/gltf_loader_fuzz.cpp)
     libs=($(pkg-config --libs OpenImageIO libxxhash draco) -ltinygltf -lmeshoptimizer) ;;
   job-file)
     sources=("${common[@]}" lib/settings/settings.cpp lib/scene/scene.cpp lib/scene/camera.cpp tools/job_file.cpp
