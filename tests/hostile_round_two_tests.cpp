@@ -28,6 +28,7 @@
 #include "headlight/limits.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
+#include "hostile_cli.hpp"
 #include "hostile_inputs.hpp"
 #include "support/encoding.hpp"
 #include "support/process.hpp"
@@ -39,27 +40,6 @@ using namespace headlight;
 using namespace headlight::test;
 
 namespace {
-
-std::string quote(const fs::path& path) { return shellQuote(path.string()); }
-
-bool folderEmptyOrAbsent(const fs::path& folder) { return !fs::exists(folder) || fs::is_empty(folder); }
-
-// Runs `render` on the file and checks exit 1, the file named, each
-// fragment present and nothing written.
-void expectRefused(const fs::path& scene, const std::vector<std::string>& fragments, const std::string& extra = "") {
-  const fs::path out = scene.parent_path() / "out";
-  const ProcessResult run =
-      runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
-  INFO(run.output);
-  CHECK(run.exitCode == 1);
-  CHECK(run.output.find(scene.string()) != std::string::npos);
-  for (const std::string& fragment : fragments) CHECK(run.output.find(fragment) != std::string::npos);
-  CHECK(folderEmptyOrAbsent(out));
-}
-
-fs::path writeGltf(const TempFolder& folder, const json& document, const std::string& name = "scene.gltf") {
-  return folder.write(name, document.dump());
-}
 
 std::string readFileText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -40,17 +40,7 @@ void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, st
 void bindLightingInputs(const BlendInputs& inputs, const BlendVariant& variant) {
   if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
   if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  // The composite's bindings (composite.cpp): the map's tables stand in for the sky's.
-  if (variant.environment) {
-    inputs.environment.environmentSpecular.bind(gpu::kUnitEnvironmentSpecular);
-    inputs.environment.environmentIrradiance.bind(gpu::kUnitEnvironmentIrradiance);
-    inputs.environment.environmentBackground.bind(gpu::kUnitEnvironmentBackground);
-  }
-  if (variant.sky) inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
-  if (variant.sky && !variant.environment) {
-    inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
-    inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
-  }
+  bindAmbientTables(inputs.environment, variant.sky, variant.environment);
 }
 
 // Premultiplied "over" on both targets: colour by alpha, alpha as coverage.

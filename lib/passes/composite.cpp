@@ -23,16 +23,7 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
     inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
     inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
   }
-  if (variant.environment) {
-    inputs.environment.environmentSpecular.bind(gpu::kUnitEnvironmentSpecular);
-    inputs.environment.environmentIrradiance.bind(gpu::kUnitEnvironmentIrradiance);
-    inputs.environment.environmentBackground.bind(gpu::kUnitEnvironmentBackground);
-  }
-  if (variant.sky) inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
-  if (variant.sky && !variant.environment) {
-    inputs.environment.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
-    inputs.environment.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
-  }
+  bindAmbientTables(inputs.environment, variant.sky, variant.environment);
   draw("composite", variant, output);
 }
 

@@ -80,4 +80,17 @@ void EnvironmentPass::dropEnvironment() {
   environmentHash_.clear();
 }
 
+void bindAmbientTables(const EnvironmentTables& tables, bool sky, bool environment) {
+  if (environment) {
+    tables.environmentSpecular.bind(gpu::kUnitEnvironmentSpecular);
+    tables.environmentIrradiance.bind(gpu::kUnitEnvironmentIrradiance);
+    tables.environmentBackground.bind(gpu::kUnitEnvironmentBackground);
+  }
+  if (sky) tables.brdfLut.bind(gpu::kUnitBrdfLut);
+  if (sky && !environment) {
+    tables.skyPrefiltered.bind(gpu::kUnitSkyPrefiltered);
+    tables.skyIrradiance.bind(gpu::kUnitSkyIrradiance);
+  }
+}
+
 }  // namespace headlight

@@ -32,6 +32,11 @@ struct EnvironmentTables {
   gl::Texture environmentBackground;  // the map as given, RGBA16F
 };
 
+// Binds what ambient.glsl reads for a variant with the sky term (`sky`) and
+// with an environment map (`environment`, whose tables then stand in for
+// the sky's): the composite's and the blend pass's.
+void bindAmbientTables(const EnvironmentTables& tables, bool sky, bool environment);
+
 class EnvironmentPass {
  public:
   EnvironmentPass();                 // builds the programs and the BRDF table
