@@ -88,7 +88,7 @@ layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
-layout(location = 4) out vec4 outEmissive;
+layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
 #endif
 #endif
 

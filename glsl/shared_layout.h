@@ -73,6 +73,9 @@ using mat4 = glm::mat4;
   X(kUnitEnvironmentSpecular, 21)           \
   X(kUnitEnvironmentIrradiance, 22)         \
   X(kUnitEnvironmentBackground, 23)
+// Reserved for issue 18's lobes (added with the code that reads them):
+// 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
+// iridescence), 29..40 the extensions' textures in MaterialTexture order.
 
 // Image units (X(name, unit)), for image load/store: none yet.
 #define HL_IMAGE_UNITS(X)
@@ -173,6 +176,41 @@ HL_BLOCK_BEGIN(MaterialBlock, kBindingMaterial)
   vec4 occlusionTransformV;
   vec4 emissiveTransformU;
   vec4 emissiveTransformV;
+  // KHR_materials_* factors (lib/include/headlight/scene.hpp), the
+  // specification's defaults where the material lacks the extension; each
+  // read only by the variants of its lobe or pass.
+  vec4 specularFactors;      // specularColorFactor.rgb, specularFactor
+  vec4 clearcoatFactors;     // clearcoatFactor, clearcoatRoughnessFactor, clearcoatNormalScale, unused
+  vec4 sheenFactors;         // sheenColorFactor.rgb, sheenRoughnessFactor
+  vec4 iridescenceFactors;   // iridescenceFactor, iridescenceIor, thickness minimum, maximum (nm)
+  vec4 anisotropyFactors;    // anisotropyStrength, cos and sin of anisotropyRotation, unused
+  vec4 transmissionFactors;  // transmissionFactor, thicknessFactor, ior, attenuationDistance (0: none)
+  vec4 attenuationColor;     // KHR_materials_volume's, w unused
+  // The extensions' textures' KHR_texture_transform rows, as above.
+  vec4 specularTransformU;
+  vec4 specularTransformV;
+  vec4 specularColorTransformU;
+  vec4 specularColorTransformV;
+  vec4 clearcoatTransformU;
+  vec4 clearcoatTransformV;
+  vec4 clearcoatRoughnessTransformU;
+  vec4 clearcoatRoughnessTransformV;
+  vec4 clearcoatNormalTransformU;
+  vec4 clearcoatNormalTransformV;
+  vec4 sheenColorTransformU;
+  vec4 sheenColorTransformV;
+  vec4 sheenRoughnessTransformU;
+  vec4 sheenRoughnessTransformV;
+  vec4 iridescenceTransformU;
+  vec4 iridescenceTransformV;
+  vec4 iridescenceThicknessTransformU;
+  vec4 iridescenceThicknessTransformV;
+  vec4 anisotropyTransformU;
+  vec4 anisotropyTransformV;
+  vec4 transmissionTransformU;
+  vec4 transmissionTransformV;
+  vec4 thicknessTransformU;
+  vec4 thicknessTransformV;
 HL_BLOCK_END(material)
 
 // SSGI settings and kernel (lib/passes/ssgi.hpp documents the ranges).

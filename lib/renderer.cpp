@@ -146,12 +146,15 @@ struct Renderer::Impl {
   // What the G-buffer pass draws into: its colour attachments by location.
   GBufferTargets gbufferTargets(const GBufferVariant& variant) const {
     GBufferTargets targets{{}, &texture(Attachment::GbufferDepth), width, height};
-    for (Attachment id : variant.colorAttachments) {
-      const auto location = std::size_t(attachmentRow(id).gbufferLocation);
-      if (targets.colors.size() <= location) targets.colors.resize(location + 1, nullptr);
-      targets.colors[location] = &texture(id);
-    }
+    for (Attachment id : variant.colorAttachments) targets.colors.push_back(&texture(id));
     return targets;
+  }
+
+  // Each lobe attachment the G-buffer drew, on its row's unit, for the
+  // passes that light the G-buffer.
+  void bindLobeTargets(const GBufferVariant& variant) const {
+    for (Attachment id : variant.colorAttachments)
+      if (attachmentRow(id).lobe) texture(id).bind(attachmentRow(id).lobeUnit);
   }
 
   SsgiTextures ssgiOutput(bool raw) const {
@@ -373,6 +376,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   timer.run("gbuffer",
             [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
   const GBuffer gbuffer = impl.gbuffer();
+  impl.bindLobeTargets(plan.gbuffer);
   if (plan.direct) {
     const DirectLightTargets direct{impl.texture(Attachment::DirectTowardEye),
                                     plan.direct->diffuseTarget ? &impl.texture(Attachment::DirectDiffuse) : nullptr};
@@ -408,6 +412,7 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   frame.sceneSource = impl.scene.source;
   frame.sceneHash = impl.scene.sourceHash;
   for (const IgnoredFeature& feature : impl.scene.ignored) frame.ignored.push_back(feature.describe());
+  frame.ignored.insert(frame.ignored.end(), plan.unrendered.begin(), plan.unrendered.end());
   return frame;
 }
 

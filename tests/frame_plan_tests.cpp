@@ -113,7 +113,8 @@ TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its defin
   scene.emissive = true;
   const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
   CHECK(plan.allocates(Attachment::GbufferEmissive));
-  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET"});
+  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4"});
+  CHECK(plan.gbuffer.colorAttachments.back() == Attachment::GbufferEmissive);
   CHECK(plan.direct->emissive);
   REQUIRE(readOf(plan, "emissive"));
   CHECK(readOf(plan, "emissive")->sources == std::vector<Attachment>{Attachment::GbufferEmissive});

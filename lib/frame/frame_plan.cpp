@@ -26,7 +26,7 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", false, &Frame::normal},
     {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", false, &Frame::albedo},
     {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", false, &Frame::material},
-    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, 4, "HAS_EMISSIVE_TARGET", false,
+    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, kAssignedLocation, "EMISSIVE_TARGET", false,
      &Frame::emissive, true},
     {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", false, &Frame::depth},
     {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", false, nullptr, true},
@@ -144,6 +144,32 @@ void planAttachments(FramePlan& plan) {
   if (plan.blend) allocate(Attachment::BlendCoverage);
 }
 
+// The G-buffer's colour attachments, in row order: the fixed ones, then each
+// optional one the frame needs (emission, the scene's lobes) at the next
+// location, while GL's guaranteed 8 last; a lobe beyond them is named.
+void planGBuffer(FramePlan& plan, const SceneSummary& scene, bool emissive) {
+  GBufferVariant& gbuffer = plan.gbuffer;
+  for (const AttachmentRow& row : kAttachmentRows) {
+    if (row.gbufferLocation == -1) continue;
+    if (row.id == Attachment::GbufferEmissive && !emissive) continue;
+    if (row.lobe && !(scene.lobes & lobeBit(*row.lobe))) continue;
+    const std::size_t location = gbuffer.colorAttachments.size();
+    if (location == kMaxGbufferColorAttachments) {
+      plan.skipped.push_back({std::string(row.name), "the G-buffer has no colour attachment left (GL 4.5 guarantees " +
+                                                          std::to_string(kMaxGbufferColorAttachments) + ")"});
+      plan.unrendered.push_back(std::string(row.name) + " is not rendered: the G-buffer has no colour attachment left");
+      continue;
+    }
+    gbuffer.colorAttachments.push_back(row.id);
+    if (row.gbufferLocation == kAssignedLocation) {
+      gbuffer.defines.push_back("HAS_" + std::string(row.gbufferDefine));
+      gbuffer.defines.push_back(std::string(row.gbufferDefine) + "_LOCATION " + std::to_string(location));
+    }
+    if (row.lobe) gbuffer.lobes |= lobeBit(*row.lobe);
+  }
+  for (std::string& define : lobeDefines(gbuffer.lobes)) gbuffer.defines.push_back(std::move(define));
+}
+
 // Each wanted target is read from the allocated attachments that hold it.
 void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& scene) {
   for (const FrameTarget& target : frameTargets()) {
@@ -171,7 +197,45 @@ SceneSummary summarizeScene(const Scene& scene) {
   summary.environment = scene.environment != nullptr;
   summary.unlit =
       std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
+  for (const Material& material : scene.materials) {
+    summary.lobes |= materialLobes(material);
+    summary.transmission |= !material.unlit && (material.transmission || material.volume);
+  }
   return summary;
+}
+
+// ---- Lobes: which extension makes a material use each, and its define ---------
+
+namespace {
+struct LobeRow {
+  Lobe lobe;
+  std::string_view define;
+  bool (*usedBy)(const Material&);
+};
+constexpr LobeRow kLobeRows[] = {
+    {Lobe::Specular, "HAS_SPECULAR_LOBE", [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
+    {Lobe::Clearcoat, "HAS_CLEARCOAT_LOBE", [](const Material& m) { return m.clearcoat.has_value(); }},
+    {Lobe::Sheen, "HAS_SHEEN_LOBE", [](const Material& m) { return m.sheen.has_value(); }},
+    {Lobe::Anisotropy, "HAS_ANISOTROPY_LOBE", [](const Material& m) { return m.anisotropy.has_value(); }},
+    {Lobe::Iridescence, "HAS_IRIDESCENCE_LOBE", [](const Material& m) { return m.iridescence.has_value(); }},
+};
+static_assert(std::size(kLobeRows) == kLobeCount);
+}  // namespace
+
+std::uint32_t materialLobes(const Material& material) {
+  std::uint32_t lobes = 0;
+  // An unlit material is not lit: its lobes would change nothing.
+  if (material.unlit) return lobes;
+  for (const LobeRow& row : kLobeRows)
+    if (row.usedBy(material)) lobes |= lobeBit(row.lobe);
+  return lobes;
+}
+
+std::vector<std::string> lobeDefines(std::uint32_t lobes) {
+  std::vector<std::string> defines;
+  for (const LobeRow& row : kLobeRows)
+    if (lobes & lobeBit(row.lobe)) defines.emplace_back(row.define);
+  return defines;
 }
 
 const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method) {
@@ -221,30 +285,25 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
 
   plan.dropShadowMaps = !facts.shadowsOn;
   if (skips.runs(Work::Shadows)) plan.shadows = ShadowStep{settings.lighting.shadowMapSize.value_or(0)};
-  for (const AttachmentRow& row : kAttachmentRows) {
-    if (row.gbufferLocation < 0) continue;
-    const bool optional = !row.gbufferDefine.empty();
-    if (row.id == Attachment::GbufferEmissive && !skips.runs(Work::Emissive)) continue;
-    plan.gbuffer.colorAttachments.push_back(row.id);
-    if (optional) plan.gbuffer.defines.emplace_back(row.gbufferDefine);
-  }
+  planGBuffer(plan, scene, skips.runs(Work::Emissive));
   if (skips.runs(Work::Ssgi))
     plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1,
                          ssgiDivisor(settings.ssgi.resolution), settings.ssgi.blur};
   if (skips.runs(Work::Direct))
     plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
                                      plan.shadows && scene.cubeShadowCasters > 0,
-                                     plan.ssgi && method.readsDirectDiffuse};
+                                     plan.ssgi && method.readsDirectDiffuse, plan.gbuffer.lobes};
   plan.skyTables = skips.runs(Work::Sky) && !scene.environment;
   plan.environmentTables = skips.runs(Work::Sky) && scene.environment;
   if (skips.runs(Work::Composite))
-    plan.composite = CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables};
+    plan.composite =
+        CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables, plan.gbuffer.lobes};
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))
     plan.blend = BlendVariant{plan.shadows && scene.planarShadowCasters > 0,
                               plan.shadows && scene.cubeShadowCasters > 0, skips.runs(Work::Sky),
-                              plan.environmentTables};
+                              plan.environmentTables, scene.lobes};
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

@@ -10,6 +10,7 @@
 // row of kAttachmentRows (frame_plan.cpp) and one SceneSummary field; an SSGI
 // method is one row of the method table.
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -23,6 +24,23 @@
 
 namespace headlight {
 
+// ---- Material lobes ------------------------------------------------------------
+
+// The KHR_materials_* lobes the lighting passes evaluate from G-buffer data.
+// Each has (when its extension's work has landed) one G-buffer attachment
+// row (AttachmentRow::lobe) that exists only when the scene uses the lobe,
+// and a HAS_<NAME>_LOBE define in the programs that read it. Specular is
+// KHR_materials_specular or an ior other than 1.5: both change the
+// dielectric F0.
+enum class Lobe { Specular, Clearcoat, Sheen, Anisotropy, Iridescence, Count };
+inline constexpr std::size_t kLobeCount = std::size_t(Lobe::Count);
+constexpr std::uint32_t lobeBit(Lobe lobe) { return std::uint32_t{1} << unsigned(lobe); }
+// The lobes a material uses (a bit per Lobe).
+std::uint32_t materialLobes(const Material& material);
+// HAS_SPECULAR_LOBE, ...: one per bit of `lobes`, for the G-buffer, direct,
+// composite and blend programs.
+std::vector<std::string> lobeDefines(std::uint32_t lobes);
+
 // What a plan needs to know of a scene; made once per setScene.
 struct SceneSummary {
   int planarShadowCasters = 0;  // directional and spot lights that cast shadows
@@ -31,6 +49,8 @@ struct SceneSummary {
   bool blended = false;         // an instance's material is alphaMode BLEND (the blend pass)
   bool environment = false;     // an environment map replaces the procedural sky (Scene::environment)
   bool unlit = false;           // a material is KHR_materials_unlit: material.exr gains kMaterialUnlitChannel
+  std::uint32_t lobes = 0;      // the lobes its materials use (lobeBit)
+  bool transmission = false;    // a material is KHR_materials_transmission or _volume (a forward pass)
 };
 
 // material.exr's fourth channel, written only for scenes with an unlit
@@ -89,14 +109,24 @@ enum class Attachment {
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
 
+// AttachmentRow::gbufferLocation of an optional G-buffer attachment: the
+// plan gives it the next location after those of the attachments before it.
+inline constexpr int kAssignedLocation = -2;
+// GL 4.5's guaranteed number of colour attachments: lobe attachments beyond
+// it are skipped (and named) by the plan.
+inline constexpr std::size_t kMaxGbufferColorAttachments = 8;
+
 struct AttachmentRow {
   Attachment id;
   std::string_view name;  // in messages and --verbose
   GpuFormat format;
   // The G-buffer pass's colour attachment index (its fragment output's
-  // location); -1 for the depth attachment and for the other passes' targets.
+  // location); -1 for the depth attachment and for the other passes' targets;
+  // kAssignedLocation for an optional one.
   int gbufferLocation = -1;
-  std::string_view gbufferDefine;  // gbuffer.frag's #define when the attachment is optional
+  // An optional G-buffer attachment's name in gbuffer.frag: the plan defines
+  // HAS_<gbufferDefine> and <gbufferDefine>_LOCATION (its location).
+  std::string_view gbufferDefine;
   bool ssgiResolution = false;     // sized by the SSGI divisor instead of the image
   // The frame target it holds (several rows: channels 4k..4k+3 in the k-th);
   // null for internal attachments.
@@ -104,6 +134,10 @@ struct AttachmentRow {
   // Holds light (HDR radiance): `format` is half float, and the frame's
   // radiance-precision may make it Rgba32F (FramePlan::format).
   bool radiance = false;
+  // The lobe whose data it holds: allocated only when the scene uses the
+  // lobe, and bound on `lobeUnit` (gpu::kUnit*Lobe) for the lighting passes.
+  std::optional<Lobe> lobe = std::nullopt;
+  int lobeUnit = -1;
 };
 // Every attachment, in Attachment order.
 std::span<const AttachmentRow> attachmentRows();
@@ -112,18 +146,21 @@ const AttachmentRow& attachmentRow(Attachment id);
 // ---- Passes and their variants -----------------------------------------------
 
 struct GBufferVariant {
-  std::vector<Attachment> colorAttachments;  // in location order; optional ones only when planned
-  std::vector<std::string> defines;          // the optional attachments' gbufferDefine
+  std::vector<Attachment> colorAttachments;  // in location order (the index is the location); optional ones only when planned
+  std::vector<std::string> defines;          // HAS_<gbufferDefine> and its _LOCATION, then lobeDefines(lobes)
+  std::uint32_t lobes = 0;                   // the lobes whose attachments are planned
 };
 
 struct DirectLightVariant {
   bool emissive, planarShadows, cubeShadows, diffuseTarget;
+  std::uint32_t lobes = 0;  // the G-buffer's lobes (GBufferVariant::lobes)
   auto operator<=>(const DirectLightVariant&) const = default;
 };
 
 struct CompositeVariant {
   bool ssgi, sky;            // sky: the ambient term is drawn (from the sky's or the environment's tables)
   bool environment = false;  // the ambient and the background come from the environment map's tables
+  std::uint32_t lobes = 0;   // the G-buffer's lobes (GBufferVariant::lobes)
   auto operator<=>(const CompositeVariant&) const = default;
 };
 
@@ -131,6 +168,7 @@ struct CompositeVariant {
 // lit by the lights, shadows and sky the composite uses.
 struct BlendVariant {
   bool planarShadows, cubeShadows, sky, environment;  // sky and environment as the composite's
+  std::uint32_t lobes = 0;  // the scene's lobes (a blended material's own data; no G-buffer read)
   auto operator<=>(const BlendVariant&) const = default;
 };
 
@@ -172,6 +210,7 @@ struct FramePlan {
   std::array<GpuFormat, kAttachmentCount> format{};  // by Attachment: the row's, or Rgba32F for radiance in float
   std::vector<TargetRead> reads;                  // the targets read back, in frameTargets() order
   std::vector<SkippedWork> skipped;               // the work left out, and why (--verbose)
+  std::vector<std::string> unrendered;            // what the scene uses that this frame cannot draw (warned)
 
   bool allocates(Attachment id) const { return allocate[std::size_t(id)]; }
   GpuFormat formatOf(Attachment id) const { return format[std::size_t(id)]; }

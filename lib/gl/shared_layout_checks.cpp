@@ -22,7 +22,7 @@ static_assert(offsetof(FrameBlock, projection) == 64);
 static_assert(offsetof(FrameBlock, cameraPosition) == 192);
 static_assert(offsetof(FrameBlock, depthToViewZ) == 224);
 static_assert(sizeof(GpuObject) == 128);  // std430 array stride: two mat4
-static_assert(sizeof(MaterialBlock) == 224);
+static_assert(sizeof(MaterialBlock) == 224 + 7 * 16 + 24 * 16);  // + the KHR_materials_* factors and transforms
 static_assert(offsetof(MaterialBlock, factors) == 32);
 static_assert(offsetof(MaterialBlock, alphaCutoff) == 48);
 static_assert(offsetof(MaterialBlock, baseColorTransformU) == 64);

@@ -9,32 +9,15 @@ namespace headlight {
 
 namespace {
 
-std::vector<std::string> blendDefines(std::uint32_t features, const BlendVariant& variant) {
+std::vector<std::string> blendDefines(FeatureBits features, const BlendVariant& variant) {
   std::vector<std::string> defines = featureDefines(features);
   defines.emplace_back("BLEND_FORWARD");
   if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
   if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
   if (variant.sky) defines.emplace_back("HAS_SKY");
   if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+  for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
   return defines;
-}
-
-// The material's textures on the units gbuffer.frag reads (gbuffer.cpp
-// binds the same; a texture without texcoords is not read).
-void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, std::uint32_t features) {
-  if (!(features & kFeatureTexcoords)) return;
-  const std::pair<int, int> unitTexture[] = {
-      {gpu::kUnitBaseColorTexture, material.baseColor},
-      {gpu::kUnitMetallicRoughnessTexture, material.metallicRoughness},
-      {gpu::kUnitNormalTexture, material.normal},
-      {gpu::kUnitOcclusionTexture, material.occlusion},
-      {gpu::kUnitEmissiveTexture, material.emissive},
-  };
-  for (const auto& [unit, texture] : unitTexture) {
-    if (texture < 0) continue;
-    scene.textures[std::size_t(texture)].texture.bind(unit);
-    scene.textures[std::size_t(texture)].sampler.bind(unit);
-  }
 }
 
 void bindLightingInputs(const BlendInputs& inputs, const BlendVariant& variant) {
@@ -99,7 +82,7 @@ void BlendPass::run(const BlendInputs& inputs, const BlendTargets& targets, cons
     const GpuBlendDraw& draw = scene.blendDraws[index];
     const GpuPrimitive& primitive = scene.primitives[std::size_t(draw.primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(draw.material)];
-    const std::uint32_t features = drawFeatures(primitive, material);
+    const FeatureBits features = drawFeatures(primitive, material);
     programs_.get({features, variant}).use();
     if (material.doubleSided)
       glDisable(GL_CULL_FACE);

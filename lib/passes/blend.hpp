@@ -64,7 +64,7 @@ class BlendPass {
 
  private:
   struct ProgramKey {
-    std::uint32_t features;  // GBufferFeature bits of the draw
+    FeatureBits features;  // GBufferFeature bits of the draw
     BlendVariant variant;
     auto operator<=>(const ProgramKey&) const = default;
   };

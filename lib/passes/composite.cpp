@@ -10,6 +10,7 @@ CompositePass::CompositePass()
         if (variant.ssgi) defines.emplace_back("HAS_SSGI");
         if (variant.sky) defines.emplace_back("HAS_SKY");
         if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+        for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
         return defines;
       }) {}
 

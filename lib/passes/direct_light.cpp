@@ -11,6 +11,7 @@ DirectLightPass::DirectLightPass()
         if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
         if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
         if (variant.diffuseTarget) defines.emplace_back("WRITE_DIFFUSE_RADIANCE");
+        for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
         return defines;
       }) {}
 

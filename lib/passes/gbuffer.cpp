@@ -10,26 +10,10 @@ namespace headlight {
 
 namespace {
 
-std::vector<std::string> definesFor(std::uint32_t features, const std::vector<std::string>& targetDefines) {
+std::vector<std::string> definesFor(FeatureBits features, const std::vector<std::string>& targetDefines) {
   std::vector<std::string> defines = featureDefines(features);
   defines.insert(defines.end(), targetDefines.begin(), targetDefines.end());
   return defines;
-}
-
-void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, std::uint32_t features) {
-  const std::pair<int, int> unitTexture[] = {
-      {gpu::kUnitBaseColorTexture, material.baseColor},
-      {gpu::kUnitMetallicRoughnessTexture, material.metallicRoughness},
-      {gpu::kUnitNormalTexture, material.normal},
-      {gpu::kUnitOcclusionTexture, material.occlusion},
-      {gpu::kUnitEmissiveTexture, material.emissive},
-  };
-  if (!(features & kFeatureTexcoords)) return;
-  for (const auto& [unit, texture] : unitTexture) {
-    if (texture < 0) continue;
-    scene.textures[std::size_t(texture)].texture.bind(unit);
-    scene.textures[std::size_t(texture)].sampler.bind(unit);
-  }
 }
 
 }  // namespace
@@ -73,7 +57,7 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   for (const GpuDrawGroup& group : scene.drawGroups) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
-    const std::uint32_t features = drawFeatures(primitive, material);
+    const FeatureBits features = drawFeatures(primitive, material);
     programs_.get({features, variant.defines}).use();
     if (material.doubleSided)
       glDisable(GL_CULL_FACE);

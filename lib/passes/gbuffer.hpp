@@ -55,7 +55,7 @@ class GBufferPass {
   // A program: the vertex and material features (GBufferFeature bits) and
   // the optional targets' #defines.
   struct ProgramKey {
-    std::uint32_t features;
+    FeatureBits features;
     std::vector<std::string> targetDefines;
     auto operator<=>(const ProgramKey&) const = default;
   };

@@ -186,7 +186,7 @@ void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run
   for (std::size_t g = run.firstGroup; g < run.firstGroup + run.groupCount; ++g) {
     const GpuDrawGroup& group = scene.drawGroups[g];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
-    const std::uint32_t features =
+    const FeatureBits features =
         drawFeatures(primitive, material) &
         (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors |
          kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 | kFeatureTextureTransform);
@@ -194,7 +194,7 @@ void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run
       maskedPrograms_.get(features).use();
       material.block.bindUniform(gpu::MaterialBlock::kBinding);
       if (features & kFeatureBaseColorTexture) {
-        const GpuTexture& texture = scene.textures[std::size_t(material.baseColor)];
+        const GpuTexture& texture = scene.textures[std::size_t(material.textures[std::size_t(MaterialTexture::BaseColor)])];
         texture.texture.bind(gpu::kUnitBaseColorTexture);
         texture.sampler.bind(gpu::kUnitBaseColorTexture);
       }

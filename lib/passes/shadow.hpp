@@ -60,7 +60,7 @@ class ShadowPass {
   // Masked casters (alphaMode MASK), by the features they read
   // (kFeatureAlphaMask [| kFeatureTexcoords [| kFeatureBaseColorTexture]] [| kFeatureVertexColors]
   // [| kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 | kFeatureTextureTransform]).
-  ProgramCache<std::uint32_t> maskedPrograms_;
+  ProgramCache<FeatureBits> maskedPrograms_;
   gl::Buffer block_;
   gl::Framebuffer framebuffer_;
 };

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "image_io/texture_decode.hpp"
+#include "scene/gltf_material_extensions.hpp"
 
 namespace headlight::gltf {
 
@@ -97,8 +98,8 @@ const tinygltf::Value* transformExtension(const tinygltf::ExtensionMap& extensio
   return found == extensions.end() ? nullptr : &found->second;
 }
 
-// `user` names the reference ("material 2 baseColorTexture"); messages about
-// it add the texture: "material 2 baseColorTexture (texture 0)".
+}  // namespace
+
 TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, const tinygltf::Value* transform,
                           const std::string& user) {
   TextureRef ref;
@@ -128,6 +129,8 @@ TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, 
   }
   return ref;
 }
+
+namespace {
 
 float emissiveStrength(const Source& source, const tinygltf::Material& material, const std::string& materialName) {
   const auto extension = material.extensions.find("KHR_materials_emissive_strength");
@@ -264,6 +267,7 @@ Material readMaterial(const Source& source, int materialIndex) {
   // KHR_materials_unlit: its object has no properties; being there is the flag.
   out.unlit = material.extensions.count("KHR_materials_unlit") != 0;
   readSpecularGlossiness(source, material, name, out);
+  readMaterialExtensions(source, material, name, out);
   return out;
 }
 

@@ -11,6 +11,13 @@
 
 namespace headlight::gltf {
 
+// A texture reference: its texture and image checked, its sampler and
+// KHR_texture_transform (`transform`, may be null) read. `user` names the
+// reference ("material 2 baseColorTexture"); messages about it add the
+// texture: "material 2 baseColorTexture (texture 0)". An index < 0 is no texture.
+TextureRef readTextureRef(const Source& source, int textureIndex, int texCoord, const tinygltf::Value* transform,
+                          const std::string& user);
+
 // Material `materialIndex` (which must exist) with its factors and texture
 // references checked. Throws SceneError.
 Material readMaterial(const Source& source, int materialIndex);

@@ -105,6 +105,31 @@ class TextureCache {
   std::map<std::tuple<int, bool, int, int, int, int>, int> cache_;
 };
 
+// The KHR_materials_* factors, or each extension's "no effect" defaults.
+void fillExtensionFactors(const Material& material, gpu::MaterialBlock& block) {
+  const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
+  block.specularFactors = glm::vec4(specular.specularColorFactor, specular.specularFactor);
+  const MaterialClearcoat clearcoat = material.clearcoat.value_or(MaterialClearcoat{});
+  block.clearcoatFactors =
+      glm::vec4(clearcoat.clearcoatFactor, clearcoat.clearcoatRoughnessFactor, clearcoat.clearcoatNormalScale, 0.0f);
+  const MaterialSheen sheen = material.sheen.value_or(MaterialSheen{});
+  block.sheenFactors = glm::vec4(sheen.sheenColorFactor, sheen.sheenRoughnessFactor);
+  const MaterialIridescence iridescence = material.iridescence.value_or(MaterialIridescence{});
+  block.iridescenceFactors = glm::vec4(iridescence.iridescenceFactor, iridescence.iridescenceIor,
+                                       iridescence.iridescenceThicknessMinimum, iridescence.iridescenceThicknessMaximum);
+  const MaterialAnisotropy anisotropy = material.anisotropy.value_or(MaterialAnisotropy{});
+  block.anisotropyFactors = glm::vec4(anisotropy.anisotropyStrength, std::cos(anisotropy.anisotropyRotation),
+                                      std::sin(anisotropy.anisotropyRotation), 0.0f);
+  const MaterialTransmission transmission = material.transmission.value_or(MaterialTransmission{});
+  const MaterialVolume volume = material.volume.value_or(MaterialVolume{});
+  // 0 stands for an infinite attenuation distance (no attenuation): GLSL
+  // has no infinity literal.
+  const float distance = std::isinf(volume.attenuationDistance) ? 0.0f : volume.attenuationDistance;
+  block.transmissionFactors =
+      glm::vec4(transmission.transmissionFactor, volume.thicknessFactor, material.ior, distance);
+  block.attenuationColor = glm::vec4(volume.attenuationColor, 0.0f);
+}
+
 GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   GpuMaterial gpu;
   gpu::MaterialBlock block{};
@@ -117,37 +142,21 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   gpu.blended = material.blended();
   if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
   if (material.unlit) gpu.shadingFeatures |= kFeatureUnlit;
-  struct Slot {
-    const TextureRef& ref;
-    bool srgb;
-    int& index;
-    GBufferFeature feature;
-    GBufferFeature texcoord1;
-    glm::vec4& transformU;
-    glm::vec4& transformV;
-  };
-  const Slot slots[] = {
-      {material.baseColorTexture, true, gpu.baseColor, kFeatureBaseColorTexture, kFeatureBaseColorTexcoord1,
-       block.baseColorTransformU, block.baseColorTransformV},
-      {material.metallicRoughnessTexture, false, gpu.metallicRoughness, kFeatureMetallicRoughnessTexture,
-       kFeatureMetallicRoughnessTexcoord1, block.metallicRoughnessTransformU, block.metallicRoughnessTransformV},
-      {material.normalTexture, false, gpu.normal, kFeatureNormalTexture, kFeatureNormalTexcoord1,
-       block.normalTransformU, block.normalTransformV},
-      {material.occlusionTexture, false, gpu.occlusion, kFeatureOcclusionTexture, kFeatureOcclusionTexcoord1,
-       block.occlusionTransformU, block.occlusionTransformV},
-      {material.emissiveTexture, true, gpu.emissive, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
-       block.emissiveTransformU, block.emissiveTransformV},
-  };
-  for (const Slot& slot : slots) {
-    slot.transformU = glm::vec4(slot.ref.transform.rowU(), 0.0f);
-    slot.transformV = glm::vec4(slot.ref.transform.rowV(), 0.0f);
-    slot.index = textures.get(slot.ref, slot.srgb);
-    if (slot.index < 0) continue;
-    gpu.textureFeatures |= slot.feature;
-    if (slot.ref.texCoord == 1) gpu.textureFeatures |= slot.texcoord1;
+  for (const MaterialTextureRow& row : materialTextureRows()) {
+    const TextureRef* ref = row.ref(material);
+    const TextureRef none;
+    const TextureRef& used = ref ? *ref : none;
+    block.*row.transformU = glm::vec4(used.transform.rowU(), 0.0f);
+    block.*row.transformV = glm::vec4(used.transform.rowV(), 0.0f);
+    int& index = gpu.textures[std::size_t(row.id)];
+    index = textures.get(used, row.srgb);
+    if (index < 0) continue;
+    gpu.textureFeatures |= row.feature;
+    if (used.texCoord == 1) gpu.textureFeatures |= row.texcoord1;
     // Only a material that transforms some texture pays for the matrix.
-    if (!slot.ref.transform.identity()) gpu.textureFeatures |= kFeatureTextureTransform;
+    if (!used.transform.identity()) gpu.textureFeatures |= kFeatureTextureTransform;
   }
+  fillExtensionFactors(material, block);
   gpu.block = gl::Buffer::create(sizeof(block), &block);
   return gpu;
 }
@@ -231,34 +240,38 @@ void attachDrawOrder(GpuScene& gpu) {
 
 }  // namespace
 
-std::vector<std::string> featureDefines(std::uint32_t features) {
-  static const std::pair<std::uint32_t, const char*> names[] = {
+std::vector<std::string> featureDefines(FeatureBits features) {
+  static const std::pair<FeatureBits, const char*> names[] = {
       {kFeatureTexcoords, "HAS_TEXCOORDS"},
       {kFeatureTangents, "HAS_TANGENTS"},
-      {kFeatureBaseColorTexture, "HAS_BASE_COLOR_TEXTURE"},
-      {kFeatureMetallicRoughnessTexture, "HAS_METALLIC_ROUGHNESS_TEXTURE"},
-      {kFeatureNormalTexture, "HAS_NORMAL_TEXTURE"},
-      {kFeatureOcclusionTexture, "HAS_OCCLUSION_TEXTURE"},
-      {kFeatureEmissiveTexture, "HAS_EMISSIVE_TEXTURE"},
       {kFeatureAlphaMask, "ALPHA_MASK"},
       {kFeatureVertexColors, "HAS_VERTEX_COLORS"},
       {kFeatureTexcoords1, "HAS_TEXCOORDS_1"},
       {kFeatureTextureTransform, "HAS_TEXTURE_TRANSFORM"},
       {kFeatureUnlit, "UNLIT"},
-      {kFeatureBaseColorTexcoord1, "BASE_COLOR_TEXCOORD_1"},
-      {kFeatureMetallicRoughnessTexcoord1, "METALLIC_ROUGHNESS_TEXCOORD_1"},
-      {kFeatureNormalTexcoord1, "NORMAL_TEXCOORD_1"},
-      {kFeatureOcclusionTexcoord1, "OCCLUSION_TEXCOORD_1"},
-      {kFeatureEmissiveTexcoord1, "EMISSIVE_TEXCOORD_1"},
   };
   std::vector<std::string> defines;
   for (const auto& [bit, name] : names)
     if (features & bit) defines.emplace_back(name);
+  for (const MaterialTextureRow& row : materialTextureRows()) {
+    if (features & row.feature) defines.push_back("HAS_" + std::string(row.define) + "_TEXTURE");
+    if (features & row.texcoord1) defines.push_back(std::string(row.define) + "_TEXCOORD_1");
+  }
   return defines;
 }
 
-std::uint32_t drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material) {
-  std::uint32_t features = primitive.vertexFeatures | material.alphaFeatures | material.shadingFeatures;
+void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, FeatureBits features) {
+  if (!(features & kFeatureTexcoords)) return;
+  for (const MaterialTextureRow& row : materialTextureRows()) {
+    const int texture = material.textures[std::size_t(row.id)];
+    if (texture < 0) continue;
+    scene.textures[std::size_t(texture)].texture.bind(row.unit);
+    scene.textures[std::size_t(texture)].sampler.bind(row.unit);
+  }
+}
+
+FeatureBits drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material) {
+  FeatureBits features = primitive.vertexFeatures | material.alphaFeatures | material.shadingFeatures;
   if (features & kFeatureTexcoords) features |= material.textureFeatures;
   return features;
 }

@@ -2,41 +2,43 @@
 // The scene on the GPU: one vertex array per primitive, one uniform block per
 // material and per instance, one texture per image and colour space that a
 // material actually uses. Only what the scene has is allocated.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "gl/objects.hpp"
 #include "headlight/scene.hpp"
+#include "scene/material_textures.hpp"
 
 namespace headlight {
 
 // Which optional inputs a G-buffer shader variant reads; a bit set, built
 // into the shader as #defines.
-enum GBufferFeature : std::uint32_t {
-  kFeatureTexcoords = 1u << 0,
-  kFeatureTangents = 1u << 1,
-  kFeatureBaseColorTexture = 1u << 2,
-  kFeatureMetallicRoughnessTexture = 1u << 3,
-  kFeatureNormalTexture = 1u << 4,
-  kFeatureOcclusionTexture = 1u << 5,
-  kFeatureEmissiveTexture = 1u << 6,
-  kFeatureAlphaMask = 1u << 7,     // alphaMode MASK: discard below the cutoff
-  kFeatureVertexColors = 1u << 8,  // COLOR_0 multiplies base colour and alpha
-  kFeatureTexcoords1 = 1u << 9,    // the primitive has TEXCOORD_1 (a material drawn with it samples that set)
-  kFeatureTextureTransform = 1u << 10,  // KHR_texture_transform: some texture's UVs go through its matrix
-  kFeatureUnlit = 1u << 11,             // KHR_materials_unlit: flagged in the material target's A
+enum GBufferFeature : FeatureBits {
+  kFeatureTexcoords = FeatureBits{1} << 0,
+  kFeatureTangents = FeatureBits{1} << 1,
+  kFeatureBaseColorTexture = FeatureBits{1} << 2,
+  kFeatureMetallicRoughnessTexture = FeatureBits{1} << 3,
+  kFeatureNormalTexture = FeatureBits{1} << 4,
+  kFeatureOcclusionTexture = FeatureBits{1} << 5,
+  kFeatureEmissiveTexture = FeatureBits{1} << 6,
+  kFeatureAlphaMask = FeatureBits{1} << 7,     // alphaMode MASK: discard below the cutoff
+  kFeatureVertexColors = FeatureBits{1} << 8,  // COLOR_0 multiplies base colour and alpha
+  kFeatureTexcoords1 = FeatureBits{1} << 9,    // the primitive has TEXCOORD_1 (a material drawn with it samples that set)
+  kFeatureTextureTransform = FeatureBits{1} << 10,  // KHR_texture_transform: some texture's UVs go through its matrix
+  kFeatureUnlit = FeatureBits{1} << 11,             // KHR_materials_unlit: flagged in the material target's A
   // The texture reads TEXCOORD_1 instead of TEXCOORD_0, one bit per texture.
-  kFeatureBaseColorTexcoord1 = 1u << 12,
-  kFeatureMetallicRoughnessTexcoord1 = 1u << 13,
-  kFeatureNormalTexcoord1 = 1u << 14,
-  kFeatureOcclusionTexcoord1 = 1u << 15,
-  kFeatureEmissiveTexcoord1 = 1u << 16,
+  kFeatureBaseColorTexcoord1 = FeatureBits{1} << 12,
+  kFeatureMetallicRoughnessTexcoord1 = FeatureBits{1} << 13,
+  kFeatureNormalTexcoord1 = FeatureBits{1} << 14,
+  kFeatureOcclusionTexcoord1 = FeatureBits{1} << 15,
+  kFeatureEmissiveTexcoord1 = FeatureBits{1} << 16,
 };
 
 // The #defines that build `features` into a shader (HAS_TEXCOORDS, ...,
 // ALPHA_MASK): one table for the G-buffer and shadow passes.
-std::vector<std::string> featureDefines(std::uint32_t features);
+std::vector<std::string> featureDefines(FeatureBits features);
 
 struct GpuPrimitive {
   gl::VertexArray vertexArray;
@@ -44,19 +46,24 @@ struct GpuPrimitive {
   GLsizei indexCount = 0;
   GLenum mode = GL_TRIANGLES;  // GL_LINES, GL_POINTS: drawn 1 pixel wide, in no shadow map
   // kFeatureTexcoords | kFeatureTangents | kFeatureVertexColors | kFeatureTexcoords1
-  std::uint32_t vertexFeatures = 0;
+  FeatureBits vertexFeatures = 0;
 };
+
+constexpr std::array<int, kMaterialTextureCount> filledWith(int value) {
+  std::array<int, kMaterialTextureCount> array{};
+  array.fill(value);
+  return array;
+}
 
 struct GpuMaterial {
   gl::Buffer block;  // MaterialBlock
-  // Texture indices into GpuScene::textures, -1 = none; in the order of the
-  // kUnit*Texture units.
-  int baseColor = -1, metallicRoughness = -1, normal = -1, occlusion = -1, emissive = -1;
+  // Texture indices into GpuScene::textures by MaterialTexture, -1 = none.
+  std::array<int, kMaterialTextureCount> textures = filledWith(-1);
   // The textures (kFeature*Texture), the set each reads (kFeature*Texcoord1)
   // and kFeatureTextureTransform: read only where the primitive has texcoords.
-  std::uint32_t textureFeatures = 0;
-  std::uint32_t alphaFeatures = 0;    // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
-  std::uint32_t shadingFeatures = 0;  // kFeatureUnlit
+  FeatureBits textureFeatures = 0;
+  FeatureBits alphaFeatures = 0;      // kFeatureAlphaMask for alphaMode MASK (needs no texcoords)
+  FeatureBits shadingFeatures = 0;  // kFeatureUnlit
   bool doubleSided = false;
   bool blended = false;  // alphaMode BLEND: drawn by the blend pass only (not the G-buffer, no shadow)
 };
@@ -116,8 +123,12 @@ struct GpuScene {
 
 GpuScene uploadScene(const Scene& scene);
 
+// Binds the material's textures to their units (materialTextureRows()),
+// when the draw's `features` read textures (it has texcoords).
+void bindMaterialTextures(const GpuScene& scene, const GpuMaterial& material, FeatureBits features);
+
 // The features a draw of `primitive` with `material` reads: a texture
 // without texcoords to read it by is ignored, as glTF viewers do.
-std::uint32_t drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material);
+FeatureBits drawFeatures(const GpuPrimitive& primitive, const GpuMaterial& material);
 
 }  // namespace headlight

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,54 @@ struct TextureRef {
 enum class AlphaMode { Opaque, Mask, Blend };
 
 // glTF's metallic-roughness material.
+// The ratified KHR_materials_* extensions, with the specification's property
+// names and defaults. A Material holds one only when its glTF material has
+// the extension; a texture's channel is noted where the specification picks
+// one. Loading checks the ranges (lib/scene/gltf_material_extensions.cpp).
+struct MaterialSpecular {  // KHR_materials_specular
+  float specularFactor = 1.0f;              // 0..1: the dielectric specular weight
+  TextureRef specularTexture;               // A
+  glm::vec3 specularColorFactor{1.0f};      // >= 0: the dielectric F0 colour
+  TextureRef specularColorTexture;          // RGB, sRGB
+};
+struct MaterialClearcoat {  // KHR_materials_clearcoat
+  float clearcoatFactor = 0.0f;             // 0..1
+  TextureRef clearcoatTexture;              // R
+  float clearcoatRoughnessFactor = 0.0f;    // 0..1
+  TextureRef clearcoatRoughnessTexture;     // G
+  TextureRef clearcoatNormalTexture;        // tangent space
+  float clearcoatNormalScale = 1.0f;
+};
+struct MaterialSheen {  // KHR_materials_sheen
+  glm::vec3 sheenColorFactor{0.0f};         // 0..1
+  TextureRef sheenColorTexture;             // RGB, sRGB
+  float sheenRoughnessFactor = 0.0f;        // 0..1
+  TextureRef sheenRoughnessTexture;         // A
+};
+struct MaterialIridescence {  // KHR_materials_iridescence
+  float iridescenceFactor = 0.0f;           // 0..1
+  TextureRef iridescenceTexture;            // R
+  float iridescenceIor = 1.3f;              // >= 1: the thin film's
+  float iridescenceThicknessMinimum = 100.0f;  // nm, >= 0
+  float iridescenceThicknessMaximum = 400.0f;  // nm, >= 0
+  TextureRef iridescenceThicknessTexture;   // G: mixes minimum (0) to maximum (1)
+};
+struct MaterialAnisotropy {  // KHR_materials_anisotropy
+  float anisotropyStrength = 0.0f;          // 0..1
+  float anisotropyRotation = 0.0f;          // radians, counter-clockwise from the tangent
+  TextureRef anisotropyTexture;             // RG: direction in tangent space (-1..1), B: strength
+};
+struct MaterialTransmission {  // KHR_materials_transmission
+  float transmissionFactor = 0.0f;          // 0..1
+  TextureRef transmissionTexture;           // R
+};
+struct MaterialVolume {  // KHR_materials_volume
+  float thicknessFactor = 0.0f;             // >= 0, in the mesh's own units
+  TextureRef thicknessTexture;              // G
+  float attenuationDistance = std::numeric_limits<float>::infinity();  // > 0; infinity: no attenuation
+  glm::vec3 attenuationColor{1.0f};         // 0..1
+};
+
 struct Material {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};  // linear RGBA, 0..1
@@ -112,6 +161,14 @@ struct Material {
   TextureRef occlusionTexture;          // R
   TextureRef emissiveTexture;           // sRGB
   bool unlit = false;  // KHR_materials_unlit: lit = base colour (factor x texture x COLOR_0), untouched by light
+  float ior = 1.5f;    // KHR_materials_ior: >= 1 (glTF's 0, a perfect mirror's F0 of 1, is kept as 0)
+  std::optional<MaterialSpecular> specular;
+  std::optional<MaterialClearcoat> clearcoat;
+  std::optional<MaterialSheen> sheen;
+  std::optional<MaterialIridescence> iridescence;
+  std::optional<MaterialAnisotropy> anisotropy;
+  std::optional<MaterialTransmission> transmission;
+  std::optional<MaterialVolume> volume;
 
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
   bool masked() const { return alphaMode == AlphaMode::Mask; }

@@ -1,0 +1,73 @@
+#include "scene/material_textures.hpp"
+
+#include "scene/gpu_scene.hpp"
+
+namespace headlight {
+
+namespace {
+
+using B = gpu::MaterialBlock;
+using T = MaterialTexture;
+
+// The extensions' textures take the bits after the core ones: reading the
+// k-th at kFirstExtensionBit + k, its TEXCOORD_1 at kFirstExtensionBit +
+// kExtensionTextures + k (12: the ratified extensions' textures).
+constexpr int kFirstExtensionBit = 17;
+constexpr int kExtensionTextures = 12;
+constexpr int kFirstExtensionTexture = int(T::Emissive) + 1;
+[[maybe_unused]] constexpr FeatureBits readBit(T id) {
+  return FeatureBits{1} << (kFirstExtensionBit + int(id) - kFirstExtensionTexture);
+}
+[[maybe_unused]] constexpr FeatureBits setBit(T id) {
+  return FeatureBits{1} << (kFirstExtensionBit + kExtensionTextures + int(id) - kFirstExtensionTexture);
+}
+static_assert(kFirstExtensionBit + 2 * kExtensionTextures <= 64);
+
+// A texture of an extension, when the material has it. A row reads
+//   HL_EXTENSION_ROW(Clearcoat, "CLEARCOAT", kUnitClearcoatTexture, false, clearcoat,
+//                    Clearcoat::clearcoatTexture, clearcoat),
+// (id, define stem, unit, sRGB, Material's optional, member, block transform stem).
+template <auto Extension, auto Member>
+const TextureRef* extensionTexture(const Material& material) {
+  const auto& extension = material.*Extension;
+  return extension ? &(*extension.*Member) : nullptr;
+}
+template <auto Member>
+const TextureRef* coreTexture(const Material& material) {
+  return &(material.*Member);
+}
+
+#define HL_EXTENSION_ROW(id, define, unit, srgb, extension, member, block)                                \
+  {T::id, define, gpu::unit, srgb, readBit(T::id), setBit(T::id),                                       \
+   extensionTexture<&Material::extension, &Material##member>, &B::block##TransformU, &B::block##TransformV}
+
+constexpr MaterialTextureRow kRows[] = {
+    {T::BaseColor, "BASE_COLOR", gpu::kUnitBaseColorTexture, true, kFeatureBaseColorTexture,
+     kFeatureBaseColorTexcoord1, coreTexture<&Material::baseColorTexture>, &B::baseColorTransformU,
+     &B::baseColorTransformV},
+    {T::MetallicRoughness, "METALLIC_ROUGHNESS", gpu::kUnitMetallicRoughnessTexture, false,
+     kFeatureMetallicRoughnessTexture, kFeatureMetallicRoughnessTexcoord1,
+     coreTexture<&Material::metallicRoughnessTexture>, &B::metallicRoughnessTransformU,
+     &B::metallicRoughnessTransformV},
+    {T::Normal, "NORMAL", gpu::kUnitNormalTexture, false, kFeatureNormalTexture, kFeatureNormalTexcoord1,
+     coreTexture<&Material::normalTexture>, &B::normalTransformU, &B::normalTransformV},
+    {T::Occlusion, "OCCLUSION", gpu::kUnitOcclusionTexture, false, kFeatureOcclusionTexture,
+     kFeatureOcclusionTexcoord1, coreTexture<&Material::occlusionTexture>, &B::occlusionTransformU,
+     &B::occlusionTransformV},
+    {T::Emissive, "EMISSIVE", gpu::kUnitEmissiveTexture, true, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
+     coreTexture<&Material::emissiveTexture>, &B::emissiveTransformU, &B::emissiveTransformV},
+};
+#undef HL_EXTENSION_ROW
+static_assert(std::size(kRows) == kMaterialTextureCount);
+constexpr bool inOrder() {
+  for (std::size_t i = 0; i < std::size(kRows); ++i)
+    if (std::size_t(kRows[i].id) != i) return false;
+  return true;
+}
+static_assert(inOrder(), "kRows is indexed by MaterialTexture");
+
+}  // namespace
+
+std::span<const MaterialTextureRow> materialTextureRows() { return kRows; }
+
+}  // namespace headlight

@@ -1,0 +1,53 @@
+// Hostile inputs for issue 18 item 4, the material extensions: a value
+// outside its extension's range refuses the file through the CLI (exit 1,
+// the file, material, extension, property and value named, nothing written).
+#include <doctest/doctest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "hostile_cli.hpp"
+#include "hostile_inputs.hpp"
+
+using nlohmann::json;
+using namespace headlight::test;
+
+namespace {
+
+json withMaterialExtensions(const json& extensions) {
+  json document = hostile::triangleScene();
+  document["materials"] = {{{"name", "Glass"}, {"extensions", extensions}}};
+  document["meshes"][0]["primitives"][0]["material"] = 0;
+  return document;
+}
+
+}  // namespace
+
+TEST_SUITE("hostile") {
+  TEST_CASE("material extensions: values outside their ranges refuse the file, naming the value") {
+    TempFolder folder("hostile-material-extensions");
+    expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_ior", {{"ior", 0.5}}}})),
+                  {"material 0 KHR_materials_ior ior is 0.5", "expected a number >= 1 or 0"});
+    expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_volume", {{"thicknessFactor", -3}}}})),
+                  {"KHR_materials_volume thicknessFactor is -3", "expected a number >= 0"});
+    expectRefused(
+        writeGltf(folder, withMaterialExtensions({{"KHR_materials_volume", {{"attenuationDistance", -1}}}})),
+        {"KHR_materials_volume attenuationDistance is -1", "expected a number > 0"});
+    expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_sheen", {{"sheenColorFactor", {1, 1}}}}})),
+                  {"KHR_materials_sheen sheenColorFactor is not 3 numbers"});
+    expectRefused(
+        writeGltf(folder, withMaterialExtensions({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1e40}}}})),
+        {"KHR_materials_clearcoat clearcoatFactor is 1e+40"});
+  }
+
+  TEST_CASE("material extensions: valid values at the ends of their ranges render") {
+    TempFolder folder("hostile-material-extensions-valid");
+    const auto scene = writeGltf(folder, withMaterialExtensions({{"KHR_materials_ior", {{"ior", 0}}},
+                                                               {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}));
+    const auto out = folder.path() / "out";
+    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(std::filesystem::exists(out / "lit.exr"));
+  }
+}
