@@ -25,6 +25,7 @@
 #include "scene/gltf_features.hpp"
 #include "scene/gltf_files.hpp"
 #include "scene/gltf_geometry.hpp"
+#include "scene/gltf_image_based_light.hpp"
 #include "scene/gltf_materials.hpp"
 #include "scene/gltf_meshopt.hpp"
 #include "scene/gltf_nodes.hpp"
@@ -293,8 +294,11 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
     for (const IgnoredFeature& feature : scene.ignored) list += (list.empty() ? "" : "; ") + feature.describe();
     source.fail("strict-gltf: " + list, {"strict-gltf"});
   }
-  GltfReader(source, scene, limits).read(sceneIndex(source, options.gltfScene));
+  const int drawnScene = sceneIndex(source, options.gltfScene);
+  GltfReader(source, scene, limits).read(drawnScene);
   scene.images = gltf::readImages(model, file, warnings, limits);
+  // --environment replaces the file's own image-based light (loadScene).
+  if (options.environment.empty()) scene.environment = gltf::readImageBasedLight(source, drawnScene, scene.images);
   checkSceneRanges(scene);
   const std::uint64_t sceneBytes = estimateSceneBytes(scene);
   if (sceneBytes > maxMemoryBytes(limits)) {
