@@ -8,8 +8,13 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "frame/frame_plan.hpp"
 #include "headlight/scene_builder.hpp"
+#include "headlight/scene_loader.hpp"
+#include "support/encoding.hpp"
+#include "support/temp_folder.hpp"
 #include "headlight/shapes.hpp"
 #include "reference/lobe_transmission.hpp"
 
@@ -44,7 +49,51 @@ bool reads(const FramePlan& plan, std::string_view name) {
                      [&](const TargetRead& read) { return read.target->name == name; });
 }
 
+// One triangle drawn with material 0: `material` (a glTF material object).
+std::string triangleGltf(const nlohmann::json& material) {
+  const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const auto* first = reinterpret_cast<const unsigned char*>(positions);
+  const std::vector<unsigned char> bytes(first, first + sizeof positions);
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + test::base64(bytes)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", bytes.size()}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}, {"min", {0, 0, 0}}, {"max", {1, 1, 0}}}}},
+      {"materials", {material}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 0}}}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"scene", 0}};
+  return gltf.dump();
+}
+
+bool namesTransmission(const Scene& scene) {
+  return std::any_of(scene.ignored.begin(), scene.ignored.end(), [](const IgnoredFeature& feature) {
+    return feature.feature == "KHR_materials_transmission" && feature.describe().find("BLEND") != std::string::npos;
+  });
+}
+
 }  // namespace
+
+TEST_CASE("transmission: rendered, so not named, except on an alphaMode BLEND or unlit material") {
+  test::TempFolder folder;
+  const nlohmann::json glass = {{"name", "Glass"},
+                                {"extensions",
+                                 {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+                                  {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}}};
+  const Scene drawn = loadGltf(folder.write("glass.gltf", triangleGltf(glass)));
+  CHECK(drawn.ignored.empty());
+  CHECK(drawn.materials[0].transmissive());
+  nlohmann::json blended = glass;
+  blended["alphaMode"] = "BLEND";
+  const Scene named = loadGltf(folder.write("blended.gltf", triangleGltf(blended)));
+  CHECK(namesTransmission(named));
+  CHECK(!named.materials[0].transmissive());
+  nlohmann::json unlit = glass;
+  unlit["extensions"]["KHR_materials_unlit"] = nlohmann::json::object();
+  CHECK(namesTransmission(loadGltf(folder.write("unlit.gltf", triangleGltf(unlit)))));
+}
 
 TEST_CASE("transmission plan: a transmitting scene runs the pass after the composite and before the blend pass") {
   SceneSummary scene = transmittingScene();
