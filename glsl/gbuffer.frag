@@ -80,8 +80,20 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
-#ifdef BLEND_FORWARD
+#if defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
+// The forward passes' lighting, for blend.glsl and transmission.glsl alike:
+// the loader expands each file once, wherever it is first named, so both
+// must meet these outside their own #ifdef.
+#include "sampling.glsl"
+#include "brdf.glsl"
+#include "shadows.glsl"
+#include "surface.glsl"
+#include "ambient.glsl"
+#endif
+#if defined(BLEND_FORWARD)
 #include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
+#elif defined(TRANSMISSION_FORWARD)
+#include "transmission.glsl"  // KHR_materials_transmission: the transmission pass shades it (lib/passes/transmission.hpp)
 #else
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
@@ -155,15 +167,18 @@ void main() {
   normal = normalize(tangentFrame(normal, normalUv) * tangentNormal);
 #endif
 
-#if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD)
+#if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
   vec3 emissive = material.emissiveFactor.rgb;
 #ifdef HAS_EMISSIVE_TEXTURE
   emissive *= texture(emissiveTexture, textureUv(EMISSIVE_SET, material.emissiveTransformU,
                                                 material.emissiveTransformV)).rgb;
 #endif
 #endif
-#ifdef BLEND_FORWARD
+#if defined(BLEND_FORWARD)
   shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
+#elif defined(TRANSMISSION_FORWARD)
+  shadeTransmissive(vWorldPosition, normal, baseColor.rgb, metallic, roughness, occlusion, emissive, transmissionAt(),
+                    thicknessAt());
 #else
   outPosition = vec4(vWorldPosition, 1.0);
   outNormal = vec4(normal, 0.0);

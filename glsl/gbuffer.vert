@@ -26,6 +26,13 @@ layout(location = 5) out vec2 vTexcoord1;
 
 layout(location = 0) out vec3 vWorldPosition;
 layout(location = 1) out vec3 vWorldNormal;
+#ifdef TRANSMISSION_FORWARD
+// KHR_materials_volume's thickness is in mesh units: the instance's scale per axis.
+layout(location = 6) flat out vec3 vModelScale;
+#endif
+// The transmission pass redraws surfaces depth-equal with another variant of
+// this shader: every variant must rasterise the same depths.
+invariant gl_Position;
 
 void main() {
   const GpuObject object = objects.objectList[inObjectIndex];
@@ -43,6 +50,10 @@ void main() {
 #endif
 #ifdef HAS_TANGENTS
   vWorldTangent = vec4(mat3(object.worldFromLocal) * inTangent.xyz, inTangent.w);
+#endif
+#ifdef TRANSMISSION_FORWARD
+  vModelScale = vec3(length(object.worldFromLocal[0].xyz), length(object.worldFromLocal[1].xyz),
+                     length(object.worldFromLocal[2].xyz));
 #endif
   gl_Position = frame.viewProjection * world;
 }

@@ -72,10 +72,14 @@ using mat4 = glm::mat4;
   X(kUnitSsgiSky, 20)                       \
   X(kUnitEnvironmentSpecular, 21)           \
   X(kUnitEnvironmentIrradiance, 22)         \
-  X(kUnitEnvironmentBackground, 23)
+  X(kUnitEnvironmentBackground, 23)         \
+  X(kUnitTransmissionTexture, 39)           \
+  X(kUnitThicknessTexture, 40)              \
+  X(kUnitTransmissionBackground, 41)
 // Reserved for issue 18's lobes (added with the code that reads them):
 // 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
-// iridescence), 29..40 the extensions' textures in MaterialTexture order.
+// iridescence), 29..40 the extensions' textures in MaterialTexture order;
+// 41 the transmission pass's copy of lit (lib/passes/transmission.hpp).
 
 // Image units (X(name, unit)), for image load/store: none yet.
 #define HL_IMAGE_UNITS(X)

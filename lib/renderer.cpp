@@ -1,6 +1,7 @@
 // The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
-// direct light -> SSGI (-> blur) -> composite -> blend (scenes with
-// alphaMode BLEND) -> read back. What runs, with
+// direct light -> SSGI (-> blur) -> composite -> transmission (scenes with
+// KHR_materials_transmission) -> blend (scenes with alphaMode BLEND) -> read
+// back. What runs, with
 // which shader variant and into which attachments, is the frame plan's
 // (frame/frame_plan.hpp); this file executes it. Each pass is timed between
 // glFinish calls and checked for GL errors.
@@ -25,6 +26,7 @@
 #include "headlight/targets.hpp"
 #include "image_io/environment_decode.hpp"
 #include "passes/blend.hpp"
+#include "passes/transmission.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
@@ -101,6 +103,7 @@ struct Renderer::Impl {
   DirectLightPass directLight;
   CompositePass composite;
   BlendPass blend;
+  TransmissionPass transmission;
   gl::Buffer frameBlock = gl::Buffer::create(sizeof(gpu::FrameBlock));
   gl::Buffer lightingBlock = gl::Buffer::create(sizeof(gpu::LightingBlock));
 
@@ -336,6 +339,7 @@ void Renderer::Impl::loadScene(Scene newScene) {
   if (plan.direct) impl.directLight.prepare(*plan.direct);
   if (plan.ssgi) impl.ssgi.prepare(plan.ssgi->method->method);
   if (plan.composite) impl.composite.prepare(*plan.composite);
+  if (plan.transmission) impl.transmission.prepare(*impl.gpuScene, *plan.transmission);
   if (plan.blend) impl.blend.prepare(*impl.gpuScene, *plan.blend);
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
@@ -355,7 +359,11 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   frame.settings = resolve(settings);
   const RenderSettings& used = frame.settings;
   // Before any target of this size is allocated.
-  checkFrameFits(used.width, used.height, impl.sceneBytes, impl.limits);
+  // A scene that transmits also holds lit's mip-mapped copy and the transmission target.
+  const std::uint64_t transmissionBytes =
+      impl.summary.transmission ? std::uint64_t(used.width) * std::uint64_t(used.height) * kTransmissionBytesPerPixel
+                                : 0;
+  checkFrameFits(used.width, used.height, impl.sceneBytes + transmissionBytes, impl.limits);
   Camera fitted;
   frame.view =
       makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);
@@ -394,6 +402,14 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),
                                  plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
     timer.run("composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite); });
+  }
+  if (plan.transmission) {
+    const GBufferTargets gbufferTargets = impl.gbufferTargets(plan.gbuffer);
+    const TransmissionInputs inputs{*impl.gpuScene,     *impl.gbufferPass, gbufferTargets,
+                                    plan.gbuffer,       impl.shadowMaps,   impl.environment.tables()};
+    const TransmissionTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::Transmission),
+                                      impl.width, impl.height};
+    timer.run("transmission", [&] { impl.transmission.run(inputs, targets, *plan.transmission); });
   }
   if (plan.blend) {
     const BlendInputs inputs{*impl.gpuScene, frame.view, impl.texture(Attachment::GbufferDepth), impl.shadowMaps,

@@ -36,6 +36,10 @@ const std::vector<ProgramSource>& programSources() {
         "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4", "ALPHA_MASK",
         "HAS_VERTEX_COLORS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "UNLIT", "BASE_COLOR_TEXCOORD_1",
         "METALLIC_ROUGHNESS_TEXCOORD_1", "NORMAL_TEXCOORD_1", "OCCLUSION_TEXCOORD_1", "EMISSIVE_TEXCOORD_1"}},
+      // The transmission pass's forward variant (lib/passes/transmission.hpp).
+      {{"gbuffer.vert", "gbuffer.frag"},
+       {"TRANSMISSION_FORWARD", "HAS_TEXCOORDS", "HAS_TRANSMISSION_TEXTURE", "HAS_THICKNESS_TEXTURE",
+        "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "HAS_SKY"}},
       {{"shadow.vert", "shadow.frag"}, {}},
       {{"shadow.vert", "shadow.frag"}, {"ALPHA_MASK", "HAS_TEXCOORDS", "HAS_BASE_COLOR_TEXTURE", "HAS_VERTEX_COLORS"}},
       {{"shadow.vert", "shadow.frag"},

@@ -38,6 +38,8 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
     // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
     {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
+    // Half float: a throughput 0..1 and a path length in world units.
+    {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", false, &Frame::transmission},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -57,14 +59,16 @@ struct FrameFacts {
   bool environmentLit = true; // environment intensity > 0
   bool sceneEmits = true;     // a material has a non-zero emissiveFactor
   bool sceneBlends = true;    // a material is alphaMode BLEND
+  bool sceneTransmits = true; // a material is drawn by the transmission pass (Material::transmissive)
 };
 
 bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
 bool directNeeded(const FrameFacts& f) { return f.wantLit || (ssgiRuns(f) && f.ssgiReadsDirect); }
 
 // Work a frame can leave out, each named in --verbose.
-enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Blend, Count };
-constexpr std::string_view kWorkNames[] = {"shadows", "direct", "ssgi", "composite", "sky", "emissive", "blend"};
+enum class Work { Shadows, Direct, Ssgi, Composite, Sky, Emissive, Blend, Transmission, Count };
+constexpr std::string_view kWorkNames[] = {"shadows", "direct",   "ssgi",  "composite",
+                                           "sky",     "emissive", "blend", "transmission"};
 static_assert(std::size(kWorkNames) == std::size_t(Work::Count));
 
 // The one table of what a frame skips and why: work runs unless a row says
@@ -98,6 +102,10 @@ constexpr SkipRule kSkipRules[] = {
     // A scene without BLEND has no blend pass to skip (planFrame): nothing listed.
     {Work::Blend, "lit not asked for (no coverage target)",
      [](const FrameFacts& f) { return f.sceneBlends && !f.wantLit; }},
+    // Listed only for a scene that transmits; its G-buffer pass then draws
+    // the transmissive surfaces itself (nothing refracts the opaque image).
+    {Work::Transmission, "lit not asked for (no transmission target; the G-buffer pass draws the surfaces)",
+     [](const FrameFacts& f) { return f.sceneTransmits && !f.wantLit; }},
 };
 
 struct SkipDecisions {
@@ -142,6 +150,7 @@ void planAttachments(FramePlan& plan) {
   }
   if (plan.composite) allocate(Attachment::Lit);
   if (plan.blend) allocate(Attachment::BlendCoverage);
+  if (plan.transmission) allocate(Attachment::Transmission);
 }
 
 // The G-buffer's colour attachments, in row order: the fixed ones, then each
@@ -199,7 +208,7 @@ SceneSummary summarizeScene(const Scene& scene) {
       std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; });
   for (const Material& material : scene.materials) {
     summary.lobes |= materialLobes(material);
-    summary.transmission |= !material.unlit && (material.transmission || material.volume);
+    summary.transmission |= material.transmissive();  // KHR_materials_volume alone transmits nothing
   }
   return summary;
 }
@@ -257,6 +266,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   if (skyTables) names.push_back("sky");
   if (environmentTables) names.push_back("environment");
   if (composite) names.push_back("composite");
+  if (transmission) names.push_back("transmission");
   if (blend) names.push_back("blend");
   names.push_back("readback");
   return names;
@@ -277,6 +287,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   facts.environmentLit = settings.lighting.environmentIntensity > 0.0f;
   facts.sceneEmits = scene.emissive;
   facts.sceneBlends = scene.blended;
+  facts.sceneTransmits = scene.transmission;
   const SkipDecisions skips = decideSkips(facts);
 
   FramePlan plan;
@@ -298,6 +309,14 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   if (skips.runs(Work::Composite))
     plan.composite =
         CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables, plan.gbuffer.lobes};
+  // Transmissive surfaces refract the composite's lit image and are lit as
+  // blended ones are; they wait for it only when it is drawn.
+  if (scene.transmission && skips.runs(Work::Transmission)) {
+    plan.transmission = TransmissionVariant{plan.shadows && scene.planarShadowCasters > 0,
+                                            plan.shadows && scene.cubeShadowCasters > 0, skips.runs(Work::Sky),
+                                            plan.environmentTables};
+    plan.gbuffer.deferTransmissive = true;
+  }
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))

@@ -105,6 +105,7 @@ enum class Attachment {
   SsgiSky,
   Lit,
   BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  Transmission,   // the transmission pass's throughput and path length; only for scenes that transmit
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
@@ -149,6 +150,10 @@ struct GBufferVariant {
   std::vector<Attachment> colorAttachments;  // in location order (the index is the location); optional ones only when planned
   std::vector<std::string> defines;          // HAS_<gbufferDefine> and its _LOCATION, then lobeDefines(lobes)
   std::uint32_t lobes = 0;                   // the lobes whose attachments are planned
+  // The transmission pass runs: KHR_materials_transmission surfaces are left
+  // out here and drawn into the G-buffer by that pass, after the composite
+  // has lit the opaque image they refract.
+  bool deferTransmissive = false;
 };
 
 struct DirectLightVariant {
@@ -170,6 +175,14 @@ struct BlendVariant {
   bool planarShadows, cubeShadows, sky, environment;  // sky and environment as the composite's
   std::uint32_t lobes = 0;  // the scene's lobes (a blended material's own data; no G-buffer read)
   auto operator<=>(const BlendVariant&) const = default;
+};
+
+// The forward pass of KHR_materials_transmission surfaces over lit
+// (lib/passes/transmission.hpp): lit by the lights, shadows and sky the
+// composite uses, refracting the opaque lit image.
+struct TransmissionVariant {
+  bool planarShadows, cubeShadows, sky, environment;  // as BlendVariant's
+  auto operator<=>(const TransmissionVariant&) const = default;
 };
 
 struct ShadowStep {
@@ -204,6 +217,7 @@ struct FramePlan {
   // with an environment map, which then replaces the sky's tables.
   bool environmentTables = false;
   std::optional<CompositeVariant> composite;
+  std::optional<TransmissionVariant> transmission;  // after the composite, before the blend pass
   std::optional<BlendVariant> blend;  // after the composite, over lit
 
   std::array<bool, kAttachmentCount> allocate{};  // by Attachment

@@ -37,6 +37,8 @@ constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirec
                                               "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B"};
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 constexpr std::string_view kCoverageChannels[] = {"coverage.Y"};
+constexpr std::string_view kTransmissionChannels[] = {"transmission.R", "transmission.G", "transmission.B",
+                                                      "transmission.thickness"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -83,6 +85,13 @@ const FrameTarget kTargets[] = {
      "alphaMode BLEND surfaces' accumulated alpha 1 - prod(1 - a) over the pixel, 0..1, whatever lies behind them; "
      "only for scenes that blend. Alpha comes from 8-bit textures and factors (one step 3.9e-3), like albedo: any "
      "step warns, more than two fail."},
+    {"transmission", &Frame::transmission, kTransmissionChannels, E::Half, M::RelativeToValue,
+     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_transmission: the share of the opaque image behind that came through the nearest "
+     "transmissive surface (0..1 per channel), and the path length through its volume (world units, 0 for thin "
+     "walls); only for scenes that transmit. A product of 8-bit base colour and transmission texture, the split-sum "
+     "table and Beer-Lambert: one 8-bit step is 3.9e-3, so any step warns and more than two fail; relative above 1 "
+     "for path lengths, whose scale is the scene's."},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -28,6 +28,25 @@ GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
 }
 
 void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant) {
+  attach(targets);
+  // Zero everywhere: position.a = 0 marks background for every later pass.
+  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
+  for (std::size_t location = 0; location < targets.colors.size(); ++location)
+    if (targets.colors[location]) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, GLint(location), zero);
+  const float farDepth = 1.0f;
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
+  draw(scene, variant, variant.deferTransmissive ? Draws::Opaque : Draws::All);
+  detach(targets);
+}
+
+void GBufferPass::drawTransmissive(const GpuScene& scene, const GBufferTargets& targets,
+                                   const GBufferVariant& variant) {
+  attach(targets);
+  draw(scene, variant, Draws::Transmissive);
+  detach(targets);
+}
+
+void GBufferPass::attach(const GBufferTargets& targets) {
   // Attached every frame: the plan may change the set, and a size change
   // replaces the textures.
   std::vector<GLenum> drawBuffers;
@@ -41,12 +60,9 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   framebuffer_.checkComplete("G-buffer");
   framebuffer_.bind();
   glViewport(0, 0, targets.width, targets.height);
-  // Zero everywhere: position.a = 0 marks background for every later pass.
-  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (std::size_t location = 0; location < targets.colors.size(); ++location)
-    if (targets.colors[location]) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, GLint(location), zero);
-  const float farDepth = 1.0f;
-  glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
+}
+
+void GBufferPass::draw(const GpuScene& scene, const GBufferVariant& variant, Draws draws) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
@@ -57,6 +73,8 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   for (const GpuDrawGroup& group : scene.drawGroups) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
+    if ((draws == Draws::Opaque && material.transmissive) || (draws == Draws::Transmissive && !material.transmissive))
+      continue;
     const FeatureBits features = drawFeatures(primitive, material);
     programs_.get({features, variant.defines}).use();
     if (material.doubleSided)
@@ -75,6 +93,9 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
+}
+
+void GBufferPass::detach(const GBufferTargets& targets) {
   // Detached, so that a dropped attachment is not kept alive (gl/objects.hpp).
   for (std::size_t location = 0; location < targets.colors.size(); ++location)
     framebuffer_.detach(GLenum(GL_COLOR_ATTACHMENT0 + location));

@@ -50,8 +50,17 @@ class GBufferPass {
   // Draws every instance into `targets`, the attachments `variant` lists;
   // the frame block must be bound.
   void run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant);
+  // Draws the transmissive instances (GpuMaterial::transmissive) over what
+  // run() left, depth-tested: the transmission pass's step 2, after the
+  // composite has lit the opaque image (GBufferVariant::deferTransmissive).
+  void drawTransmissive(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant);
 
  private:
+  enum class Draws { All, Opaque, Transmissive };
+  void attach(const GBufferTargets& targets);
+  void draw(const GpuScene& scene, const GBufferVariant& variant, Draws draws);
+  void detach(const GBufferTargets& targets);
+
   // A program: the vertex and material features (GBufferFeature bits) and
   // the optional targets' #defines.
   struct ProgramKey {

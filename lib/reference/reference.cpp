@@ -161,7 +161,9 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
                            environmentLight ? lighting.environmentIntensity
                                             : lighting.skyIntensity.value_or(scene.sky.intensity),
                            std::max(kMinSpecularSamples, settings.samplesPerPixel / 4),
-                           environmentLight ? &*environmentLight : nullptr};
+                           environmentLight ? &*environmentLight : nullptr,
+                           std::any_of(scene.materials.begin(), scene.materials.end(),
+                                       [](const Material& material) { return material.transmissive(); })};
   const Outputs outputs{images, aoStandardError, indirectStandardError};
 
   // Rows handed out one at a time: a row's cost varies with what it sees.

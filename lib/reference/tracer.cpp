@@ -14,8 +14,10 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "reference/lobe_transmission.hpp"
 #include "reference/shading.hpp"
 #include "reference/texture_sampler.hpp"
+#include "reference/transmission_trace.hpp"
 
 namespace headlight::reference {
 
@@ -40,11 +42,7 @@ class Tracer {
     float* indirect = &out.images.indirect.pixels[pixel * 6];
     float* lit = &out.images.lit.pixels[pixel * 4];
     if (frame.position.at(x, y, 3) == 0.0f) {
-      const glm::vec3 ray = backgroundRay(x, y);
-      const glm::vec3 sky =
-          (!in_.environment ? skyRadiance(in_.scene.sky, ray)
-                            : in_.environment->background ? in_.environment->radiance(ray) : glm::vec3(0.0f)) *
-          in_.skyIntensity;
+      const glm::vec3 sky = backgroundRadiance(backgroundRay(x, y));
       ao[0] = ao[1] = 1.0f;
       std::fill(indirect, indirect + 6, 0.0f);
       lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
@@ -124,12 +122,22 @@ class Tracer {
       lit[0] = albedo.r, lit[1] = albedo.g, lit[2] = albedo.b, lit[3] = 1.0f;
       return;
     }
-    const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    TransmissiveSurface transmissive = transmissiveSurfaceHere(x, y);
+    if (transmissive.share > 0.0f) {
+      surface.f0 = iorF0(transmissive.ior, albedo, metallic);  // transmission.glsl: KHR_materials_ior's F0
+      transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
+    }
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
-    glm::vec3 radiance = directLight(surface, position, origin) +
-                         ambientLight(surface, origin, basis, skyMean, random) +
-                         glm::vec3(indirectMean);
+    // A transmissive surface's diffuse lobe keeps only the share not transmitted.
+    const float diffuseShare = 1.0f - transmissive.share;
+    glm::vec3 specularAlbedo(0.0f);
+    glm::vec3 radiance = directLight(surface, position, origin, transmissive) +
+                         ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo) +
+                         glm::vec3(indirectMean) * diffuseShare;
+    if (transmissive.share > 0.0f)
+      radiance += transmittedLight(surface, position, transmissive, specularAlbedo, random);
     if (!frame.emissive.empty())
       radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
     lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
@@ -208,6 +216,40 @@ class Tracer {
     const CameraView& view = in_.frame.view;
     if (view.orthographic) return glm::normalize(glm::vec3(view.view[0][2], view.view[1][2], view.view[2][2]));
     return glm::normalize(view.position - worldPosition);
+  }
+
+  // composite.frag's background: the sky or the environment map along `ray`.
+  glm::vec3 backgroundRadiance(const glm::vec3& ray) const {
+    return (!in_.environment ? skyRadiance(in_.scene.sky, ray)
+                             : in_.environment->background ? in_.environment->radiance(ray) : glm::vec3(0.0f)) *
+           in_.skyIntensity;
+  }
+
+  // The transmissive surface the pixel's primary ray meets first, if any.
+  TransmissiveSurface transmissiveSurfaceHere(int x, int y) {
+    if (!in_.transmissiveScene) return {};
+    const auto [origin, direction] = primaryRay(x, y);
+    if (!isFinite(origin) || !isFinite(direction)) return {};
+    return transmissiveSurfaceAt(in_.scene, in_.instances, in_.rtcScene, context_, origin, direction);
+  }
+
+  // What reaches the eye through a transmissive surface (transmission_trace.hpp's model): the first opaque
+  // surface along the view direction from where the volume's path leaves, shaded in full (as a blended
+  // layer is), or the background, times the renderer's throughput.
+  glm::vec3 transmittedLight(const Surface& surface, const glm::vec3& position, const TransmissiveSurface& t,
+                             const glm::vec3& specularAlbedo, Pcg32& random) {
+    const glm::vec3 path = volumeTransmissionRay(surface.normal, surface.view, t.thickness, t.ior, t.modelScale);
+    const glm::vec3 attenuation = volumeAttenuation(glm::length(path), t.attenuationColor, t.attenuationDistance);
+    const glm::vec3 direction = -surface.view;
+    const RTCRayHit hit =
+        firstOpaqueHit(in_.instances, in_.rtcScene, context_, position + path, direction, in_.epsilon);
+    glm::vec3 behind(0.0f);
+    float alpha = 0.0f;
+    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      behind = backgroundRadiance(direction);
+    else if (!shadeBlendedHit(hit, direction, random, behind, alpha))
+      behind = glm::vec3(0.0f);  // the back of a single-sided surface: never drawn
+    return transmissionThroughput(surface, specularAlbedo, t.share, attenuation) * behind;
   }
 
   // composite.frag's background ray, for this top-first pixel.
@@ -350,17 +392,25 @@ class Tracer {
     return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
   }
 
-  // direct_light.frag with shadow rays from `origin` for the maps.
-  glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin) {
+  // direct_light.frag with shadow rays from `origin` for the maps; a
+  // transmissive surface's as transmission.glsl's, a light behind it seen
+  // through it with its shadow ray from the back.
+  glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
+                        const TransmissiveSurface& transmissive = {}) {
     glm::vec3 sum(0.0f);
     for (const Light& light : in_.scene.lights) {
       glm::vec3 toLight;
       float distance;
       const float attenuation = lightAttenuation(light, position, toLight, distance);
       if (attenuation <= 0.0f) continue;
-      const glm::vec3 brdf = cookTorrance(surface, toLight);
+      const glm::vec3 brdf =
+          transmissive.share > 0.0f
+              ? transmissiveCookTorrance(surface, toLight, transmissive.share, transmissive.blur)
+              : cookTorrance(surface, toLight);
       if (brdf == glm::vec3(0.0f)) continue;
-      const float visibility = lightVisibility(light, origin, toLight, distance);
+      const bool behind = glm::dot(surface.normal, toLight) < 0.0f;
+      const glm::vec3 from = behind ? position - surface.normal * in_.epsilon : origin;
+      const float visibility = lightVisibility(light, from, toLight, distance);
       sum += brdf * light.color * light.intensity * (attenuation * visibility);
     }
     return sum;
@@ -374,7 +424,7 @@ class Tracer {
   // the split-sum scale and bias, hence the renderer's diffuse weight
   // kd = (1 - (f0 scale + bias)) (1 - metallic) without its 64x64 table.
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
-                         Pcg32& random) {
+                         Pcg32& random, glm::vec3* specularAlbedoOut = nullptr) {
     const int m = in_.specularSamples;
     const float alpha = surface.roughness * surface.roughness;
     double scale = 0.0, bias = 0.0;
@@ -399,6 +449,7 @@ class Tracer {
             glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * ambientRadiance(direction));
     }
     const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + float(bias / m);
+    if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
     return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;
   }

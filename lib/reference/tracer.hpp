@@ -40,6 +40,7 @@ struct TraceInputs {
   float skyIntensity;  // the frame's, resolved; with an environment map, its intensity
   int specularSamples;
   const EnvironmentLight* environment = nullptr;  // null: the procedural sky
+  bool transmissiveScene = false;  // a material is Material::transmissive (transmission_trace.hpp)
 };
 
 // Where a worker writes: each pixel only its own entries, so workers need

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <span>
 #include <string_view>
 
 #include "scene/gltf_animation_pose.hpp"
@@ -15,12 +16,16 @@ namespace headlight::gltf {
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 9> kRenderedExtensions{
+// One line each: merged branches add lines, not sizes.
+constexpr std::string_view kRenderedExtensions[]{
     "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
     "KHR_texture_transform", "KHR_materials_unlit",
-    "KHR_materials_variants",  // the default materials, or --material-variant's (gltf_variants.cpp)
-    kTextureWebp,              // decoded by OpenImageIO (gltf_texture_sources.cpp)
-    "EXT_lights_image_based"};  // the scene's light, as an environment map (gltf_image_based_light.cpp)
+    "KHR_materials_variants",      // the default materials, or --material-variant's (gltf_variants.cpp)
+    kTextureWebp,                  // decoded by OpenImageIO (gltf_texture_sources.cpp)
+    "EXT_lights_image_based",      // the scene's light, as an environment map (gltf_image_based_light.cpp)
+    "KHR_materials_transmission",  // the transmission pass (lib/passes/transmission.hpp); findUndrawnTransmission
+    "KHR_materials_volume",        // its thickness and attenuation, in the same pass
+};
 
 // Rendered when the build has their decoder (meson options draco, meshopt).
 bool decoderBuilt(const std::string& name) {
@@ -61,8 +66,7 @@ const char* effectOf(const std::string& extension) {
   return "is not rendered";
 }
 
-template <std::size_t N>
-bool listed(const std::array<std::string_view, N>& list, const std::string& name) {
+bool listed(std::span<const std::string_view> list, const std::string& name) {
   return std::find(list.begin(), list.end(), name) != list.end();
 }
 
@@ -212,10 +216,24 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
   }
 }
 
+// KHR_materials_transmission is rendered, except on the materials the
+// transmission pass does not draw (Material::transmissive): alphaMode BLEND
+// ones (the blend pass draws them, without it) and unlit ones (the
+// specification excludes the pair; unlit wins).
+void findUndrawnTransmission(const tinygltf::Model& model, Tally& tally) {
+  for (std::size_t index = 0; index < model.materials.size(); ++index) {
+    const tinygltf::Material& material = model.materials[index];
+    if (material.extensions.count("KHR_materials_transmission") == 0) continue;
+    if (material.alphaMode != "BLEND" && material.extensions.count("KHR_materials_unlit") == 0) continue;
+    tally.add("KHR_materials_transmission", "material", named("material", index, material.name),
+              "is not rendered on an alphaMode BLEND or unlit material (drawn as without it)");
+  }
+}
+
 // The table: remove a row when its feature becomes rendered.
 constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
     findSecondaryTexcoords, findVertexColors,     findAnimations,
-    findElementExtensions,  findListedExtensions,
+    findElementExtensions,  findListedExtensions, findUndrawnTransmission,
 };
 
 // " (texture 0, texture 2)": the textures that carry `extension`.

@@ -140,6 +140,7 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   block.alphaCutoff = material.alphaCutoff;
   gpu.doubleSided = material.doubleSided;
   gpu.blended = material.blended();
+  gpu.transmissive = material.transmissive();
   if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
   if (material.unlit) gpu.shadingFeatures |= kFeatureUnlit;
   for (const MaterialTextureRow& row : materialTextureRows()) {

@@ -66,6 +66,9 @@ struct GpuMaterial {
   FeatureBits shadingFeatures = 0;  // kFeatureUnlit
   bool doubleSided = false;
   bool blended = false;  // alphaMode BLEND: drawn by the blend pass only (not the G-buffer, no shadow)
+  // Material::transmissive: the G-buffer pass may leave it to the
+  // transmission pass (GBufferVariant::deferTransmissive); casts shadows.
+  bool transmissive = false;
 };
 
 struct GpuTexture {

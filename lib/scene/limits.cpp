@@ -217,15 +217,24 @@ int drawPassCount(const Scene& scene) {
 
 void checkDrawBudget(const Scene& scene, const ResourceLimits& limits) {
   const std::uint64_t passes = std::uint64_t(drawPassCount(scene));
-  const std::string perFrame =
-      " x " + std::to_string(passes) + " passes (the G-buffer and " + std::to_string(passes - 1) + " shadow views) = ";
-  const std::uint64_t draws = std::uint64_t(scene.instances.size()) * passes;
+  // The transmission pass draws each transmissive instance once more (lib/passes/transmission.hpp).
+  std::uint64_t redraws = 0, redrawnTriangles = 0;
+  for (const Instance& instance : scene.instances) {
+    if (instance.material < 0 || !scene.materials[std::size_t(instance.material)].transmissive()) continue;
+    ++redraws;
+    const Primitive& primitive = scene.primitives[std::size_t(instance.primitive)];
+    if (primitive.mode == PrimitiveMode::Triangles) redrawnTriangles += primitive.indices.size() / 3;
+  }
+  const std::string perFrame = " x " + std::to_string(passes) + " passes (the G-buffer and " +
+                               std::to_string(passes - 1) + " shadow views)" +
+                               (redraws ? " + " + std::to_string(redraws) + " transmission redraws" : "") + " = ";
+  const std::uint64_t draws = std::uint64_t(scene.instances.size()) * passes + redraws;
   if (draws > std::uint64_t(limits.maxDraws))
     throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.instances.size()) + " instances" +
                      perFrame + std::to_string(draws) + " draws, more than --max-draws allows (" +
                      std::to_string(limits.maxDraws) +
                      "; about 50 us a shadow-view draw on llvmpipe); raise --max-draws");
-  const std::uint64_t triangles = std::uint64_t(scene.triangleCount()) * passes;
+  const std::uint64_t triangles = std::uint64_t(scene.triangleCount()) * passes + redrawnTriangles;
   if (triangles > std::uint64_t(limits.maxDrawnTriangles))
     throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.triangleCount()) + " triangles" +
                      perFrame + std::to_string(triangles) + ", more than --max-drawn-triangles allows (" +

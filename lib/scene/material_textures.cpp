@@ -56,6 +56,10 @@ constexpr MaterialTextureRow kRows[] = {
      &B::occlusionTransformV},
     {T::Emissive, "EMISSIVE", gpu::kUnitEmissiveTexture, true, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
      coreTexture<&Material::emissiveTexture>, &B::emissiveTransformU, &B::emissiveTransformV},
+    HL_EXTENSION_ROW(Transmission, "TRANSMISSION", kUnitTransmissionTexture, false, transmission,
+                     Transmission::transmissionTexture, transmission),
+    HL_EXTENSION_ROW(Thickness, "THICKNESS", kUnitThicknessTexture, false, volume, Volume::thicknessTexture,
+                     thickness),
 };
 #undef HL_EXTENSION_ROW
 static_assert(std::size(kRows) == kMaterialTextureCount);

@@ -29,6 +29,8 @@ enum class MaterialTexture {
   // SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormal,
   // SheenColor, SheenRoughness, Iridescence, IridescenceThickness,
   // Anisotropy, Transmission, Thickness.
+  Transmission,  // KHR_materials_transmission's transmissionTexture (R)
+  Thickness,     // KHR_materials_volume's thicknessTexture (G)
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);

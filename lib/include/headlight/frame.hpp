@@ -52,6 +52,11 @@ struct Frame {
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
   ImageF coverage;  // coverage.Y: alphaMode BLEND's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  // transmission.R/G/B: how much of the opaque image behind came through the
+  // nearest KHR_materials_transmission surface; transmission.thickness: its path
+  // length through the volume (world units; 0 for thin walls); only for
+  // scenes that transmit, with lit
+  ImageF transmission;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers

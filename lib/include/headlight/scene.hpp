@@ -173,6 +173,12 @@ struct Material {
   bool emissive() const { return emissiveFactor != glm::vec3(0.0f); }
   bool masked() const { return alphaMode == AlphaMode::Mask; }
   bool blended() const { return alphaMode == AlphaMode::Blend; }
+  // Drawn by the transmission pass (KHR_materials_transmission with a
+  // non-zero factor): not alphaMode BLEND (the blend pass draws it without
+  // transmission, which is named) nor unlit (the specification excludes it).
+  bool transmissive() const {
+    return transmission && transmission->transmissionFactor > 0.0f && !blended() && !unlit;
+  }
 };
 
 // What a primitive's indices list: triangles (3 each; glTF's strips and fans

@@ -1,0 +1,90 @@
+// KHR_materials_transmission and KHR_materials_volume: the pure functions of
+// the transmission pass (lib/passes/transmission.hpp), every input a
+// parameter. lib/reference/lobe_transmission.hpp ports them to C++ with the
+// same names and constants (tests/transmission_parity_tests.cpp holds them
+// together). Needs sampling.glsl and brdf.glsl.
+
+// The roughness that blurs transmitted light. Microfacets bend light by
+// refraction, which grows with ior - 1 and vanishes at ior 1 (then a rough
+// surface transmits sharply: TransmissionRoughnessTest's bottom row); from
+// ior 1.5 up it is the surface's roughness, as the glTF Sample Viewer takes
+// it.
+float transmissionRoughness(float roughness, float ior) { return roughness * clamp(ior * 2.0 - 2.0, 0.0, 1.0); }
+
+// The path light takes through the volume to the eye, from the surface point
+// to where it leaves: the view ray refracted into the surface (ior; 1 for
+// anything below, including KHR_materials_ior's 0), as long as the thickness
+// (KHR_materials_volume's thicknessFactor x texture G, in the mesh's units),
+// scaled per axis by the instance's transform. Zero for thin walls
+// (thickness 0): the light goes straight through.
+vec3 volumeTransmissionRay(vec3 normal, vec3 view, float thickness, float ior, vec3 modelScale) {
+  const vec3 refracted = refract(-view, normal, 1.0 / max(ior, 1.0));
+  // refract gives 0 only for total internal reflection, impossible entering a
+  // denser medium; a normal facing away from the eye could still get there.
+  const vec3 direction = dot(refracted, refracted) > 0.0 ? normalize(refracted) : -view;
+  return direction * thickness * modelScale;
+}
+
+// Beer-Lambert: attenuationColor is what is left of white light after
+// attenuationDistance inside the medium; distance 0 stands for the
+// specification's infinity (nothing absorbed), and so does a zero path.
+vec3 volumeAttenuation(float pathLength, vec3 attenuationColor, float attenuationDistance) {
+  if (attenuationDistance <= 0.0 || pathLength <= 0.0) return vec3(1.0);
+  return pow(attenuationColor, vec3(pathLength / attenuationDistance));
+}
+
+// The thin-walled microfacet BTDF toward the eye for light from behind the
+// surface (N.L < 0), times |N.L| as cookTorrance's BRDF is times N.L: GGX
+// over the specification's transmission half vector H_T = normalize(V + L
+// mirrored through the surface plane), alpha = transmissionRoughness^2,
+// clamped as makeSurface clamps roughness. 0 for light from the front.
+float specularBtdf(vec3 normal, vec3 view, float nDotV, vec3 toLight, float roughness) {
+  const float nDotL = dot(normal, toLight);
+  if (nDotL >= 0.0) return 0.0;
+  const vec3 mirrored = toLight - 2.0 * nDotL * normal;
+  const vec3 halfVector = normalize(mirrored + view);
+  const float nDotH = max(dot(normal, halfVector), 0.0);
+  const float alpha = max(roughness, 0.03) * max(roughness, 0.03);
+  const float a2 = alpha * alpha;
+  const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * d * d) * smithGgxVisibility(nDotV, -nDotL, alpha) * -nDotL;
+}
+
+// Schlick's Fresnel of `s` at the angle between the view and `halfVector`.
+vec3 schlickFresnel(Surface s, vec3 halfVector) {
+  return s.f0 + (1.0 - s.f0) * pow(1.0 - max(dot(s.view, halfVector), 0.0), 5.0);
+}
+
+// cookTorrance for a transmissive surface: the specification's
+// mix(diffuse, btdf * baseColor, transmission) under the Fresnel layer.
+// From the front, the diffuse lobe loses the transmitted share (the BTDF
+// sends nothing back toward a light on the eye's side); from behind, only
+// the tinted BTDF, weighted like the diffuse lobe by (1 - F) (1 - metallic).
+// `transmissionRoughnessValue` is transmissionRoughness(roughness, ior).
+vec3 transmissiveCookTorrance(Surface s, vec3 toLight, float transmission, float transmissionRoughnessValue) {
+  const float nDotL = dot(s.normal, toLight);
+  if (nDotL > 0.0) {
+    const vec3 fresnel = schlickFresnel(s, normalize(toLight + s.view));
+    const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi * nDotL;
+    return cookTorrance(s, toLight) - transmission * diffuse;
+  }
+  const vec3 mirrored = toLight - 2.0 * nDotL * s.normal;
+  const vec3 fresnel = schlickFresnel(s, normalize(mirrored + s.view));
+  return transmission * (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo *
+         specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue);
+}
+
+// How much of the background arriving through the surface reaches the eye,
+// per channel: the transmitted share of what the Fresnel layer lets in
+// (split-sum specular albedo, as the ambient term's), tinted by the base
+// colour, through the volume (Beer-Lambert over the path's length).
+vec3 transmissionThroughput(Surface s, vec3 specularAlbedo, float transmission, vec3 attenuation) {
+  return transmission * (1.0 - specularAlbedo) * (1.0 - s.metallic) * s.albedo * attenuation;
+}
+
+// The mip level of the background copy that the transmission roughness
+// reads: 0 for a smooth surface, the 1 x 1 average of the largest side at
+// roughness 1 (as the glTF Sample Viewer's log2(size) * roughness).
+float transmissionLod(float transmissionRoughnessValue, vec2 imageSize) {
+  return log2(max(imageSize.x, imageSize.y)) * transmissionRoughnessValue;
+}

@@ -1,0 +1,126 @@
+// The transmission pass's shading (lib/passes/transmission.hpp).
+// gbuffer.frag built with TRANSMISSION_FORWARD evaluates a
+// KHR_materials_transmission material exactly as for the G-buffer, then
+// calls shadeTransmissive() instead of writing the G-buffer: the surface's
+// whole radiance (the direct pass's lights and shadows, the composite's
+// ambient, both with the diffuse lobe's transmitted share replaced by the
+// BTDF, plus the opaque image behind it through lobe_transmission.glsl),
+// written over lit where the surface is the nearest (depth-equal). The
+// surface is in no screen-space buffer when SSGI runs, so it gets no SSGI:
+// sky visibility 1, no indirect light (as a blended surface).
+#ifdef TRANSMISSION_FORWARD
+#include "sampling.glsl"
+#include "brdf.glsl"
+#include "shadows.glsl"
+#include "surface.glsl"
+#include "ambient.glsl"
+#include "lobe_transmission.glsl"
+
+#ifdef HAS_TRANSMISSION_TEXTURE
+layout(binding = kUnitTransmissionTexture) uniform sampler2D transmissionTexture;
+#endif
+#ifdef HAS_THICKNESS_TEXTURE
+layout(binding = kUnitThicknessTexture) uniform sampler2D thicknessTexture;
+#endif
+#ifdef TRANSMISSION_TEXCOORD_1
+#define TRANSMISSION_SET true
+#else
+#define TRANSMISSION_SET false
+#endif
+#ifdef THICKNESS_TEXCOORD_1
+#define THICKNESS_SET true
+#else
+#define THICKNESS_SET false
+#endif
+
+// KHR_materials_transmission's share: transmissionFactor x texture R.
+float transmissionAt() {
+  float transmission = material.transmissionFactors.x;
+#ifdef HAS_TRANSMISSION_TEXTURE
+  transmission *= texture(transmissionTexture, textureUv(TRANSMISSION_SET, material.transmissionTransformU,
+                                                         material.transmissionTransformV)).r;
+#endif
+  return transmission;
+}
+
+// KHR_materials_volume's thickness (mesh units; 0 = thin-walled): thicknessFactor x texture G.
+float thicknessAt() {
+  float thickness = material.transmissionFactors.y;
+#ifdef HAS_THICKNESS_TEXTURE
+  thickness *= texture(thicknessTexture, textureUv(THICKNESS_SET, material.thicknessTransformU,
+                                                   material.thicknessTransformV)).g;
+#endif
+  return thickness;
+}
+
+// The opaque lit image with its mip chain (TransmissionPass copies it).
+layout(binding = kUnitTransmissionBackground) uniform sampler2D transmissionBackground;
+// The instance's scale per axis (gbuffer.vert): thickness is in mesh units.
+layout(location = 6) flat in vec3 vModelScale;
+
+// Replaces lit (no blending); the transmission target says how much of the
+// image behind came through, and over what path length.
+layout(location = 0) out vec4 outLit;
+layout(location = 1) out vec4 outTransmission;
+
+// The split-sum specular albedo, as ambient.glsl's ambientLight has it.
+vec3 specularAlbedoOf(Surface s) {
+  const float size = float(kBrdfLutSize);
+  const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(s.nDotV, 0.0, 1.0, size),
+                                               tableCoordinate(s.roughness, 0.0, 1.0, size))).rg;
+  return s.f0 * scaleBias.x + scaleBias.y;
+}
+
+// The opaque image where the path through the volume leaves it, seen from
+// the eye; a thin wall's own pixel. Clamped at the image's edges: what
+// lies off-screen is not in the copy.
+vec3 refractedBackground(vec3 exitPoint, bool thin, float lod) {
+  vec2 uv = gl_FragCoord.xy * frame.viewport.zw;
+  const vec4 clip = frame.viewProjection * vec4(exitPoint, 1.0);
+  if (!thin && clip.w > 0.0) uv = clip.xy / clip.w * 0.5 + 0.5;
+  return textureLod(transmissionBackground, uv, lod).rgb;
+}
+
+void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metallic, float roughness, float occlusion,
+                       vec3 emission, float transmission, float thickness) {
+  Surface surface = makeSurface(baseColor, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
+                                viewDirection(position));
+  // KHR_materials_ior sets the dielectric's reflectance: ((ior - 1) / (ior + 1))^2, 0.04 at glTF's 1.5.
+  const float ior = material.transmissionFactors.z;
+  const float iorF0 = (ior - 1.0) / (ior + 1.0);
+  surface.f0 = mix(vec3(iorF0 * iorF0), surface.albedo, surface.metallic);
+  const float share = clamp(transmission, 0.0, 1.0);
+  const float blur = transmissionRoughness(clamp(roughness, 0.0, 1.0), ior);
+  vec3 radiance = emission;
+  const int lightCount = lighting.lightCount;
+  for (int i = 0; i < lightCount; ++i) {
+    const GpuLight light = lights.lightList[i];
+    vec3 toLight;
+    const float attenuation = lightAttenuation(light, position, toLight);
+    if (attenuation <= 0.0) continue;
+    // A light behind the surface is seen through it: its shadow is looked
+    // up on that side.
+    const vec3 facing = dot(surface.normal, toLight) < 0.0 ? -surface.normal : surface.normal;
+    const float visibility = shadowVisibility(light, position, facing, toLight);
+    radiance += transmissiveCookTorrance(surface, toLight, share, blur) * light.radiance * (attenuation * visibility);
+  }
+  const vec3 specularAlbedo = specularAlbedoOf(surface);
+#ifdef HAS_SKY
+  // ambient.glsl's term, its diffuse part reduced to the share not transmitted.
+  const float materialOcclusion = clamp(occlusion, 0.0, 1.0);
+  const vec3 diffuseIbl = (1.0 - specularAlbedo) * (1.0 - surface.metallic) * surface.albedo *
+                          skyIrradianceOverPi(surface.normal) * (lighting.skyIntensity * materialOcclusion);
+  radiance += ambientLight(surface, materialOcclusion, 1.0, vec3(0.0)) - share * diffuseIbl;
+#endif
+  const float pathThickness = max(thickness, 0.0);
+  const vec3 path = volumeTransmissionRay(surface.normal, surface.view, pathThickness, ior, vModelScale);
+  const float pathLength = length(path);
+  const vec3 attenuation =
+      volumeAttenuation(pathLength, material.attenuationColor.rgb, material.transmissionFactors.w);
+  const vec3 throughput = transmissionThroughput(surface, specularAlbedo, share, attenuation);
+  const float lod = transmissionLod(blur, frame.viewport.xy);
+  radiance += throughput * refractedBackground(position + path, pathThickness == 0.0, lod);
+  outLit = vec4(radiance, 1.0);
+  outTransmission = vec4(throughput, pathLength);
+}
+#endif

@@ -1,0 +1,124 @@
+#include "passes/transmission.hpp"
+
+#include <algorithm>
+
+#include "shared_layout.h"
+
+namespace headlight {
+
+namespace {
+
+std::vector<std::string> transmissionDefines(FeatureBits features, const TransmissionVariant& variant) {
+  std::vector<std::string> defines = featureDefines(features);
+  defines.emplace_back("TRANSMISSION_FORWARD");
+  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
+  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
+  if (variant.sky) defines.emplace_back("HAS_SKY");
+  if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+  return defines;
+}
+
+int mipLevels(int width, int height) {
+  int levels = 1;
+  for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
+  return levels;
+}
+
+void bindLightingInputs(const TransmissionInputs& inputs, const TransmissionVariant& variant) {
+  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
+  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  bindAmbientTables(inputs.environment, variant.sky, variant.environment);
+  // The throughput's specular albedo reads the BRDF table with or without the sky term.
+  inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
+}
+
+}  // namespace
+
+TransmissionPass::TransmissionPass()
+    : programs_("gbuffer.vert", "gbuffer.frag",
+                [](const ProgramKey& key) { return transmissionDefines(key.features, key.variant); }) {
+  // Trilinear: the roughness picks a fractional level. Clamped: a refracted
+  // path that leaves the image reads its edge.
+  backgroundSampler_.set(GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  backgroundSampler_.set(GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  backgroundSampler_.set(GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  backgroundSampler_.set(GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void TransmissionPass::prepare(const GpuScene& scene, const TransmissionVariant& variant) {
+  for (const GpuDrawGroup& group : scene.drawGroups) {
+    const GpuMaterial& material = scene.materials[std::size_t(group.material)];
+    if (material.transmissive)
+      programs_.get({drawFeatures(scene.primitives[std::size_t(group.primitive)], material), variant});
+  }
+}
+
+void TransmissionPass::copyBackground(const gl::Texture& lit) {
+  if (background_.width() != lit.width() || background_.height() != lit.height() ||
+      background_.internalFormat() != lit.internalFormat())
+    background_ =
+        gl::Texture::create2D(lit.internalFormat(), lit.width(), lit.height(), mipLevels(lit.width(), lit.height()));
+  glCopyImageSubData(lit.id(), GL_TEXTURE_2D, 0, 0, 0, 0, background_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, lit.width(),
+                     lit.height(), 1);
+  glGenerateTextureMipmap(background_.id());
+}
+
+void TransmissionPass::run(const TransmissionInputs& inputs, const TransmissionTargets& targets,
+                           const TransmissionVariant& variant) {
+  copyBackground(targets.lit);
+  inputs.gbuffer.drawTransmissive(inputs.scene, inputs.gbufferTargets, inputs.gbufferVariant);
+  shade(inputs, targets, variant);
+}
+
+void TransmissionPass::shade(const TransmissionInputs& inputs, const TransmissionTargets& targets,
+                             const TransmissionVariant& variant) {
+  const GpuScene& scene = inputs.scene;
+  framebuffer_.attach(GL_COLOR_ATTACHMENT0, targets.lit);
+  framebuffer_.attach(GL_COLOR_ATTACHMENT1, targets.transmission);
+  framebuffer_.attach(GL_DEPTH_ATTACHMENT, *inputs.gbufferTargets.depth);
+  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  framebuffer_.setDrawBuffers(drawBuffers);
+  framebuffer_.checkComplete("transmission");
+  framebuffer_.bind();
+  glViewport(0, 0, targets.width, targets.height);
+  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  // Equal to what step 2 wrote: only the nearest transmissive surface of a
+  // pixel is shaded (gbuffer.vert's gl_Position is invariant, so both
+  // programs rasterise the same depths).
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_EQUAL);
+  glDepthMask(GL_FALSE);
+  bindLightingInputs(inputs, variant);
+  background_.bind(gpu::kUnitTransmissionBackground);
+  backgroundSampler_.bind(gpu::kUnitTransmissionBackground);
+  scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
+
+  for (const GpuDrawGroup& group : scene.drawGroups) {
+    const GpuMaterial& material = scene.materials[std::size_t(group.material)];
+    if (!material.transmissive) continue;
+    const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
+    const FeatureBits features = drawFeatures(primitive, material);
+    programs_.get({features, variant}).use();
+    if (material.doubleSided)
+      glDisable(GL_CULL_FACE);
+    else
+      glEnable(GL_CULL_FACE);
+    glFrontFace(group.mirrored ? GL_CW : GL_CCW);
+    material.block.bindUniform(gpu::MaterialBlock::kBinding);
+    bindMaterialTextures(scene, material, features);
+    primitive.vertexArray.bind();
+    glDrawElementsInstancedBaseInstance(primitive.mode, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
+                                        group.instanceCount, group.firstInstance);
+  }
+  glBindSampler(GLuint(gpu::kUnitTransmissionBackground), 0);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT1);
+  framebuffer_.detach(GL_DEPTH_ATTACHMENT);
+}
+
+}  // namespace headlight

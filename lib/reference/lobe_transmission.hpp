@@ -1,0 +1,100 @@
+#pragma once
+// CPU ports of glsl/lobe_transmission.glsl (KHR_materials_transmission and
+// KHR_materials_volume), with the GLSL's names, clamps and constants, for
+// the Embree reference and the parity tests
+// (tests/transmission_parity_tests.cpp). Pure functions: every input is a
+// parameter.
+#include <algorithm>
+#include <cmath>
+#include <glm/glm.hpp>
+
+#include "headlight/scene.hpp"
+#include "reference/shading.hpp"
+
+namespace headlight::reference {
+
+// lobe_transmission.glsl transmissionRoughness: microfacet refraction blurs
+// with ior - 1, not at all at ior 1.
+inline float transmissionRoughness(float roughness, float ior) {
+  return roughness * std::clamp(ior * 2.0f - 2.0f, 0.0f, 1.0f);
+}
+
+// GLSL's refract(I, N, eta) for unit I and N: 0 on total internal reflection.
+inline glm::vec3 refractGlsl(const glm::vec3& incident, const glm::vec3& normal, float eta) {
+  const float nDotI = glm::dot(normal, incident);
+  const float k = 1.0f - eta * eta * (1.0f - nDotI * nDotI);
+  if (k < 0.0f) return glm::vec3(0.0f);
+  return eta * incident - (eta * nDotI + std::sqrt(k)) * normal;
+}
+
+// lobe_transmission.glsl volumeTransmissionRay: the refracted path through
+// `thickness` (mesh units) scaled per axis by `modelScale`; 0 for thin walls.
+inline glm::vec3 volumeTransmissionRay(const glm::vec3& normal, const glm::vec3& view, float thickness, float ior,
+                                       const glm::vec3& modelScale) {
+  const glm::vec3 refracted = refractGlsl(-view, normal, 1.0f / std::max(ior, 1.0f));
+  const glm::vec3 direction = glm::dot(refracted, refracted) > 0.0f ? glm::normalize(refracted) : -view;
+  return direction * thickness * modelScale;
+}
+
+// lobe_transmission.glsl volumeAttenuation: Beer-Lambert; distance 0 (the
+// specification's infinity) or a zero path absorbs nothing.
+inline glm::vec3 volumeAttenuation(float pathLength, const glm::vec3& attenuationColor, float attenuationDistance) {
+  if (attenuationDistance <= 0.0f || pathLength <= 0.0f) return glm::vec3(1.0f);
+  return glm::pow(attenuationColor, glm::vec3(pathLength / attenuationDistance));
+}
+
+// lobe_transmission.glsl specularBtdf: thin-walled GGX BTDF times |N.L| for
+// light from behind (N.L < 0), 0 from the front.
+inline float specularBtdf(const glm::vec3& normal, const glm::vec3& view, float nDotV, const glm::vec3& toLight,
+                          float roughness) {
+  const float nDotL = glm::dot(normal, toLight);
+  if (nDotL >= 0.0f) return 0.0f;
+  const glm::vec3 mirrored = toLight - 2.0f * nDotL * normal;
+  const glm::vec3 halfVector = glm::normalize(mirrored + view);
+  const float nDotH = std::max(glm::dot(normal, halfVector), 0.0f);
+  const float clamped = std::max(roughness, 0.03f);
+  const float alpha = clamped * clamped;
+  const float a2 = alpha * alpha;
+  const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
+  return a2 / (kPi * d * d) * smithGgxVisibility(nDotV, -nDotL, alpha) * -nDotL;
+}
+
+// lobe_transmission.glsl schlickFresnel.
+inline glm::vec3 schlickFresnel(const Surface& s, const glm::vec3& halfVector) {
+  return s.f0 + (1.0f - s.f0) * std::pow(1.0f - std::max(glm::dot(s.view, halfVector), 0.0f), 5.0f);
+}
+
+// lobe_transmission.glsl transmissiveCookTorrance: mix(diffuse, btdf x
+// baseColor, transmission) under the Fresnel layer.
+inline glm::vec3 transmissiveCookTorrance(const Surface& s, const glm::vec3& toLight, float transmission,
+                                          float transmissionRoughnessValue) {
+  const float nDotL = glm::dot(s.normal, toLight);
+  if (nDotL > 0.0f) {
+    const glm::vec3 fresnel = schlickFresnel(s, glm::normalize(toLight + s.view));
+    const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi * nDotL;
+    return cookTorrance(s, toLight) - transmission * diffuse;
+  }
+  const glm::vec3 mirrored = toLight - 2.0f * nDotL * s.normal;
+  const glm::vec3 fresnel = schlickFresnel(s, glm::normalize(mirrored + s.view));
+  return transmission * (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo *
+         specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue);
+}
+
+// lobe_transmission.glsl transmissionThroughput.
+inline glm::vec3 transmissionThroughput(const Surface& s, const glm::vec3& specularAlbedo, float transmission,
+                                        const glm::vec3& attenuation) {
+  return transmission * (1.0f - specularAlbedo) * (1.0f - s.metallic) * s.albedo * attenuation;
+}
+
+// transmission.glsl's dielectric reflectance from KHR_materials_ior.
+inline glm::vec3 iorF0(float ior, const glm::vec3& albedo, float metallic) {
+  const float r = (ior - 1.0f) / (ior + 1.0f);
+  return glm::mix(glm::vec3(r * r), albedo, metallic);
+}
+
+// lobe_transmission.glsl transmissionLod.
+inline float transmissionLod(float transmissionRoughnessValue, float width, float height) {
+  return std::log2(std::max(width, height)) * transmissionRoughnessValue;
+}
+
+}  // namespace headlight::reference

@@ -1,0 +1,44 @@
+#pragma once
+// The Embree reference's view of KHR_materials_transmission and
+// KHR_materials_volume (tracer.cpp uses it): which transmissive surface a
+// primary ray meets, with its material's values where the ray hits it, and
+// the first surface behind it that is not transmissive. The reference's
+// model (docs/ACCURACY.md): one straight ray through the surface, leaving
+// where the volume's refracted path (lobe_transmission.hpp's
+// volumeTransmissionRay, the renderer's) leaves, along the view direction;
+// transmissive surfaces behind it are passed, as the renderer's background
+// holds none; no roughness blur.
+#include <embree3/rtcore.h>
+
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "headlight/scene.hpp"
+#include "reference/traced_scene.hpp"
+
+namespace headlight::reference {
+
+struct TransmissiveSurface {
+  float share = 0.0f;  // transmissionFactor x texture R; 0: not a transmissive surface
+  float ior = 1.5f;
+  float thickness = 0.0f;      // thicknessFactor x texture G, mesh units; 0: thin-walled
+  glm::vec3 modelScale{1.0f};  // the instance's scale per axis
+  glm::vec3 attenuationColor{1.0f};
+  float attenuationDistance = 0.0f;  // 0: infinite (as the renderer's material block)
+  float blur = 0.0f;                 // transmissionRoughness of the surface's roughness (set by the tracer)
+};
+
+// What the primary ray (origin, unit direction) meets first in `rtcScene`:
+// its transmission where that is a surface the transmission pass draws,
+// else share 0.
+TransmissiveSurface transmissiveSurfaceAt(const Scene& scene, const std::vector<InstanceShading>& instances,
+                                          RTCScene rtcScene, RTCIntersectContext& context, const glm::vec3& origin,
+                                          const glm::vec3& direction);
+
+// The first hit from `origin` along unit `direction` past `tnear` whose
+// surface the transmission pass does not draw (geomID
+// RTC_INVALID_GEOMETRY_ID: none).
+RTCRayHit firstOpaqueHit(const std::vector<InstanceShading>& instances, RTCScene rtcScene, RTCIntersectContext& context,
+                         const glm::vec3& origin, const glm::vec3& direction, float tnear);
+
+}  // namespace headlight::reference
