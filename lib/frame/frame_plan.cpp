@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shared_layout.h"
+
 namespace headlight {
 namespace {
 
@@ -38,6 +40,10 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
     // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
     {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
+    // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
+    // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
+    {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET", false,
+     &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 

@@ -105,6 +105,8 @@ enum class Attachment {
   SsgiSky,
   Lit,
   BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  // KHR_materials_iridescence's film (Lobe::Iridescence): strength, thickness, film IOR, base IOR
+  GbufferIridescence,
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);

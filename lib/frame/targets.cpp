@@ -37,6 +37,8 @@ constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirec
                                               "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B"};
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 constexpr std::string_view kCoverageChannels[] = {"coverage.Y"};
+constexpr std::string_view kIridescenceChannels[] = {"iridescence.factor", "iridescence.thickness", "iridescence.ior",
+                                                     "iridescence.baseIor"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -83,6 +85,14 @@ const FrameTarget kTargets[] = {
      "alphaMode BLEND surfaces' accumulated alpha 1 - prod(1 - a) over the pixel, 0..1, whatever lies behind them; "
      "only for scenes that blend. Alpha comes from 8-bit textures and factors (one step 3.9e-3), like albedo: any "
      "step warns, more than two fail."},
+    {"iridescence", &Frame::iridescence, kIridescenceChannels, E::Half, M::RelativeToValue,
+     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_iridescence's film as the lighting passes read it: strength (factor x texture, 0..1), "
+     "thickness in nm (minimum..maximum by the thickness texture), the film's IOR and the base's; only for scenes "
+     "with an iridescent material. Absolute below 1, relative above: the strength comes from 8-bit textures and "
+     "factors (one step 3.9e-3, like material), the thickness from an 8-bit texture between two bounds (one step "
+     "of a 200..600 nm range is 0.4 % at 400 nm) and half storage rounds at 4.9e-4 relative: any step warns, more "
+     "than two fail."},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -15,11 +15,12 @@ namespace headlight::gltf {
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 8> kRenderedExtensions{
+constexpr std::array<std::string_view, 9> kRenderedExtensions{
     "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
     "KHR_texture_transform", "KHR_materials_unlit",
-    "KHR_materials_variants",  // the default materials, or --material-variant's (gltf_variants.cpp)
-    kTextureWebp};             // decoded by OpenImageIO (gltf_texture_sources.cpp)
+    "KHR_materials_variants",     // the default materials, or --material-variant's (gltf_variants.cpp)
+    kTextureWebp,                 // decoded by OpenImageIO (gltf_texture_sources.cpp)
+    "KHR_materials_iridescence"};  // a G-buffer lobe: the thin-film Fresnel (glsl/lobe_iridescence.glsl)
 
 // Rendered when the build has their decoder (meson options draco, meshopt).
 bool decoderBuilt(const std::string& name) {

@@ -56,6 +56,10 @@ constexpr MaterialTextureRow kRows[] = {
      &B::occlusionTransformV},
     {T::Emissive, "EMISSIVE", gpu::kUnitEmissiveTexture, true, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
      coreTexture<&Material::emissiveTexture>, &B::emissiveTransformU, &B::emissiveTransformV},
+    HL_EXTENSION_ROW(Iridescence, "IRIDESCENCE", kUnitIridescenceTexture, false, iridescence,
+                     Iridescence::iridescenceTexture, iridescence),
+    HL_EXTENSION_ROW(IridescenceThickness, "IRIDESCENCE_THICKNESS", kUnitIridescenceThicknessTexture, false,
+                     iridescence, Iridescence::iridescenceThicknessTexture, iridescenceThickness),
 };
 #undef HL_EXTENSION_ROW
 static_assert(std::size(kRows) == kMaterialTextureCount);

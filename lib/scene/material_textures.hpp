@@ -29,6 +29,8 @@ enum class MaterialTexture {
   // SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormal,
   // SheenColor, SheenRoughness, Iridescence, IridescenceThickness,
   // Anisotropy, Transmission, Thickness.
+  Iridescence,           // KHR_materials_iridescence's iridescenceTexture (R)
+  IridescenceThickness,  // and its iridescenceThicknessTexture (G)
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);

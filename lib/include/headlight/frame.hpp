@@ -52,6 +52,9 @@ struct Frame {
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
   ImageF coverage;  // coverage.Y: alphaMode BLEND's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  // iridescence.factor, .thickness (nm), .ior (the film's), .baseIor (Material::ior):
+  // KHR_materials_iridescence's film per pixel; only for scenes with an iridescent material
+  ImageF iridescence;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers
