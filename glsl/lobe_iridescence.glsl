@@ -94,6 +94,7 @@ vec3 thinFilmFresnel(float outsideIor, float filmIor, float cosTheta1, float thi
 // (lobe_iridescence_material.glsl writes it).
 vec3 iridescenceFresnel(vec4 film, vec3 albedo, float metallic, float nDotV) {
   const float thickness = clamp(film.y, 0.0, kMaxFilmThicknessNm);
+  if (metallic >= 1.0) return thinFilmFresnel(1.0, film.z, nDotV, thickness, albedo);
   const vec3 dielectric = thinFilmFresnel(1.0, film.z, nDotV, thickness, vec3(thinFilmIorToFresnel0(film.w, 1.0)));
   if (metallic <= 0.0) return dielectric;
   return mix(dielectric, thinFilmFresnel(1.0, film.z, nDotV, thickness, albedo), metallic);

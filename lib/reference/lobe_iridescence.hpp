@@ -109,6 +109,7 @@ inline glm::vec3 thinFilmFresnel(float outsideIor, float filmIor, float cosTheta
 inline glm::vec3 iridescenceFresnel(const IridescenceInputs& inputs, const glm::vec3& albedo, float metallic,
                                     float nDotV) {
   const float thickness = std::clamp(inputs.thicknessNm, 0.0f, kMaxFilmThicknessNm);
+  if (metallic >= 1.0f) return thinFilmFresnel(1.0f, inputs.filmIor, nDotV, thickness, albedo);
   const glm::vec3 dielectric =
       thinFilmFresnel(1.0f, inputs.filmIor, nDotV, thickness, glm::vec3(thinFilmIorToFresnel0(inputs.baseIor, 1.0f)));
   if (metallic <= 0.0f) return dielectric;
