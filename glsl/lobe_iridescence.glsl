@@ -94,10 +94,12 @@ vec3 thinFilmFresnel(float outsideIor, float filmIor, float cosTheta1, float thi
 // (lobe_iridescence_material.glsl writes it).
 vec3 iridescenceFresnel(vec4 film, vec3 albedo, float metallic, float nDotV) {
   const float thickness = clamp(film.y, 0.0, kMaxFilmThicknessNm);
-  if (metallic >= 1.0) return thinFilmFresnel(1.0, film.z, nDotV, thickness, albedo);
-  const vec3 dielectric = thinFilmFresnel(1.0, film.z, nDotV, thickness, vec3(thinFilmIorToFresnel0(film.w, 1.0)));
+  const float filmIor = clamp(film.z, 1.0, kMaxIridescenceIor);
+  if (metallic >= 1.0) return thinFilmFresnel(1.0, filmIor, nDotV, thickness, albedo);
+  const float baseF0 = thinFilmIorToFresnel0(clamp(film.w, 0.0, kMaxIridescenceIor), 1.0);
+  const vec3 dielectric = thinFilmFresnel(1.0, filmIor, nDotV, thickness, vec3(baseF0));
   if (metallic <= 0.0) return dielectric;
-  return mix(dielectric, thinFilmFresnel(1.0, film.z, nDotV, thickness, albedo), metallic);
+  return mix(dielectric, thinFilmFresnel(1.0, filmIor, nDotV, thickness, albedo), metallic);
 }
 
 // Puts the film on `s` (made by makeSurface): its Fresnel at N.V and the

@@ -36,6 +36,6 @@ vec4 materialIridescence() {
                   texture(iridescenceThicknessTexture, thicknessUv).g);
 #endif
   // transmissionFactors.z: Material::ior, the base's (KHR_materials_ior).
-  return vec4(clamp(strength, 0.0, 1.0), clamp(thickness, 0.0, kMaxFilmThicknessNm), material.iridescenceFactors.y,
-              material.transmissionFactors.z);
+  return vec4(clamp(strength, 0.0, 1.0), clamp(thickness, 0.0, kMaxFilmThicknessNm),
+              min(material.iridescenceFactors.y, kMaxIridescenceIor), min(material.transmissionFactors.z, kMaxIridescenceIor));
 }

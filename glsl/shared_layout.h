@@ -138,6 +138,11 @@ HL_CONST(int, kSkyTableWidth, 64)
 // their amplitude, so only the incoherent sum is left either way; it also
 // keeps the lobe's half-float attachment (max 65504) finite.
 HL_CONST(float, kMaxFilmThicknessNm, 10000.0f)
+// And its IORs (the film's and the base's) above this are drawn at it: a
+// surface of IOR 1e4 already reflects 0.9996 at normal incidence, and the
+// bound keeps (n - 1) / (n + 1) and the half-float attachment finite for the
+// largest IOR a file may give (any finite number >= 1).
+HL_CONST(float, kMaxIridescenceIor, 10000.0f)
 
 // Light types as stored in GpuLight::type.
 HL_CONST(int, kLightDirectional, 0)

@@ -134,3 +134,64 @@ TEST_CASE("iridescence: the Embree reference reads the film from iridescence.exr
   // split-sum tables against GGX sampling with true visibility.
   CHECK(referenceSum / renderSum == doctest::Approx(1.0).epsilon(0.2));
 }
+
+TEST_CASE("iridescence: the strength and thickness textures reach iridescence.exr, through their transforms") {
+  Scene scene = test::orthoQuadScene();
+  // A 2x2 image: R 255 / 0 on the top row / bottom row's left texel and G
+  // 0 / 255 likewise (rows top first: UV (0, 0) is the top-left texel).
+  ImageData image;
+  image.name = "film";
+  image.width = 2;
+  image.height = 2;
+  image.rgba = {255, 0, 0, 255, 0, 255, 0, 255, 0, 255, 0, 255, 255, 0, 0, 255};
+  scene.images.push_back(image);
+  MaterialIridescence film;
+  film.iridescenceFactor = 0.5f;
+  film.iridescenceIor = 1.8f;
+  film.iridescenceThicknessMinimum = 200.0f;
+  film.iridescenceThicknessMaximum = 600.0f;
+  for (TextureRef* texture : {&film.iridescenceTexture, &film.iridescenceThicknessTexture}) {
+    texture->image = 0;
+    texture->minFilter = texture->magFilter = 0x2600;  // GL_NEAREST: one texel per quadrant
+  }
+  // The thickness texture is turned half a turn: its top-left texel lands
+  // on the quad's bottom-right.
+  film.iridescenceThicknessTexture.transform.rotation = 3.14159265f;
+  film.iridescenceThicknessTexture.transform.offset = {1.0f, 1.0f};
+  scene.materials[0].ior = 1.7f;
+  scene.materials[0].iridescence = film;
+  const Frame frame = test::renderFresh(scene, test::smallSettings(64, 64));
+  REQUIRE(!frame.iridescence.empty());
+  // The quad spans world -1..1 of the ortho camera's -1.5..1.5.
+  auto at = [&](float worldX, float worldY, int channel) {
+    const int x = int((worldX / 1.5f * 0.5f + 0.5f) * 64), y = int((0.5f - worldY / 1.5f * 0.5f) * 64);
+    return frame.iridescence.at(x, y, channel);
+  };
+  CHECK(at(-0.5f, 0.5f, 0) == doctest::Approx(0.5f).epsilon(1e-3));  // top-left: R 1 x factor 0.5
+  CHECK(at(0.5f, 0.5f, 0) == doctest::Approx(0.0f));                 // top-right: R 0
+  CHECK(at(0.5f, -0.5f, 0) == doctest::Approx(0.5f).epsilon(1e-3));  // bottom-right: R 1
+  // Rotated by pi about UV (0, 0) and moved back by (1, 1): UV (u, v) reads
+  // (1 - u, 1 - v), so the bottom-right shows the top-left texel (G 0: the minimum).
+  CHECK(at(0.5f, -0.5f, 1) == doctest::Approx(200.0f).epsilon(1e-3));
+  CHECK(at(-0.5f, -0.5f, 1) == doctest::Approx(600.0f).epsilon(1e-3));  // reads the top-right texel, G 1
+  CHECK(at(-0.5f, 0.5f, 2) == doctest::Approx(1.8f).epsilon(1e-3));
+  CHECK(at(-0.5f, 0.5f, 3) == doctest::Approx(1.7f).epsilon(1e-3));
+}
+
+TEST_CASE("iridescence: the largest values a file may give draw finite pixels") {
+  // Loading accepts any finite IOR >= 1 and thickness >= 0: the lobe bounds
+  // them (kMaxIridescenceIor, kMaxFilmThicknessNm) before half storage and
+  // (n - 1) / (n + 1) would overflow.
+  Material extreme = withFilm(kGreyMetal, 1.0f, 3e38f, 3e38f);
+  extreme.metallicFactor = 0.5f;
+  extreme.ior = 3e38f;
+  const Frame frame = test::renderFresh(sphereScene(extreme), test::smallSettings(48, 36));
+  REQUIRE(!frame.iridescence.empty());
+  int nonFinite = 0, filmed = 0;
+  for (const float value : frame.lit.pixels) nonFinite += !std::isfinite(value);
+  for (const float value : frame.iridescence.pixels) nonFinite += !std::isfinite(value);
+  for (int y = 0; y < frame.iridescence.height; ++y)
+    for (int x = 0; x < frame.iridescence.width; ++x) filmed += frame.iridescence.at(x, y, 0) > 0.0f;
+  CHECK(nonFinite == 0);
+  CHECK(filmed > 100);
+}

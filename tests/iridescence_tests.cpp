@@ -183,3 +183,26 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
   addMaterial(unlit, filmed);
   CHECK(summarizeScene(unlit).lobes == 0);
 }
+
+TEST_CASE("the film stays finite at the loader's extremes") {
+  // What loading lets through (gltf_material_extensions.cpp refuses NaN, IORs
+  // below 1 and negative thicknesses): a base IOR of 0 (glTF's "F0 = 1",
+  // kept as 0), huge film IORs and thicknesses.
+  for (const reference::IridescenceInputs film :
+       {reference::IridescenceInputs{1.0f, 400.0f, 1.33f, 0.0f}, reference::IridescenceInputs{1.0f, 400.0f, 1e30f, 1.5f},
+        reference::IridescenceInputs{1.0f, 1e30f, 1.33f, 1.5f}, reference::IridescenceInputs{1.0f, 0.0f, 1.0f, 1.0f},
+        reference::IridescenceInputs{1.0f, 3e38f, 3e38f, 3e38f}})
+    for (const float metallic : {0.0f, 0.5f, 1.0f})
+      for (const float nDotV : {1e-4f, 0.5f, 1.0f, 1.0001f}) {
+        const glm::vec3 fresnel = reference::iridescenceFresnel(film, glm::vec3(1.0f, 0.5f, 0.0f), metallic, nDotV);
+        CAPTURE(film.filmIor);
+        CAPTURE(film.thicknessNm);
+        CAPTURE(film.baseIor);
+        CAPTURE(metallic);
+        CAPTURE(nDotV);
+        for (int c = 0; c < 3; ++c) {
+          CHECK(std::isfinite(fresnel[c]));
+          CHECK(fresnel[c] >= 0.0f);
+        }
+      }
+}

@@ -22,6 +22,7 @@ struct IridescenceInputs {
 };
 
 using gpu::kMaxFilmThicknessNm;
+using gpu::kMaxIridescenceIor;
 
 // Pixel (x, y) of frame.iridescence; no film where the frame has none.
 inline IridescenceInputs iridescenceInputsAt(const Frame& frame, int x, int y) {
@@ -109,11 +110,12 @@ inline glm::vec3 thinFilmFresnel(float outsideIor, float filmIor, float cosTheta
 inline glm::vec3 iridescenceFresnel(const IridescenceInputs& inputs, const glm::vec3& albedo, float metallic,
                                     float nDotV) {
   const float thickness = std::clamp(inputs.thicknessNm, 0.0f, kMaxFilmThicknessNm);
-  if (metallic >= 1.0f) return thinFilmFresnel(1.0f, inputs.filmIor, nDotV, thickness, albedo);
-  const glm::vec3 dielectric =
-      thinFilmFresnel(1.0f, inputs.filmIor, nDotV, thickness, glm::vec3(thinFilmIorToFresnel0(inputs.baseIor, 1.0f)));
+  const float filmIor = std::clamp(inputs.filmIor, 1.0f, kMaxIridescenceIor);
+  if (metallic >= 1.0f) return thinFilmFresnel(1.0f, filmIor, nDotV, thickness, albedo);
+  const float baseF0 = thinFilmIorToFresnel0(std::clamp(inputs.baseIor, 0.0f, kMaxIridescenceIor), 1.0f);
+  const glm::vec3 dielectric = thinFilmFresnel(1.0f, filmIor, nDotV, thickness, glm::vec3(baseF0));
   if (metallic <= 0.0f) return dielectric;
-  return glm::mix(dielectric, thinFilmFresnel(1.0f, inputs.filmIor, nDotV, thickness, albedo), metallic);
+  return glm::mix(dielectric, thinFilmFresnel(1.0f, filmIor, nDotV, thickness, albedo), metallic);
 }
 
 }  // namespace headlight::reference

@@ -357,8 +357,8 @@ class Tracer {
     if (textured && film.iridescenceThicknessTexture.present())
       thickness = glm::mix(film.iridescenceThicknessMinimum, film.iridescenceThicknessMaximum,
                            sample(film.iridescenceThicknessTexture).g);
-    return {std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm), film.iridescenceIor,
-            material.ior};
+    return {std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm),
+            std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor)};
   }
 
   // Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.
