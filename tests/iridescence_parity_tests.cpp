@@ -4,8 +4,10 @@
 // output, compared per covered pixel with the CPU port
 // (lib/reference/lobe_iridescence.hpp through shading.hpp's cookTorrance)
 // evaluated on the G-buffer read back, iridescence.exr included. Then the
-// ambient term: the same scene under the sky, compared with the port's
-// split-sum weights on the pixels where the sky dominates.
+// ambient term (ambient.glsl), under the sky alone, without needing the
+// split-sum table on the CPU: a white metal's specular albedo is the table's
+// A + B, so a filmed metal's ambient must be the port's film Fresnel times
+// the white metal's, pixel by pixel.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -131,4 +133,61 @@ TEST_CASE("iridescent direct light on the GPU matches the CPU port per pixel") {
   CHECK(filmed > covered / 10);
   CHECK(filmed < covered);
   CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
+}
+
+namespace {
+
+// A metal sphere under the default sky alone: a light of intensity 0 keeps
+// the renderer's default key light away, SSGI is off (sky visibility 1).
+Scene skyLitSphere(const Material& material) {
+  Scene scene;
+  scene.source = "test:iridescence-ambient";
+  addInstance(scene, makeUvSphere(0.8f, 64, 32), addMaterial(scene, material));
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 0.8f, 3.0f}, {0.0f, 0.0f, 0.0f}, 0.8f));
+  Light dark;
+  dark.type = Light::Type::Directional;
+  dark.direction = {0.0f, -1.0f, 0.0f};
+  dark.intensity = 0.0f;
+  dark.castsShadows = false;
+  scene.lights.push_back(dark);
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("iridescent ambient light on the GPU is the CPU port's film Fresnel times the split-sum integral") {
+  RenderSettings settings = test::smallSettings(64, 64);
+  settings.ssgi.enabled = false;
+  // Base colours 0 or 1 (exact through sRGB8). Metal: no diffuse term, and
+  // the specular albedo f0 A + B of a white base is A + B.
+  const Material white = makeMaterial({1.0f, 1.0f, 1.0f}, 0.25f, 1.0f);
+  const Material filmed = iridescent({1.0f, 0.0f, 1.0f}, 0.25f, 1.0f, 1.0f, 400.0f, 1.33f, 1.5f);
+  const Frame whiteFrame = test::renderFresh(skyLitSphere(white), settings);
+  const Frame frame = test::renderFresh(skyLitSphere(filmed), settings);
+  REQUIRE(!frame.iridescence.empty());
+  // Half storage of both lits (2^-11 each) and the film's parity above (1e-3).
+  constexpr float kRelative = 4e-3f, kAbsolute = 1e-5f;
+  int compared = 0, outside = 0;
+  float worstRelative = 0.0f;
+  for (int y = 0; y < frame.lit.height; ++y)
+    for (int x = 0; x < frame.lit.width; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      ++compared;
+      const reference::Surface surface = cpuSurface(frame, x, y);
+      const glm::vec3 expected = surface.iridescenceFresnel * pixel3(whiteFrame.lit, x, y);
+      for (int c = 0; c < 3; ++c) {
+        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
+        const float error = std::abs(gpu - cpu);
+        if (cpu > 1e-3f) worstRelative = std::max(worstRelative, error / cpu);
+        if (error > kRelative * std::abs(cpu) + kAbsolute && ++outside <= 5) {
+          CAPTURE(x);
+          CAPTURE(y);
+          CAPTURE(c);
+          CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
+        }
+      }
+    }
+  MESSAGE("iridescent ambient light: " << compared << " pixels, worst relative error " << worstRelative);
+  CHECK(outside == 0);
+  CHECK(compared > 64 * 64 / 4);
 }
