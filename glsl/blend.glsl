@@ -20,8 +20,11 @@ layout(location = 1) out vec4 outCoverage;
 
 void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, float roughness, float occlusion,
                   vec3 emission) {
-  const Surface surface = makeSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
-                                      viewDirection(position));
+  Surface surface = makeSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
+                                viewDirection(position));
+#ifdef HAS_IRIDESCENCE_LOBE
+  applyIridescence(surface, materialIridescence());  // lobe_iridescence_material.glsl
+#endif
   vec3 radiance = emission;
   const int lightCount = lighting.lightCount;
   for (int i = 0; i < lightCount; ++i) {

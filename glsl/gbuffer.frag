@@ -90,6 +90,10 @@ layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #include "surface.glsl"
 #include "ambient.glsl"
 #endif
+#ifdef HAS_IRIDESCENCE_LOBE
+#include "lobe_iridescence_material.glsl"
+#endif
+
 #if defined(BLEND_FORWARD)
 #include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
 #elif defined(TRANSMISSION_FORWARD)
@@ -101,6 +105,9 @@ layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
 layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
+#endif
+#ifdef HAS_IRIDESCENCE_TARGET
+layout(location = IRIDESCENCE_TARGET_LOCATION) out vec4 outIridescence;
 #endif
 #endif
 
@@ -193,6 +200,9 @@ void main() {
   outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), unlit);
 #ifdef HAS_EMISSIVE_TARGET
   outEmissive = vec4(emissive, 1.0);
+#endif
+#ifdef HAS_IRIDESCENCE_TARGET
+  outIridescence = materialIridescence();
 #endif
 #endif
 }

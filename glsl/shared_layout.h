@@ -75,7 +75,10 @@ using mat4 = glm::mat4;
   X(kUnitEnvironmentBackground, 23)         \
   X(kUnitTransmissionTexture, 39)           \
   X(kUnitThicknessTexture, 40)              \
-  X(kUnitTransmissionBackground, 41)
+  X(kUnitTransmissionBackground, 41)       \
+  X(kUnitIridescenceLobe, 28)               \
+  X(kUnitIridescenceTexture, 36)            \
+  X(kUnitIridescenceThicknessTexture, 37)
 // Reserved for issue 18's lobes (added with the code that reads them):
 // 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
 // iridescence), 29..40 the extensions' textures in MaterialTexture order;
@@ -133,6 +136,17 @@ HL_CONST(int, kSkyRoughnessLevels, 8)
 // smooth: 64 texels resolve them within half precision.
 HL_CONST(int, kBrdfLutSize, 64)
 HL_CONST(int, kSkyTableWidth, 64)
+
+// KHR_materials_iridescence: films thicker than this (nm) are drawn at it.
+// At 10 um the thin-film Fresnel's Fourier terms are below exp(-100) of
+// their amplitude, so only the incoherent sum is left either way; it also
+// keeps the lobe's half-float attachment (max 65504) finite.
+HL_CONST(float, kMaxFilmThicknessNm, 10000.0f)
+// And its IORs (the film's and the base's) above this are drawn at it: a
+// surface of IOR 1e4 already reflects 0.9996 at normal incidence, and the
+// bound keeps (n - 1) / (n + 1) and the half-float attachment finite for the
+// largest IOR a file may give (any finite number >= 1).
+HL_CONST(float, kMaxIridescenceIor, 10000.0f)
 
 // Light types as stored in GpuLight::type.
 HL_CONST(int, kLightDirectional, 0)

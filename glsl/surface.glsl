@@ -5,6 +5,9 @@ layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
 layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+#ifdef HAS_IRIDESCENCE_LOBE
+layout(binding = kUnitIridescenceLobe) uniform sampler2D gbufferIridescence;
+#endif
 
 // Direction from the surface toward the eye.
 vec3 viewDirection(vec3 worldPosition) {
@@ -15,6 +18,10 @@ vec3 viewDirection(vec3 worldPosition) {
 
 Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
   const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
-  return makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
-                     texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+  Surface surface = makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
+                                texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+#ifdef HAS_IRIDESCENCE_LOBE
+  applyIridescence(surface, texelFetch(gbufferIridescence, pixel, 0));
+#endif
+  return surface;
 }

@@ -55,6 +55,16 @@ const std::vector<ProgramSource>& programSources() {
       {{"fullscreen.vert", "brdf_lut.frag"}, {}},
       {{"fullscreen.vert", "sky_prefilter.frag"}, {}},
       {{"fullscreen.vert", "sky_irradiance.frag"}, {}},
+      // KHR_materials_iridescence: the lobe's attachment, its textures, and the lighting passes that read it.
+      {{"gbuffer.vert", "gbuffer.frag"},
+       {"HAS_TEXCOORDS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TARGET",
+        "IRIDESCENCE_TARGET_LOCATION 4", "HAS_IRIDESCENCE_TEXTURE", "HAS_IRIDESCENCE_THICKNESS_TEXTURE",
+        "IRIDESCENCE_TEXCOORD_1"}},
+      {{"fullscreen.vert", "direct_light.frag"}, {"HAS_IRIDESCENCE_LOBE"}},
+      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY", "HAS_IRIDESCENCE_LOBE"}},
+      {{"gbuffer.vert", "gbuffer.frag"},
+       {"BLEND_FORWARD", "HAS_SKY", "HAS_TEXCOORDS", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TEXTURE",
+        "HAS_IRIDESCENCE_THICKNESS_TEXTURE"}},
   };
   return sources;
 }

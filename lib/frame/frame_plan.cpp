@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shared_layout.h"
+
 namespace headlight {
 namespace {
 
@@ -40,6 +42,10 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
     // Half float: a throughput 0..1 and a path length in world units.
     {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", false, &Frame::transmission},
+    // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
+    // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
+    {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET", false,
+     &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 

@@ -106,6 +106,8 @@ enum class Attachment {
   Lit,
   BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
   Transmission,   // the transmission pass's throughput and path length; only for scenes that transmit
+  // KHR_materials_iridescence's film (Lobe::Iridescence): strength, thickness, film IOR, base IOR
+  GbufferIridescence,
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);

@@ -39,6 +39,8 @@ constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 constexpr std::string_view kCoverageChannels[] = {"coverage.Y"};
 constexpr std::string_view kTransmissionChannels[] = {"transmission.R", "transmission.G", "transmission.B",
                                                       "transmission.thickness"};
+constexpr std::string_view kIridescenceChannels[] = {"iridescence.factor", "iridescence.thickness", "iridescence.ior",
+                                                     "iridescence.baseIor"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -92,6 +94,14 @@ const FrameTarget kTargets[] = {
      "walls); only for scenes that transmit. A product of 8-bit base colour and transmission texture, the split-sum "
      "table and Beer-Lambert: one 8-bit step is 3.9e-3, so any step warns and more than two fail; relative above 1 "
      "for path lengths, whose scale is the scene's."},
+    {"iridescence", &Frame::iridescence, kIridescenceChannels, E::Half, M::RelativeToValue,
+     thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_iridescence's film as the lighting passes read it: strength (factor x texture, 0..1), "
+     "thickness in nm (minimum..maximum by the thickness texture), the film's IOR and the base's; only for scenes "
+     "with an iridescent material. Absolute below 1, relative above: the strength comes from 8-bit textures and "
+     "factors (one step 3.9e-3, like material), the thickness from an 8-bit texture between two bounds (one step "
+     "of a 200..600 nm range is 0.4 % at 400 nm) and half storage rounds at 4.9e-4 relative: any step warns, more "
+     "than two fail."},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "headlight/scene.hpp"
+#include "reference/lobe_iridescence.hpp"
 
 namespace headlight::reference {
 
@@ -109,6 +110,10 @@ struct Surface {
   glm::vec3 view{0.0f};    // world, unit, toward the eye
   float nDotV = 0;
   glm::vec3 f0{0.0f};
+  // KHR_materials_iridescence (applyIridescence): the film's Fresnel at N.V
+  // and its strength; 0 leaves Schlick's alone, as without the lobe.
+  glm::vec3 iridescenceFresnel{0.0f};
+  float iridescence = 0.0f;
 };
 
 // brdf.glsl makeSurface.
@@ -125,6 +130,13 @@ inline Surface makeSurface(const glm::vec3& albedo, float metallic, float roughn
   return s;
 }
 
+// lobe_iridescence.glsl applyIridescence.
+inline void applyIridescence(Surface& s, const IridescenceInputs& film) {
+  s.iridescence = std::clamp(film.strength, 0.0f, 1.0f);
+  s.iridescenceFresnel =
+      s.iridescence > 0.0f ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : glm::vec3(0.0f);
+}
+
 // brdf.glsl cookTorrance: (diffuse + specular) * N.L toward a unit `toLight`.
 inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float nDotL = glm::dot(s.normal, toLight);
@@ -136,7 +148,8 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
   const float distribution = a2 / (kPi * d * d);
-  const glm::vec3 fresnel = s.f0 + (1.0f - s.f0) * std::pow(1.0f - vDotH, 5.0f);
+  glm::vec3 fresnel = s.f0 + (1.0f - s.f0) * std::pow(1.0f - vDotH, 5.0f);
+  fresnel = glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
   const glm::vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
   const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi;
   return (diffuse + specular) * nDotL;

@@ -128,6 +128,7 @@ class Tracer {
       surface.f0 = iorF0(transmissive.ior, albedo, metallic);  // transmission.glsl: KHR_materials_ior's F0
       transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
     }
+    applyIridescence(surface, iridescenceInputsAt(frame, x, y));  // no film without iridescence.exr
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
     // A transmissive surface's diffuse lobe keeps only the share not transmitted.
@@ -375,11 +376,31 @@ class Tracer {
       else
         indirectSum += glm::dvec3(diffuseWeight * radianceLeaving(bounce, direction));
     }
-    const Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+    Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+    if (material.iridescence)
+      applyIridescence(surface, materialIridescence(material, textured ? &primitive : nullptr, corner, u, v));
     radiance = emission + directLight(surface, position, origin) +
                ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
                glm::vec3(indirectSum / double(n));
     return true;
+  }
+
+  // lobe_iridescence_material.glsl: a blended material's film at
+  // barycentrics (u, v) of the triangle at `corner` (the material has
+  // KHR_materials_iridescence); `textured` null: the primitive has no UVs.
+  IridescenceInputs materialIridescence(const Material& material, const Primitive* textured,
+                                        const std::uint32_t* corner, float u, float v) const {
+    const MaterialIridescence& film = *material.iridescence;
+    auto sample = [&](const TextureRef& ref) {
+      return sampleTexture(in_.scene, ref, textureUv(*textured, ref, corner, u, v), false);
+    };
+    float strength = film.iridescenceFactor, thickness = film.iridescenceThicknessMaximum;
+    if (textured && film.iridescenceTexture.present()) strength *= sample(film.iridescenceTexture).r;
+    if (textured && film.iridescenceThicknessTexture.present())
+      thickness = glm::mix(film.iridescenceThicknessMinimum, film.iridescenceThicknessMaximum,
+                           sample(film.iridescenceThicknessTexture).g);
+    return {std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm),
+            std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor)};
   }
 
   // Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.
@@ -444,11 +465,15 @@ class Tracer {
       scale += (1.0f - fresnel) * weight;
       bias += fresnel * weight;
       const glm::vec3 direction = glm::normalize(toLight);
+      // KHR_materials_iridescence: the film's Fresnel (one value per pixel) mixed in, as cookTorrance.
+      const glm::vec3 sampleFresnel =
+          glm::mix(surface.f0 * (1.0f - fresnel) + fresnel, surface.iridescenceFresnel, surface.iridescence);
       if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
-        specular +=
-            glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * ambientRadiance(direction));
+        specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction));
     }
-    const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + float(bias / m);
+    const glm::vec3 specularAlbedo =
+        glm::mix(surface.f0 * float(scale / m) + float(bias / m), surface.iridescenceFresnel * float((scale + bias) / m),
+                 surface.iridescence);
     if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
     return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;

@@ -25,6 +25,7 @@ constexpr std::string_view kRenderedExtensions[]{
     "EXT_lights_image_based",      // the scene's light, as an environment map (gltf_image_based_light.cpp)
     "KHR_materials_transmission",  // the transmission pass (lib/passes/transmission.hpp); findUndrawnTransmission
     "KHR_materials_volume",        // its thickness and attenuation, in the same pass
+    "KHR_materials_iridescence",   // a G-buffer lobe: the thin-film Fresnel (glsl/lobe_iridescence.glsl)
 };
 
 // Rendered when the build has their decoder (meson options draco, meshopt).

@@ -60,6 +60,10 @@ constexpr MaterialTextureRow kRows[] = {
                      Transmission::transmissionTexture, transmission),
     HL_EXTENSION_ROW(Thickness, "THICKNESS", kUnitThicknessTexture, false, volume, Volume::thicknessTexture,
                      thickness),
+    HL_EXTENSION_ROW(Iridescence, "IRIDESCENCE", kUnitIridescenceTexture, false, iridescence,
+                     Iridescence::iridescenceTexture, iridescence),
+    HL_EXTENSION_ROW(IridescenceThickness, "IRIDESCENCE_THICKNESS", kUnitIridescenceThicknessTexture, false,
+                     iridescence, Iridescence::iridescenceThicknessTexture, iridescenceThickness),
 };
 #undef HL_EXTENSION_ROW
 static_assert(std::size(kRows) == kMaterialTextureCount);

@@ -31,6 +31,8 @@ enum class MaterialTexture {
   // Anisotropy, Transmission, Thickness.
   Transmission,  // KHR_materials_transmission's transmissionTexture (R)
   Thickness,     // KHR_materials_volume's thicknessTexture (G)
+  Iridescence,           // KHR_materials_iridescence's iridescenceTexture (R)
+  IridescenceThickness,  // and its iridescenceThicknessTexture (G)
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);

@@ -57,6 +57,9 @@ struct Frame {
   // length through the volume (world units; 0 for thin walls); only for
   // scenes that transmit, with lit
   ImageF transmission;
+  // iridescence.factor, .thickness (nm), .ior (the film's), .baseIor (Material::ior):
+  // KHR_materials_iridescence's film per pixel; only for scenes with an iridescent material
+  ImageF iridescence;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers
