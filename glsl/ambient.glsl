@@ -38,7 +38,7 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
   const float size = float(kBrdfLutSize);
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
                                                tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
-  const vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
+  const vec3 specularAlbedo = surface.f0 * scaleBias.x + surface.f90 * scaleBias.y;
   const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
   const vec3 reflected = reflect(-surface.view, surface.normal);

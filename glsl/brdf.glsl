@@ -10,6 +10,7 @@ struct Surface {
   vec3 view;    // world, unit, toward the eye
   float nDotV;
   vec3 f0;      // reflectance at normal incidence
+  float f90;    // at grazing incidence: 1, or less with the specular lobe's weight (lobe_specular.glsl)
 };
 
 Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, vec3 view) {
@@ -22,6 +23,7 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
   s.view = view;
   s.nDotV = max(dot(normal, view), 1e-4);
   s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
+  s.f90 = 1.0;
   return s;
 }
 
@@ -35,7 +37,7 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
   const float distribution = a2 / (kPi * d * d);
-  const vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vDotH, 5.0);
+  const vec3 fresnel = s.f0 + (s.f90 - s.f0) * pow(1.0 - vDotH, 5.0);
   const vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
   const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi;
   return (diffuse + specular) * nDotL;

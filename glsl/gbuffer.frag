@@ -80,6 +80,10 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
+// Outside any #ifdef: the G-buffer's clearcoat lobe (lobe_clearcoat_material.glsl)
+// and the blend pass's (blend.glsl) both use it, and a file is expanded once,
+// where it is first included.
+#include "lobe_clearcoat.glsl"
 #ifdef BLEND_FORWARD
 #include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
 #else
@@ -90,9 +94,15 @@ layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
 layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
 #endif
+#ifdef HAS_SPECULAR_TARGET
+layout(location = SPECULAR_TARGET_LOCATION) out vec4 outSpecularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_TARGET
+layout(location = CLEARCOAT_TARGET_LOCATION) out vec4 outClearcoatLobe;
+#endif
 #endif
 
-#ifdef HAS_NORMAL_TEXTURE
+#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE)
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
@@ -110,6 +120,12 @@ mat3 tangentFrame(vec3 normal, vec2 normalUv) {
   return mat3(tangent * invmax, bitangent * invmax, normal);
 #endif
 }
+#endif
+#ifdef HAS_SPECULAR_LOBE
+#include "lobe_specular_material.glsl"
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat_material.glsl"
 #endif
 
 void main() {
@@ -148,6 +164,9 @@ void main() {
     normal = frame.cameraPosition.w > 0.5 ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])
                                           : normalize(frame.cameraPosition.xyz - vWorldPosition);
   }
+#ifdef HAS_CLEARCOAT_LOBE
+  const vec4 clearcoatLobe = clearcoatLobeOfMaterial(normal);  // before the base's normal map
+#endif
 #ifdef HAS_NORMAL_TEXTURE
   const vec2 normalUv = textureUv(NORMAL_SET, material.normalTransformU, material.normalTransformV);
   vec3 tangentNormal = texture(normalTexture, normalUv).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
@@ -162,7 +181,16 @@ void main() {
                                                 material.emissiveTransformV)).rgb;
 #endif
 #endif
+#ifdef HAS_SPECULAR_LOBE
+  const vec4 specularLobe = specularLobeOfMaterial();
+#endif
 #ifdef BLEND_FORWARD
+#ifdef HAS_SPECULAR_LOBE
+  blendedSpecularLobe = specularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+  blendedClearcoatLobe = clearcoatLobe;
+#endif
   shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
 #else
   outPosition = vec4(vWorldPosition, 1.0);
@@ -178,6 +206,12 @@ void main() {
   outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), unlit);
 #ifdef HAS_EMISSIVE_TARGET
   outEmissive = vec4(emissive, 1.0);
+#endif
+#ifdef HAS_SPECULAR_TARGET
+  outSpecularLobe = specularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_TARGET
+  outClearcoatLobe = clearcoatLobe;
 #endif
 #endif
 }

@@ -72,7 +72,14 @@ using mat4 = glm::mat4;
   X(kUnitSsgiSky, 20)                       \
   X(kUnitEnvironmentSpecular, 21)           \
   X(kUnitEnvironmentIrradiance, 22)         \
-  X(kUnitEnvironmentBackground, 23)
+  X(kUnitEnvironmentBackground, 23)         \
+  X(kUnitSpecularLobe, 24)                  \
+  X(kUnitClearcoatLobe, 25)                 \
+  X(kUnitSpecularTexture, 29)               \
+  X(kUnitSpecularColorTexture, 30)          \
+  X(kUnitClearcoatTexture, 31)              \
+  X(kUnitClearcoatRoughnessTexture, 32)     \
+  X(kUnitClearcoatNormalTexture, 33)
 // Reserved for issue 18's lobes (added with the code that reads them):
 // 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
 // iridescence), 29..40 the extensions' textures in MaterialTexture order.

@@ -1,5 +1,6 @@
 // Reading a shading point from the G-buffer, shared by the direct-light and
 // composite passes. Needs brdf.glsl and the G-buffer samplers below.
+#include "lobe_specular.glsl"
 
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
@@ -15,6 +16,10 @@ vec3 viewDirection(vec3 worldPosition) {
 
 Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
   const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
-  return makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
-                     texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+  Surface surface = makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
+                                texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+#if defined(HAS_SPECULAR_LOBE) && !defined(BLEND_FORWARD)
+  applySpecularLobe(surface, texelFetch(specularLobeTarget, pixel, 0));
+#endif
+  return surface;
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shared_layout.h"
+
 namespace headlight {
 namespace {
 
@@ -38,6 +40,13 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
     // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
     {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
+    // The specular and clearcoat lobes (glsl/lobe_*_material.glsl). Half
+    // floats: a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
+    // it; the coat's octahedral normal needs ~11 bits per coordinate.
+    {Attachment::GbufferSpecularLobe, "gbuffer.specularLobe", F::Rgba16F, kAssignedLocation, "SPECULAR_TARGET", false,
+     &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
+    {Attachment::GbufferClearcoatLobe, "gbuffer.clearcoatLobe", F::Rgba16F, kAssignedLocation, "CLEARCOAT_TARGET",
+     false, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 

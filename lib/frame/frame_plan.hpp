@@ -105,6 +105,8 @@ enum class Attachment {
   SsgiSky,
   Lit,
   BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  GbufferSpecularLobe,   // Lobe::Specular: dielectric F0 colour, specular weight
+  GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);

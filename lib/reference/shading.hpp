@@ -109,6 +109,7 @@ struct Surface {
   glm::vec3 view{0.0f};    // world, unit, toward the eye
   float nDotV = 0;
   glm::vec3 f0{0.0f};
+  float f90 = 1.0f;  // brdf.glsl: 1, or less with the specular lobe's weight (lobe_specular.hpp)
 };
 
 // brdf.glsl makeSurface.
@@ -122,6 +123,7 @@ inline Surface makeSurface(const glm::vec3& albedo, float metallic, float roughn
   s.view = view;
   s.nDotV = std::max(glm::dot(normal, view), 1e-4f);
   s.f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);  // glTF's dielectric reflectance (IOR 1.5)
+  s.f90 = 1.0f;
   return s;
 }
 
@@ -136,7 +138,7 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
   const float distribution = a2 / (kPi * d * d);
-  const glm::vec3 fresnel = s.f0 + (1.0f - s.f0) * std::pow(1.0f - vDotH, 5.0f);
+  const glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
   const glm::vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
   const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi;
   return (diffuse + specular) * nDotL;

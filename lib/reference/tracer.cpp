@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "reference/lobe_clearcoat.hpp"
+#include "reference/lobe_specular.hpp"
 #include "reference/shading.hpp"
 #include "reference/texture_sampler.hpp"
 
@@ -124,14 +126,16 @@ class Tracer {
       lit[0] = albedo.r, lit[1] = albedo.g, lit[2] = albedo.b, lit[3] = 1.0f;
       return;
     }
-    const Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    const Clearcoat coat = lobesAt(x, y, surface);
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
-    glm::vec3 radiance = directLight(surface, position, origin) +
-                         ambientLight(surface, origin, basis, skyMean, random) +
-                         glm::vec3(indirectMean);
+    glm::vec3 ambient = ambientLight(surface, origin, basis, skyMean, random) + glm::vec3(indirectMean);
     if (!frame.emissive.empty())
-      radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
+      ambient += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
+    // The coat over all the base sends; directLight layers it per light.
+    const glm::vec3 radiance = directLight(surface, position, origin, coat) +
+                               clearcoatLayer(coat, ambient, coatAmbient(coat, view, origin, random));
     lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
     // After the opaque surface's samples, so its numbers do not depend on
     // whether the scene blends.
@@ -139,6 +143,28 @@ class Tracer {
   }
 
  private:
+  // The lobe targets at a pixel (lobe_specular.hpp, lobe_clearcoat.hpp):
+  // the specular lobe changes `surface`; the coat is returned (factor 0,
+  // changing nothing, where the frame has no clearcoat target).
+  Clearcoat lobesAt(int x, int y, Surface& surface) const {
+    auto at = [&](const ImageF& image) {
+      return glm::vec4(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), image.at(x, y, 3));
+    };
+    if (!in_.frame.specular.empty()) applySpecularLobe(surface, at(in_.frame.specular));
+    return in_.frame.clearcoat.empty() ? Clearcoat{} : makeClearcoat(at(in_.frame.clearcoat), surface.view);
+  }
+
+  // The coat's reflection of the sky (or map) with true visibility, times
+  // the intensity; none, and no random numbers drawn, without a coat.
+  glm::vec3 coatAmbient(const Clearcoat& coat, const glm::vec3& view, const glm::vec3& origin, Pcg32& random) {
+    if (coat.weight <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 sum = clearcoatAmbient(coat, view, in_.specularSamples, random, [&](const glm::vec3& direction) {
+      return unoccluded(origin, direction, std::numeric_limits<float>::infinity()) ? ambientRadiance(direction)
+                                                                                   : glm::vec3(0.0f);
+    });
+    return sum * in_.skyIntensity;
+  }
+
   bool unlitPixel(int x, int y) const {
     const ImageF& material = in_.frame.material;
     return material.channelCount() > 3 && material.channels[3] == "material.unlit" && material.at(x, y, 3) > 0.5f;
@@ -333,10 +359,25 @@ class Tracer {
       else
         indirectSum += glm::dvec3(diffuseWeight * radianceLeaving(bounce, direction));
     }
-    const Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
-    radiance = emission + directLight(surface, position, origin) +
-               ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
-               glm::vec3(indirectSum / double(n));
+    Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+    // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
+    auto texel = [&](const TextureRef& ref, bool srgb) {
+      return textured && ref.present() ? sampleTexture(in_.scene, ref, uv, srgb) : glm::vec4(1.0f);
+    };
+    if (material.specular || material.ior != 1.5f) {
+      const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
+      applySpecularLobe(surface, specularLobeOfMaterial(material, texel(specular.specularTexture, false),
+                                                        texel(specular.specularColorTexture, true)));
+    }
+    Clearcoat coat;
+    if (material.clearcoat)
+      coat = makeClearcoat(clearcoatLobeOfMaterial(*material.clearcoat, texel(material.clearcoat->clearcoatTexture, false),
+                                                   texel(material.clearcoat->clearcoatRoughnessTexture, false), normal),
+                           view);
+    const glm::vec3 under = emission + ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
+                            glm::vec3(indirectSum / double(n));
+    radiance = directLight(surface, position, origin, coat) +
+               clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
     return true;
   }
 
@@ -351,14 +392,16 @@ class Tracer {
   }
 
   // direct_light.frag with shadow rays from `origin` for the maps.
-  glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin) {
+  glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
+                        const Clearcoat& coat) {
     glm::vec3 sum(0.0f);
     for (const Light& light : in_.scene.lights) {
       glm::vec3 toLight;
       float distance;
       const float attenuation = lightAttenuation(light, position, toLight, distance);
       if (attenuation <= 0.0f) continue;
-      const glm::vec3 brdf = cookTorrance(surface, toLight);
+      const glm::vec3 brdf = clearcoatLayer(coat, cookTorrance(surface, toLight),
+                                            glm::vec3(clearcoatSpecular(coat, surface.view, toLight)));
       if (brdf == glm::vec3(0.0f)) continue;
       const float visibility = lightVisibility(light, origin, toLight, distance);
       sum += brdf * light.color * light.intensity * (attenuation * visibility);
@@ -396,9 +439,9 @@ class Tracer {
       const glm::vec3 direction = glm::normalize(toLight);
       if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
         specular +=
-            glm::dvec3((surface.f0 * (1.0f - fresnel) + fresnel) * weight * ambientRadiance(direction));
+            glm::dvec3((surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel) * weight * ambientRadiance(direction));
     }
-    const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + float(bias / m);
+    const glm::vec3 specularAlbedo = surface.f0 * float(scale / m) + surface.f90 * float(bias / m);
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
     return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;
   }

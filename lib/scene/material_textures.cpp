@@ -56,6 +56,15 @@ constexpr MaterialTextureRow kRows[] = {
      &B::occlusionTransformV},
     {T::Emissive, "EMISSIVE", gpu::kUnitEmissiveTexture, true, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
      coreTexture<&Material::emissiveTexture>, &B::emissiveTransformU, &B::emissiveTransformV},
+    HL_EXTENSION_ROW(Specular, "SPECULAR", kUnitSpecularTexture, false, specular, Specular::specularTexture, specular),
+    HL_EXTENSION_ROW(SpecularColor, "SPECULAR_COLOR", kUnitSpecularColorTexture, true, specular,
+                     Specular::specularColorTexture, specularColor),
+    HL_EXTENSION_ROW(Clearcoat, "CLEARCOAT", kUnitClearcoatTexture, false, clearcoat, Clearcoat::clearcoatTexture,
+                     clearcoat),
+    HL_EXTENSION_ROW(ClearcoatRoughness, "CLEARCOAT_ROUGHNESS", kUnitClearcoatRoughnessTexture, false, clearcoat,
+                     Clearcoat::clearcoatRoughnessTexture, clearcoatRoughness),
+    HL_EXTENSION_ROW(ClearcoatNormal, "CLEARCOAT_NORMAL", kUnitClearcoatNormalTexture, false, clearcoat,
+                     Clearcoat::clearcoatNormalTexture, clearcoatNormal),
 };
 #undef HL_EXTENSION_ROW
 static_assert(std::size(kRows) == kMaterialTextureCount);

@@ -24,6 +24,11 @@ enum class MaterialTexture {
   Normal,
   Occlusion,
   Emissive,
+  Specular,            // KHR_materials_specular (A)
+  SpecularColor,       // KHR_materials_specular (RGB, sRGB)
+  Clearcoat,           // KHR_materials_clearcoat (R)
+  ClearcoatRoughness,  // KHR_materials_clearcoat (G)
+  ClearcoatNormal,     // KHR_materials_clearcoat (tangent space)
   // The KHR_materials_* textures, each added with the lobe that reads it
   // (units 29..40 are kept for them, glsl/shared_layout.h): Specular,
   // SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormal,

@@ -52,6 +52,12 @@ struct Frame {
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
   ImageF coverage;  // coverage.Y: alphaMode BLEND's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  // specularF0.R/G/B, specular: KHR_materials_ior / _specular's dielectric F0
+  // colour and specular weight; only for scenes with the specular lobe.
+  ImageF specular;
+  // clearcoat, clearcoatRoughness, clearcoatNormal.U/V (the coat's world
+  // normal, octahedral-encoded); only for scenes with KHR_materials_clearcoat.
+  ImageF clearcoat;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers
