@@ -166,7 +166,7 @@ TEST_CASE("conformance: TextureTransformMultiTest's clearcoat row is drawn, its 
   // untransformed); the background plane lies at z = -0.025, behind them.
   struct Tile {
     int pixels = 0, coated = 0;
-    glm::vec2 coatedCentroid{0.0f};  // relative to the tile's centre, world units
+    glm::vec2 coatedCentroid{0.0f};                  // relative to the tile's centre, world units
     std::vector<std::pair<glm::vec2, bool>> points;  // each pixel's place in the tile (world) and whether coated
     double coatedLuminance = 0, bareLuminance = 0;
   };
@@ -226,9 +226,9 @@ TEST_CASE("conformance: TextureTransformMultiTest's clearcoat row is drawn, its 
     // README). And its share of the tile within 4 %.
     int agree = 0;
     for (const auto& [place, coated] : transformed.points) {
-      const auto nearest = std::min_element(sample.points.begin(), sample.points.end(), [&](const auto& a, const auto& b) {
-        return glm::length(a.first - place) < glm::length(b.first - place);
-      });
+      const auto nearest = std::min_element(
+          sample.points.begin(), sample.points.end(),
+          [&](const auto& a, const auto& b) { return glm::length(a.first - place) < glm::length(b.first - place); });
       agree += nearest->second == coated;
     }
     CAPTURE(agree);

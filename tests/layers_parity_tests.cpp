@@ -26,7 +26,9 @@ namespace {
 glm::vec4 pixel4(const ImageF& image, int x, int y) {
   return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), image.at(x, y, 3)};
 }
-glm::vec3 pixel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+glm::vec3 pixel3(const ImageF& image, int x, int y) {
+  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+}
 
 // A floor without either extension, a red dielectric with a coloured
 // specular lobe and IOR 1.8, a half-metal under a clear coat, and a sphere

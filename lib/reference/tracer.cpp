@@ -370,9 +370,9 @@ class Tracer {
                                                         texel(specular.specularColorTexture, true)));
     }
     Clearcoat coat;
-    if (material.clearcoat)
-      coat = makeClearcoat(clearcoatLobeOfMaterial(*material.clearcoat, texel(material.clearcoat->clearcoatTexture, false),
-                                                   texel(material.clearcoat->clearcoatRoughnessTexture, false), normal),
+    if (const std::optional<MaterialClearcoat>& clearcoat = material.clearcoat)
+      coat = makeClearcoat(clearcoatLobeOfMaterial(*clearcoat, texel(clearcoat->clearcoatTexture, false),
+                                                   texel(clearcoat->clearcoatRoughnessTexture, false), normal),
                            view);
     const glm::vec3 under = emission + ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
                             glm::vec3(indirectSum / double(n));
