@@ -38,7 +38,7 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
   const float size = float(kBrdfLutSize);
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
                                                tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
-  vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
+  vec3 specularAlbedo = surface.f0 * scaleBias.x + surface.f90 * scaleBias.y;
 #ifdef HAS_IRIDESCENCE_LOBE
   // The film's Fresnel is one value per pixel (at N.V), so it leaves the
   // split-sum integral whole: F (scale + bias).

@@ -11,6 +11,18 @@
 #include "shadows.glsl"
 #include "surface.glsl"
 #include "ambient.glsl"
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat_ambient.glsl"
+#endif
+
+// The lobes' values for the blended fragment, as a G-buffer attachment
+// would hold them: set by gbuffer.frag's main before shadeBlended.
+#ifdef HAS_SPECULAR_LOBE
+vec4 blendedSpecularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+vec4 blendedClearcoatLobe;
+#endif
 
 // Blended by BlendPass: lit with (src alpha, 1 - src alpha) on colour and
 // (1, 1 - src alpha) on alpha; coverage with (1, 1 - src alpha), so each
@@ -25,7 +37,15 @@ void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, fl
 #ifdef HAS_IRIDESCENCE_LOBE
   applyIridescence(surface, materialIridescence());  // lobe_iridescence_material.glsl
 #endif
+#ifdef HAS_SPECULAR_LOBE
+  applySpecularLobe(surface, blendedSpecularLobe);
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+  const Clearcoat coat = makeClearcoat(blendedClearcoatLobe, surface.view);
+  vec3 radiance = clearcoatLayer(coat, emission, vec3(0.0));
+#else
   vec3 radiance = emission;
+#endif
   const int lightCount = lighting.lightCount;
   for (int i = 0; i < lightCount; ++i) {
     const GpuLight light = lights.lightList[i];
@@ -33,9 +53,16 @@ void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, fl
     const float attenuation = lightAttenuation(light, position, toLight);
     if (attenuation <= 0.0) continue;
     const float visibility = shadowVisibility(light, position, surface.normal, toLight);
-    radiance += cookTorrance(surface, toLight) * light.radiance * (attenuation * visibility);
+    vec3 brdf = cookTorrance(surface, toLight);
+#ifdef HAS_CLEARCOAT_LOBE
+    brdf = clearcoatLayer(coat, brdf, vec3(clearcoatSpecular(coat, surface.view, toLight)));
+#endif
+    radiance += brdf * light.radiance * (attenuation * visibility);
   }
-#ifdef HAS_SKY
+#if defined(HAS_SKY) && defined(HAS_CLEARCOAT_LOBE)
+  radiance += clearcoatLayer(coat, ambientLight(surface, clamp(occlusion, 0.0, 1.0), 1.0, vec3(0.0)),
+                             clearcoatAmbient(coat, surface.view, clamp(occlusion, 0.0, 1.0), 1.0));
+#elif defined(HAS_SKY)
   radiance += ambientLight(surface, clamp(occlusion, 0.0, 1.0), 1.0, vec3(0.0));
 #endif
   // NaN alpha (a NaN COLOR_0 is refused at load, a NaN factor too) would

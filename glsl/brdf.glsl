@@ -10,6 +10,7 @@ struct Surface {
   vec3 view;    // world, unit, toward the eye
   float nDotV;
   vec3 f0;      // reflectance at normal incidence
+  float f90;    // at grazing incidence: 1, or less with the specular lobe's weight (lobe_specular.glsl)
 #ifdef HAS_IRIDESCENCE_LOBE
   // KHR_materials_iridescence (lobe_iridescence.glsl applyIridescence): the
   // film's Fresnel at N.V, and its strength (0: no film, Schlick's alone).
@@ -28,6 +29,7 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
   s.view = view;
   s.nDotV = max(dot(normal, view), 1e-4);
   s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
+  s.f90 = 1.0;
 #ifdef HAS_IRIDESCENCE_LOBE
   s.iridescenceFresnel = vec3(0.0);
   s.iridescence = 0.0;
@@ -49,7 +51,7 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
   const float distribution = a2 / (kPi * d * d);
-  vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vDotH, 5.0);
+  vec3 fresnel = s.f0 + (s.f90 - s.f0) * pow(1.0 - vDotH, 5.0);
 #ifdef HAS_IRIDESCENCE_LOBE
   fresnel = mix(fresnel, s.iridescenceFresnel, s.iridescence);  // the specification's F
 #endif

@@ -15,6 +15,9 @@
 #include "brdf.glsl"
 #include "surface.glsl"
 #include "ambient.glsl"
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat_ambient.glsl"
+#endif
 
 layout(binding = kUnitDirect) uniform sampler2D directTexture;
 #ifdef HAS_SSGI
@@ -62,10 +65,15 @@ void main() {
 #endif
   const float materialOcclusion = material.z;
 #ifdef HAS_SKY
-  const vec3 radiance =
-      texelFetch(directTexture, pixel, 0).rgb + ambientLight(surface, materialOcclusion, skyVisibility, indirect);
+  vec3 ambient = ambientLight(surface, materialOcclusion, skyVisibility, indirect);
 #else
-  const vec3 radiance = texelFetch(directTexture, pixel, 0).rgb + indirect;
+  vec3 ambient = indirect;
 #endif
-  outRadiance = vec4(radiance, 1.0);
+#ifdef HAS_CLEARCOAT_LOBE
+  // The coat over the base's ambient and SSGI light, with its own reflection
+  // (the direct pass layered the lights and emission).
+  const Clearcoat coat = clearcoatAt(pixel, surface.view);
+  ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, skyVisibility));
+#endif
+  outRadiance = vec4(texelFetch(directTexture, pixel, 0).rgb + ambient, 1.0);
 }

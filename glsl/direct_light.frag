@@ -8,6 +8,9 @@
 #include "brdf.glsl"
 #include "shadows.glsl"
 #include "surface.glsl"
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat.glsl"
+#endif
 
 #ifdef HAS_EMISSIVE
 layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
@@ -23,6 +26,9 @@ void main() {
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
   if (worldPosition.a == 0.0) discard;  // background: stays cleared to 0
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
+#ifdef HAS_CLEARCOAT_LOBE
+  const Clearcoat coat = clearcoatAt(pixel, surface.view);
+#endif
   vec3 towardEye = vec3(0.0);
   vec3 irradiance = vec3(0.0);  // sum of light radiance * attenuation * visibility * N.L
   const int lightCount = lighting.lightCount;
@@ -33,7 +39,11 @@ void main() {
     if (attenuation <= 0.0) continue;
     const float visibility = shadowVisibility(light, worldPosition.xyz, surface.normal, toLight);
     const vec3 incoming = light.radiance * (attenuation * visibility);
-    towardEye += cookTorrance(surface, toLight) * incoming;
+    vec3 brdf = cookTorrance(surface, toLight);
+#ifdef HAS_CLEARCOAT_LOBE
+    brdf = clearcoatLayer(coat, brdf, vec3(clearcoatSpecular(coat, surface.view, toLight)));
+#endif
+    towardEye += brdf * incoming;
     irradiance += incoming * max(dot(surface.normal, toLight), 0.0);
   }
 #ifdef HAS_EMISSIVE
@@ -41,7 +51,11 @@ void main() {
 #else
   const vec3 emission = vec3(0.0);
 #endif
+#ifdef HAS_CLEARCOAT_LOBE
+  outDirect = vec4(towardEye + clearcoatLayer(coat, emission, vec3(0.0)), 1.0);  // the coat darkens emission too
+#else
   outDirect = vec4(towardEye + emission, 1.0);
+#endif
 #ifdef WRITE_DIFFUSE_RADIANCE
   outDiffuse = vec4((1.0 - surface.metallic) * surface.albedo / kPi * irradiance + emission, 1.0);
 #endif

@@ -80,6 +80,10 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
+// Outside any #ifdef: the G-buffer's clearcoat lobe (lobe_clearcoat_material.glsl)
+// and the blend pass's (blend.glsl) both use it, and a file is expanded once,
+// where it is first included.
+#include "lobe_clearcoat.glsl"
 #if defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
 // The forward passes' lighting, for blend.glsl and transmission.glsl alike:
 // the loader expands each file once, wherever it is first named, so both
@@ -109,9 +113,15 @@ layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
 #ifdef HAS_IRIDESCENCE_TARGET
 layout(location = IRIDESCENCE_TARGET_LOCATION) out vec4 outIridescence;
 #endif
+#ifdef HAS_SPECULAR_TARGET
+layout(location = SPECULAR_TARGET_LOCATION) out vec4 outSpecularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_TARGET
+layout(location = CLEARCOAT_TARGET_LOCATION) out vec4 outClearcoatLobe;
+#endif
 #endif
 
-#ifdef HAS_NORMAL_TEXTURE
+#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE)
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
@@ -129,6 +139,12 @@ mat3 tangentFrame(vec3 normal, vec2 normalUv) {
   return mat3(tangent * invmax, bitangent * invmax, normal);
 #endif
 }
+#endif
+#ifdef HAS_SPECULAR_LOBE
+#include "lobe_specular_material.glsl"
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat_material.glsl"
 #endif
 
 void main() {
@@ -167,6 +183,9 @@ void main() {
     normal = frame.cameraPosition.w > 0.5 ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])
                                           : normalize(frame.cameraPosition.xyz - vWorldPosition);
   }
+#ifdef HAS_CLEARCOAT_LOBE
+  const vec4 clearcoatLobe = clearcoatLobeOfMaterial(normal);  // before the base's normal map
+#endif
 #ifdef HAS_NORMAL_TEXTURE
   const vec2 normalUv = textureUv(NORMAL_SET, material.normalTransformU, material.normalTransformV);
   vec3 tangentNormal = texture(normalTexture, normalUv).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
@@ -181,7 +200,16 @@ void main() {
                                                 material.emissiveTransformV)).rgb;
 #endif
 #endif
+#ifdef HAS_SPECULAR_LOBE
+  const vec4 specularLobe = specularLobeOfMaterial();
+#endif
 #if defined(BLEND_FORWARD)
+#ifdef HAS_SPECULAR_LOBE
+  blendedSpecularLobe = specularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_LOBE
+  blendedClearcoatLobe = clearcoatLobe;
+#endif
   shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
 #elif defined(TRANSMISSION_FORWARD)
   shadeTransmissive(vWorldPosition, normal, baseColor.rgb, metallic, roughness, occlusion, emissive, transmissionAt(),
@@ -203,6 +231,12 @@ void main() {
 #endif
 #ifdef HAS_IRIDESCENCE_TARGET
   outIridescence = materialIridescence();
+#endif
+#ifdef HAS_SPECULAR_TARGET
+  outSpecularLobe = specularLobe;
+#endif
+#ifdef HAS_CLEARCOAT_TARGET
+  outClearcoatLobe = clearcoatLobe;
 #endif
 #endif
 }

@@ -49,40 +49,43 @@ using mat4 = glm::mat4;
 
 // Texture units (X(name, unit)). Each pass binds only the units it reads.
 #define HL_TEXTURE_UNITS(X)                 \
-  X(kUnitGbufferPosition, 0)                \
-  X(kUnitGbufferNormal, 1)                  \
-  X(kUnitGbufferAlbedo, 2)                  \
-  X(kUnitGbufferMaterial, 3)                \
-  X(kUnitGbufferEmissive, 4)                \
-  X(kUnitSsgiNoise, 5)                      \
-  X(kUnitSsgi, 6)                           \
-  X(kUnitBrdfLut, 7)                        \
-  X(kUnitSkyPrefiltered, 8)                 \
-  X(kUnitSkyIrradiance, 9)                  \
-  X(kUnitShadowMaps2D, 10)                  \
-  X(kUnitShadowMapsCube, 11)                \
-  X(kUnitBaseColorTexture, 12)              \
-  X(kUnitMetallicRoughnessTexture, 13)      \
-  X(kUnitNormalTexture, 14)                 \
-  X(kUnitOcclusionTexture, 15)              \
-  X(kUnitEmissiveTexture, 16)               \
-  X(kUnitDirect, 17)                        \
-  X(kUnitDirectDiffuse, 18)                 \
-  X(kUnitGbufferDepth, 19)                  \
-  X(kUnitSsgiSky, 20)                       \
-  X(kUnitEnvironmentSpecular, 21)           \
-  X(kUnitEnvironmentIrradiance, 22)         \
-  X(kUnitEnvironmentBackground, 23)         \
-  X(kUnitTransmissionTexture, 39)           \
-  X(kUnitThicknessTexture, 40)              \
-  X(kUnitTransmissionBackground, 41)       \
-  X(kUnitIridescenceLobe, 28)               \
-  X(kUnitIridescenceTexture, 36)            \
-  X(kUnitIridescenceThicknessTexture, 37)
-// Reserved for issue 18's lobes (added with the code that reads them):
-// 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
-// iridescence), 29..40 the extensions' textures in MaterialTexture order;
-// 41 the transmission pass's copy of lit (lib/passes/transmission.hpp).
+  X(kUnitGbufferPosition, 0)              \
+  X(kUnitGbufferNormal, 1)                \
+  X(kUnitGbufferAlbedo, 2)                \
+  X(kUnitGbufferMaterial, 3)              \
+  X(kUnitGbufferEmissive, 4)              \
+  X(kUnitSsgiNoise, 5)                    \
+  X(kUnitSsgi, 6)                         \
+  X(kUnitBrdfLut, 7)                      \
+  X(kUnitSkyPrefiltered, 8)               \
+  X(kUnitSkyIrradiance, 9)                \
+  X(kUnitShadowMaps2D, 10)                \
+  X(kUnitShadowMapsCube, 11)              \
+  X(kUnitBaseColorTexture, 12)            \
+  X(kUnitMetallicRoughnessTexture, 13)    \
+  X(kUnitNormalTexture, 14)               \
+  X(kUnitOcclusionTexture, 15)            \
+  X(kUnitEmissiveTexture, 16)             \
+  X(kUnitDirect, 17)                      \
+  X(kUnitDirectDiffuse, 18)               \
+  X(kUnitGbufferDepth, 19)                \
+  X(kUnitSsgiSky, 20)                     \
+  X(kUnitEnvironmentSpecular, 21)         \
+  X(kUnitEnvironmentIrradiance, 22)       \
+  X(kUnitEnvironmentBackground, 23)       \
+  X(kUnitSpecularLobe, 24)                \
+  X(kUnitClearcoatLobe, 25)               \
+  X(kUnitIridescenceLobe, 28)             \
+  X(kUnitSpecularTexture, 29)             \
+  X(kUnitSpecularColorTexture, 30)        \
+  X(kUnitClearcoatTexture, 31)            \
+  X(kUnitClearcoatRoughnessTexture, 32)   \
+  X(kUnitClearcoatNormalTexture, 33)      \
+  X(kUnitIridescenceTexture, 36)          \
+  X(kUnitIridescenceThicknessTexture, 37) \
+  X(kUnitTransmissionTexture, 39)         \
+  X(kUnitThicknessTexture, 40)            \
+  X(kUnitTransmissionBackground, 41)
 
 // Image units (X(name, unit)), for image load/store: none yet.
 #define HL_IMAGE_UNITS(X)

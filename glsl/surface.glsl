@@ -1,5 +1,6 @@
 // Reading a shading point from the G-buffer, shared by the direct-light and
 // composite passes. Needs brdf.glsl and the G-buffer samplers below.
+#include "lobe_specular.glsl"
 
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
@@ -22,6 +23,9 @@ Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
                                 texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
 #ifdef HAS_IRIDESCENCE_LOBE
   applyIridescence(surface, texelFetch(gbufferIridescence, pixel, 0));
+#endif
+#if defined(HAS_SPECULAR_LOBE) && !defined(BLEND_FORWARD)
+  applySpecularLobe(surface, texelFetch(specularLobeTarget, pixel, 0));
 #endif
   return surface;
 }

@@ -44,7 +44,9 @@ const std::set<std::string> kRendered{"KHR_lights_punctual",   "KHR_materials_em
                                       "mode LINE_STRIP",       "KHR_texture_transform",
                                       "KHR_materials_unlit",   "TEXCOORD_1",
                                       "KHR_materials_transmission", "KHR_materials_volume",
-                                      "KHR_materials_iridescence"};
+                                      "KHR_materials_iridescence",
+                                      "KHR_materials_ior",     "KHR_materials_specular",
+                                      "KHR_materials_clearcoat"};
 
 bool nonZero(const json& weights) {
   return std::any_of(weights.begin(), weights.end(), [](const json& w) { return w.get<double>() != 0.0; });

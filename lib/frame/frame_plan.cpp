@@ -46,6 +46,13 @@ constexpr AttachmentRow kAttachmentRows[] = {
     // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
     {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET", false,
      &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
+    // The specular and clearcoat lobes (glsl/lobe_*_material.glsl). Half
+    // floats: a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
+    // it; the coat's octahedral normal needs ~11 bits per coordinate.
+    {Attachment::GbufferSpecularLobe, "gbuffer.specularLobe", F::Rgba16F, kAssignedLocation, "SPECULAR_TARGET", false,
+     &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
+    {Attachment::GbufferClearcoatLobe, "gbuffer.clearcoatLobe", F::Rgba16F, kAssignedLocation, "CLEARCOAT_TARGET",
+     false, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 

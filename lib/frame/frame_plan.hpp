@@ -108,6 +108,8 @@ enum class Attachment {
   Transmission,   // the transmission pass's throughput and path length; only for scenes that transmit
   // KHR_materials_iridescence's film (Lobe::Iridescence): strength, thickness, film IOR, base IOR
   GbufferIridescence,
+  GbufferSpecularLobe,   // Lobe::Specular: dielectric F0 colour, specular weight
+  GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);

@@ -41,6 +41,9 @@ constexpr std::string_view kTransmissionChannels[] = {"transmission.R", "transmi
                                                       "transmission.thickness"};
 constexpr std::string_view kIridescenceChannels[] = {"iridescence.factor", "iridescence.thickness", "iridescence.ior",
                                                      "iridescence.baseIor"};
+constexpr std::string_view kSpecularChannels[] = {"specularF0.R", "specularF0.G", "specularF0.B", "specular"};
+constexpr std::string_view kClearcoatChannels[] = {"clearcoat", "clearcoatRoughness", "clearcoatNormal.U",
+                                                   "clearcoatNormal.V"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -102,6 +105,16 @@ const FrameTarget kTargets[] = {
      "factors (one step 3.9e-3, like material), the thickness from an 8-bit texture between two bounds (one step "
      "of a 200..600 nm range is 0.4 % at 400 nm) and half storage rounds at 4.9e-4 relative: any step warns, more "
      "than two fail."},
+    {"specular", &Frame::specular, kSpecularChannels, E::Half, M::Absolute, thresholds(1e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_ior / _specular: the dielectric F0 colour min(((ior-1)/(ior+1))^2 specularColor, 1) and the "
+     "specular weight, 0..1; only for scenes with the lobe (0.04 and 1 for materials without it). Half floats "
+     "hold both to 5e-4; their textures are 8-bit: a weight step is 3.9e-3 and an sRGB colour step moves an F0 of "
+     "0.04 by up to 4e-4 (1 by up to 1e-2). Warn at 1e-3 (a changed F0 of 0.04 is 2.5 %), fail at two weight steps."},
+    {"clearcoat", &Frame::clearcoat, kClearcoatChannels, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_clearcoat: coat factor and perceptual roughness, 0..1, and the coat's normal as octahedral "
+     "U/V in -1..1; only for scenes with a coat (factor 0 elsewhere). Factor and roughness come from 8-bit "
+     "textures (step 3.9e-3), like material: any step warns, more than two fail. 1e-2 in U or V turns the normal "
+     "by at most ~0.6 degrees, below normal.exr's 1 degree; a coat normal-map bug costs far more."},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -110,6 +110,7 @@ struct Surface {
   glm::vec3 view{0.0f};    // world, unit, toward the eye
   float nDotV = 0;
   glm::vec3 f0{0.0f};
+  float f90 = 1.0f;  // brdf.glsl: 1, or less with the specular lobe's weight (lobe_specular.hpp)
   // KHR_materials_iridescence (applyIridescence): the film's Fresnel at N.V
   // and its strength; 0 leaves Schlick's alone, as without the lobe.
   glm::vec3 iridescenceFresnel{0.0f};
@@ -127,6 +128,7 @@ inline Surface makeSurface(const glm::vec3& albedo, float metallic, float roughn
   s.view = view;
   s.nDotV = std::max(glm::dot(normal, view), 1e-4f);
   s.f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);  // glTF's dielectric reflectance (IOR 1.5)
+  s.f90 = 1.0f;
   return s;
 }
 
@@ -148,7 +150,7 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
   const float distribution = a2 / (kPi * d * d);
-  glm::vec3 fresnel = s.f0 + (1.0f - s.f0) * std::pow(1.0f - vDotH, 5.0f);
+  glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
   fresnel = glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
   const glm::vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
   const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi;

@@ -15,6 +15,8 @@
 
 #include "headlight/error.hpp"
 #include "reference/lobe_transmission.hpp"
+#include "reference/lobe_clearcoat.hpp"
+#include "reference/lobe_specular.hpp"
 #include "reference/shading.hpp"
 #include "reference/texture_sampler.hpp"
 #include "reference/transmission_trace.hpp"
@@ -124,23 +126,29 @@ class Tracer {
     }
     Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
     TransmissiveSurface transmissive = transmissiveSurfaceHere(x, y);
+    Clearcoat coat;  // none: a weight of 0 changes nothing
     if (transmissive.share > 0.0f) {
-      surface.f0 = iorF0(transmissive.ior, albedo, metallic);  // transmission.glsl: KHR_materials_ior's F0
+      // The transmission pass applies KHR_materials_ior's F0 and no other lobe (transmission.glsl).
+      surface.f0 = iorF0(transmissive.ior, albedo, metallic);
       transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
+    } else {
+      coat = lobesAt(x, y, surface);
+      applyIridescence(surface, iridescenceInputsAt(frame, x, y));  // no film without iridescence.exr
     }
-    applyIridescence(surface, iridescenceInputsAt(frame, x, y));  // no film without iridescence.exr
     const glm::vec3 skyMean =
         in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
     // A transmissive surface's diffuse lobe keeps only the share not transmitted.
     const float diffuseShare = 1.0f - transmissive.share;
     glm::vec3 specularAlbedo(0.0f);
-    glm::vec3 radiance = directLight(surface, position, origin, transmissive) +
-                         ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo) +
-                         glm::vec3(indirectMean) * diffuseShare;
+    glm::vec3 under = ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo) +
+                      glm::vec3(indirectMean) * diffuseShare;
+    if (!frame.emissive.empty())
+      under += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
+    // The coat over all the base sends; directLight layers it per light.
+    glm::vec3 radiance = directLight(surface, position, origin, coat, transmissive) +
+                         clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
     if (transmissive.share > 0.0f)
       radiance += transmittedLight(surface, position, transmissive, specularAlbedo, random);
-    if (!frame.emissive.empty())
-      radiance += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
     lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
     // After the opaque surface's samples, so its numbers do not depend on
     // whether the scene blends.
@@ -148,6 +156,28 @@ class Tracer {
   }
 
  private:
+  // The lobe targets at a pixel (lobe_specular.hpp, lobe_clearcoat.hpp):
+  // the specular lobe changes `surface`; the coat is returned (factor 0,
+  // changing nothing, where the frame has no clearcoat target).
+  Clearcoat lobesAt(int x, int y, Surface& surface) const {
+    auto at = [&](const ImageF& image) {
+      return glm::vec4(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), image.at(x, y, 3));
+    };
+    if (!in_.frame.specular.empty()) applySpecularLobe(surface, at(in_.frame.specular));
+    return in_.frame.clearcoat.empty() ? Clearcoat{} : makeClearcoat(at(in_.frame.clearcoat), surface.view);
+  }
+
+  // The coat's reflection of the sky (or map) with true visibility, times
+  // the intensity; none, and no random numbers drawn, without a coat.
+  glm::vec3 coatAmbient(const Clearcoat& coat, const glm::vec3& view, const glm::vec3& origin, Pcg32& random) {
+    if (coat.weight <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 sum = clearcoatAmbient(coat, view, in_.specularSamples, random, [&](const glm::vec3& direction) {
+      return unoccluded(origin, direction, std::numeric_limits<float>::infinity()) ? ambientRadiance(direction)
+                                                                                   : glm::vec3(0.0f);
+    });
+    return sum * in_.skyIntensity;
+  }
+
   bool unlitPixel(int x, int y) const {
     const ImageF& material = in_.frame.material;
     return material.channelCount() > 3 && material.channels[3] == "material.unlit" && material.at(x, y, 3) > 0.5f;
@@ -379,9 +409,24 @@ class Tracer {
     Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
     if (material.iridescence)
       applyIridescence(surface, materialIridescence(material, textured ? &primitive : nullptr, corner, u, v));
-    radiance = emission + directLight(surface, position, origin) +
-               ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
-               glm::vec3(indirectSum / double(n));
+    // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
+    auto texel = [&](const TextureRef& ref, bool srgb) {
+      return textured && ref.present() ? sampleTexture(in_.scene, ref, uv, srgb) : glm::vec4(1.0f);
+    };
+    if (material.specular || material.ior != 1.5f) {
+      const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
+      applySpecularLobe(surface, specularLobeOfMaterial(material, texel(specular.specularTexture, false),
+                                                        texel(specular.specularColorTexture, true)));
+    }
+    Clearcoat coat;
+    if (const std::optional<MaterialClearcoat>& clearcoat = material.clearcoat)
+      coat = makeClearcoat(clearcoatLobeOfMaterial(*clearcoat, texel(clearcoat->clearcoatTexture, false),
+                                                   texel(clearcoat->clearcoatRoughnessTexture, false), normal),
+                           view);
+    const glm::vec3 under = emission + ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
+                            glm::vec3(indirectSum / double(n));
+    radiance = directLight(surface, position, origin, coat) +
+               clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
     return true;
   }
 
@@ -413,11 +458,11 @@ class Tracer {
     return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
   }
 
-  // direct_light.frag with shadow rays from `origin` for the maps; a
-  // transmissive surface's as transmission.glsl's, a light behind it seen
-  // through it with its shadow ray from the back.
+  // direct_light.frag with shadow rays from `origin` for the maps, the coat
+  // layered per light; a transmissive surface's as transmission.glsl's (no
+  // coat), a light behind it seen through it with its shadow ray from the back.
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
-                        const TransmissiveSurface& transmissive = {}) {
+                        const Clearcoat& coat, const TransmissiveSurface& transmissive = {}) {
     glm::vec3 sum(0.0f);
     for (const Light& light : in_.scene.lights) {
       glm::vec3 toLight;
@@ -427,7 +472,8 @@ class Tracer {
       const glm::vec3 brdf =
           transmissive.share > 0.0f
               ? transmissiveCookTorrance(surface, toLight, transmissive.share, transmissive.blur)
-              : cookTorrance(surface, toLight);
+              : clearcoatLayer(coat, cookTorrance(surface, toLight),
+                               glm::vec3(clearcoatSpecular(coat, surface.view, toLight)));
       if (brdf == glm::vec3(0.0f)) continue;
       const bool behind = glm::dot(surface.normal, toLight) < 0.0f;
       const glm::vec3 from = behind ? position - surface.normal * in_.epsilon : origin;
@@ -466,14 +512,14 @@ class Tracer {
       bias += fresnel * weight;
       const glm::vec3 direction = glm::normalize(toLight);
       // KHR_materials_iridescence: the film's Fresnel (one value per pixel) mixed in, as cookTorrance.
-      const glm::vec3 sampleFresnel =
-          glm::mix(surface.f0 * (1.0f - fresnel) + fresnel, surface.iridescenceFresnel, surface.iridescence);
+      const glm::vec3 sampleFresnel = glm::mix(surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel,
+                                               surface.iridescenceFresnel, surface.iridescence);
       if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
         specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction));
     }
     const glm::vec3 specularAlbedo =
-        glm::mix(surface.f0 * float(scale / m) + float(bias / m), surface.iridescenceFresnel * float((scale + bias) / m),
-                 surface.iridescence);
+        glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
+                 surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
     if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
     return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;

@@ -26,6 +26,9 @@ constexpr std::string_view kRenderedExtensions[]{
     "KHR_materials_transmission",  // the transmission pass (lib/passes/transmission.hpp); findUndrawnTransmission
     "KHR_materials_volume",        // its thickness and attenuation, in the same pass
     "KHR_materials_iridescence",   // a G-buffer lobe: the thin-film Fresnel (glsl/lobe_iridescence.glsl)
+    "KHR_materials_ior",           // with KHR_materials_specular, the specular lobe (glsl/lobe_specular.glsl)
+    "KHR_materials_specular",
+    "KHR_materials_clearcoat",     // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
 };
 
 // Rendered when the build has their decoder (meson options draco, meshopt).

@@ -79,22 +79,31 @@ class GltfReader {
   }
 
  private:
+  // Every texture reference a material samples: the core ones and its
+  // rendered extensions' (absent ones are not present()).
+  static std::vector<const TextureRef*> sampledTextures(const Material& m) {
+    std::vector<const TextureRef*> refs{&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                       &m.occlusionTexture, &m.emissiveTexture};
+    if (m.specular) refs.insert(refs.end(), {&m.specular->specularTexture, &m.specular->specularColorTexture});
+    if (m.clearcoat)
+      refs.insert(refs.end(), {&m.clearcoat->clearcoatTexture, &m.clearcoat->clearcoatRoughnessTexture,
+                               &m.clearcoat->clearcoatNormalTexture});
+    return refs;
+  }
+
   bool materialHasTextures(int material) const {
     if (material < 0) {
       return false;
     }
-    const Material& m = scene_.materials[static_cast<std::size_t>(material)];
-    return m.baseColorTexture.present() || m.metallicRoughnessTexture.present() || m.normalTexture.present() ||
-           m.occlusionTexture.present() || m.emissiveTexture.present();
+    const std::vector<const TextureRef*> refs = sampledTextures(scene_.materials[static_cast<std::size_t>(material)]);
+    return std::any_of(refs.begin(), refs.end(), [](const TextureRef* ref) { return ref->present(); });
   }
 
   bool materialSamplesTexcoord1(int material) const {
     if (material < 0) {
       return false;
     }
-    const Material& m = scene_.materials[static_cast<std::size_t>(material)];
-    for (const TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                                  &m.occlusionTexture, &m.emissiveTexture}) {
+    for (const TextureRef* ref : sampledTextures(scene_.materials[static_cast<std::size_t>(material)])) {
       if (ref->present() && ref->texCoord == 1) return true;
     }
     return false;

@@ -24,15 +24,19 @@ enum class MaterialTexture {
   Normal,
   Occlusion,
   Emissive,
-  // The KHR_materials_* textures, each added with the lobe that reads it
-  // (units 29..40 are kept for them, glsl/shared_layout.h): Specular,
-  // SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormal,
-  // SheenColor, SheenRoughness, Iridescence, IridescenceThickness,
-  // Anisotropy, Transmission, Thickness.
-  Transmission,  // KHR_materials_transmission's transmissionTexture (R)
-  Thickness,     // KHR_materials_volume's thicknessTexture (G)
+  // The KHR_materials_* textures, each added with the lobe that reads it, in
+  // this order (units 29..40): Specular, SpecularColor, Clearcoat,
+  // ClearcoatRoughness, ClearcoatNormal, SheenColor, SheenRoughness,
+  // Iridescence, IridescenceThickness, Anisotropy, Transmission, Thickness.
+  Specular,            // KHR_materials_specular (A)
+  SpecularColor,       // KHR_materials_specular (RGB, sRGB)
+  Clearcoat,           // KHR_materials_clearcoat (R)
+  ClearcoatRoughness,  // KHR_materials_clearcoat (G)
+  ClearcoatNormal,     // KHR_materials_clearcoat (tangent space)
   Iridescence,           // KHR_materials_iridescence's iridescenceTexture (R)
   IridescenceThickness,  // and its iridescenceThicknessTexture (G)
+  Transmission,  // KHR_materials_transmission's transmissionTexture (R)
+  Thickness,     // KHR_materials_volume's thicknessTexture (G)
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);

@@ -60,6 +60,12 @@ struct Frame {
   // iridescence.factor, .thickness (nm), .ior (the film's), .baseIor (Material::ior):
   // KHR_materials_iridescence's film per pixel; only for scenes with an iridescent material
   ImageF iridescence;
+  // specularF0.R/G/B, specular: KHR_materials_ior / _specular's dielectric F0
+  // colour and specular weight; only for scenes with the specular lobe.
+  ImageF specular;
+  // clearcoat, clearcoatRoughness, clearcoatNormal.U/V (the coat's world
+  // normal, octahedral-encoded); only for scenes with KHR_materials_clearcoat.
+  ImageF clearcoat;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers
