@@ -1,6 +1,14 @@
 // Cook-Torrance with GGX, Smith-GGX visibility and Schlick's Fresnel, and
 // glTF's punctual light falloff (KHR_lights_punctual, "Range Property").
-// Needs sampling.glsl and the light buffer.
+// Needs sampling.glsl and the light buffer. The KHR_materials_* lobes a
+// variant is built with (HAS_<NAME>_LOBE) add their Surface members and
+// terms, each from its own file.
+#ifdef HAS_SHEEN_LOBE
+#include "lobe_sheen.glsl"
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+#include "lobe_anisotropy.glsl"
+#endif
 
 struct Surface {
   vec3 albedo;
@@ -10,6 +18,14 @@ struct Surface {
   vec3 view;    // world, unit, toward the eye
   float nDotV;
   vec3 f0;      // reflectance at normal incidence
+#ifdef HAS_SHEEN_LOBE
+  vec3 sheenColor;       // KHR_materials_sheen, linear; black: no sheen layer
+  float sheenRoughness;  // perceptual, 0..1
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  vec3 anisotropyTangent;    // KHR_materials_anisotropy's direction T: world, unit, perpendicular to normal
+  float anisotropyStrength;  // 0..1; 0: the isotropic lobe
+#endif
 };
 
 Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, vec3 view) {
@@ -22,6 +38,14 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
   s.view = view;
   s.nDotV = max(dot(normal, view), 1e-4);
   s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
+#ifdef HAS_SHEEN_LOBE
+  s.sheenColor = vec3(0.0);
+  s.sheenRoughness = 0.0;
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  s.anisotropyTangent = vec3(0.0);
+  s.anisotropyStrength = 0.0;
+#endif
   return s;
 }
 
@@ -36,9 +60,21 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
   const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
   const float distribution = a2 / (kPi * d * d);
   const vec3 fresnel = s.f0 + (1.0 - s.f0) * pow(1.0 - vDotH, 5.0);
-  const vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
+  float specularTerm = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
+#ifdef HAS_ANISOTROPY_LOBE
+  if (s.anisotropyStrength > 0.0)
+    specularTerm = anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal, s.view, toLight,
+                                       halfVector, s.nDotV, nDotL);
+#endif
+  const vec3 specular = specularTerm * fresnel;
   const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi;
-  return (diffuse + specular) * nDotL;
+  vec3 reflected = (diffuse + specular) * nDotL;
+#ifdef HAS_SHEEN_LOBE
+  if (s.sheenColor != vec3(0.0))
+    reflected = reflected * sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL) +
+                sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
+#endif
+  return reflected;
 }
 
 // Falloff of `light` at `position` (inverse square, range window, spot

@@ -80,6 +80,10 @@ layout(binding = kUnitOcclusionTexture) uniform sampler2D occlusionTexture;
 layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #endif
 
+#ifdef HAS_SHEEN_LOBE
+#include "lobe_sheen_material.glsl"
+#endif
+
 #ifdef BLEND_FORWARD
 #include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
 #else
@@ -90,9 +94,15 @@ layout(location = 3) out vec4 outMaterial;
 #ifdef HAS_EMISSIVE_TARGET
 layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
 #endif
+#ifdef HAS_SHEEN_TARGET
+layout(location = SHEEN_TARGET_LOCATION) out vec4 outSheen;
+#endif
+#ifdef HAS_ANISOTROPY_TARGET
+layout(location = ANISOTROPY_TARGET_LOCATION) out vec4 outAnisotropy;
+#endif
 #endif
 
-#ifdef HAS_NORMAL_TEXTURE
+#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_ANISOTROPY_LOBE)
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
@@ -110,6 +120,10 @@ mat3 tangentFrame(vec3 normal, vec2 normalUv) {
   return mat3(tangent * invmax, bitangent * invmax, normal);
 #endif
 }
+#endif
+
+#ifdef HAS_ANISOTROPY_LOBE
+#include "lobe_anisotropy_material.glsl"
 #endif
 
 void main() {
@@ -178,6 +192,12 @@ void main() {
   outMaterial = vec4(clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), clamp(occlusion, 0.0, 1.0), unlit);
 #ifdef HAS_EMISSIVE_TARGET
   outEmissive = vec4(emissive, 1.0);
+#endif
+#ifdef HAS_SHEEN_TARGET
+  outSheen = sheenMaterial();
+#endif
+#ifdef HAS_ANISOTROPY_TARGET
+  outAnisotropy = anisotropyMaterial(normal);
 #endif
 #endif
 }

@@ -72,7 +72,12 @@ using mat4 = glm::mat4;
   X(kUnitSsgiSky, 20)                       \
   X(kUnitEnvironmentSpecular, 21)           \
   X(kUnitEnvironmentIrradiance, 22)         \
-  X(kUnitEnvironmentBackground, 23)
+  X(kUnitEnvironmentBackground, 23)         \
+  X(kUnitSheenLobe, 26)                     \
+  X(kUnitAnisotropyLobe, 27)                \
+  X(kUnitSheenColorTexture, 34)             \
+  X(kUnitSheenRoughnessTexture, 35)         \
+  X(kUnitAnisotropyTexture, 38)
 // Reserved for issue 18's lobes (added with the code that reads them):
 // 24..28 the lobe attachments (specular, clearcoat, sheen, anisotropy,
 // iridescence), 29..40 the extensions' textures in MaterialTexture order.

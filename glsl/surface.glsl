@@ -5,6 +5,12 @@ layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
 layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
+#ifdef HAS_SHEEN_LOBE
+layout(binding = kUnitSheenLobe) uniform sampler2D gbufferSheen;  // sheen colour (sRGB8), roughness
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+layout(binding = kUnitAnisotropyLobe) uniform sampler2D gbufferAnisotropy;  // world direction, strength
+#endif
 
 // Direction from the surface toward the eye.
 vec3 viewDirection(vec3 worldPosition) {
@@ -15,6 +21,17 @@ vec3 viewDirection(vec3 worldPosition) {
 
 Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
   const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
-  return makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
-                     texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+  Surface s = makeSurface(texelFetch(gbufferAlbedo, pixel, 0).rgb, material.x, material.y,
+                          texelFetch(gbufferNormal, pixel, 0).xyz, viewDirection(worldPosition));
+#ifdef HAS_SHEEN_LOBE
+  const vec4 sheen = texelFetch(gbufferSheen, pixel, 0);
+  s.sheenColor = sheen.rgb;
+  s.sheenRoughness = sheen.a;
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  const vec4 anisotropy = texelFetch(gbufferAnisotropy, pixel, 0);
+  s.anisotropyTangent = anisotropy.xyz;
+  s.anisotropyStrength = anisotropy.w;
+#endif
+  return s;
 }

@@ -15,9 +15,11 @@ namespace headlight::gltf {
 namespace {
 
 // Extensions that are rendered: nothing about them is named.
-constexpr std::array<std::string_view, 8> kRenderedExtensions{
+constexpr std::array<std::string_view, 10> kRenderedExtensions{
     "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
     "KHR_texture_transform", "KHR_materials_unlit",
+    "KHR_materials_sheen",       // a G-buffer lobe (glsl/lobe_sheen.glsl)
+    "KHR_materials_anisotropy",  // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
     "KHR_materials_variants",  // the default materials, or --material-variant's (gltf_variants.cpp)
     kTextureWebp};             // decoded by OpenImageIO (gltf_texture_sources.cpp)
 

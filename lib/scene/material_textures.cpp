@@ -56,6 +56,12 @@ constexpr MaterialTextureRow kRows[] = {
      &B::occlusionTransformV},
     {T::Emissive, "EMISSIVE", gpu::kUnitEmissiveTexture, true, kFeatureEmissiveTexture, kFeatureEmissiveTexcoord1,
      coreTexture<&Material::emissiveTexture>, &B::emissiveTransformU, &B::emissiveTransformV},
+    HL_EXTENSION_ROW(SheenColor, "SHEEN_COLOR", kUnitSheenColorTexture, true, sheen, Sheen::sheenColorTexture,
+                     sheenColor),
+    HL_EXTENSION_ROW(SheenRoughness, "SHEEN_ROUGHNESS", kUnitSheenRoughnessTexture, false, sheen,
+                     Sheen::sheenRoughnessTexture, sheenRoughness),
+    HL_EXTENSION_ROW(Anisotropy, "ANISOTROPY", kUnitAnisotropyTexture, false, anisotropy,
+                     Anisotropy::anisotropyTexture, anisotropy),
 };
 #undef HL_EXTENSION_ROW
 static_assert(std::size(kRows) == kMaterialTextureCount);

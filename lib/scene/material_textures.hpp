@@ -29,6 +29,9 @@ enum class MaterialTexture {
   // SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormal,
   // SheenColor, SheenRoughness, Iridescence, IridescenceThickness,
   // Anisotropy, Transmission, Thickness.
+  SheenColor,
+  SheenRoughness,
+  Anisotropy,
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);
