@@ -36,8 +36,13 @@ vec3 skyIrradianceOverPi(vec3 normal) {
 
 vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
   const float size = float(kBrdfLutSize);
+  float tableRoughness = surface.roughness;
+#ifdef HAS_ANISOTROPY_LOBE
+  if (surface.anisotropyStrength > 0.0)
+    tableRoughness = anisotropicAlbedoRoughness(surface.roughness, surface.anisotropyStrength);
+#endif
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
-                                               tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
+                                               tableCoordinate(tableRoughness, 0.0, 1.0, size))).rg;
   const vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
   const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);

@@ -38,6 +38,17 @@ float anisotropicSpecular(vec3 tangent, float strength, float alpha, vec3 normal
   return distribution * anisotropicVisibility(alphaT, alpha, atV, atL);
 }
 
+// Image-based light, energy: the perceptual roughness of the isotropic lobe
+// whose split-sum albedo (the BRDF table) stands in for the stretched
+// lobe's, alpha = (alpha_t + alpha_b) / 2. The stretched lobe reflects less
+// than the isotropic one of the material's roughness (0.62 against 0.95 at
+// roughness 0.4, strength 0.9, N.V 0.7); the mean alpha's lobe reflects 0.68
+// (tests/lobe_sheen_anisotropy_tests.cpp bounds the difference).
+float anisotropicAlbedoRoughness(float roughness, float strength) {
+  const float alpha = roughness * roughness;
+  return sqrt(0.5 * (anisotropyAlphaT(alpha, strength) + alpha));
+}
+
 // Image-based light: the direction the prefiltered tables are read in. The
 // normal is bent toward the grain's normal facing the eye (perpendicular to
 // B, in the plane of B and V), the more the stronger and smoother the

@@ -96,12 +96,12 @@ TEST_CASE("lobes: the Embree reference shades sheen and anisotropy as the render
   CHECK(sheen.gpu > 0.0);
   CHECK(sheen.reference > 0.0);
   CHECK(sheen.gpu == doctest::Approx(sheen.reference).epsilon(0.15));
-  // Anisotropy darkens the sphere in both: the stretched lobe reflects less
-  // than the isotropic one. The renderer's ambient keeps the isotropic
-  // lobe's split-sum energy (docs/ACCURACY.md §9), so its change is smaller
-  // (measured -0.021 against -0.130 per pixel); this bounds that gap.
+  // Anisotropy darkens the sphere in both, the stretched lobe reflecting
+  // less than the isotropic one, by amounts within 20 % of each other
+  // (measured 7 %: -0.121 against -0.130; the renderer reads its split-sum
+  // table at the stand-in roughness, docs/ACCURACY.md §9; at the material's
+  // own roughness it gave -0.021).
   CHECK(anisotropy.gpu < 0.0);
-  CHECK(anisotropy.reference < anisotropy.gpu);
-  CHECK((anisotropy.gpu - anisotropy.reference) / anisotropy.pixels < 0.15);
+  CHECK(anisotropy.gpu == doctest::Approx(anisotropy.reference).epsilon(0.2));
   CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
 }

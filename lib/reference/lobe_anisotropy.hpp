@@ -39,6 +39,11 @@ inline float anisotropicSpecular(const glm::vec3& tangent, float strength, float
   return distribution * anisotropicVisibility(alphaT, alpha, atV, atL);
 }
 
+inline float anisotropicAlbedoRoughness(float roughness, float strength) {
+  const float alpha = roughness * roughness;
+  return std::sqrt(0.5f * (anisotropyAlphaT(alpha, strength) + alpha));
+}
+
 inline glm::vec3 anisotropicReflection(const glm::vec3& normal, const glm::vec3& view, const glm::vec3& tangent,
                                        float strength, float roughness) {
   const glm::vec3 bitangent = glm::cross(normal, tangent);
