@@ -4,7 +4,7 @@
 // T and alpha_b = alpha along B; strength 0 is brdf.glsl's isotropic lobe.
 // Pure functions of their inputs; lib/reference/lobe_anisotropy.hpp is the
 // CPU port (same names, clamps and constants), held to this file by
-// tests/anisotropy_parity_tests.cpp. Needs sampling.glsl (kPi).
+// tests/lobe_parity_tests.cpp. Needs sampling.glsl (kPi).
 
 float anisotropyAlphaT(float alpha, float strength) { return mix(alpha, 1.0, strength * strength); }
 

@@ -25,7 +25,9 @@ std::filesystem::path conformanceModel(const std::string& model) {
 }
 bool haveModel(const std::string& model) { return test::exists(conformanceModel(model)); }
 
-glm::vec3 texel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+glm::vec3 texel3(const ImageF& image, int x, int y) {
+  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+}
 float luminance(const glm::vec3& rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
 
 bool named(const Scene& scene, const std::string& feature) {
@@ -76,8 +78,8 @@ TEST_CASE("conformance: SheenCloth's sheen adds its colour at grazing angles" *
   REQUIRE(grazing.pixels > 100);
   REQUIRE(facing.pixels > 100);
   const double grazingGain = grazing.added / grazing.base, facingGain = facing.added / facing.base;
-  MESSAGE("SheenCloth " << size << "px: " << sheenPixels << " pixels with sheen; grazing (N.V < 0.3, "
-                        << grazing.pixels << " px) gains " << grazingGain * 100.0 << " % of its light, facing (N.V > 0.8, "
+  MESSAGE("SheenCloth " << size << "px: " << sheenPixels << " pixels with sheen; grazing (N.V < 0.3, " << grazing.pixels
+                        << " px) gains " << grazingGain * 100.0 << " % of its light, facing (N.V > 0.8, "
                         << facing.pixels << " px) " << facingGain * 100.0 << " %; added blue - green at grazing "
                         << (grazing.addedBlue - grazing.addedGreen) / grazing.pixels);
   CHECK(sheenPixels > grazing.pixels);

@@ -51,7 +51,9 @@ Scene lobeScene(const std::vector<Material>& sphereMaterials) {
   return scene;
 }
 
-glm::vec3 texel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
+glm::vec3 texel3(const ImageF& image, int x, int y) {
+  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
+}
 
 struct ParityCount {
   int covered = 0, lit = 0, outside = 0;
@@ -72,9 +74,9 @@ ParityCount compareDirectLight(const Scene& scene, const Frame& frame, Lobes lob
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++count.covered;
       const glm::vec3 position = texel3(frame.position, x, y);
-      reference::Surface surface = reference::makeSurface(
-          texel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
-          texel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
+      reference::Surface surface =
+          reference::makeSurface(texel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+                                 texel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
       lobes(surface, x, y);
       glm::vec3 expected(0.0f);
       for (const Light& light : scene.lights) {

@@ -4,7 +4,7 @@
 // distribution's normalisation and its reduction to brdf.glsl's isotropic
 // lobe at strength 0, and the reference's anisotropic sampler against the
 // integral it estimates. No GL: the GLSL is held to these ports by the
-// parity tests (sheen_parity_tests.cpp, anisotropy_parity_tests.cpp).
+// parity tests (lobe_parity_tests.cpp).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -21,8 +21,7 @@ namespace {
 
 // The integral of f(l) over the hemisphere around +Z, midpoint rule in
 // (theta, phi): fine enough for the smooth lobes integrated here.
-double integrateHemisphere(const std::function<double(const glm::vec3&)>& f, int thetaSteps = 512,
-                           int phiSteps = 256) {
+double integrateHemisphere(const std::function<double(const glm::vec3&)>& f, int thetaSteps = 512, int phiSteps = 256) {
   double sum = 0.0;
   const double dTheta = 0.5 * kPi / thetaSteps, dPhi = 2.0 * kPi / phiSteps;
   for (int i = 0; i < thetaSteps; ++i) {
@@ -111,8 +110,8 @@ TEST_CASE("anisotropy: strength 0 is brdf's isotropic GGX, and the stretched D i
   for (float strength : {0.0f, 0.5f, 1.0f}) {
     const float alpha = 0.25f, alphaT = anisotropyAlphaT(alpha, strength);
     const double total = integrateHemisphere(
-        [&](const glm::vec3& h) { return double(anisotropicDistribution(alphaT, alpha, h.x, h.y, h.z) * h.z); },
-        2048, 512);
+        [&](const glm::vec3& h) { return double(anisotropicDistribution(alphaT, alpha, h.x, h.y, h.z) * h.z); }, 2048,
+        512);
     CAPTURE(strength);
     CHECK(total == doctest::Approx(1.0).epsilon(0.01));
   }

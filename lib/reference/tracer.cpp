@@ -424,9 +424,9 @@ class Tracer {
       if (nDotL <= 0.0f) continue;
       const float nDotH = std::max(glm::dot(surface.normal, halfVector), 0.0f);
       const float vDotH = std::max(vDotHRaw, 0.0f);
-      const float visibility =
-          stretched ? anisotropicVisibility(alphaT, alpha, inFrame(surface.view, surface.nDotV), inFrame(toLight, nDotL))
-                    : smithGgxVisibility(surface.nDotV, nDotL, alpha);
+      const float visibility = stretched ? anisotropicVisibility(alphaT, alpha, inFrame(surface.view, surface.nDotV),
+                                                                 inFrame(toLight, nDotL))
+                                         : smithGgxVisibility(surface.nDotV, nDotL, alpha);
       const float weight = 4.0f * visibility * vDotH * nDotL / std::max(nDotH, 1e-7f);
       const float fresnel = std::pow(1.0f - vDotH, 5.0f);
       scale += (1.0f - fresnel) * weight;
@@ -483,7 +483,8 @@ class Tracer {
       const float cosine = glm::dot(normal, direction);
       if (cosine <= 0.0f || pdf <= 0.0f) continue;
       if (!unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
-      sum += glm::dvec3(light.map.lookup(mapDirection)) * double(cosine * sheenBaseScale(surface, direction) / (kPi * pdf));
+      sum += glm::dvec3(light.map.lookup(mapDirection)) *
+             double(cosine * sheenBaseScale(surface, direction) / (kPi * pdf));
     }
     return glm::vec3(sum / double(count));
   }
