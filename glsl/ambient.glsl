@@ -36,8 +36,13 @@ vec3 skyIrradianceOverPi(vec3 normal) {
 
 vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
   const float size = float(kBrdfLutSize);
+  float tableRoughness = surface.roughness;
+#ifdef HAS_ANISOTROPY_LOBE
+  if (surface.anisotropyStrength > 0.0)
+    tableRoughness = anisotropicAlbedoRoughness(surface.roughness, surface.anisotropyStrength);
+#endif
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
-                                               tableCoordinate(surface.roughness, 0.0, 1.0, size))).rg;
+                                               tableCoordinate(tableRoughness, 0.0, 1.0, size))).rg;
   vec3 specularAlbedo = surface.f0 * scaleBias.x + surface.f90 * scaleBias.y;
 #ifdef HAS_IRIDESCENCE_LOBE
   // The film's Fresnel is one value per pixel (at N.V), so it leaves the
@@ -46,7 +51,21 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
 #endif
   const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
-  const vec3 reflected = reflect(-surface.view, surface.normal);
+  vec3 reflected = reflect(-surface.view, surface.normal);
+#ifdef HAS_ANISOTROPY_LOBE
+  if (surface.anisotropyStrength > 0.0)
+    reflected = anisotropicReflection(surface.normal, surface.view, surface.anisotropyTangent,
+                                      surface.anisotropyStrength, surface.roughness);
+#endif
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  return (diffuseIbl + specularIbl) * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
+  vec3 ambient = diffuseIbl + specularIbl;
+#ifdef HAS_SHEEN_LOBE
+  if (surface.sheenColor != vec3(0.0)) {
+    const vec3 mirrored = reflect(-surface.view, surface.normal);
+    ambient = ambient * sheenAmbientBaseScale(surface.sheenColor, surface.sheenRoughness, surface.nDotV) +
+              sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
+                           prefilteredSky(mirrored, surface.sheenRoughness));
+  }
+#endif
+  return ambient * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
 }

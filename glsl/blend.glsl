@@ -30,10 +30,29 @@ vec4 blendedClearcoatLobe;
 layout(location = 0) out vec4 outLit;
 layout(location = 1) out vec4 outCoverage;
 
+// The material's lobes, evaluated as the G-buffer pass does
+// (lobe_*_material.glsl, defined later in gbuffer.frag).
+#ifdef HAS_SHEEN_LOBE
+vec4 sheenMaterial();
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+vec4 anisotropyMaterial(vec3 shadingNormal);
+#endif
+
 void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, float roughness, float occlusion,
                   vec3 emission) {
   Surface surface = makeSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
                                 viewDirection(position));
+#ifdef HAS_SHEEN_LOBE
+  const vec4 sheen = sheenMaterial();
+  surface.sheenColor = sheen.rgb;
+  surface.sheenRoughness = sheen.a;
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  const vec4 anisotropy = anisotropyMaterial(normal);
+  surface.anisotropyTangent = anisotropy.xyz;
+  surface.anisotropyStrength = anisotropy.w;
+#endif
 #ifdef HAS_IRIDESCENCE_LOBE
   applyIridescence(surface, materialIridescence());  // lobe_iridescence_material.glsl
 #endif

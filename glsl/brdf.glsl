@@ -1,6 +1,14 @@
 // Cook-Torrance with GGX, Smith-GGX visibility and Schlick's Fresnel, and
 // glTF's punctual light falloff (KHR_lights_punctual, "Range Property").
-// Needs sampling.glsl and the light buffer.
+// Needs sampling.glsl and the light buffer. The KHR_materials_* lobes a
+// variant is built with (HAS_<NAME>_LOBE) add their Surface members and
+// terms, each from its own file.
+#ifdef HAS_SHEEN_LOBE
+#include "lobe_sheen.glsl"
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+#include "lobe_anisotropy.glsl"
+#endif
 
 struct Surface {
   vec3 albedo;
@@ -16,6 +24,14 @@ struct Surface {
   // film's Fresnel at N.V, and its strength (0: no film, Schlick's alone).
   vec3 iridescenceFresnel;
   float iridescence;
+#endif
+#ifdef HAS_SHEEN_LOBE
+  vec3 sheenColor;       // KHR_materials_sheen, linear; black: no sheen layer
+  float sheenRoughness;  // perceptual, 0..1
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  vec3 anisotropyTangent;    // KHR_materials_anisotropy's direction T: world, unit, perpendicular to normal
+  float anisotropyStrength;  // 0..1; 0: the isotropic lobe
 #endif
 };
 
@@ -33,6 +49,14 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
 #ifdef HAS_IRIDESCENCE_LOBE
   s.iridescenceFresnel = vec3(0.0);
   s.iridescence = 0.0;
+#endif
+#ifdef HAS_SHEEN_LOBE
+  s.sheenColor = vec3(0.0);
+  s.sheenRoughness = 0.0;
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  s.anisotropyTangent = vec3(0.0);
+  s.anisotropyStrength = 0.0;
 #endif
   return s;
 }
@@ -55,9 +79,21 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
 #ifdef HAS_IRIDESCENCE_LOBE
   fresnel = mix(fresnel, s.iridescenceFresnel, s.iridescence);  // the specification's F
 #endif
-  const vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
+  float specularTerm = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
+#ifdef HAS_ANISOTROPY_LOBE
+  if (s.anisotropyStrength > 0.0)
+    specularTerm = anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal, s.view, toLight,
+                                       halfVector, s.nDotV, nDotL);
+#endif
+  const vec3 specular = specularTerm * fresnel;
   const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi;
-  return (diffuse + specular) * nDotL;
+  vec3 reflected = (diffuse + specular) * nDotL;
+#ifdef HAS_SHEEN_LOBE
+  if (s.sheenColor != vec3(0.0))
+    reflected = reflected * sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL) +
+                sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
+#endif
+  return reflected;
 }
 
 // Falloff of `light` at `position` (inverse square, range window, spot

@@ -98,6 +98,10 @@ layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 #include "lobe_iridescence_material.glsl"
 #endif
 
+#ifdef HAS_SHEEN_LOBE
+#include "lobe_sheen_material.glsl"
+#endif
+
 #if defined(BLEND_FORWARD)
 #include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
 #elif defined(TRANSMISSION_FORWARD)
@@ -119,9 +123,15 @@ layout(location = SPECULAR_TARGET_LOCATION) out vec4 outSpecularLobe;
 #ifdef HAS_CLEARCOAT_TARGET
 layout(location = CLEARCOAT_TARGET_LOCATION) out vec4 outClearcoatLobe;
 #endif
+#ifdef HAS_SHEEN_TARGET
+layout(location = SHEEN_TARGET_LOCATION) out vec4 outSheen;
+#endif
+#ifdef HAS_ANISOTROPY_TARGET
+layout(location = ANISOTROPY_TARGET_LOCATION) out vec4 outAnisotropy;
+#endif
 #endif
 
-#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE)
+#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE) || defined(HAS_ANISOTROPY_LOBE)
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
@@ -145,6 +155,10 @@ mat3 tangentFrame(vec3 normal, vec2 normalUv) {
 #endif
 #ifdef HAS_CLEARCOAT_LOBE
 #include "lobe_clearcoat_material.glsl"
+#endif
+
+#ifdef HAS_ANISOTROPY_LOBE
+#include "lobe_anisotropy_material.glsl"
 #endif
 
 void main() {
@@ -237,6 +251,12 @@ void main() {
 #endif
 #ifdef HAS_CLEARCOAT_TARGET
   outClearcoatLobe = clearcoatLobe;
+#endif
+#ifdef HAS_SHEEN_TARGET
+  outSheen = sheenMaterial();
+#endif
+#ifdef HAS_ANISOTROPY_TARGET
+  outAnisotropy = anisotropyMaterial(normal);
 #endif
 #endif
 }

@@ -75,14 +75,19 @@ using mat4 = glm::mat4;
   X(kUnitEnvironmentBackground, 23)       \
   X(kUnitSpecularLobe, 24)                \
   X(kUnitClearcoatLobe, 25)               \
+  X(kUnitSheenLobe, 26)                   \
+  X(kUnitAnisotropyLobe, 27)              \
   X(kUnitIridescenceLobe, 28)             \
   X(kUnitSpecularTexture, 29)             \
   X(kUnitSpecularColorTexture, 30)        \
   X(kUnitClearcoatTexture, 31)            \
   X(kUnitClearcoatRoughnessTexture, 32)   \
   X(kUnitClearcoatNormalTexture, 33)      \
+  X(kUnitSheenColorTexture, 34)           \
+  X(kUnitSheenRoughnessTexture, 35)       \
   X(kUnitIridescenceTexture, 36)          \
   X(kUnitIridescenceThicknessTexture, 37) \
+  X(kUnitAnisotropyTexture, 38)           \
   X(kUnitTransmissionTexture, 39)         \
   X(kUnitThicknessTexture, 40)            \
   X(kUnitTransmissionBackground, 41)

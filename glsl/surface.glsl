@@ -9,6 +9,12 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 #ifdef HAS_IRIDESCENCE_LOBE
 layout(binding = kUnitIridescenceLobe) uniform sampler2D gbufferIridescence;
 #endif
+#ifdef HAS_SHEEN_LOBE
+layout(binding = kUnitSheenLobe) uniform sampler2D gbufferSheen;  // sheen colour (sRGB8), roughness
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+layout(binding = kUnitAnisotropyLobe) uniform sampler2D gbufferAnisotropy;  // world direction, strength
+#endif
 
 // Direction from the surface toward the eye.
 vec3 viewDirection(vec3 worldPosition) {
@@ -26,6 +32,16 @@ Surface surfaceAt(ivec2 pixel, vec3 worldPosition) {
 #endif
 #if defined(HAS_SPECULAR_LOBE) && !defined(BLEND_FORWARD)
   applySpecularLobe(surface, texelFetch(specularLobeTarget, pixel, 0));
+#endif
+#ifdef HAS_SHEEN_LOBE
+  const vec4 sheen = texelFetch(gbufferSheen, pixel, 0);
+  surface.sheenColor = sheen.rgb;
+  surface.sheenRoughness = sheen.a;
+#endif
+#ifdef HAS_ANISOTROPY_LOBE
+  const vec4 anisotropy = texelFetch(gbufferAnisotropy, pixel, 0);
+  surface.anisotropyTangent = anisotropy.xyz;
+  surface.anisotropyStrength = anisotropy.w;
 #endif
   return surface;
 }

@@ -56,11 +56,11 @@ TEST_CASE("glTF: each feature that is not rendered is named once, with a count a
   TempFolder folder;
   GltfParts parts;
   parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":1})";
-  parts.extra = R"(,"extensionsUsed":["KHR_materials_sheen","KHR_materials_unlit","KHR_xmp"],
+  parts.extra = R"(,"extensionsUsed":["KHR_materials_dispersion","KHR_materials_unlit","KHR_xmp"],
     "extensionsRequired":["KHR_materials_unlit"],
     "materials":[{"name":"A","alphaMode":"BLEND"},
-                 {"name":"Cloth","extensions":{"KHR_materials_sheen":{},"KHR_materials_unlit":{}}},
-                 {"extensions":{"KHR_materials_sheen":{}}},{"alphaMode":"MASK"}],
+                 {"name":"Cloth","extensions":{"KHR_materials_dispersion":{},"KHR_materials_unlit":{}}},
+                 {"extensions":{"KHR_materials_dispersion":{}}},{"alphaMode":"MASK"}],
     "animations":[{"name":"Walk","channels":[],"samplers":[]},{"channels":[],"samplers":[]}])";
   const Scene scene = loadGltf(writeTriangleGltf(folder, parts));  // material 3's MASK is rendered: not named
   CHECK(scene.triangleCount() == 1);  // KHR_materials_unlit, though required, leaves the geometry right
@@ -68,7 +68,7 @@ TEST_CASE("glTF: each feature that is not rendered is named once, with a count a
   for (const IgnoredFeature& feature : scene.ignored) lines.push_back(feature.describe());
   const std::vector<std::string> expected{
       "2 animations (first: animation 0 'Walk') are not played (the static pose is drawn)",
-      "KHR_materials_sheen on 2 materials (first: material 1 'Cloth') is not rendered",
+      "KHR_materials_dispersion on 2 materials (first: material 1 'Cloth') is not rendered",
       "KHR_xmp (listed in extensionsUsed) is not rendered",
   };
   CHECK(lines == expected);

@@ -260,13 +260,13 @@ TEST_SUITE("hostile") {
   TEST_CASE("a glTF feature that is not rendered is named once; --strict-gltf refuses the file") {
     TempFolder folder("hostile");
     json document = hostile::triangleScene();
-    document["materials"] = {{{"name", "Cloth"}, {"extensions", {{"KHR_materials_sheen", json::object()}}}},
-                             {{"extensions", {{"KHR_materials_sheen", json::object()}}}}};
+    document["materials"] = {{{"name", "Cloth"}, {"extensions", {{"KHR_materials_dispersion", json::object()}}}},
+                             {{"extensions", {{"KHR_materials_dispersion", json::object()}}}}};
     document["meshes"][0]["primitives"][0]["material"] = 0;
-    document["extensionsUsed"] = {"KHR_materials_sheen"};
-    const fs::path scene = writeGltf(folder, document, "sheen.gltf");
+    document["extensionsUsed"] = {"KHR_materials_dispersion"};
+    const fs::path scene = writeGltf(folder, document, "dispersion.gltf");
     const std::string warning = "warning: " + scene.string() +
-                                ": KHR_materials_sheen on 2 materials (first: material 0 'Cloth') is not rendered";
+                                ": KHR_materials_dispersion on 2 materials (first: material 0 'Cloth') is not rendered";
     const fs::path out = folder.path() / "out";
     const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " +
                                            quote(out));
@@ -282,8 +282,8 @@ TEST_SUITE("hostile") {
     REQUIRE(exr);
     CHECK(exr->spec().get_string_attribute("headlight:ignored") == warning.substr(warning.find("KHR_")));
 
-    const fs::path strictScene = writeGltf(folder, document, "strict/sheen.gltf");  // its own, empty out/
-    expectRefused(strictScene, {"--strict-gltf: KHR_materials_sheen on 2 materials"}, "--strict-gltf");
+    const fs::path strictScene = writeGltf(folder, document, "strict/dispersion.gltf");  // its own, empty out/
+    expectRefused(strictScene, {"--strict-gltf: KHR_materials_dispersion on 2 materials"}, "--strict-gltf");
   }
 
   // The static pose (issue 17 item 2): morph targets, skins and

@@ -73,6 +73,14 @@ const std::vector<ProgramSource>& programSources() {
       {{"gbuffer.vert", "gbuffer.frag"},
        {"BLEND_FORWARD", "HAS_SKY", "HAS_TEXCOORDS", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TEXTURE",
         "HAS_IRIDESCENCE_THICKNESS_TEXTURE"}},
+      // The sheen and anisotropy lobes: their G-buffer targets and textures,
+      // and the lighting passes' reads of the targets.
+      {{"gbuffer.vert", "gbuffer.frag"},
+       {"HAS_TEXCOORDS", "HAS_SHEEN_LOBE", "HAS_SHEEN_TARGET", "SHEEN_TARGET_LOCATION 4", "HAS_SHEEN_COLOR_TEXTURE",
+        "HAS_SHEEN_ROUGHNESS_TEXTURE", "HAS_ANISOTROPY_LOBE", "HAS_ANISOTROPY_TARGET", "ANISOTROPY_TARGET_LOCATION 5",
+        "HAS_ANISOTROPY_TEXTURE"}},
+      {{"fullscreen.vert", "direct_light.frag"}, {"HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
+      {{"fullscreen.vert", "composite.frag"}, {"HAS_SKY", "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
   };
   return sources;
 }

@@ -30,6 +30,15 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", false, &Frame::material},
     {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, kAssignedLocation, "EMISSIVE_TARGET", false,
      &Frame::emissive, true},
+    // Sheen colour in sRGB8 like the albedo (it comes from sRGB textures and
+    // factors; the targets' sRGB encoding is applied on write), sheen
+    // roughness in the linear alpha: 8 bits like the material factors.
+    {Attachment::GbufferSheen, "gbuffer.sheen", F::Srgb8Alpha8, kAssignedLocation, "SHEEN_TARGET", false,
+     &Frame::sheen, false, Lobe::Sheen, gpu::kUnitSheenLobe},
+    // The anisotropy direction resolved to world space in the G-buffer pass
+    // (the tangent frame lives there), half float like the normal: 0.03 deg.
+    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET", false,
+     &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
     {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", false, &Frame::depth},
     {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", false, nullptr, true},
     {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", false, nullptr, true},

@@ -96,6 +96,8 @@ enum class Attachment {
   GbufferAlbedo,
   GbufferMaterial,
   GbufferEmissive,
+  GbufferSheen,       // KHR_materials_sheen: colour, roughness (Lobe::Sheen)
+  GbufferAnisotropy,  // KHR_materials_anisotropy: world direction, strength (Lobe::Anisotropy)
   GbufferDepth,
   DirectTowardEye,
   DirectDiffuse,

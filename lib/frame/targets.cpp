@@ -44,6 +44,9 @@ constexpr std::string_view kIridescenceChannels[] = {"iridescence.factor", "irid
 constexpr std::string_view kSpecularChannels[] = {"specularF0.R", "specularF0.G", "specularF0.B", "specular"};
 constexpr std::string_view kClearcoatChannels[] = {"clearcoat", "clearcoatRoughness", "clearcoatNormal.U",
                                                    "clearcoatNormal.V"};
+constexpr std::string_view kSheenChannels[] = {"sheen.R", "sheen.G", "sheen.B", "sheenRoughness"};
+constexpr std::string_view kAnisotropyChannels[] = {"anisotropy.X", "anisotropy.Y", "anisotropy.Z",
+                                                    "anisotropyStrength"};
 
 using M = DiffMetric;
 using E = ExrStorage;
@@ -72,6 +75,15 @@ const FrameTarget kTargets[] = {
      thresholds(2e-3, 2e-2, 0.5, 2e-2),
      "emitted radiance, only for scenes that glow. HDR (emissiveStrength can be large): absolute below 1, relative "
      "above; half storage (radiance-precision half) rounds at 2.4e-4 relative, 2 % is about the smallest change visible after tonemapping."},
+    {"sheen", &Frame::sheen, kSheenChannels, E::Half, M::Absolute, thresholds(2e-3, 1e-2, 0.5, 1e-2),
+     "KHR_materials_sheen's colour (linear, 0..1) and roughness, only for scenes with sheen; 0 where a material has "
+     "none. Stored like albedo (sRGB8 colour, 8-bit roughness) from 8-bit textures and factors: one step is "
+     "3e-4..9e-3 linear, so filtering on another GPU moves values by up to ~1e-2; more is a material change."},
+    {"anisotropy", &Frame::anisotropy, kAnisotropyChannels, E::Half, M::Absolute, thresholds(2e-3, 2e-2, 0.5, 1e-2),
+     "KHR_materials_anisotropy's direction in world space (unit, perpendicular to the normal; 0 where strength is "
+     "0) and strength 0..1, only for scenes with anisotropy. Half storage rounds components by ~5e-4; the "
+     "direction comes from the tangent frame, which drivers interpolate a little apart at silhouettes, and 0.02 is "
+     "about 1 degree of it; the strength comes from 8-bit textures and factors (one step 3.9e-3)."},
     {"ssgi", &Frame::ssgi, kSsgiChannels, E::Radiance, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
      "AO within R, one-bounce indirect within R, sky visibility at any distance and indirect from beyond R, 0..~1; "
      "absent with SSGI off. Two GPU textures (ao + indirect, then sky + indirectFar). Seeded and repeatable on one "

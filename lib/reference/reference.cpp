@@ -92,6 +92,8 @@ void validate(const Frame& frame, const ReferenceSettings& settings) {
   checkImage(frame.albedo, "albedo", width, height, 3);
   checkImage(frame.material, "material", width, height, 2);
   if (!frame.emissive.empty()) checkImage(frame.emissive, "emissive", width, height, 3);
+  if (!frame.sheen.empty()) checkImage(frame.sheen, "sheen", width, height, 4);
+  if (!frame.anisotropy.empty()) checkImage(frame.anisotropy, "anisotropy", width, height, 4);
 }
 
 ImageF makeImage(int width, int height, std::vector<std::string> channels) {

@@ -12,6 +12,8 @@
 
 #include "headlight/scene.hpp"
 #include "reference/lobe_iridescence.hpp"
+#include "reference/lobe_anisotropy.hpp"
+#include "reference/lobe_sheen.hpp"
 
 namespace headlight::reference {
 
@@ -115,6 +117,13 @@ struct Surface {
   // and its strength; 0 leaves Schlick's alone, as without the lobe.
   glm::vec3 iridescenceFresnel{0.0f};
   float iridescence = 0.0f;
+  // KHR_materials_sheen (lobe_sheen.hpp): black is no sheen layer.
+  glm::vec3 sheenColor{0.0f};
+  float sheenRoughness = 0;
+  // KHR_materials_anisotropy (lobe_anisotropy.hpp): the world direction T
+  // (unit, perpendicular to normal) and strength; strength 0 is isotropic.
+  glm::vec3 anisotropyTangent{0.0f};
+  float anisotropyStrength = 0;
 };
 
 // brdf.glsl makeSurface.
@@ -139,7 +148,8 @@ inline void applyIridescence(Surface& s, const IridescenceInputs& film) {
       s.iridescence > 0.0f ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : glm::vec3(0.0f);
 }
 
-// brdf.glsl cookTorrance: (diffuse + specular) * N.L toward a unit `toLight`.
+// brdf.glsl cookTorrance: (diffuse + specular) * N.L toward a unit `toLight`,
+// with the surface's anisotropy and sheen lobes.
 inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float nDotL = glm::dot(s.normal, toLight);
   if (nDotL <= 0.0f) return glm::vec3(0.0f);
@@ -152,9 +162,16 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float distribution = a2 / (kPi * d * d);
   glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
   fresnel = glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
-  const glm::vec3 specular = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha) * fresnel;
+  const float specularTerm = s.anisotropyStrength > 0.0f
+                                 ? anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal,
+                                                       s.view, toLight, halfVector, s.nDotV, nDotL)
+                                 : distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
+  const glm::vec3 specular = specularTerm * fresnel;
   const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi;
-  return (diffuse + specular) * nDotL;
+  const glm::vec3 base = (diffuse + specular) * nDotL;
+  if (s.sheenColor == glm::vec3(0.0f)) return base;
+  return base * sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL) +
+         sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
 }
 
 // brdf.glsl lightAttenuation: inverse square, glTF's range window and the

@@ -72,6 +72,10 @@ class Tracer {
     const glm::vec3 origin = position + normal * in_.epsilon;
     const Basis basis = basisAround(normal);
     Pcg32 random = pixelStream(in_.settings.seed, pixel);
+    Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
+    TransmissiveSurface transmissive = transmissiveSurfaceHere(x, y);
+    // The transmission pass applies ior's F0 and no lobe (transmission.glsl).
+    if (transmissive.share <= 0.0f) readLobes(x, y, surface);
 
     // Cosine-weighted rays: AO, indirect, the diffuse sky.
     const int n = in_.settings.samplesPerPixel;
@@ -86,7 +90,8 @@ class Tracer {
       if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
         ++open;
         ++escaped;
-        if (!in_.environment) skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+        if (!in_.environment)
+          skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction) * sheenBaseScale(surface, direction));
         continue;
       }
       const float t = rayHit.ray.tfar;
@@ -124,11 +129,8 @@ class Tracer {
       lit[0] = albedo.r, lit[1] = albedo.g, lit[2] = albedo.b, lit[3] = 1.0f;
       return;
     }
-    Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
-    TransmissiveSurface transmissive = transmissiveSurfaceHere(x, y);
     Clearcoat coat;  // none: a weight of 0 changes nothing
     if (transmissive.share > 0.0f) {
-      // The transmission pass applies KHR_materials_ior's F0 and no other lobe (transmission.glsl).
       surface.f0 = iorF0(transmissive.ior, albedo, metallic);
       transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
     } else {
@@ -136,7 +138,7 @@ class Tracer {
       applyIridescence(surface, iridescenceInputsAt(frame, x, y));  // no film without iridescence.exr
     }
     const glm::vec3 skyMean =
-        in_.environment ? environmentIrradianceOverPi(normal, origin, n, random) : glm::vec3(skySum / count);
+        in_.environment ? environmentIrradianceOverPi(surface, origin, n, random) : glm::vec3(skySum / count);
     // A transmissive surface's diffuse lobe keeps only the share not transmitted.
     const float diffuseShare = 1.0f - transmissive.share;
     glm::vec3 specularAlbedo(0.0f);
@@ -176,6 +178,27 @@ class Tracer {
                                                                                    : glm::vec3(0.0f);
     });
     return sum * in_.skyIntensity;
+  }
+
+  // The G-buffer's lobe targets at the pixel (KHR_materials_sheen and
+  // _anisotropy), where the frame has them; the surface keeps its no-effect
+  // values elsewhere.
+  void readLobes(int x, int y, Surface& surface) const {
+    const Frame& frame = in_.frame;
+    if (!frame.sheen.empty()) {
+      surface.sheenColor = glm::vec3(frame.sheen.at(x, y, 0), frame.sheen.at(x, y, 1), frame.sheen.at(x, y, 2));
+      surface.sheenRoughness = frame.sheen.at(x, y, 3);
+    }
+    if (!frame.anisotropy.empty()) {
+      surface.anisotropyTangent =
+          glm::vec3(frame.anisotropy.at(x, y, 0), frame.anisotropy.at(x, y, 1), frame.anisotropy.at(x, y, 2));
+      surface.anisotropyStrength = frame.anisotropy.at(x, y, 3);
+    }
+  }
+
+  // What the base layer keeps of light from `direction` under the sheen (1 without).
+  static float sheenBaseScale(const Surface& s, const glm::vec3& direction) {
+    return reference::sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, glm::dot(s.normal, direction));
   }
 
   bool unlitPixel(int x, int y) const {
@@ -490,23 +513,38 @@ class Tracer {
   // sky when the ray escapes. The same samples' Fresnel-free weights give
   // the split-sum scale and bias, hence the renderer's diffuse weight
   // kd = (1 - (f0 scale + bias)) (1 - metallic) without its 64x64 table.
+  // Anisotropy: the half vectors come from the stretched lobe, in its frame
+  // (T, B, N), with its visibility. Sheen: each direction's base term is
+  // scaled by the layer (sheenBaseScale), and the lobe itself is estimated
+  // by sheenAmbient.
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
                          Pcg32& random, glm::vec3* specularAlbedoOut = nullptr) {
     const int m = in_.specularSamples;
     const float alpha = surface.roughness * surface.roughness;
+    const bool stretched = surface.anisotropyStrength > 0.0f;
+    const Basis frame = stretched ? Basis{surface.anisotropyTangent,
+                                          glm::cross(surface.normal, surface.anisotropyTangent), surface.normal}
+                                  : basis;
+    const float alphaT = stretched ? anisotropyAlphaT(alpha, surface.anisotropyStrength) : alpha;
+    auto inFrame = [&](const glm::vec3& v, float nDot) {
+      return glm::vec3(glm::dot(frame.tangent, v), glm::dot(frame.bitangent, v), nDot);
+    };
     double scale = 0.0, bias = 0.0;
     glm::dvec3 specular(0.0);
     for (int j = 0; j < m; ++j) {
       const float xi0 = random.uniform(), xi1 = random.uniform();
-      const glm::vec3 halfVector = basis.toWorld(importanceSampleGgx(xi0, xi1, alpha));
+      const glm::vec3 halfVector = frame.toWorld(stretched ? importanceSampleAnisotropicGgx(xi0, xi1, alphaT, alpha)
+                                                           : importanceSampleGgx(xi0, xi1, alpha));
       const float vDotHRaw = glm::dot(surface.view, halfVector);
       const glm::vec3 toLight = 2.0f * vDotHRaw * halfVector - surface.view;  // reflect(-V, H)
       const float nDotL = glm::dot(surface.normal, toLight);
       if (nDotL <= 0.0f) continue;
       const float nDotH = std::max(glm::dot(surface.normal, halfVector), 0.0f);
       const float vDotH = std::max(vDotHRaw, 0.0f);
-      const float weight =
-          4.0f * smithGgxVisibility(surface.nDotV, nDotL, alpha) * vDotH * nDotL / std::max(nDotH, 1e-7f);
+      const float visibility = stretched ? anisotropicVisibility(alphaT, alpha, inFrame(surface.view, surface.nDotV),
+                                                                 inFrame(toLight, nDotL))
+                                         : smithGgxVisibility(surface.nDotV, nDotL, alpha);
+      const float weight = 4.0f * visibility * vDotH * nDotL / std::max(nDotH, 1e-7f);
       const float fresnel = std::pow(1.0f - vDotH, 5.0f);
       scale += (1.0f - fresnel) * weight;
       bias += fresnel * weight;
@@ -515,14 +553,34 @@ class Tracer {
       const glm::vec3 sampleFresnel = glm::mix(surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel,
                                                surface.iridescenceFresnel, surface.iridescence);
       if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
-        specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction));
+        specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction) * sheenBaseScale(surface, direction));
     }
     const glm::vec3 specularAlbedo =
         glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
                  surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
     if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
     const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
-    return (diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m))) * in_.skyIntensity;
+    glm::vec3 ambient = diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m));
+    if (surface.sheenColor != glm::vec3(0.0f)) ambient += sheenAmbient(surface, origin, basis, random);
+    return ambient * in_.skyIntensity;
+  }
+
+  // The sheen lobe under the ambient with true visibility: `m` directions
+  // uniform over the hemisphere (density 1 / 2 pi), each adding
+  // f_sheen N.L L 2 pi where it escapes.
+  glm::vec3 sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random) {
+    const int m = in_.specularSamples;
+    glm::dvec3 sum(0.0);
+    for (int j = 0; j < m; ++j) {
+      const float cosTheta = random.uniform(), phi = 2.0f * kPi * random.uniform();
+      const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+      const glm::vec3 direction = basis.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+      if (cosTheta <= 0.0f || !unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
+      const float nDotH = std::max(glm::dot(surface.normal, glm::normalize(direction + surface.view)), 0.0f);
+      sum += glm::dvec3(sheenReflected(surface.sheenColor, surface.sheenRoughness, surface.nDotV, cosTheta, nDotH) *
+                        ambientRadiance(direction));
+    }
+    return glm::vec3(sum * double(2.0f * kPi) / double(m));
   }
 
   // The ambient light arriving from `direction` (unit), before intensity.
@@ -534,7 +592,9 @@ class Tracer {
   // sampling the map (environment_sampler.hpp): each of `count` directions
   // drawn in proportion to the map's luminance adds L V cos / (pi pdf).
   // Cosine-weighted rays would rarely find a small bright source.
-  glm::vec3 environmentIrradianceOverPi(const glm::vec3& normal, const glm::vec3& origin, int count, Pcg32& random) {
+  // Each direction's light is scaled by the sheen layer above the base (1 without).
+  glm::vec3 environmentIrradianceOverPi(const Surface& surface, const glm::vec3& origin, int count, Pcg32& random) {
+    const glm::vec3& normal = surface.normal;
     const EnvironmentLight& light = *in_.environment;
     glm::dvec3 sum(0.0);
     for (int i = 0; i < count; ++i) {
@@ -545,7 +605,8 @@ class Tracer {
       const float cosine = glm::dot(normal, direction);
       if (cosine <= 0.0f || pdf <= 0.0f) continue;
       if (!unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
-      sum += glm::dvec3(light.map.lookup(mapDirection)) * double(cosine / (kPi * pdf));
+      sum += glm::dvec3(light.map.lookup(mapDirection)) *
+             double(cosine * sheenBaseScale(surface, direction) / (kPi * pdf));
     }
     return glm::vec3(sum / double(count));
   }

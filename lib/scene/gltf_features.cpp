@@ -29,6 +29,8 @@ constexpr std::string_view kRenderedExtensions[]{
     "KHR_materials_ior",           // with KHR_materials_specular, the specular lobe (glsl/lobe_specular.glsl)
     "KHR_materials_specular",
     "KHR_materials_clearcoat",     // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
+    "KHR_materials_sheen",         // a G-buffer lobe (glsl/lobe_sheen.glsl)
+    "KHR_materials_anisotropy",    // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
 };
 
 // Rendered when the build has their decoder (meson options draco, meshopt).

@@ -147,8 +147,10 @@ class GltfReader {
     // MikkTSpace makes them (the glTF spec's rule for missing tangents),
     // from the UVs the normal map samples (its set, through its transform).
     if (primitive.mode == PrimitiveMode::Triangles && primitive.tangents.empty() && source.material >= 0) {
-      const TextureRef& normalMap = scene_.materials[static_cast<std::size_t>(source.material)].normalTexture;
-      if (normalMap.present()) generateTangents(primitive, normalMap);
+      const Material& material = scene_.materials[static_cast<std::size_t>(source.material)];
+      if (material.normalTexture.present()) generateTangents(primitive, material.normalTexture);
+      // KHR_materials_anisotropy's direction is in the same tangent space.
+      else if (material.anisotropy) generateTangents(primitive);
     }
     // A textured material samples UVs; without the set it names it samples
     // (0, 0), which is glTF's answer too, so the shader always has texcoords

@@ -24,19 +24,19 @@ enum class MaterialTexture {
   Normal,
   Occlusion,
   Emissive,
-  // The KHR_materials_* textures, each added with the lobe that reads it, in
-  // this order (units 29..40): Specular, SpecularColor, Clearcoat,
-  // ClearcoatRoughness, ClearcoatNormal, SheenColor, SheenRoughness,
-  // Iridescence, IridescenceThickness, Anisotropy, Transmission, Thickness.
-  Specular,            // KHR_materials_specular (A)
-  SpecularColor,       // KHR_materials_specular (RGB, sRGB)
-  Clearcoat,           // KHR_materials_clearcoat (R)
-  ClearcoatRoughness,  // KHR_materials_clearcoat (G)
-  ClearcoatNormal,     // KHR_materials_clearcoat (tangent space)
+  // The KHR_materials_* textures, in the order of their units (29..40).
+  Specular,              // KHR_materials_specular (A)
+  SpecularColor,         // KHR_materials_specular (RGB, sRGB)
+  Clearcoat,             // KHR_materials_clearcoat (R)
+  ClearcoatRoughness,    // KHR_materials_clearcoat (G)
+  ClearcoatNormal,       // KHR_materials_clearcoat (tangent space)
+  SheenColor,            // KHR_materials_sheen (RGB, sRGB)
+  SheenRoughness,        // KHR_materials_sheen (A)
   Iridescence,           // KHR_materials_iridescence's iridescenceTexture (R)
   IridescenceThickness,  // and its iridescenceThicknessTexture (G)
-  Transmission,  // KHR_materials_transmission's transmissionTexture (R)
-  Thickness,     // KHR_materials_volume's thicknessTexture (G)
+  Anisotropy,            // KHR_materials_anisotropy (RG direction, B strength)
+  Transmission,          // KHR_materials_transmission's transmissionTexture (R)
+  Thickness,             // KHR_materials_volume's thicknessTexture (G)
   Count
 };
 inline constexpr std::size_t kMaterialTextureCount = std::size_t(MaterialTexture::Count);

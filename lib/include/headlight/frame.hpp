@@ -48,6 +48,11 @@ struct Frame {
   ImageF material;  // material.metallic, material.roughness, material.occlusion
   ImageF depth;     // depth.Z: view-space depth (distance along -Z), far plane on background
   ImageF emissive;  // emissive.R/G/B; empty when the scene has no emissive material
+  // sheen.R/G/B linear sheen colour, sheenRoughness; only for scenes with KHR_materials_sheen
+  ImageF sheen;
+  // anisotropy.X/Y/Z world direction (unit, 0 where strength is 0), anisotropyStrength; only for scenes with
+  // KHR_materials_anisotropy
+  ImageF anisotropy;
   ImageF
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
