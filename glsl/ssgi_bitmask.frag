@@ -2,7 +2,8 @@
 // §3.3 has the formulas). Per pixel, `sliceCount` screen-space directions
 // (each with its opposite) are marched out to R's footprint on screen; every
 // depth sample is a slab from its visible surface to `thicknessWorld`
-// behind it, and the part of that slab within R of the shaded point marks
+// behind it (deeper where the sample stands for a wider stretch of screen:
+// radiusSlabDepth), and the part of that slab within R of the shaded point marks
 // the sectors of the slice it covers in a 32-bit mask. The sectors split the
 // slice's half of the normal hemisphere into 32 equal angles; each carries
 // its exact cosine-weighted solid angle, so the visible sum is the reference's
@@ -32,6 +33,11 @@ layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 layout(location = 0) out vec4 outSsgi;
 layout(location = 1) out vec4 outSky;
 
+// The world width of a pixel at view depth `viewZ` (negative in front).
+float pixelFootprint(float viewZ) {
+  return 2.0 * frame.viewport.w / frame.projection[1][1] * (orthographicView() ? 1.0 : -viewZ);
+}
+
 // The surface point on the view ray through `windowPoint` (pixels, not
 // necessarily a centre), from the depth and normal of the pixel it falls in:
 // that pixel's tangent plane met by the exact ray. The slice's samples then
@@ -51,9 +57,7 @@ vec3 surfaceOnRay(vec2 windowPoint, ivec2 pixel, float depth, vec3 pixelNormal, 
   known = planeMeetsRay(origin, direction, centre, pixelNormal, 0.01, t);
   if (!known) return centre;
   const vec3 onRay = origin + direction * t;
-  const vec2 scale = vec2(frame.projection[0][0], frame.projection[1][1]);
-  const float pixelSize = 2.0 * frame.viewport.w / scale.y * (orthographicView() ? 1.0 : -centre.z);
-  return distance(onRay, centre) < 32.0 * pixelSize ? onRay : centre;
+  return distance(onRay, centre) < 32.0 * pixelFootprint(centre.z) ? onRay : centre;
 }
 
 // One depth sample of either march: the surface it shows, as an offset from
@@ -87,13 +91,32 @@ int marchPoint(vec2 samplePoint, vec3 position, out MarchPoint point) {
 // its distance from the shaded point where that is more. Beyond R a few
 // samples span the whole screen, and a slab only `thickness` deep would cover
 // a sliver of angle between them: a wall or ceiling seen at a distance would
-// leave the sky open through the gaps. 0.5: measured at 128x128 against the
-// reference (256 rays), 8 sky steps, sky RMSE cornell / spheres / slats:
-// 0 -> 0.27 / 0.050 / 0.094, 0.5 -> 0.17 / 0.051 / 0.090, 1 -> 0.13 / 0.090 /
-// 0.136 (spheres far away then shade the floor), 2 -> 0.12 / 0.116 / 0.136.
-const float kSkyDepthPerDistance = 0.5;
+// leave the sky open through the gaps. Too deep, and a near object's slab
+// covers the sky seen past it (between MetalRoughSpheres' balls; a wall far
+// behind a sphere in builtin:depth-step). 0.25 since issue 16, with 16 sky
+// steps (docs/BENCHMARKS.md, "Thin occluders"): HDR-FLIP cornell / slats /
+// MetalRoughSpheres at 0.5 -> 0.230 / 0.066 / 0.064, 0.35 -> 0.237 / 0.062 /
+// 0.052, 0.25 -> 0.243 / 0.062 / 0.046. (Before, with 8 sky steps at
+// 128x128: sky RMSE cornell / spheres / slats 0 -> 0.27 / 0.050 / 0.094,
+// 0.5 -> 0.17 / 0.051 / 0.090, 1 -> 0.13 / 0.090 / 0.136.)
+const float kSkyDepthPerDistance = 0.25;
 float skySlabDepth(vec3 offsetFront) {
   return max(bitmask.thicknessWorld, kSkyDepthPerDistance * length(offsetFront));
+}
+
+// How deep a depth sample within R is taken to be: the scene's thickness,
+// or kDepthPerFootprint times the world width of the stretch of screen the
+// sample stands for (the gap to the next step, at the sample's depth) where
+// that is more. An object narrower on screen than the gap between steps
+// (builtin:slats' bars, 1-2 pixels wide) is hit by one sample or none; its
+// slab, only as deep as the scene's thickness, covered a sliver of the
+// angle the object hides, and the wall between the slats was left open (AO
+// RMSE 0.127 at R = 0.1 diag). Per sample, so near steps (dense) keep the
+// scene's thickness. 1.25: slats' AO RMSE 0.127 -> 0.045 (1: 0.070, 1.5:
+// 0.027 at HDR-FLIP +0.0008, 2: 0.044 at +0.007); no other scene changed.
+const float kDepthPerFootprint = 1.25;
+float radiusSlabDepth(vec3 offsetFront, vec3 position, float stepPixels) {
+  return max(bitmask.thicknessWorld, kDepthPerFootprint * stepPixels * pixelFootprint(position.z + offsetFront.z));
 }
 
 // The slices' rotations and the steps' jitter: a 4x4 Bayer tile gives the 16
@@ -151,8 +174,10 @@ void marchWithinRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
     const vec3 offsetFront = point.offsetFront;
     // Only a surface facing the point sends it light.
     const bool facing = dot(point.normal, offsetFront) < 0.0;
-    // The slab front..back, cut to the sphere of radius R about the point.
-    const vec3 span = point.awayFromEye * bitmask.thicknessWorld;
+    // The slab front..back, cut to the sphere of radius R about the point;
+    // the steps are offset(u) apart, d offset / dj = 2 u (R - 1) / stepCount.
+    const float stepPixels = 2.0 * u * max(radiusPixels - 1.0, 0.0) / float(stepCount);
+    const vec3 span = point.awayFromEye * radiusSlabDepth(offsetFront, position, stepPixels);
     float t0, t1;
     const bool inRange = slabWithinRadius(offsetFront, offsetFront + span, bitmask.radiusWorld, t0, t1);
     const uint mask = inRange ? sectorsBetween(offsetFront + span * t0, offsetFront + span * t1, slice.side,

@@ -86,7 +86,8 @@ const std::vector<Row>& table() {
       row(
           {.name = "ssgi-thickness",
            .type = T::Float,
-           .help = "bitmask SSGI: how deep every visible surface is taken to be, world units",
+           .help = "bitmask SSGI: how deep every visible surface is taken to be at least, world units (deeper where "
+                   "the steps within the radius are sparse)",
            .maximum = 1e9,
            .autoMeaning = "2/3 of the median over objects of their bounds' smallest side, flat ones left out, within "
                           "0.05..1 x the radius (half the radius if all are flat)"},
