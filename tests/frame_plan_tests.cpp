@@ -49,8 +49,10 @@ const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
 
 TEST_CASE("frame plan: the default frame runs every pass and reads every target it draws") {
   const FramePlan plan = planFrame(litScene(), resolvedDefaults(), {});
-  CHECK(plan.skipped.size() == 1);  // emissive: the scene has no emission
+  CHECK(plan.skipped.size() == 2);  // emissive: the scene has no emission; it has no KHR_materials_* lobe
   CHECK(skips(plan, "emissive", "no material emits"));
+  CHECK(skips(plan, "lobes", "no material uses specular (KHR_materials_specular, _ior), clearcoat, sheen, anisotropy, "
+                             "iridescence (no attachment, no shader code)"));
   CHECK(!skips(plan, "blend"));  // no BLEND material: no blend pass, and nothing to list
   CHECK(!plan.blend);
   CHECK(!plan.allocates(Attachment::BlendCoverage));
@@ -242,6 +244,17 @@ TEST_CASE("resolve: auto values come from the scene and the image size") {
   CHECK(*resolveSettings(settings, scene).ssgi.radius == 2.0f);
   // A box 2 units deep: thickness 2/3 of its smallest side, held within the radius.
   CHECK(*resolveSettings(settings, scene).ssgi.thickness == doctest::Approx(4.0f / 3.0f));
+}
+
+TEST_CASE("frame plan: --verbose names the KHR_materials_* lobes a scene does not pay for, and only those") {
+  SceneSummary scene = litScene();
+  scene.lobes = lobeBit(Lobe::Clearcoat) | lobeBit(Lobe::Iridescence);
+  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  CHECK(skips(plan, "lobes", "no material uses specular (KHR_materials_specular, _ior), sheen, anisotropy ("));
+  CHECK(!skips(plan, "lobes", "clearcoat"));
+  CHECK(!skips(plan, "lobes", "iridescence"));
+  scene.lobes = lobeBit(Lobe::Count) - 1;
+  CHECK(!skips(planFrame(scene, resolvedDefaults(), {}), "lobes"));
 }
 
 }  // namespace headlight

@@ -240,15 +240,16 @@ SceneSummary summarizeScene(const Scene& scene) {
 namespace {
 struct LobeRow {
   Lobe lobe;
+  std::string_view name;  // in --verbose
   std::string_view define;
   bool (*usedBy)(const Material&);
 };
 constexpr LobeRow kLobeRows[] = {
-    {Lobe::Specular, "HAS_SPECULAR_LOBE", [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
-    {Lobe::Clearcoat, "HAS_CLEARCOAT_LOBE", [](const Material& m) { return m.clearcoat.has_value(); }},
-    {Lobe::Sheen, "HAS_SHEEN_LOBE", [](const Material& m) { return m.sheen.has_value(); }},
-    {Lobe::Anisotropy, "HAS_ANISOTROPY_LOBE", [](const Material& m) { return m.anisotropy.has_value(); }},
-    {Lobe::Iridescence, "HAS_IRIDESCENCE_LOBE", [](const Material& m) { return m.iridescence.has_value(); }},
+    {Lobe::Specular, "specular (KHR_materials_specular, _ior)", "HAS_SPECULAR_LOBE", [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
+    {Lobe::Clearcoat, "clearcoat", "HAS_CLEARCOAT_LOBE", [](const Material& m) { return m.clearcoat.has_value(); }},
+    {Lobe::Sheen, "sheen", "HAS_SHEEN_LOBE", [](const Material& m) { return m.sheen.has_value(); }},
+    {Lobe::Anisotropy, "anisotropy", "HAS_ANISOTROPY_LOBE", [](const Material& m) { return m.anisotropy.has_value(); }},
+    {Lobe::Iridescence, "iridescence", "HAS_IRIDESCENCE_LOBE", [](const Material& m) { return m.iridescence.has_value(); }},
 };
 static_assert(std::size(kLobeRows) == kLobeCount);
 }  // namespace
@@ -260,6 +261,13 @@ std::uint32_t materialLobes(const Material& material) {
   for (const LobeRow& row : kLobeRows)
     if (row.usedBy(material)) lobes |= lobeBit(row.lobe);
   return lobes;
+}
+
+std::string lobeNames(std::uint32_t lobes) {
+  std::string names;
+  for (const LobeRow& row : kLobeRows)
+    if (lobes & lobeBit(row.lobe)) names += (names.empty() ? "" : ", ") + std::string(row.name);
+  return names;
 }
 
 std::vector<std::string> lobeDefines(std::uint32_t lobes) {
@@ -319,6 +327,9 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   plan.dropShadowMaps = !facts.shadowsOn;
   if (skips.runs(Work::Shadows)) plan.shadows = ShadowStep{settings.lighting.shadowMapSize.value_or(0)};
   planGBuffer(plan, scene, skips.runs(Work::Emissive));
+  // What a scene without a lobe does not pay for, named once.
+  if (const std::uint32_t absent = ~scene.lobes & (lobeBit(Lobe::Count) - 1))
+    plan.skipped.push_back({"lobes", "no material uses " + lobeNames(absent) + " (no attachment, no shader code)"});
   if (skips.runs(Work::Ssgi))
     plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1,
                          ssgiDivisor(settings.ssgi.resolution), settings.ssgi.blur};

@@ -40,6 +40,8 @@ std::uint32_t materialLobes(const Material& material);
 // HAS_SPECULAR_LOBE, ...: one per bit of `lobes`, for the G-buffer, direct,
 // composite and blend programs.
 std::vector<std::string> lobeDefines(std::uint32_t lobes);
+// "specular (KHR_materials_specular, _ior), clearcoat, ...": the lobes of `lobes`, for --verbose.
+std::string lobeNames(std::uint32_t lobes);
 
 // What a plan needs to know of a scene; made once per setScene.
 struct SceneSummary {

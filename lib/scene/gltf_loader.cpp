@@ -88,6 +88,12 @@ class GltfReader {
     if (m.clearcoat)
       refs.insert(refs.end(), {&m.clearcoat->clearcoatTexture, &m.clearcoat->clearcoatRoughnessTexture,
                                &m.clearcoat->clearcoatNormalTexture});
+    if (m.sheen) refs.insert(refs.end(), {&m.sheen->sheenColorTexture, &m.sheen->sheenRoughnessTexture});
+    if (m.iridescence)
+      refs.insert(refs.end(), {&m.iridescence->iridescenceTexture, &m.iridescence->iridescenceThicknessTexture});
+    if (m.anisotropy) refs.push_back(&m.anisotropy->anisotropyTexture);
+    if (m.transmission) refs.push_back(&m.transmission->transmissionTexture);
+    if (m.volume) refs.push_back(&m.volume->thicknessTexture);
     return refs;
   }
 
