@@ -1,0 +1,377 @@
+// What the reference tracer's rays meet (Tracer, pixel_tracer.hpp): the
+// blended layers composited along a primary ray, the radiance leaving a hit,
+// direct light with shadow rays, and the sky ambient and environment map
+// sampled with true visibility. tracer.cpp holds the per-pixel path.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "reference/lobe_clearcoat.hpp"
+#include "reference/lobe_specular.hpp"
+#include "reference/lobe_transmission.hpp"
+#include "reference/pixel_tracer.hpp"
+#include "reference/shading.hpp"
+#include "reference/texture_sampler.hpp"
+#include "reference/transmission_trace.hpp"
+
+namespace headlight::reference {
+
+namespace {
+
+// Blended layers composited along one primary ray, nearest first; more are
+// ignored (32 layers of alpha 0.1 leave 3 % of what is behind).
+constexpr int kMaxBlendLayers = 32;
+
+}  // namespace
+
+// alphaMode BLEND along the primary ray: every blended layer in front of
+// the G-buffer's surface (`opaque`; null on background) is shaded and
+// composited over `lit` back to front, colour a L + (1 - a) behind and
+// alpha a + (1 - a) behind, as the blend pass does, but in the exact
+// order of the hits (no per-instance sort).
+void Tracer::compositeBlended(int x, int y, const glm::vec3* opaque, float* lit, Pcg32& random) {
+  const auto [origin, direction] = primaryRay(x, y);
+  if (!isFinite(origin) || !isFinite(direction)) return;
+  const float limit = opaque ? glm::dot(*opaque - origin, direction) - in_.epsilon
+                             : std::numeric_limits<float>::infinity();
+  if (!(limit > 0.0f)) return;
+  struct Layer {
+    glm::vec3 radiance;
+    float alpha;
+  };
+  std::vector<Layer> layers;
+  float tnear = 0.0f;
+  for (int i = 0; i < kMaxBlendLayers; ++i) {
+    RTCRayHit rayHit = makeRayHit(origin, direction, limit);
+    rayHit.ray.tnear = tnear;
+    rtcIntersect1(in_.blendedScene, &context_, &rayHit);
+    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+    tnear = std::nextafter(rayHit.ray.tfar, std::numeric_limits<float>::infinity());
+    Layer layer;
+    if (shadeBlendedHit(rayHit, direction, random, layer.radiance, layer.alpha)) layers.push_back(layer);
+  }
+  glm::vec3 color(lit[0], lit[1], lit[2]);
+  float coverage = lit[3];
+  for (auto layer = layers.rbegin(); layer != layers.rend(); ++layer) {
+    color = layer->alpha * layer->radiance + (1.0f - layer->alpha) * color;
+    coverage = layer->alpha + (1.0f - layer->alpha) * coverage;
+  }
+  lit[0] = color.r, lit[1] = color.g, lit[2] = color.b, lit[3] = coverage;
+}
+
+// One blended layer: its alpha and the radiance it sends along the ray
+// (emission, direct light with shadow rays, sky ambient with true
+// visibility and one-bounce indirect, from the same cosine rays as a
+// G-buffer pixel). False for the back of a single-sided surface, which
+// the rasteriser culls. Normal maps are not read (as radianceLeaving).
+bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirection, Pcg32& random, glm::vec3& radiance,
+                             float& alpha) {
+  const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
+  const Primitive& primitive = *instance.primitive;
+  const Material& material = *instance.material;
+  const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
+  const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
+  auto world = [&](std::uint32_t index) {
+    const float* p = &instance.worldPositions[std::size_t(index) * 3];
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
+  const glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;
+  const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+  if (!front && !material.doubleSided) return false;
+  glm::vec3 normal = instance.normalFromLocal * (w * primitive.normals[corner[0]] + u * primitive.normals[corner[1]] +
+                                                 v * primitive.normals[corner[2]]);
+  const float normalLength = glm::length(normal);
+  normal = normalLength > 0.0f ? normal / normalLength : -rayDirection;
+  if (!front) normal = -normal;
+
+  glm::vec4 baseColor = material.baseColorFactor;
+  float metallic = material.metallicFactor, roughness = material.roughnessFactor;
+  glm::vec3 emission = material.emissiveFactor;
+  const bool textured = !primitive.texcoords.empty();
+  glm::vec2 uv(0.0f);
+  if (textured)
+    uv = w * primitive.texcoords[corner[0]] + u * primitive.texcoords[corner[1]] + v * primitive.texcoords[corner[2]];
+  if (textured && material.baseColorTexture.present())
+    baseColor *= sampleTexture(in_.scene, material.baseColorTexture, uv, true);
+  if (!primitive.colors.empty())
+    baseColor *= w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] + v * primitive.colors[corner[2]];
+  if (textured && material.metallicRoughnessTexture.present()) {
+    const glm::vec4 texel = sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false);
+    roughness *= texel.g;
+    metallic *= texel.b;
+  }
+  if (textured && material.emissiveTexture.present() && material.emissive())
+    emission *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
+  alpha = std::clamp(baseColor.a, 0.0f, 1.0f);  // as blend.glsl
+  metallic = std::clamp(metallic, 0.0f, 1.0f);
+  roughness = std::clamp(roughness, 0.0f, 1.0f);
+
+  const glm::vec3 position = w * p0 + u * p1 + v * p2;
+  const glm::vec3 view = -rayDirection;
+  const glm::vec3 origin = position + normal * in_.epsilon;
+  const Basis basis = basisAround(normal);
+  const glm::vec3 diffuseWeight = (1.0f - metallic) * glm::vec3(baseColor);
+  const int n = in_.settings.samplesPerPixel;
+  glm::dvec3 skySum(0.0), indirectSum(0.0);
+  for (int i = 0; i < n; ++i) {
+    const float xi0 = random.uniform(), xi1 = random.uniform();
+    const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
+    const RTCRayHit bounce = traceFromSurface(origin, direction, view);
+    if (bounce.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+    else
+      indirectSum += glm::dvec3(diffuseWeight * radianceLeaving(bounce, direction));
+  }
+  Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+  if (material.iridescence)
+    applyIridescence(surface, materialIridescence(material, textured ? &primitive : nullptr, corner, u, v));
+  // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
+  auto texel = [&](const TextureRef& ref, bool srgb) {
+    return textured && ref.present() ? sampleTexture(in_.scene, ref, uv, srgb) : glm::vec4(1.0f);
+  };
+  if (material.specular || material.ior != 1.5f) {
+    const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
+    applySpecularLobe(surface, specularLobeOfMaterial(material, texel(specular.specularTexture, false),
+                                                      texel(specular.specularColorTexture, true)));
+  }
+  Clearcoat coat;
+  if (const std::optional<MaterialClearcoat>& clearcoat = material.clearcoat)
+    coat = makeClearcoat(clearcoatLobeOfMaterial(*clearcoat, texel(clearcoat->clearcoatTexture, false),
+                                                 texel(clearcoat->clearcoatRoughnessTexture, false), normal),
+                         view);
+  const glm::vec3 under = emission + ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
+                          glm::vec3(indirectSum / double(n));
+  radiance = directLight(surface, position, origin, coat) +
+             clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
+  return true;
+}
+
+// lobe_iridescence_material.glsl: a blended material's film at
+// barycentrics (u, v) of the triangle at `corner` (the material has
+// KHR_materials_iridescence); `textured` null: the primitive has no UVs.
+IridescenceInputs Tracer::materialIridescence(const Material& material, const Primitive* textured,
+                                              const std::uint32_t* corner, float u, float v) const {
+  const MaterialIridescence& film = *material.iridescence;
+  auto sample = [&](const TextureRef& ref) {
+    return sampleTexture(in_.scene, ref, textureUv(*textured, ref, corner, u, v), false);
+  };
+  float strength = film.iridescenceFactor, thickness = film.iridescenceThicknessMaximum;
+  if (textured && film.iridescenceTexture.present()) strength *= sample(film.iridescenceTexture).r;
+  if (textured && film.iridescenceThicknessTexture.present())
+    thickness = glm::mix(film.iridescenceThicknessMinimum, film.iridescenceThicknessMaximum,
+                         sample(film.iridescenceThicknessTexture).g);
+  return {std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm),
+          std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor)};
+}
+
+// Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.
+// Lights that cast no shadow in the renderer cast none here either.
+float Tracer::lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance) {
+  if (!light.castsShadows) return 1.0f;
+  // Stop short of a point or spot light by epsilon: geometry at the light's
+  // position (a bulb's own mesh) must not shadow it.
+  const float far = std::isfinite(distance) ? std::max(distance - in_.epsilon, 0.0f) : distance;
+  return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
+}
+
+// direct_light.frag with shadow rays from `origin` for the maps, the coat
+// layered per light; a transmissive surface's as transmission.glsl's (no
+// coat), a light behind it seen through it with its shadow ray from the back.
+glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
+                              const Clearcoat& coat, const TransmissiveSurface& transmissive) {
+  glm::vec3 sum(0.0f);
+  for (const Light& light : in_.scene.lights) {
+    glm::vec3 toLight;
+    float distance;
+    const float attenuation = lightAttenuation(light, position, toLight, distance);
+    if (attenuation <= 0.0f) continue;
+    const glm::vec3 brdf =
+        transmissive.share > 0.0f
+            ? transmissiveCookTorrance(surface, toLight, transmissive.share, transmissive.blur)
+            : clearcoatLayer(coat, cookTorrance(surface, toLight),
+                             glm::vec3(clearcoatSpecular(coat, surface.view, toLight)));
+    if (brdf == glm::vec3(0.0f)) continue;
+    const bool behind = glm::dot(surface.normal, toLight) < 0.0f;
+    const glm::vec3 from = behind ? position - surface.normal * in_.epsilon : origin;
+    const float visibility = lightVisibility(light, from, toLight, distance);
+    sum += brdf * light.color * light.intensity * (attenuation * visibility);
+  }
+  return sum;
+}
+
+// Sky ambient with true visibility. Diffuse: the cosine rays' mean sky
+// radiance over escaped rays (`skyMean`, 0 for blocked ones) is E / pi.
+// Specular: GGX-importance-sampled reflections, each weighted by
+// BRDF * N.L / pdf = F * 4 Vis V.H N.L / N.H (as brdf_lut.frag), times the
+// sky when the ray escapes. The same samples' Fresnel-free weights give
+// the split-sum scale and bias, hence the renderer's diffuse weight
+// kd = (1 - (f0 scale + bias)) (1 - metallic) without its 64x64 table.
+// Anisotropy: the half vectors come from the stretched lobe, in its frame
+// (T, B, N), with its visibility. Sheen: each direction's base term is
+// scaled by the layer (sheenBaseScale), and the lobe itself is estimated
+// by sheenAmbient.
+glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis,
+                               const glm::vec3& skyMean, Pcg32& random, glm::vec3* specularAlbedoOut) {
+  const int m = in_.specularSamples;
+  const float alpha = surface.roughness * surface.roughness;
+  const bool stretched = surface.anisotropyStrength > 0.0f;
+  const Basis frame = stretched ? Basis{surface.anisotropyTangent,
+                                        glm::cross(surface.normal, surface.anisotropyTangent), surface.normal}
+                                : basis;
+  const float alphaT = stretched ? anisotropyAlphaT(alpha, surface.anisotropyStrength) : alpha;
+  auto inFrame = [&](const glm::vec3& v, float nDot) {
+    return glm::vec3(glm::dot(frame.tangent, v), glm::dot(frame.bitangent, v), nDot);
+  };
+  double scale = 0.0, bias = 0.0;
+  glm::dvec3 specular(0.0);
+  for (int j = 0; j < m; ++j) {
+    const float xi0 = random.uniform(), xi1 = random.uniform();
+    const glm::vec3 halfVector = frame.toWorld(stretched ? importanceSampleAnisotropicGgx(xi0, xi1, alphaT, alpha)
+                                                         : importanceSampleGgx(xi0, xi1, alpha));
+    const float vDotHRaw = glm::dot(surface.view, halfVector);
+    const glm::vec3 toLight = 2.0f * vDotHRaw * halfVector - surface.view;  // reflect(-V, H)
+    const float nDotL = glm::dot(surface.normal, toLight);
+    if (nDotL <= 0.0f) continue;
+    const float nDotH = std::max(glm::dot(surface.normal, halfVector), 0.0f);
+    const float vDotH = std::max(vDotHRaw, 0.0f);
+    const float visibility = stretched ? anisotropicVisibility(alphaT, alpha, inFrame(surface.view, surface.nDotV),
+                                                               inFrame(toLight, nDotL))
+                                       : smithGgxVisibility(surface.nDotV, nDotL, alpha);
+    const float weight = 4.0f * visibility * vDotH * nDotL / std::max(nDotH, 1e-7f);
+    const float fresnel = std::pow(1.0f - vDotH, 5.0f);
+    scale += (1.0f - fresnel) * weight;
+    bias += fresnel * weight;
+    const glm::vec3 direction = glm::normalize(toLight);
+    // KHR_materials_iridescence: the film's Fresnel (one value per pixel) mixed in, as cookTorrance.
+    const glm::vec3 sampleFresnel = glm::mix(surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel,
+                                             surface.iridescenceFresnel, surface.iridescence);
+    if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
+      specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction) * sheenBaseScale(surface, direction));
+  }
+  const glm::vec3 specularAlbedo =
+      glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
+               surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
+  if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
+  const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
+  glm::vec3 ambient = diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m));
+  if (surface.sheenColor != glm::vec3(0.0f)) ambient += sheenAmbient(surface, origin, basis, random);
+  return ambient * in_.skyIntensity;
+}
+
+// The sheen lobe under the ambient with true visibility: `m` directions
+// uniform over the hemisphere (density 1 / 2 pi), each adding
+// f_sheen N.L L 2 pi where it escapes.
+glm::vec3 Tracer::sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random) {
+  const int m = in_.specularSamples;
+  glm::dvec3 sum(0.0);
+  for (int j = 0; j < m; ++j) {
+    const float cosTheta = random.uniform(), phi = 2.0f * kPi * random.uniform();
+    const float sinTheta = std::sqrt(std::max(0.0f, 1.0f - cosTheta * cosTheta));
+    const glm::vec3 direction = basis.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    if (cosTheta <= 0.0f || !unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
+    const float nDotH = std::max(glm::dot(surface.normal, glm::normalize(direction + surface.view)), 0.0f);
+    sum += glm::dvec3(sheenReflected(surface.sheenColor, surface.sheenRoughness, surface.nDotV, cosTheta, nDotH) *
+                      ambientRadiance(direction));
+  }
+  return glm::vec3(sum * double(2.0f * kPi) / double(m));
+}
+
+// E / pi from the environment map with true visibility, by importance
+// sampling the map (environment_sampler.hpp): each of `count` directions
+// drawn in proportion to the map's luminance adds L V cos / (pi pdf).
+// Cosine-weighted rays would rarely find a small bright source.
+// Each direction's light is scaled by the sheen layer above the base (1 without).
+glm::vec3 Tracer::environmentIrradianceOverPi(const Surface& surface, const glm::vec3& origin, int count,
+                                              Pcg32& random) {
+  const glm::vec3& normal = surface.normal;
+  const EnvironmentLight& light = *in_.environment;
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < count; ++i) {
+    const float xi0 = random.uniform(), xi1 = random.uniform();
+    float pdf = 0.0f;
+    const glm::vec3 mapDirection = light.sampler.sample(xi0, xi1, pdf);
+    const glm::vec3 direction = environment::mapToWorld(mapDirection, light.cosRotation, light.sinRotation);
+    const float cosine = glm::dot(normal, direction);
+    if (cosine <= 0.0f || pdf <= 0.0f) continue;
+    if (!unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
+    sum += glm::dvec3(light.map.lookup(mapDirection)) *
+           double(cosine * sheenBaseScale(surface, direction) / (kPi * pdf));
+  }
+  return glm::vec3(sum / double(count));
+}
+
+// Ld(h): the Lambertian radiance that the hit surface sends back along the
+// ray (direct punctual light with shadow rays, plus its emission). The
+// back of a single-sided surface is black: the renderer never draws it,
+// but it still blocks rays as its shadow maps do.
+glm::vec3 Tracer::radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayDirection) {
+  const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
+  const Primitive& primitive = *instance.primitive;
+  const Material& material = *instance.material;
+  const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
+  const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
+  auto world = [&](std::uint32_t index) {
+    const float* p = &instance.worldPositions[std::size_t(index) * 3];
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
+  glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;  // glTF front face: counter-clockwise
+  const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+  if (!front && !material.doubleSided) return glm::vec3(0.0f);
+  if (!front) faceNormal = -faceNormal;
+  const float faceLength = glm::length(faceNormal);
+  // Degenerate triangles have no face normal; the ray's own direction
+  // gives the side it came from.
+  const glm::vec3 towardOrigin = faceLength > 0.0f ? faceNormal / faceLength : -rayDirection;
+
+  const glm::vec3 localNormal =
+      w * primitive.normals[corner[0]] + u * primitive.normals[corner[1]] + v * primitive.normals[corner[2]];
+  glm::vec3 normal = instance.normalFromLocal * localNormal;
+  const float normalLength = glm::length(normal);
+  normal = normalLength > 0.0f ? normal / normalLength : towardOrigin;
+  if (!front) normal = -normal;  // gbuffer.frag: the back of a double-sided surface faces the other way
+
+  glm::vec3 baseColor(material.baseColorFactor);
+  float metallic = material.metallicFactor;
+  glm::vec3 emissive = material.emissiveFactor;
+  // gbuffer.frag samples textures only where the primitive has texcoords.
+  const bool textured = !primitive.texcoords.empty();
+  auto sample = [&](const TextureRef& ref, bool srgb) {
+    return sampleTexture(in_.scene, ref, textureUv(primitive, ref, corner, u, v), srgb);
+  };
+  if (textured && material.baseColorTexture.present())
+    baseColor *= glm::vec3(sample(material.baseColorTexture, true));
+  if (!primitive.colors.empty())  // COLOR_0, as gbuffer.frag multiplies it
+    baseColor *= glm::vec3(w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] +
+                           v * primitive.colors[corner[2]]);
+  // KHR_materials_unlit: the surface shows its base colour, as the
+  // composite writes it, whatever lights it.
+  if (material.unlit) return baseColor;
+  if (textured && material.metallicRoughnessTexture.present())
+    metallic *= sample(material.metallicRoughnessTexture, false).b;
+  if (textured && material.emissiveTexture.present() && material.emissive())
+    emissive *= glm::vec3(sample(material.emissiveTexture, true));
+  metallic = std::clamp(metallic, 0.0f, 1.0f);
+
+  const glm::vec3 diffuse = (1.0f - metallic) * baseColor / kPi;
+  glm::vec3 radiance = emissive;
+  if (diffuse == glm::vec3(0.0f)) return radiance;
+  const glm::vec3 hitPosition = w * p0 + u * p1 + v * p2;
+  const glm::vec3 shadowOrigin = hitPosition + towardOrigin * in_.epsilon;
+  glm::vec3 irradiance(0.0f);
+  for (const Light& light : in_.scene.lights) {
+    glm::vec3 toLight;
+    float distance;
+    const float attenuation = lightAttenuation(light, hitPosition, toLight, distance);
+    const float nDotL = glm::dot(normal, toLight);
+    if (attenuation <= 0.0f || nDotL <= 0.0f) continue;
+    const float visibility = lightVisibility(light, shadowOrigin, toLight, distance);
+    irradiance += light.color * light.intensity * (attenuation * nDotL * visibility);
+  }
+  return radiance + diffuse * irradiance;
+}
+
+}  // namespace headlight::reference
