@@ -7,21 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 
 namespace headlight {
 namespace {
-
-RenderSettings resolved() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
-}
 
 bool skips(const FramePlan& plan, std::string_view work, std::string_view reason) {
   return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
@@ -39,7 +29,7 @@ bool runs(const FramePlan& plan, std::string_view pass) {
 TEST_CASE("frame plan: an environment map's tables and variant exist only with a map, in place of the sky's") {
   SceneSummary withMap;
   withMap.environment = true;
-  const FramePlan mapped = planFrame(withMap, resolved(), {});
+  const FramePlan mapped = planFrame(withMap, test::resolvedPlanSettings(), {});
   CHECK(mapped.environmentTables);
   CHECK(!mapped.skyTables);
   REQUIRE(mapped.composite);
@@ -48,7 +38,7 @@ TEST_CASE("frame plan: an environment map's tables and variant exist only with a
   CHECK(runs(mapped, "environment"));
   CHECK(!runs(mapped, "sky"));
 
-  const FramePlan plain = planFrame(SceneSummary{}, resolved(), {});
+  const FramePlan plain = planFrame(SceneSummary{}, test::resolvedPlanSettings(), {});
   CHECK(!plain.environmentTables);
   CHECK(plain.skyTables);
   CHECK(!plain.composite->environment);
@@ -56,19 +46,19 @@ TEST_CASE("frame plan: an environment map's tables and variant exist only with a
 
   // Intensity 0: no tables and no ambient term, named; the sky's intensity
   // no longer matters.
-  RenderSettings dark = resolved();
+  RenderSettings dark = test::resolvedPlanSettings();
   dark.lighting.environmentIntensity = 0.0f;
   const FramePlan unlit = planFrame(withMap, dark, {});
   CHECK(!unlit.environmentTables);
   CHECK(!unlit.composite->sky);
   CHECK(skips(unlit, "sky", "environment intensity 0"));
-  RenderSettings noSky = resolved();
+  RenderSettings noSky = test::resolvedPlanSettings();
   noSky.lighting.skyIntensity = 0.0f;
   CHECK(planFrame(withMap, noSky, {}).environmentTables);
 
   // Only G-buffer targets: no tables either.
   const std::vector<std::string> normalOnly{"normal"};
-  CHECK(!planFrame(withMap, resolved(), normalOnly).environmentTables);
+  CHECK(!planFrame(withMap, test::resolvedPlanSettings(), normalOnly).environmentTables);
 }
 
 }  // namespace headlight

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
 #include "headlight/scene_builder.hpp"
@@ -20,17 +21,6 @@ SceneSummary litScene() {
   SceneSummary scene;
   scene.planarShadowCasters = 1;
   return scene;
-}
-
-RenderSettings resolvedDefaults() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
 }
 
 bool skips(const FramePlan& plan, std::string_view work, std::string_view reason = {}) {
@@ -48,7 +38,7 @@ const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
 }  // namespace
 
 TEST_CASE("frame plan: the default frame runs every pass and reads every target it draws") {
-  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), {});
+  const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), {});
   CHECK(plan.skipped.size() == 2);  // emissive: the scene has no emission; it has no KHR_materials_* lobe
   CHECK(skips(plan, "emissive", "no material emits"));
   CHECK(skips(plan, "lobes", "no material uses specular (KHR_materials_specular, _ior), clearcoat, sheen, anisotropy, "
@@ -83,7 +73,7 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
 TEST_CASE("frame plan: a scene that blends gets the blend pass after the composite, and the coverage target") {
   SceneSummary scene = litScene();
   scene.blended = true;
-  FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.blend);
   CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
@@ -95,7 +85,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   REQUIRE(coverage);
   CHECK(coverage->sources == std::vector<Attachment>{Attachment::BlendCoverage});
   // It follows the composite's choices: no shadows, no sky.
-  RenderSettings settings = resolvedDefaults();
+  RenderSettings settings = test::resolvedPlanSettings();
   settings.lighting.shadows = false;
   settings.lighting.skyIntensity = 0.0f;
   plan = planFrame(scene, settings, {});
@@ -103,7 +93,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   CHECK(*plan.blend == BlendVariant{false, false, false, false});
   // Without lit there is nothing to blend over.
   const std::vector<std::string> gbufferOnly{"albedo", "coverage"};
-  plan = planFrame(scene, resolvedDefaults(), gbufferOnly);
+  plan = planFrame(scene, test::resolvedPlanSettings(), gbufferOnly);
   CHECK(!plan.blend);
   CHECK(skips(plan, "blend", "lit not asked for"));
   CHECK(!plan.allocates(Attachment::BlendCoverage));
@@ -113,7 +103,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
 TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its define and its target") {
   SceneSummary scene = litScene();
   scene.emissive = true;
-  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4"});
   CHECK(plan.gbuffer.colorAttachments.back() == Attachment::GbufferEmissive);
@@ -124,7 +114,7 @@ TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its defin
 
 TEST_CASE("frame plan: the emissive target asked for by name without emission is written as zeros") {
   const std::vector<std::string> targets{"emissive"};
-  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), targets);
   REQUIRE(readOf(plan, "emissive"));
   CHECK(readOf(plan, "emissive")->sources.empty());
   CHECK(plan.reads.size() == 1);
@@ -132,7 +122,7 @@ TEST_CASE("frame plan: the emissive target asked for by name without emission is
 
 TEST_CASE("frame plan: G-buffer targets alone need neither light nor SSGI") {
   const std::vector<std::string> targets{"normal", "depth"};
-  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), targets);
   CHECK(!plan.shadows);
   CHECK(!plan.direct);
   CHECK(!plan.ssgi);
@@ -146,7 +136,7 @@ TEST_CASE("frame plan: G-buffer targets alone need neither light nor SSGI") {
 
 TEST_CASE("frame plan: ssgi alone needs no composite, but the direct light it gathers") {
   const std::vector<std::string> targets{"ssgi"};
-  const FramePlan plan = planFrame(litScene(), resolvedDefaults(), targets);
+  const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), targets);
   CHECK(plan.ssgi);
   REQUIRE(plan.direct);
   CHECK(plan.direct->diffuseTarget);
@@ -156,7 +146,7 @@ TEST_CASE("frame plan: ssgi alone needs no composite, but the direct light it ga
 }
 
 TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur attachments and the frames") {
-  RenderSettings settings = resolvedDefaults();
+  RenderSettings settings = test::resolvedPlanSettings();
   settings.ssgi.frames = 4;
   settings.ssgi.method = SsgiMethod::Hemisphere;
   FramePlan plan = planFrame(litScene(), settings, {});
@@ -180,7 +170,7 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
 }
 
 TEST_CASE("frame plan: no shadow caster, shadows off, sky intensity 0") {
-  RenderSettings settings = resolvedDefaults();
+  RenderSettings settings = test::resolvedPlanSettings();
   FramePlan plan = planFrame(SceneSummary{}, settings, {});
   CHECK(!plan.shadows);
   CHECK(!plan.dropShadowMaps);
@@ -249,12 +239,12 @@ TEST_CASE("resolve: auto values come from the scene and the image size") {
 TEST_CASE("frame plan: --verbose names the KHR_materials_* lobes a scene does not pay for, and only those") {
   SceneSummary scene = litScene();
   scene.lobes = lobeBit(Lobe::Clearcoat) | lobeBit(Lobe::Iridescence);
-  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(skips(plan, "lobes", "no material uses specular (KHR_materials_specular, _ior), sheen, anisotropy ("));
   CHECK(!skips(plan, "lobes", "clearcoat"));
   CHECK(!skips(plan, "lobes", "iridescence"));
   scene.lobes = lobeBit(Lobe::Count) - 1;
-  CHECK(!skips(planFrame(scene, resolvedDefaults(), {}), "lobes"));
+  CHECK(!skips(planFrame(scene, test::resolvedPlanSettings(), {}), "lobes"));
 }
 
 }  // namespace headlight

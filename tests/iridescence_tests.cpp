@@ -10,6 +10,7 @@
 #include <iterator>
 #include <cmath>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/targets.hpp"
@@ -129,17 +130,6 @@ TEST_CASE("strength 0 is no film: Schlick's Fresnel alone, to the bit") {
 
 namespace {
 
-RenderSettings resolvedSettings() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
-}
-
 bool hasDefine(const std::vector<std::string>& defines, std::string_view name) {
   return std::find(defines.begin(), defines.end(), name) != defines.end();
 }
@@ -149,7 +139,7 @@ bool hasDefine(const std::vector<std::string>& defines, std::string_view name) {
 TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only when a material has the extension") {
   Scene scene;
   addMaterial(scene, makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f));
-  const FramePlan without = planFrame(summarizeScene(scene), resolvedSettings(), {});
+  const FramePlan without = planFrame(summarizeScene(scene), test::resolvedPlanSettings(), {});
   CHECK(!without.allocates(Attachment::GbufferIridescence));
   CHECK(!hasDefine(without.gbuffer.defines, "HAS_IRIDESCENCE_LOBE"));
   CHECK(std::none_of(without.reads.begin(), without.reads.end(),
@@ -160,7 +150,7 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
   addMaterial(scene, filmed);
   const SceneSummary summary = summarizeScene(scene);
   CHECK(summary.lobes == lobeBit(Lobe::Iridescence));
-  const FramePlan with = planFrame(summary, resolvedSettings(), {});
+  const FramePlan with = planFrame(summary, test::resolvedPlanSettings(), {});
   CHECK(with.allocates(Attachment::GbufferIridescence));
   CHECK(with.formatOf(Attachment::GbufferIridescence) == GpuFormat::Rgba16F);
   CHECK(hasDefine(with.gbuffer.defines, "HAS_IRIDESCENCE_LOBE"));

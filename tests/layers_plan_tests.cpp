@@ -7,22 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "headlight/targets.hpp"
 
 namespace headlight {
 namespace {
-
-RenderSettings resolved() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
-}
 
 const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
   for (const TargetRead& read : plan.reads)
@@ -37,7 +27,7 @@ bool has(const std::vector<std::string>& defines, std::string_view define) {
 }  // namespace
 
 TEST_CASE("lobes plan: without the lobes, no attachment, define or target") {
-  const FramePlan plan = planFrame(SceneSummary{}, resolved(), {});
+  const FramePlan plan = planFrame(SceneSummary{}, test::resolvedPlanSettings(), {});
   CHECK(!plan.allocates(Attachment::GbufferSpecularLobe));
   CHECK(!plan.allocates(Attachment::GbufferClearcoatLobe));
   CHECK(plan.gbuffer.lobes == 0);
@@ -51,7 +41,7 @@ TEST_CASE("lobes plan: each lobe gets its attachment at the next location, its d
   SceneSummary scene;
   scene.emissive = true;
   scene.lobes = lobeBit(Lobe::Specular) | lobeBit(Lobe::Clearcoat);
-  const FramePlan plan = planFrame(scene, resolved(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(plan.allocates(Attachment::GbufferSpecularLobe));
   CHECK(plan.allocates(Attachment::GbufferClearcoatLobe));
   // Position, normal, albedo, material, emissive, then the lobes in row order.
@@ -89,7 +79,7 @@ TEST_CASE("lobes plan: only the clearcoat, and only G-buffer targets asked for")
   SceneSummary scene;
   scene.lobes = lobeBit(Lobe::Clearcoat);
   const std::vector<std::string> targets{"clearcoat"};
-  const FramePlan plan = planFrame(scene, resolved(), targets);
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), targets);
   CHECK(!plan.allocates(Attachment::GbufferSpecularLobe));
   CHECK(plan.allocates(Attachment::GbufferClearcoatLobe));
   CHECK(has(plan.gbuffer.defines, "CLEARCOAT_TARGET_LOCATION 4"));

@@ -8,22 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "headlight/targets.hpp"
 
 namespace headlight {
 namespace {
-
-RenderSettings resolvedSettings() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
-}
 
 bool defines(const FramePlan& plan, const std::string& define) {
   const std::vector<std::string>& all = plan.gbuffer.defines;
@@ -39,7 +29,7 @@ const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
 }  // namespace
 
 TEST_CASE("lobes: a scene without sheen or anisotropy pays nothing for them") {
-  const FramePlan plan = planFrame(SceneSummary{}, resolvedSettings(), {});
+  const FramePlan plan = planFrame(SceneSummary{}, test::resolvedPlanSettings(), {});
   CHECK(!plan.allocates(Attachment::GbufferSheen));
   CHECK(!plan.allocates(Attachment::GbufferAnisotropy));
   CHECK(plan.gbuffer.lobes == 0);
@@ -56,7 +46,7 @@ TEST_CASE("lobes: a scene without sheen or anisotropy pays nothing for them") {
 TEST_CASE("lobes: sheen and anisotropy get an attachment each, their defines and their targets") {
   SceneSummary scene;
   scene.lobes = lobeBit(Lobe::Sheen) | lobeBit(Lobe::Anisotropy);
-  const FramePlan plan = planFrame(scene, resolvedSettings(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(plan.allocates(Attachment::GbufferSheen));
   CHECK(plan.allocates(Attachment::GbufferAnisotropy));
   CHECK(plan.formatOf(Attachment::GbufferSheen) == GpuFormat::Srgb8Alpha8);

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
@@ -26,17 +27,6 @@ SceneSummary transmittingScene() {
   scene.planarShadowCasters = 1;
   scene.transmission = true;
   return scene;
-}
-
-RenderSettings resolvedDefaults() {
-  RenderSettings settings;
-  settings.ssgi.radius = 0.5f;
-  settings.ssgi.bias = 0.025f;
-  settings.ssgi.thickness = 0.1f;
-  settings.ssgi.indirectStrength = 1.0f;
-  settings.lighting.shadowMapSize = 1024;
-  settings.lighting.skyIntensity = 1.0f;
-  return settings;
 }
 
 bool skips(const FramePlan& plan, std::string_view work) {
@@ -98,7 +88,7 @@ TEST_CASE("transmission: rendered, so not named, except on an alphaMode BLEND or
 TEST_CASE("transmission plan: a transmitting scene runs the pass after the composite and before the blend pass") {
   SceneSummary scene = transmittingScene();
   scene.blended = true;
-  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.transmission);
   CHECK(*plan.transmission == TransmissionVariant{true, false, true, false});  // planar map, sky term, no map
   CHECK(plan.gbuffer.deferTransmissive);
@@ -114,7 +104,7 @@ TEST_CASE("transmission plan: a transmitting scene runs the pass after the compo
 TEST_CASE("transmission plan: a scene without transmission has no pass, no target and no skip line") {
   SceneSummary scene = transmittingScene();
   scene.transmission = false;
-  const FramePlan plan = planFrame(scene, resolvedDefaults(), {});
+  const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(!plan.transmission);
   CHECK(!plan.gbuffer.deferTransmissive);
   CHECK(!plan.allocates(Attachment::Transmission));
@@ -126,7 +116,7 @@ TEST_CASE("transmission plan: a scene without transmission has no pass, no targe
 
 TEST_CASE("transmission plan: without lit the pass is skipped and named, and the G-buffer draws the surfaces") {
   const std::vector<std::string> targets{"albedo", "depth"};
-  const FramePlan plan = planFrame(transmittingScene(), resolvedDefaults(), targets);
+  const FramePlan plan = planFrame(transmittingScene(), test::resolvedPlanSettings(), targets);
   CHECK(!plan.transmission);
   CHECK(skips(plan, "transmission"));
   // Nothing refracts, so nothing waits for the opaque image: the G-buffer
@@ -139,7 +129,7 @@ TEST_CASE("transmission plan: the pass follows the frame's shadows, sky and envi
   SceneSummary scene = transmittingScene();
   scene.cubeShadowCasters = 1;
   scene.environment = true;
-  RenderSettings settings = resolvedDefaults();
+  RenderSettings settings = test::resolvedPlanSettings();
   settings.lighting.shadows = false;
   const FramePlan plan = planFrame(scene, settings, {});
   REQUIRE(plan.transmission);
