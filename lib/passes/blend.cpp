@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "passes/forward_targets.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -59,16 +60,7 @@ void BlendPass::prepare(const GpuScene& scene, const BlendVariant& variant) {
 
 void BlendPass::run(const BlendInputs& inputs, const BlendTargets& targets, const BlendVariant& variant) {
   const GpuScene& scene = inputs.scene;
-  framebuffer_.attach(GL_COLOR_ATTACHMENT0, targets.lit);
-  framebuffer_.attach(GL_COLOR_ATTACHMENT1, targets.coverage);
-  framebuffer_.attach(GL_DEPTH_ATTACHMENT, inputs.depth);
-  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  framebuffer_.setDrawBuffers(drawBuffers);
-  framebuffer_.checkComplete("blend");
-  framebuffer_.bind();
-  glViewport(0, 0, targets.width, targets.height);
-  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
-  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  bindForwardTargets(framebuffer_, targets.lit, targets.coverage, inputs.depth, targets.width, targets.height, "blend");
   // Tested against the opaque surfaces, not written: blended layers do not
   // hide each other, the sort orders them.
   glEnable(GL_DEPTH_TEST);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "passes/forward_targets.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -73,16 +74,8 @@ void TransmissionPass::run(const TransmissionInputs& inputs, const TransmissionT
 void TransmissionPass::shade(const TransmissionInputs& inputs, const TransmissionTargets& targets,
                              const TransmissionVariant& variant) {
   const GpuScene& scene = inputs.scene;
-  framebuffer_.attach(GL_COLOR_ATTACHMENT0, targets.lit);
-  framebuffer_.attach(GL_COLOR_ATTACHMENT1, targets.transmission);
-  framebuffer_.attach(GL_DEPTH_ATTACHMENT, *inputs.gbufferTargets.depth);
-  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  framebuffer_.setDrawBuffers(drawBuffers);
-  framebuffer_.checkComplete("transmission");
-  framebuffer_.bind();
-  glViewport(0, 0, targets.width, targets.height);
-  const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
-  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  bindForwardTargets(framebuffer_, targets.lit, targets.transmission, *inputs.gbufferTargets.depth, targets.width,
+                     targets.height, "transmission");
   // Equal to what step 2 wrote: only the nearest transmissive surface of a
   // pixel is shaded (gbuffer.vert's gl_Position is invariant, so both
   // programs rasterise the same depths).
