@@ -13,18 +13,9 @@ namespace {
 std::vector<std::string> blendDefines(FeatureBits features, const BlendVariant& variant) {
   std::vector<std::string> defines = featureDefines(features);
   defines.emplace_back("BLEND_FORWARD");
-  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
-  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
-  if (variant.sky) defines.emplace_back("HAS_SKY");
-  if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+  appendForwardLightingDefines(variant, defines);
   for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
   return defines;
-}
-
-void bindLightingInputs(const BlendInputs& inputs, const BlendVariant& variant) {
-  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  bindAmbientTables(inputs.environment, variant.sky, variant.environment);
 }
 
 // Premultiplied "over" on both targets: colour by alpha, alpha as coverage.
@@ -67,7 +58,7 @@ void BlendPass::run(const BlendInputs& inputs, const BlendTargets& targets, cons
   glDepthFunc(GL_LESS);
   glDepthMask(GL_FALSE);
   setBlendState();
-  bindLightingInputs(inputs, variant);
+  bindForwardLighting(inputs.shadows, inputs.environment, variant);
   scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
 
   for (std::size_t index : blendOrder(scene.blendDraws, inputs.view)) {

@@ -1,13 +1,37 @@
 #pragma once
-// What the forward passes over lit (blend, transmission) draw into: lit at
-// output 0 and the pass's own target at output 1 (cleared to 0), depth-tested
-// against the G-buffer's depth; bound, with the viewport set.
+// What the forward passes over lit (blend, transmission) share: the lighting
+// #defines and inputs of their variants (BlendVariant and TransmissionVariant
+// carry the same shadow, sky and environment flags), and their framebuffer.
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "gl/objects.hpp"
+#include "passes/environment.hpp"
+#include "passes/shadow.hpp"
+#include "shared_layout.h"
 
 namespace headlight {
 
+// HAS_PLANAR_SHADOWS, HAS_CUBE_SHADOWS, HAS_SKY, HAS_ENVIRONMENT, as the variant says.
+template <class Variant>
+void appendForwardLightingDefines(const Variant& variant, std::vector<std::string>& defines) {
+  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
+  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
+  if (variant.sky) defines.emplace_back("HAS_SKY");
+  if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+}
+
+// The shadow maps and ambient tables those defines read.
+template <class Variant>
+void bindForwardLighting(const ShadowMaps& shadows, const EnvironmentTables& environment, const Variant& variant) {
+  if (variant.planarShadows) shadows.planar.bind(gpu::kUnitShadowMaps2D);
+  if (variant.cubeShadows) shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  bindAmbientTables(environment, variant.sky, variant.environment);
+}
+
+// Lit at output 0 and the pass's own target at output 1 (cleared to 0),
+// depth-tested against the G-buffer's depth; bound, with the viewport set.
 inline void bindForwardTargets(gl::Framebuffer& framebuffer, const gl::Texture& lit, const gl::Texture& own,
                                const gl::Texture& depth, int width, int height, std::string_view pass) {
   framebuffer.attach(GL_COLOR_ATTACHMENT0, lit);

@@ -12,10 +12,7 @@ namespace {
 std::vector<std::string> transmissionDefines(FeatureBits features, const TransmissionVariant& variant) {
   std::vector<std::string> defines = featureDefines(features);
   defines.emplace_back("TRANSMISSION_FORWARD");
-  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
-  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
-  if (variant.sky) defines.emplace_back("HAS_SKY");
-  if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+  appendForwardLightingDefines(variant, defines);
   return defines;
 }
 
@@ -26,9 +23,7 @@ int mipLevels(int width, int height) {
 }
 
 void bindLightingInputs(const TransmissionInputs& inputs, const TransmissionVariant& variant) {
-  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  bindAmbientTables(inputs.environment, variant.sky, variant.environment);
+  bindForwardLighting(inputs.shadows, inputs.environment, variant);
   // The throughput's specular albedo reads the BRDF table with or without the sky term.
   inputs.environment.brdfLut.bind(gpu::kUnitBrdfLut);
 }
