@@ -14,6 +14,7 @@
 #include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
 #include "support/gl.hpp"
+#include "support/parity.hpp"
 
 using namespace headlight;
 
@@ -76,45 +77,24 @@ TEST_CASE("direct light on the GPU matches the CPU ports per pixel") {
   // bits, and llvmpipe's conversion can leave a value up to 2^-10 (9.8e-4)
   // low; twice that leaves room for its float pow/normalize against the C
   // library's. 1e-5 absolute: where the spot's cone or N.L makes a value tiny.
-  constexpr float kRelative = 2e-3f, kAbsolute = 1e-5f;
-  int covered = 0, lit = 0, outside = 0;
-  float worstRelative = 0.0f;
+  test::ParityTally tally{2e-3f, 1e-5f};
+  int covered = 0, lit = 0;
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++covered;
-      const glm::vec3 position(frame.position.at(x, y, 0), frame.position.at(x, y, 1), frame.position.at(x, y, 2));
-      const glm::vec3 normal(frame.normal.at(x, y, 0), frame.normal.at(x, y, 1), frame.normal.at(x, y, 2));
-      const glm::vec3 albedo(frame.albedo.at(x, y, 0), frame.albedo.at(x, y, 1), frame.albedo.at(x, y, 2));
-      const reference::Surface surface =
-          reference::makeSurface(albedo, frame.material.at(x, y, 0), frame.material.at(x, y, 1), normal,
-                                 glm::normalize(frame.view.position - position));
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        expected += reference::cookTorrance(surface, toLight) * light.color * light.intensity * attenuation;
-      }
-      for (int c = 0; c < 3; ++c) {
-        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
-        const float error = std::abs(gpu - cpu);
-        if (cpu > 1e-3f) worstRelative = std::max(worstRelative, error / cpu);
-        if (error > kRelative * std::abs(cpu) + kAbsolute) {
-          ++outside;
-          if (outside <= 5) {
-            CAPTURE(x);
-            CAPTURE(y);
-            CAPTURE(c);
-            CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
-          }
-        }
-      }
+      const glm::vec3 position = test::pixel3(frame.position, x, y);
+      const reference::Surface surface = reference::makeSurface(
+          test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+          test::pixel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
+      const glm::vec3 expected = test::punctualLight(
+          scene, position, [&](const glm::vec3& toLight) { return reference::cookTorrance(surface, toLight); });
+      tally.compare(x, y, test::pixel3(frame.lit, x, y), expected);
       lit += expected.r + expected.g + expected.b > 1e-3f;
     }
-  MESSAGE("direct light: " << covered << " covered pixels, " << lit << " lit, worst relative error " << worstRelative);
-  CHECK(outside == 0);
+  MESSAGE("direct light: " << covered << " covered pixels, " << lit << " lit, worst relative error "
+                          << tally.worstRelative);
+  CHECK(tally.outside == 0);
   // The scene does what it is for: most of the frame is geometry, and lit.
   CHECK(covered > frame.lit.width * frame.lit.height / 2);
   CHECK(lit > covered / 2);

@@ -18,6 +18,7 @@
 #include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
 #include "support/gl.hpp"
+#include "support/parity.hpp"
 
 using namespace headlight;
 
@@ -68,15 +69,13 @@ Scene iridescentScene() {
   return scene;
 }
 
-glm::vec3 pixel3(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
-
 // The CPU surface of a pixel: makeSurface on the read-back G-buffer, then
 // the film from iridescence.exr.
 reference::Surface cpuSurface(const Frame& frame, int x, int y) {
-  const glm::vec3 position = pixel3(frame.position, x, y);
+  const glm::vec3 position = test::pixel3(frame.position, x, y);
   reference::Surface surface =
-      reference::makeSurface(pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
-                             pixel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
+      reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+                             test::pixel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
   reference::applyIridescence(surface, reference::iridescenceInputsAt(frame, x, y));
   return surface;
 }
@@ -96,39 +95,22 @@ TEST_CASE("iridescent direct light on the GPU matches the CPU port per pixel") {
   // llvmpipe's float functions, 1e-5 absolute where a value is tiny; the
   // film adds cos and exp of arguments up to ~25 rad, where llvmpipe's
   // and the C library's float results agree to a few ulps.
-  constexpr float kRelative = 2e-3f, kAbsolute = 1e-5f;
-  int covered = 0, filmed = 0, outside = 0;
-  float worstRelative = 0.0f;
+  test::ParityTally tally{2e-3f, 1e-5f};
+  int covered = 0, filmed = 0;
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++covered;
       filmed += frame.iridescence.at(x, y, 0) > 0.0f;
-      const glm::vec3 position = pixel3(frame.position, x, y);
       const reference::Surface surface = cpuSurface(frame, x, y);
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        expected += reference::cookTorrance(surface, toLight) * light.color * light.intensity * attenuation;
-      }
-      for (int c = 0; c < 3; ++c) {
-        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
-        const float error = std::abs(gpu - cpu);
-        if (cpu > 1e-3f) worstRelative = std::max(worstRelative, error / cpu);
-        if (error > kRelative * std::abs(cpu) + kAbsolute && ++outside <= 5) {
-          CAPTURE(x);
-          CAPTURE(y);
-          CAPTURE(c);
-          CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
-        }
-      }
+      const glm::vec3 expected =
+          test::punctualLight(scene, test::pixel3(frame.position, x, y),
+                              [&](const glm::vec3& toLight) { return reference::cookTorrance(surface, toLight); });
+      tally.compare(x, y, test::pixel3(frame.lit, x, y), expected);
     }
   MESSAGE("iridescent direct light: " << covered << " covered, " << filmed << " with a film, worst relative error "
-                                      << worstRelative);
-  CHECK(outside == 0);
+                                      << tally.worstRelative);
+  CHECK(tally.outside == 0);
   // Both spheres are in the frame with their films, and the floor without.
   CHECK(filmed > covered / 10);
   CHECK(filmed < covered);
@@ -166,28 +148,17 @@ TEST_CASE("iridescent ambient light on the GPU is the CPU port's film Fresnel ti
   const Frame frame = test::renderFresh(skyLitSphere(filmed), settings);
   REQUIRE(!frame.iridescence.empty());
   // Half storage of both lits (2^-11 each) and the film's parity above (1e-3).
-  constexpr float kRelative = 4e-3f, kAbsolute = 1e-5f;
-  int compared = 0, outside = 0;
-  float worstRelative = 0.0f;
+  test::ParityTally tally{4e-3f, 1e-5f};
+  int compared = 0;
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++compared;
       const reference::Surface surface = cpuSurface(frame, x, y);
-      const glm::vec3 expected = surface.iridescenceFresnel * pixel3(whiteFrame.lit, x, y);
-      for (int c = 0; c < 3; ++c) {
-        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
-        const float error = std::abs(gpu - cpu);
-        if (cpu > 1e-3f) worstRelative = std::max(worstRelative, error / cpu);
-        if (error > kRelative * std::abs(cpu) + kAbsolute && ++outside <= 5) {
-          CAPTURE(x);
-          CAPTURE(y);
-          CAPTURE(c);
-          CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
-        }
-      }
+      tally.compare(x, y, test::pixel3(frame.lit, x, y),
+                    surface.iridescenceFresnel * test::pixel3(whiteFrame.lit, x, y));
     }
-  MESSAGE("iridescent ambient light: " << compared << " pixels, worst relative error " << worstRelative);
-  CHECK(outside == 0);
+  MESSAGE("iridescent ambient light: " << compared << " pixels, worst relative error " << tally.worstRelative);
+  CHECK(tally.outside == 0);
   CHECK(compared > 64 * 64 / 4);
 }

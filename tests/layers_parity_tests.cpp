@@ -18,17 +18,11 @@
 #include "reference/lobe_specular.hpp"
 #include "reference/shading.hpp"
 #include "support/gl.hpp"
+#include "support/parity.hpp"
 
 using namespace headlight;
 
 namespace {
-
-glm::vec4 pixel4(const ImageF& image, int x, int y) {
-  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), image.at(x, y, 3)};
-}
-glm::vec3 pixel3(const ImageF& image, int x, int y) {
-  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
-}
 
 // A floor without either extension, a red dielectric with a coloured
 // specular lobe and IOR 1.8, a half-metal under a clear coat, and a sphere
@@ -76,6 +70,16 @@ Scene layeredScene() {
   return scene;
 }
 
+// The punctual lights through the coat over the base (direct_light.frag's
+// layering, lib/reference/lobe_clearcoat.hpp).
+glm::vec3 coatedDirectLight(const Scene& scene, const glm::vec3& position, const reference::Surface& surface,
+                            const reference::Clearcoat& coat, const glm::vec3& view) {
+  return test::punctualLight(scene, position, [&](const glm::vec3& toLight) {
+    return reference::clearcoatLayer(coat, reference::cookTorrance(surface, toLight),
+                                     glm::vec3(reference::clearcoatSpecular(coat, view, toLight)));
+  });
+}
+
 }  // namespace
 
 TEST_CASE("octahedral normals: encoded and decoded to within 1e-6 on both sides of the equator") {
@@ -106,49 +110,32 @@ TEST_CASE("specular and clearcoat lobes on the GPU match the CPU ports per pixel
 
   // As direct_light_parity_tests.cpp: RGBA16F targets, llvmpipe's float
   // pow/normalize against the C library's.
-  constexpr float kRelative = 2e-3f, kAbsolute = 1e-5f;
-  int covered = 0, coated = 0, tinted = 0, outside = 0;
-  float worstRelative = 0.0f, worstNormal = 0.0f;
+  test::ParityTally tally{2e-3f, 1e-5f};
+  int covered = 0, coated = 0, tinted = 0;
+  float worstNormal = 0.0f;
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++covered;
-      const glm::vec3 position = pixel3(frame.position, x, y), normal = pixel3(frame.normal, x, y);
+      const glm::vec3 position = test::pixel3(frame.position, x, y), normal = test::pixel3(frame.normal, x, y);
       const glm::vec3 view = glm::normalize(frame.view.position - position);
-      reference::Surface surface = reference::makeSurface(pixel3(frame.albedo, x, y), frame.material.at(x, y, 0),
-                                                          frame.material.at(x, y, 1), normal, view);
-      const glm::vec4 specularLobe = pixel4(frame.specular, x, y), clearcoatLobe = pixel4(frame.clearcoat, x, y);
+      reference::Surface surface = reference::makeSurface(test::pixel3(frame.albedo, x, y),
+                                                          frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+                                                          normal, view);
+      const glm::vec4 specularLobe = test::pixel4(frame.specular, x, y);
+      const glm::vec4 clearcoatLobe = test::pixel4(frame.clearcoat, x, y);
       reference::applySpecularLobe(surface, specularLobe);
       const reference::Clearcoat coat = reference::makeClearcoat(clearcoatLobe, view);
       coated += coat.factor > 0.0f;
       tinted += specularLobe.r != specularLobe.b;
       // No clearcoat normal map: the coat's normal is the surface's.
       worstNormal = std::max(worstNormal, glm::length(coat.normal - normal));
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        const glm::vec3 brdf = reference::clearcoatLayer(coat, reference::cookTorrance(surface, toLight),
-                                                         glm::vec3(reference::clearcoatSpecular(coat, view, toLight)));
-        expected += brdf * light.color * light.intensity * attenuation;
-      }
-      for (int c = 0; c < 3; ++c) {
-        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
-        const float error = std::abs(gpu - cpu);
-        if (cpu > 1e-3f) worstRelative = std::max(worstRelative, error / cpu);
-        if (error > kRelative * std::abs(cpu) + kAbsolute && ++outside <= 5) {
-          CAPTURE(x);
-          CAPTURE(y);
-          CAPTURE(c);
-          CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
-        }
-      }
+      const glm::vec3 expected = coatedDirectLight(scene, position, surface, coat, view);
+      tally.compare(x, y, test::pixel3(frame.lit, x, y), expected);
     }
   MESSAGE("lobes: " << covered << " covered pixels, " << coated << " coated, " << tinted
-                    << " with a coloured F0, worst relative error " << worstRelative);
-  CHECK(outside == 0);
+                    << " with a coloured F0, worst relative error " << tally.worstRelative);
+  CHECK(tally.outside == 0);
   // 2e-3: the normal target and the coat's octahedral pair are both half floats.
   CHECK(worstNormal < 2e-3f);
   // The scene does what it is for: both lobes cover a good part of the frame.
@@ -206,24 +193,15 @@ TEST_CASE("the Embree reference shades both lobes with the CPU ports" * doctest:
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++compared;
-      const glm::vec3 position = pixel3(frame.position, x, y);
+      const glm::vec3 position = test::pixel3(frame.position, x, y);
       const glm::vec3 view = glm::normalize(frame.view.position - position);
       reference::Surface surface =
-          reference::makeSurface(pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
-                                 glm::normalize(pixel3(frame.normal, x, y)), view);
-      reference::applySpecularLobe(surface, pixel4(frame.specular, x, y));
-      const reference::Clearcoat coat = reference::makeClearcoat(pixel4(frame.clearcoat, x, y), view);
+          reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+                                 glm::normalize(test::pixel3(frame.normal, x, y)), view);
+      reference::applySpecularLobe(surface, test::pixel4(frame.specular, x, y));
+      const reference::Clearcoat coat = reference::makeClearcoat(test::pixel4(frame.clearcoat, x, y), view);
       coated += coat.weight > 0.0f;
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        expected += reference::clearcoatLayer(coat, reference::cookTorrance(surface, toLight),
-                                              glm::vec3(reference::clearcoatSpecular(coat, view, toLight))) *
-                    light.color * light.intensity * attenuation;
-      }
+      const glm::vec3 expected = coatedDirectLight(scene, position, surface, coat, view);
       for (int c = 0; c < 3; ++c) {
         CAPTURE(x);
         CAPTURE(y);

@@ -15,6 +15,7 @@
 #include "headlight/shapes.hpp"
 #include "reference/shading.hpp"
 #include "support/gl.hpp"
+#include "support/parity.hpp"
 
 using namespace headlight;
 
@@ -51,13 +52,9 @@ Scene lobeScene(const std::vector<Material>& sphereMaterials) {
   return scene;
 }
 
-glm::vec3 texel3(const ImageF& image, int x, int y) {
-  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
-}
-
 struct ParityCount {
-  int covered = 0, lit = 0, outside = 0;
-  float worstRelative = 0.0f;
+  int covered = 0, lit = 0;
+  test::ParityTally tally;
 };
 
 // Every covered pixel of `frame`'s lit against the port's direct light on
@@ -67,36 +64,19 @@ ParityCount compareDirectLight(const Scene& scene, const Frame& frame, Lobes lob
   // As direct_light_parity_tests.cpp: RGBA16F lit, 2^-10 plus llvmpipe's
   // float pow/exp/normalize against the C library's; the sheen lobe's
   // exp of a ~17 exponent adds a few float ulps of it.
-  constexpr float kRelative = 2e-3f, kAbsolute = 1e-5f;
-  ParityCount count;
+  ParityCount count{.tally = {2e-3f, 1e-5f}};
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       ++count.covered;
-      const glm::vec3 position = texel3(frame.position, x, y);
-      reference::Surface surface =
-          reference::makeSurface(texel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
-                                 texel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
+      const glm::vec3 position = test::pixel3(frame.position, x, y);
+      reference::Surface surface = reference::makeSurface(
+          test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
+          test::pixel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
       lobes(surface, x, y);
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        expected += reference::cookTorrance(surface, toLight) * light.color * light.intensity * attenuation;
-      }
-      for (int c = 0; c < 3; ++c) {
-        const float gpu = frame.lit.at(x, y, c), cpu = expected[c];
-        const float error = std::abs(gpu - cpu);
-        if (cpu > 1e-3f) count.worstRelative = std::max(count.worstRelative, error / cpu);
-        if (error > kRelative * std::abs(cpu) + kAbsolute && ++count.outside <= 5) {
-          CAPTURE(x);
-          CAPTURE(y);
-          CAPTURE(c);
-          CHECK(gpu == doctest::Approx(cpu).epsilon(kRelative));
-        }
-      }
+      const glm::vec3 expected = test::punctualLight(
+          scene, position, [&](const glm::vec3& toLight) { return reference::cookTorrance(surface, toLight); });
+      count.tally.compare(x, y, test::pixel3(frame.lit, x, y), expected);
       count.lit += expected.r + expected.g + expected.b > 1e-3f;
     }
   return count;
@@ -129,13 +109,13 @@ TEST_CASE("sheen: direct light on the GPU matches the CPU ports per pixel") {
   REQUIRE(!frame.sheen.empty());
   int sheened = 0;
   const ParityCount count = compareDirectLight(scene, frame, [&](reference::Surface& surface, int x, int y) {
-    surface.sheenColor = texel3(frame.sheen, x, y);
+    surface.sheenColor = test::pixel3(frame.sheen, x, y);
     surface.sheenRoughness = frame.sheen.at(x, y, 3);
     sheened += surface.sheenColor != glm::vec3(0.0f);
   });
   MESSAGE("sheen: " << count.covered << " covered pixels, " << sheened << " with sheen, " << count.lit
-                    << " lit, worst relative error " << count.worstRelative);
-  CHECK(count.outside == 0);
+                    << " lit, worst relative error " << count.tally.worstRelative);
+  CHECK(count.tally.outside == 0);
   CHECK(sheened > count.covered / 5);  // the spheres are in view, and their sheen reached the target
   CHECK(count.lit > count.covered / 2);
   CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
@@ -163,13 +143,13 @@ TEST_CASE("anisotropy: direct light on the GPU matches the CPU ports per pixel")
   REQUIRE(!frame.anisotropy.empty());
   int stretched = 0;
   const ParityCount count = compareDirectLight(scene, frame, [&](reference::Surface& surface, int x, int y) {
-    surface.anisotropyTangent = texel3(frame.anisotropy, x, y);
+    surface.anisotropyTangent = test::pixel3(frame.anisotropy, x, y);
     surface.anisotropyStrength = frame.anisotropy.at(x, y, 3);
     stretched += surface.anisotropyStrength > 0.0f;
   });
   MESSAGE("anisotropy: " << count.covered << " covered pixels, " << stretched << " anisotropic, " << count.lit
-                         << " lit, worst relative error " << count.worstRelative);
-  CHECK(count.outside == 0);
+                         << " lit, worst relative error " << count.tally.worstRelative);
+  CHECK(count.tally.outside == 0);
   CHECK(stretched > count.covered / 5);
   CHECK(count.lit > count.covered / 2);
   CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
