@@ -18,7 +18,6 @@ const vec2 kPoissonDisc[12] = vec2[](
 float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight) {
   if (light.castsShadows == 0 || light.shadowLayer < 0) return 1.0;
   const float layer = float(light.shadowLayer);
-  const float mapSize = float(lighting.shadowMapSize);
   const float pcfRadius = lighting.pcfRadius;
   const int type = light.type;
   // Surfaces facing away from the light are dark anyway; skip the lookups.
@@ -27,7 +26,8 @@ float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight)
   if (type == kLightPoint) {
     const float far = light.shadowFar;
     const float distance = length(light.position - position);
-    const float texel = 2.0 * distance / mapSize;  // a 90 degree face
+    // A 90 degree face, of cubeFaceSize(shadow-map-size) texels (shadow.hpp).
+    const float texel = 2.0 * distance / float(textureSize(shadowMapsCube, 0).x);
     const vec3 shifted = position + normal * (lighting.shadowNormalOffset * texel);
     const vec3 fromLight = shifted - light.position;
     const mat3 basis = basisAround(normalize(fromLight));
@@ -51,6 +51,7 @@ float shadowVisibility(GpuLight light, vec3 position, vec3 normal, vec3 toLight)
     const vec3 ndc = clip.xyz / clip.w;
     const vec3 coordinate = ndc * 0.5 + 0.5;
     if (any(lessThan(coordinate, vec3(0.0))) || any(greaterThan(coordinate, vec3(1.0)))) return 1.0;
+    const float mapSize = float(lighting.shadowMapSize);
     float lit = 0.0;
     for (int i = 0; i < 12; ++i) {
       const vec2 offset = kPoissonDisc[i] * pcfRadius / mapSize;

@@ -282,7 +282,7 @@ HL_BLOCK_BEGIN(LightingBlock, kBindingLighting)
   int lightCount;           // entries of the light buffer
   float pcfRadius;          // shadow filter radius, shadow-map texels
   float shadowNormalOffset; // how far a shadow lookup moves along the normal, in texels of the map there
-  int shadowMapSize;        // texels per side of every shadow map; 0 without maps
+  int shadowMapSize;        // texels per side of the planar shadow maps (cubes: half); 0 without maps
   float environmentRotationCos; // the environment map's turn about +Y (environment/equirect.hpp worldToMap)
   float environmentRotationSin;
   int environmentBackground;    // 1: the map shows behind the scene; 0: the background is 0

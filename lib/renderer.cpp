@@ -115,6 +115,7 @@ struct Renderer::Impl {
   gl::Buffer lightBuffer;  // scene.lights packed, with the shadow slots of shadowMaps
   ShadowMaps shadowMaps;   // kept across views: they do not depend on the camera
   int shadowMapSize = 0;   // what shadowMaps were made with; 0 = none yet
+  std::vector<glm::vec4> shadowCoverage;  // and what the directional ones cover
 
   // Per image size: the plan's attachments (attachmentRows()), by Attachment.
   std::array<gl::Texture, kAttachmentCount> textures;
@@ -172,11 +173,18 @@ struct Renderer::Impl {
     lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
   }
 
-  void renderShadows(int size) {
-    ShadowOutputs shadows = shadow.run(*gpuScene, scene.lights, size);
+  void renderShadows(int size, const CameraView& view) {
+    ShadowOutputs shadows = shadow.run(*gpuScene, scene.lights, size, &view);
     shadowMaps = std::move(shadows.maps);
     shadowMapSize = size;
+    shadowCoverage = directionalCoverage(scene.lights, gpuScene->bounds, &view);
     uploadLights(shadows.slots);
+  }
+
+  // The maps are kept across views unless their size or a directional
+  // light's fit to the view would change.
+  bool shadowsCurrent(int size, const CameraView& view) const {
+    return shadowMapSize == size && directionalCoverage(scene.lights, gpuScene->bounds, &view) == shadowCoverage;
   }
 
   void dropShadows() {
@@ -375,11 +383,11 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
   PassTimer timer(impl.context);
-  // Shadow maps are kept across views and remade only when their size
-  // changes; with shadows off the lights read "no map".
+  // Shadow maps are remade only when their size or what the directional
+  // ones cover changes; with shadows off the lights read "no map".
   if (plan.dropShadowMaps) impl.dropShadows();
-  if (plan.shadows && impl.shadowMapSize != plan.shadows->mapSize)
-    timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize); });
+  if (plan.shadows && !impl.shadowsCurrent(plan.shadows->mapSize, frame.view))
+    timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize, frame.view); });
   impl.bindLighting(used.lighting);
   timer.run("gbuffer",
             [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });

@@ -223,9 +223,10 @@ TEST_CASE("resolve: auto values come from the scene and the image size") {
   const float diagonal = 2.0f * scene.worldBounds().radius();
   CHECK(*used.ssgi.radius == doctest::Approx(settings.ssgi.radiusFraction * diagonal));
   CHECK(*used.ssgi.bias == doctest::Approx(SsgiSettings::kAutoBiasFraction * *used.ssgi.radius));
-  CHECK(*used.lighting.shadowMapSize == 512);  // 300 -> 512, the floor
-  CHECK(autoShadowMapSize(1500, 10) == 2048);
-  CHECK(autoShadowMapSize(5000, 10) == 2048);  // held at 2048
+  CHECK(*used.lighting.shadowMapSize == 2048);  // 4 x 300 -> 2048
+  CHECK(autoShadowMapSize(200, 10) == 1024);    // 4 x 200 -> 1024
+  CHECK(autoShadowMapSize(64, 48) == 1024);     // the floor
+  CHECK(autoShadowMapSize(5000, 10) == 2048);   // held at 2048
   CHECK(*used.lighting.skyIntensity == scene.sky.intensity);
   CHECK(*used.ssgi.indirectStrength == 1.0f);
   settings.ssgi.method = SsgiMethod::Hemisphere;

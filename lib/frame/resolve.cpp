@@ -8,8 +8,15 @@
 
 namespace headlight {
 
+// Four texels per pixel of the longer image side: the reference's shadows
+// are hard, and a map as coarse as the image blurs their edges over several
+// pixels with the PCF filter (HDR-FLIP of lit at 256x256, 512 -> 1024 texels:
+// builtin:slats 0.059 -> 0.044, spheres 0.0493 -> 0.0485, MetalRoughSpheres
+// 0.0459 -> 0.0452; docs/BENCHMARKS.md, "Shadow maps"). At most 2048: a
+// point light's cube is six of them (96 MiB at 2048).
 int autoShadowMapSize(int width, int height) {
-  return std::clamp(int(std::bit_ceil(unsigned(std::max(width, height)))), 512, 2048);
+  const unsigned side = unsigned(std::min(std::max(width, height), 1 << 20));
+  return std::clamp(int(std::bit_ceil(4u * side)), 1024, 2048);
 }
 
 // How deep the scene's objects typically are behind what the camera sees,

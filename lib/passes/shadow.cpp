@@ -28,14 +28,60 @@ glm::vec3 upFor(const glm::vec3& direction) {
   return std::abs(direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
 
-// Light view for a directional light: an orthographic box around the
-// scene's bounding sphere.
-glm::mat4 directionalViewProjection(const Light& light, const Bounds& bounds, int size, float& texelWorldSize) {
+// The square, in the light's view (looking along `direction` at the scene's
+// centre), that holds the scene's bounding sphere: every caster.
+glm::mat4 directionalView(const Light& light, const Bounds& bounds) {
   const float radius = std::max(bounds.radius(), 1e-30f);
-  texelWorldSize = 2.0f * radius / float(size);
   const glm::vec3 center = bounds.center();
-  const glm::mat4 view = glm::lookAt(center - light.direction * (2.0f * radius), center, upFor(light.direction));
-  return glm::ortho(-radius, radius, -radius, radius, radius, 3.0f * radius) * view;
+  return glm::lookAt(center - light.direction * (2.0f * radius), center, upFor(light.direction));
+}
+
+// The part of the sphere's square (light view x, y) that the camera can
+// see: its frustum's corners (near and far planes fitted to the scene) in the
+// light's view, met with the square, as (min x, min y, max x, max y). Only
+// receivers in view need texels; a caster that shades one lies on the same
+// line along the light, so inside the same rectangle, and the depth range
+// stays the whole sphere's.
+glm::vec4 visibleRectangle(const glm::mat4& lightView, float radius, const CameraView& camera) {
+  const glm::mat4 lightFromClip = lightView * glm::inverse(camera.projection * camera.view);
+  glm::vec2 low(radius), high(-radius);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec4 clip((corner & 1) ? 1.0f : -1.0f, (corner & 2) ? 1.0f : -1.0f, (corner & 4) ? 1.0f : -1.0f, 1.0f);
+    const glm::vec4 point = lightFromClip * clip;
+    const glm::vec2 xy = glm::vec2(point) / point.w;
+    low = glm::min(low, xy);
+    high = glm::max(high, xy);
+  }
+  // A frustum wider than the sphere keeps the square; the floor keeps a
+  // degenerate one from collapsing to no texels.
+  const float floor = 1e-3f * radius;
+  low = glm::clamp(low, glm::vec2(-radius), glm::vec2(radius - floor));
+  high = glm::clamp(high, low + floor, glm::vec2(radius));
+  return {low, high};
+}
+
+// What a directional light's map covers for `camera`: the visible part of
+// the square where that is at most kFittedArea of it, else the whole square,
+// which does not depend on the view (a batch's views then share the maps;
+// MetalRoughSpheresNoTextures' framing sees all of it from every side).
+// builtin:slats' view covers 0.68 of its square, builtin:spheres' 0.67.
+constexpr float kFittedArea = 0.8f;
+glm::vec4 directionalRectangle(const Light& light, const Bounds& bounds, const CameraView* camera) {
+  const float radius = std::max(bounds.radius(), 1e-30f);
+  const glm::vec4 square(-radius, -radius, radius, radius);
+  if (camera == nullptr) return square;
+  const glm::vec4 seen = visibleRectangle(directionalView(light, bounds), radius, *camera);
+  return (seen.z - seen.x) * (seen.w - seen.y) <= kFittedArea * 4.0f * radius * radius ? seen : square;
+}
+
+// Light view and orthographic projection for a directional light.
+glm::mat4 directionalViewProjection(const Light& light, const Bounds& bounds, const glm::vec4& rectangle, int size,
+                                    float& texelWorldSize) {
+  const float radius = std::max(bounds.radius(), 1e-30f);
+  // The PCF radius and the normal offset are in texels: the wider side's.
+  texelWorldSize = std::max(rectangle.z - rectangle.x, rectangle.w - rectangle.y) / float(size);
+  return glm::ortho(rectangle.x, rectangle.z, rectangle.y, rectangle.w, radius, 3.0f * radius) *
+         directionalView(light, bounds);
 }
 
 // Distance from `point` to the farthest corner of the bounds' sphere.
@@ -64,11 +110,23 @@ glm::mat4 cubeFaceView(const glm::vec3& position, int face) {
 
 }  // namespace
 
+int cubeFaceSize(int size) { return std::max(size / 2, 1); }
+
+
 ShadowCasters countShadowCasters(const std::vector<Light>& lights) {
   ShadowCasters casters;
   for (const Light& light : lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? casters.cube : casters.planar)++;
   return casters;
+}
+
+std::vector<glm::vec4> directionalCoverage(const std::vector<Light>& lights, const Bounds& bounds,
+                                           const CameraView* camera) {
+  std::vector<glm::vec4> coverage;
+  for (const Light& light : lights)
+    if (light.castsShadows && light.type == Light::Type::Directional)
+      coverage.push_back(directionalRectangle(light, bounds, camera));
+  return coverage;
 }
 
 std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::span<const ShadowSlot> slots) {
@@ -102,13 +160,14 @@ ShadowPass::ShadowPass()
   framebuffer_.setDrawBuffers({});
 }
 
-ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& lights, int size) {
+ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& lights, int size,
+                             const CameraView* camera) {
   const ShadowCasters casters = countShadowCasters(lights);
   ShadowOutputs out;
   ShadowMaps& maps = out.maps;
   maps.size = size;
   if (casters.planar > 0) maps.planar = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, casters.planar);
-  if (casters.cube > 0) maps.cube = gl::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, size, casters.cube);
+  if (casters.cube > 0) maps.cube = gl::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, cubeFaceSize(size), casters.cube);
   for (const gl::Texture* map : {&maps.planar, &maps.cube}) {
     if (!*map) continue;
     glTextureParameteri(map->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -135,7 +194,8 @@ ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& l
       slot.far = far;
     } else {
       const glm::mat4 viewProjection = light.type == Light::Type::Directional
-                                           ? directionalViewProjection(light, scene.bounds, size, slot.texelSize)
+                                           ? directionalViewProjection(light, scene.bounds, directionalRectangle(light, scene.bounds, camera),
+                                                                       size, slot.texelSize)
                                            : spotViewProjection(light, scene.bounds, size, slot.texelSize);
       renderView(scene, maps.planar, planarLayer, viewProjection, glm::vec4(0.0f));
       slot.viewProjection = viewProjection;

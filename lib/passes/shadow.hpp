@@ -2,12 +2,15 @@
 // Shadow maps, made only for lights that cast shadows (and not at all with
 // shadows off): one layer of a 2D depth array per directional or spot light,
 // one cube of a depth cube-map array per point light. Their extent comes from
-// the scene bounds, so an 8 mm asset and a 2 km one are both covered.
-// Shadows do not depend on the camera: the renderer keeps them across views.
+// the scene bounds, so an 8 mm asset and a 2 km one are both covered; a
+// directional light's is narrowed to what the camera sees of the scene
+// where that is much less, so it may depend on the view (the renderer
+// remakes the maps when it changes), while spot and point lights' do not.
 #include <span>
 #include <vector>
 
 #include "gl/objects.hpp"
+#include "headlight/camera.hpp"
 #include "passes/program_cache.hpp"
 #include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
@@ -21,10 +24,17 @@ struct ShadowCasters {
 };
 ShadowCasters countShadowCasters(const std::vector<Light>& lights);
 
+// A point light's cube faces get half the texels per side of the planar
+// maps: six of them cover its whole surroundings, where a directional map
+// covers what the camera sees. builtin:cornell's lamp at 256x256: faces of
+// 1024 instead of 512 cost 17 ms more (15-18 -> 33-36 ms) and moved HDR-FLIP
+// from 0.2429 to 0.2432 (docs/BENCHMARKS.md, "Shadow maps").
+int cubeFaceSize(int size);
+
 struct ShadowMaps {
   gl::Texture planar;  // 2D array, GL_DEPTH_COMPONENT32F; empty without directional/spot casters
   gl::Texture cube;    // cube-map array, GL_DEPTH_COMPONENT32F, linear distance / far; empty without point casters
-  int size = 0;        // texels per side; 0 = no maps
+  int size = 0;        // the planar maps' texels per side (the cubes': cubeFaceSize); 0 = no maps
   ShadowCasters casters() const { return {planar.layers(), cube.layers() / 6}; }
 };
 
@@ -41,6 +51,13 @@ struct ShadowOutputs {
   std::vector<ShadowSlot> slots;  // one per scene light, in order; layer -1 for lights that cast none
 };
 
+// The rectangle of its light's view (min x, min y, max x, max y) that each
+// directional caster's map covers for `camera`, in order: the part the
+// camera sees where that is much less than the scene, else all of it. The
+// maps ShadowPass::run makes for a camera serve another with the same.
+std::vector<glm::vec4> directionalCoverage(const std::vector<Light>& lights, const Bounds& bounds,
+                                           const CameraView* camera);
+
 // The lights as the lighting shader reads them. `slots` (one per light, or
 // empty for "no shadows") come from ShadowPass::run.
 std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::span<const ShadowSlot> slots = {});
@@ -50,7 +67,9 @@ class ShadowPass {
   ShadowPass();
   // Renders a map at `size` texels per side for each casting light of
   // `lights` (the scene's, in order) and says where each one went.
-  ShadowOutputs run(const GpuScene& scene, const std::vector<Light>& lights, int size);
+  // Directional maps cover what `camera` sees (all of the scene without one).
+  ShadowOutputs run(const GpuScene& scene, const std::vector<Light>& lights, int size,
+                    const CameraView* camera = nullptr);
 
  private:
   void renderView(const GpuScene& scene, const gl::Texture& target, int layer, const glm::mat4& viewProjection,

@@ -159,10 +159,10 @@ const std::vector<Row>& table() {
       row(
           {.name = "shadow-map-size",
            .type = T::Int,
-           .help = "shadow map texels per side",
+           .help = "shadow map texels per side (a point light's cube faces: half)",
            .minimum = 64,
            .maximum = 8192,
-           .autoMeaning = "the longer image side to the next power of two, 512..2048"},
+           .autoMeaning = "4x the longer image side to the next power of two, 1024..2048"},
           [](auto& s) -> auto& { return s.lighting.shadowMapSize; }),
       row(
           {.name = "shadow-pcf-radius",
