@@ -13,7 +13,7 @@ namespace headlight {
 // first (SettingsError naming the setting).
 RenderSettings resolveSettings(const RenderSettings& settings, const Scene& scene);
 
-// The longer image side to the next power of two, held in 512..2048.
+// 4x the longer image side to the next power of two, held in 1024..2048.
 int autoShadowMapSize(int width, int height);
 
 // radiance-precision's auto value: float when the brightest radiance the

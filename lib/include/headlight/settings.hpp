@@ -75,7 +75,9 @@ struct SsgiSettings {
 
 struct LightingSettings {
   bool shadows = true;                // shadow maps for lights that cast shadows
-  std::optional<int> shadowMapSize;   // texels per side; auto: longer image side to the next power of two, 512..2048
+  // Texels per side (point lights' cube faces: half); auto: 4x the longer
+  // image side to the next power of two, 1024..2048.
+  std::optional<int> shadowMapSize;
   float pcfRadius = 1.5f;             // shadow filter radius in texels
   std::optional<float> skyIntensity;  // auto: the scene's sky intensity
   // With an environment map (Scene::environment), which replaces the sky:
