@@ -34,7 +34,13 @@ vec3 skyIrradianceOverPi(vec3 normal) {
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }
 
-vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
+// `skyVisibility` occludes the diffuse (and sheen) sky light, the
+// cosine-weighted share of the hemisphere open to the sky;
+// `specularVisibility` the specular, the share of the GGX lobe about the
+// reflection that escapes (ssgi_bitmask.frag; the same number where no pass
+// estimates it).
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, float specularVisibility,
+                  vec3 indirect) {
   const float size = float(kBrdfLutSize);
   float tableRoughness = surface.roughness;
 #ifdef HAS_ANISOTROPY_LOBE
@@ -58,14 +64,19 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
                                       surface.anisotropyStrength, surface.roughness);
 #endif
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  vec3 ambient = diffuseIbl + specularIbl;
+  vec3 ambient = diffuseIbl * skyVisibility + specularIbl * specularVisibility;
 #ifdef HAS_SHEEN_LOBE
   if (surface.sheenColor != vec3(0.0)) {
     const vec3 mirrored = reflect(-surface.view, surface.normal);
     ambient = ambient * sheenAmbientBaseScale(surface.sheenColor, surface.sheenRoughness, surface.nDotV) +
-              sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
-                           prefilteredSky(mirrored, surface.sheenRoughness));
+              skyVisibility * sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
+                                           prefilteredSky(mirrored, surface.sheenRoughness));
   }
 #endif
-  return ambient * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
+  return ambient * lighting.skyIntensity * materialOcclusion + indirect;
+}
+
+// One visibility for both (the passes without SSGI pass 1).
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
+  return ambientLight(surface, materialOcclusion, skyVisibility, skyVisibility, indirect);
 }

@@ -9,9 +9,12 @@ layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitSsgi) uniform sampler2D rawSsgi;
 layout(binding = kUnitSsgiSky) uniform sampler2D rawSky;
+// R = specular sky visibility, G = its weight (ssgi_bitmask.frag's specularOutput).
+layout(binding = kUnitSsgiSpecular) uniform sampler2D rawSpecular;
 
 layout(location = 0) out vec4 outSsgi;
 layout(location = 1) out vec4 outSky;
+layout(location = 2) out vec4 outSpecular;
 
 // A 7x7 window with Gaussian weights (sigma 2 pixels): it spans about two
 // of the SSGI pass's 4x4 tiles, each offset differently, so it averages
@@ -39,6 +42,7 @@ void main() {
   const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);
   vec4 skySum = vec4(0.0);
+  vec2 specularSum = vec2(0.0);  // weighted by the blur's weight times the pixel's own (its G)
   float weightSum = 0.0;
   for (int dy = -kTapRadius; dy <= kTapRadius; ++dy)
     for (int dx = -kTapRadius; dx <= kTapRadius; ++dx) {
@@ -57,6 +61,8 @@ void main() {
                                               float(dx * dx + dy * dy) * kSpatialFalloff);
       sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
       skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
+      const vec2 specular = texelFetch(rawSpecular, rawNeighbour, 0).rg;
+      specularSum += vec2(specular.r, 1.0) * (specular.g * weight);
       weightSum += weight;
     }
   // At full resolution the centre has weight 1. Below it, a pixel on a
@@ -64,4 +70,7 @@ void main() {
   const bool weighed = weightSum > 1e-4;
   outSsgi = weighed ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
   outSky = weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0);
+  // Where no neighbour's slices saw the lobe, the sky visibility stands in.
+  outSpecular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(weightSum, 1e-4), 0.0, 0.0)
+                                     : vec4(outSky.r, 0.0, 0.0, 0.0);
 }
