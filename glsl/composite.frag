@@ -63,15 +63,16 @@ void main() {
   // Light gathered within R and beyond it (the kernel methods: none beyond).
   const vec3 indirect = texelFetch(ssgiTexture, pixel, 0).gba + sky.gba;
   const float skyVisibility = sky.r;
-  const float specularVisibility = texelFetch(ssgiSpecularTexture, pixel, 0).r;
+  const vec2 specular = texelFetch(ssgiSpecularTexture, pixel, 0).rb;  // visibility, bend
+  const float specularVisibility = specular.x, specularBend = specular.y;
 #else
   const vec3 indirect = vec3(0.0);
   const float skyVisibility = 1.0;
-  const float specularVisibility = 1.0;
+  const float specularVisibility = 1.0, specularBend = 0.0;
 #endif
   const float materialOcclusion = material.z;
 #ifdef HAS_SKY
-  vec3 ambient = ambientLight(surface, materialOcclusion, skyVisibility, specularVisibility, indirect);
+  vec3 ambient = ambientLight(surface, materialOcclusion, skyVisibility, specularVisibility, specularBend, indirect);
 #else
   vec3 ambient = indirect;
 #endif

@@ -259,13 +259,17 @@ float sinHalfTurn(float x) {
 // One slice's reading of the lobe: x = the open share of the lobe's weight
 // over the slice's 32 sectors (sectors in `covered` are blocked), y = the
 // slice's weight, cos^8 of R's angle to the slice's plane (0 where the lobe
-// misses the hemisphere). In the plane of incidence a direction delta from
+// misses the hemisphere), z = x times the bend: how far the open part's
+// mean direction lies from the whole lobe's, in radians toward the normal.
+// The open part sees another stretch of sky than the lobe about R (under a
+// ball, the rays that escape go up, where the sky is brighter), so the
+// composite looks the sky up along R turned by the bend. In the plane of incidence a direction delta from
 // R has its half vector delta / 2 from N, so the lobe's profile is GGX's D
 // there, 1 / (alpha^2 + tan^2(delta / 2))^2 ~ 1 / (1 + (delta / 2 alpha)^2)^2,
 // with its long tails; times Smith's G1 for L (Schlick's form, k = alpha / 2),
 // which fades the lobe at the horizon. (The split sum's N.L cancels in
 // BRDF cos.)
-vec2 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float alpha) {
+vec3 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float alpha) {
   const vec3 axis = cross(slice.side, slice.toEye);
   const float outOfPlane = dot(reflected, axis);
   float weight = max(1.0 - outOfPlane * outOfPlane, 0.0);
@@ -274,26 +278,40 @@ vec2 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float al
   const float thetaR = atan(dot(reflected, slice.side), dot(reflected, slice.toEye));
   const float sectorAngle = kPi / float(kSectors);
   const float k = 0.5 * alpha;
-  float open = 0.0, total = 0.0;
+  float open = 0.0, total = 0.0, openAngle = 0.0, totalAngle = 0.0;  // angles from R, lobe-weighted
   for (int s = 0; s < kSectors; ++s) {
     const float fromHorizon = (float(s) + 0.5) * sectorAngle;
-    const float offset = (slice.lowest + fromHorizon - thetaR) / (2.0 * alpha);
+    const float fromR = slice.lowest + fromHorizon - thetaR;
+    const float offset = fromR / (2.0 * alpha);
     const float profile = 1.0 / (1.0 + offset * offset);
     const float nDotL = sinHalfTurn(fromHorizon);
     const float lobe = profile * profile * nDotL / (nDotL * (1.0 - k) + k);
     total += lobe;
-    if ((covered & (1u << uint(s))) == 0u) open += lobe;
+    totalAngle += lobe * fromR;
+    if ((covered & (1u << uint(s))) == 0u) {
+      open += lobe;
+      openAngle += lobe * fromR;
+    }
   }
-  return total > 1e-12 ? vec2(weight * open / total, weight) : vec2(0.0);
+  if (total <= 1e-12) return vec3(0.0);
+  // The normal's angle in the slice is lowest + pi/2: positive bends toward it.
+  const float towardNormal = slice.lowest + 0.5 * kPi >= thetaR ? 1.0 : -1.0;
+  const float bend = open > 1e-12 ? towardNormal * (openAngle / open) : 0.0;
+  const float visible = weight * open / total;
+  return vec3(visible, weight, visible * bend);
 }
 
 // The specular visibility the pass writes: R = the slices' weighted mean
 // (the diffuse sky visibility where no slice saw the lobe), G = the mean
-// slice weight, by which the blur weighs the pixel against its neighbours.
-vec4 specularOutput(vec2 specularSum, float skyVisibility, int sliceCount) {
-  const float visibility = specularSum.y > 1e-4 ? clamp(specularSum.x / specularSum.y, 0.0, 1.0) : skyVisibility;
+// slice weight, by which the blur weighs the pixel against its neighbours,
+// B = the bend (radians toward the normal), the slices' mean weighted by
+// their open shares.
+vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
+  const bool seen = specularSum.y > 1e-4;
+  const float visibility = seen ? clamp(specularSum.x / specularSum.y, 0.0, 1.0) : skyVisibility;
+  const float bend = specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0;
   return vec4(clamp(1.0 - bitmask.intensity * (1.0 - visibility), 0.0, 1.0),
-              specularSum.y / float(max(sliceCount, 1)), 0.0, 0.0);
+              specularSum.y / float(max(sliceCount, 1)), bend, 0.0);
 }
 
 void main() {
@@ -323,7 +341,7 @@ void main() {
 
   const vec3 reflected = reflect(-toEye, normal);
   const float lobeAlpha = specularLobeAlpha(texelFetch(gbufferMaterial, pixel, 0).y);
-  vec2 specularSum = vec2(0.0);  // the slices' weighted open shares of the lobe, and their weights
+  vec3 specularSum = vec3(0.0);  // the slices' weighted open shares of the lobe, their weights, bends
 
   const int sliceCount = bitmask.sliceCount;
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
