@@ -63,8 +63,12 @@ void main() {
                                               float(dx * dx + dy * dy) * kSpatialFalloff);
       sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
       skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
-      const vec3 specular = texelFetch(rawSpecular, rawNeighbour, 0).rgb;
-      specularSum += vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight);
+      // The specular visibility over the inner 5x5 only (84 % of the
+      // Gaussian's weight): a fetch fewer on 24 of the 49 taps.
+      if (abs(dx) < kTapRadius && abs(dy) < kTapRadius) {
+        const vec3 specular = texelFetch(rawSpecular, rawNeighbour, 0).rgb;
+        specularSum += vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight);
+      }
       weightSum += weight;
     }
   // At full resolution the centre has weight 1. Below it, a pixel on a
