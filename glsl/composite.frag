@@ -78,11 +78,13 @@ void main() {
 #endif
 #ifdef HAS_CLEARCOAT_LOBE
   // The coat over the base's ambient and SSGI light, with its own reflection
-  // (the direct pass layered the lights and emission), occluded as the
-  // base's specular is: the SSGI estimates one lobe, the base's, and a coat
-  // usually lies on the base's normal.
+  // (the direct pass layered the lights and emission). Occluded by the
+  // diffuse sky visibility, not the specular one: the SSGI estimates the
+  // base's lobe (its roughness, its normal), and a glossy coat over a rough
+  // base reflects elsewhere (ClearCoatTest's coated column lost its
+  // highlight under the base's lobe, layers_conformance_tests.cpp).
   const Clearcoat coat = clearcoatAt(pixel, surface.view);
-  ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, specularVisibility));
+  ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, skyVisibility));
 #endif
   outRadiance = vec4(texelFetch(directTexture, pixel, 0).rgb + ambient, 1.0);
 }

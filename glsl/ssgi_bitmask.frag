@@ -309,7 +309,8 @@ vec3 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float al
 vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
   const bool seen = specularSum.y > 1e-4;
   const float visibility = seen ? clamp(specularSum.x / specularSum.y, 0.0, 1.0) : skyVisibility;
-  const float bend = specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0;
+  // The intensity fades the occlusion, and the bend with it (0: none).
+  const float bend = specularSum.x > 1e-6 ? clamp(bitmask.intensity, 0.0, 1.0) * specularSum.z / specularSum.x : 0.0;
   return vec4(clamp(1.0 - bitmask.intensity * (1.0 - visibility), 0.0, 1.0),
               specularSum.y / float(max(sliceCount, 1)), bend, 0.0);
 }

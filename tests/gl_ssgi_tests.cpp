@@ -200,7 +200,7 @@ TEST_CASE("Bitmask sky visibility beyond R: the Cornell box's closed walls") {
   renderer.setScene(loadScene("builtin:cornell"));
   RenderSettings settings = bitmaskBeyondRSettings();
   const Frame frame = renderer.render(settings);
-  REQUIRE(frame.ssgi.channels.size() == 8);
+  REQUIRE(frame.ssgi.channels.size() == 9);
   REQUIRE(frame.ssgi.channels[4] == "sky.Y");
   REQUIRE(frame.ssgi.channels[5] == "indirectFar.R");
 
@@ -309,7 +309,7 @@ TEST_CASE("The kernel methods write their AO within R as the sky visibility, and
       CAPTURE(blur);
       settings.ssgi.blur = blur;
       const Frame frame = renderer.render(settings);
-      REQUIRE(frame.ssgi.channels.size() == 8);
+      REQUIRE(frame.ssgi.channels.size() == 9);
       // Exact without the blur; 1e-3 with it (as above).
       const float tolerance = blur ? 1e-3f : 0.0f;
       for (int y = 0; y < frame.ssgi.height; ++y)
