@@ -34,7 +34,23 @@ vec3 skyIrradianceOverPi(vec3 normal) {
   return texture(skyIrradiance, vec2(tableCoordinate(normal.y, -1.0, 1.0, width), 0.5)).rgb;
 }
 
-vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
+// `reflected` turned by `angle` radians toward `normal`, in their plane
+// (unturned where they are parallel: no plane).
+vec3 bentReflection(vec3 reflected, vec3 normal, float angle) {
+  const vec3 towardNormal = normal - reflected * dot(normal, reflected);
+  const float length2 = dot(towardNormal, towardNormal);
+  if (angle == 0.0 || length2 < 1e-8) return reflected;
+  return normalize(reflected * cos(angle) + towardNormal * (sin(angle) * inversesqrt(length2)));
+}
+
+// `skyVisibility` occludes the diffuse (and sheen) sky light, the
+// cosine-weighted share of the hemisphere open to the sky;
+// `specularVisibility` the specular, the share of the GGX lobe about the
+// reflection that escapes (ssgi_bitmask.frag; the same number where no pass
+// estimates it), and `specularBend` turns the reflection toward the normal
+// by that many radians, to the mean direction of the part that escapes.
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, float specularVisibility,
+                  float specularBend, vec3 indirect) {
   const float size = float(kBrdfLutSize);
   float tableRoughness = surface.roughness;
 #ifdef HAS_ANISOTROPY_LOBE
@@ -57,15 +73,21 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
     reflected = anisotropicReflection(surface.normal, surface.view, surface.anisotropyTangent,
                                       surface.anisotropyStrength, surface.roughness);
 #endif
+  reflected = bentReflection(reflected, surface.normal, specularBend);
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
-  vec3 ambient = diffuseIbl + specularIbl;
+  vec3 ambient = diffuseIbl * skyVisibility + specularIbl * specularVisibility;
 #ifdef HAS_SHEEN_LOBE
   if (surface.sheenColor != vec3(0.0)) {
     const vec3 mirrored = reflect(-surface.view, surface.normal);
     ambient = ambient * sheenAmbientBaseScale(surface.sheenColor, surface.sheenRoughness, surface.nDotV) +
-              sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
-                           prefilteredSky(mirrored, surface.sheenRoughness));
+              skyVisibility * sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
+                                           prefilteredSky(mirrored, surface.sheenRoughness));
   }
 #endif
-  return ambient * lighting.skyIntensity * materialOcclusion * skyVisibility + indirect;
+  return ambient * lighting.skyIntensity * materialOcclusion + indirect;
+}
+
+// One visibility for both (the passes without SSGI pass 1).
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, vec3 indirect) {
+  return ambientLight(surface, materialOcclusion, skyVisibility, skyVisibility, 0.0, indirect);
 }

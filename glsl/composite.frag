@@ -2,7 +2,10 @@
 // occluded by the material's AO and the SSGI's sky visibility (at any
 // distance: the sky is infinitely far, so AO within R would let a closed
 // room see it), + SSGI's indirect term:
-//   ambient = (diffuse_ibl + specular_ibl) * material_ao * ssgi_sky + ssgi_indirect + ssgi_indirect_far
+//   ambient = (diffuse_ibl * ssgi_sky + specular_ibl * ssgi_specular) * material_ao + ssgi_indirect
+//             + ssgi_indirect_far
+// (ssgi_specular: the share of the specular lobe about the reflection open
+// to the sky, ssgi_bitmask.frag; the kernel methods write their AO there.)
 // Background pixels show the sky, alpha 0. Without HAS_SKY (sky intensity
 // 0) the sky term is left out: what it would add is exactly 0. With
 // HAS_ENVIRONMENT the environment map's tables stand in for the sky's
@@ -23,6 +26,7 @@ layout(binding = kUnitDirect) uniform sampler2D directTexture;
 #ifdef HAS_SSGI
 layout(binding = kUnitSsgi) uniform sampler2D ssgiTexture;
 layout(binding = kUnitSsgiSky) uniform sampler2D ssgiSkyTexture;
+layout(binding = kUnitSsgiSpecular) uniform sampler2D ssgiSpecularTexture;
 #endif
 
 layout(location = 0) out vec4 outRadiance;
@@ -59,19 +63,26 @@ void main() {
   // Light gathered within R and beyond it (the kernel methods: none beyond).
   const vec3 indirect = texelFetch(ssgiTexture, pixel, 0).gba + sky.gba;
   const float skyVisibility = sky.r;
+  const vec2 specular = texelFetch(ssgiSpecularTexture, pixel, 0).rb;  // visibility, bend
+  const float specularVisibility = specular.x, specularBend = specular.y;
 #else
   const vec3 indirect = vec3(0.0);
   const float skyVisibility = 1.0;
+  const float specularVisibility = 1.0, specularBend = 0.0;
 #endif
   const float materialOcclusion = material.z;
 #ifdef HAS_SKY
-  vec3 ambient = ambientLight(surface, materialOcclusion, skyVisibility, indirect);
+  vec3 ambient = ambientLight(surface, materialOcclusion, skyVisibility, specularVisibility, specularBend, indirect);
 #else
   vec3 ambient = indirect;
 #endif
 #ifdef HAS_CLEARCOAT_LOBE
   // The coat over the base's ambient and SSGI light, with its own reflection
-  // (the direct pass layered the lights and emission).
+  // (the direct pass layered the lights and emission). Occluded by the
+  // diffuse sky visibility, not the specular one: the SSGI estimates the
+  // base's lobe (its roughness, its normal), and a glossy coat over a rough
+  // base reflects elsewhere (ClearCoatTest's coated column lost its
+  // highlight under the base's lobe, layers_conformance_tests.cpp).
   const Clearcoat coat = clearcoatAt(pixel, surface.view);
   ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, skyVisibility));
 #endif

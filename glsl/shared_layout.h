@@ -90,7 +90,8 @@ using mat4 = glm::mat4;
   X(kUnitAnisotropyTexture, 38)           \
   X(kUnitTransmissionTexture, 39)         \
   X(kUnitThicknessTexture, 40)            \
-  X(kUnitTransmissionBackground, 41)
+  X(kUnitTransmissionBackground, 41)      \
+  X(kUnitSsgiSpecular, 42)
 
 // Image units (X(name, unit)), for image load/store: none yet.
 #define HL_IMAGE_UNITS(X)

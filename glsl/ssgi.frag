@@ -20,6 +20,8 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 layout(location = 0) out vec4 outSsgi;
 // This kernel sees no farther than R: its AO within R is its sky visibility.
 layout(location = 1) out vec4 outSky;
+// And its specular sky visibility (no lobe: the AO again), weight 1.
+layout(location = 2) out vec4 outSpecular;
 
 void main() {
   // Below full resolution each output pixel shades the G-buffer pixel at
@@ -71,4 +73,5 @@ void main() {
 #endif
   outSsgi = vec4(ambientOcclusion, indirect * (ssgi.indirectStrength / float(sampleCount)));
   outSky = vec4(ambientOcclusion, 0.0, 0.0, 0.0);
+  outSpecular = vec4(ambientOcclusion, 1.0, 0.0, 0.0);
 }

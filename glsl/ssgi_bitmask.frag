@@ -32,6 +32,7 @@ layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 
 layout(location = 0) out vec4 outSsgi;
 layout(location = 1) out vec4 outSky;
+layout(location = 2) out vec4 outSpecular;
 
 // The world width of a pixel at view depth `viewZ` (negative in front).
 float pixelFootprint(float viewZ) {
@@ -231,6 +232,89 @@ void marchBeyondRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
   }
 }
 
+// ---- Specular sky visibility (issue 16; docs/ACCURACY.md §3.3) -------------
+// The split-sum specular reflects the sky about R = reflect(-V, N) within a
+// GGX lobe; the reference counts the sky only where the lobe's rays escape.
+// The diffuse sky visibility is cosine-weighted over the hemisphere: for a
+// reflection aimed at the floor it is far too open. Each slice's mask of
+// sectors covered at any distance is read under the lobe instead, about R's
+// angle projected into the slice, and the slices are weighted by how near R
+// lies to their planes.
+
+// The lobe's width in angle: GGX's alpha = roughness^2 (the roughness
+// clamped as brdf.glsl's makeSurface does), at least a quarter sector so
+// that the sector nearest R keeps a usable weight for a mirror.
+float specularLobeAlpha(float roughness) {
+  const float clamped = max(roughness, 0.03);
+  return max(clamped * clamped, 0.25 * kPi / float(kSectors));
+}
+
+// sin(x) on [0, pi] by Bhaskara's rational approximation (error < 0.002):
+// a sector's N.L in the slice without a sine call per sector.
+float sinHalfTurn(float x) {
+  const float p = x * (kPi - x);
+  return 16.0 * p / (5.0 * kPi * kPi - 4.0 * p);
+}
+
+// One slice's reading of the lobe: x = the open share of the lobe's weight
+// over the slice's 32 sectors (sectors in `covered` are blocked), y = the
+// slice's weight, cos^8 of R's angle to the slice's plane (0 where the lobe
+// misses the hemisphere), z = x times the bend: how far the open part's
+// mean direction lies from the whole lobe's, in radians toward the normal.
+// The open part sees another stretch of sky than the lobe about R (under a
+// ball, the rays that escape go up, where the sky is brighter), so the
+// composite looks the sky up along R turned by the bend. In the plane of incidence a direction delta from
+// R has its half vector delta / 2 from N, so the lobe's profile is GGX's D
+// there, 1 / (alpha^2 + tan^2(delta / 2))^2 ~ 1 / (1 + (delta / 2 alpha)^2)^2,
+// with its long tails; times Smith's G1 for L (Schlick's form, k = alpha / 2),
+// which fades the lobe at the horizon. (The split sum's N.L cancels in
+// BRDF cos.)
+vec3 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float alpha) {
+  const vec3 axis = cross(slice.side, slice.toEye);
+  const float outOfPlane = dot(reflected, axis);
+  float weight = max(1.0 - outOfPlane * outOfPlane, 0.0);
+  weight *= weight;
+  weight *= weight;
+  const float thetaR = atan(dot(reflected, slice.side), dot(reflected, slice.toEye));
+  const float sectorAngle = kPi / float(kSectors);
+  const float k = 0.5 * alpha;
+  float open = 0.0, total = 0.0, openAngle = 0.0, totalAngle = 0.0;  // angles from R, lobe-weighted
+  for (int s = 0; s < kSectors; ++s) {
+    const float fromHorizon = (float(s) + 0.5) * sectorAngle;
+    const float fromR = slice.lowest + fromHorizon - thetaR;
+    const float offset = fromR / (2.0 * alpha);
+    const float profile = 1.0 / (1.0 + offset * offset);
+    const float nDotL = sinHalfTurn(fromHorizon);
+    const float lobe = profile * profile * nDotL / (nDotL * (1.0 - k) + k);
+    total += lobe;
+    totalAngle += lobe * fromR;
+    if ((covered & (1u << uint(s))) == 0u) {
+      open += lobe;
+      openAngle += lobe * fromR;
+    }
+  }
+  if (total <= 1e-12) return vec3(0.0);
+  // The normal's angle in the slice is lowest + pi/2: positive bends toward it.
+  const float towardNormal = slice.lowest + 0.5 * kPi >= thetaR ? 1.0 : -1.0;
+  const float bend = open > 1e-12 ? towardNormal * (openAngle / open) : 0.0;
+  const float visible = weight * open / total;
+  return vec3(visible, weight, visible * bend);
+}
+
+// The specular visibility the pass writes: R = the slices' weighted mean
+// (the diffuse sky visibility where no slice saw the lobe), G = the mean
+// slice weight, by which the blur weighs the pixel against its neighbours,
+// B = the bend (radians toward the normal), the slices' mean weighted by
+// their open shares.
+vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
+  const bool seen = specularSum.y > 1e-4;
+  const float visibility = seen ? clamp(specularSum.x / specularSum.y, 0.0, 1.0) : skyVisibility;
+  // The intensity fades the occlusion, and the bend with it (0: none).
+  const float bend = specularSum.x > 1e-6 ? clamp(bitmask.intensity, 0.0, 1.0) * specularSum.z / specularSum.x : 0.0;
+  return vec4(clamp(1.0 - bitmask.intensity * (1.0 - visibility), 0.0, 1.0),
+              specularSum.y / float(max(sliceCount, 1)), bend, 0.0);
+}
+
 void main() {
   const int divisor = bitmask.downsample;
   const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
@@ -255,6 +339,10 @@ void main() {
       fract((float(bayer) + 0.5) / 16.0 + unitFromHash(tileHash) + 0.7548777 * rotationIndex);
   const float jitter = fract((float((bayer * 7 + 5) & 15) + 0.5) / 16.0 + unitFromHash(pcgHash(tileHash)) +
                              0.5698403 * rotationIndex);
+
+  const vec3 reflected = reflect(-toEye, normal);
+  const float lobeAlpha = specularLobeAlpha(texelFetch(gbufferMaterial, pixel, 0).y);
+  vec3 specularSum = vec3(0.0);  // the slices' weighted open shares of the lobe, their weights, bends
 
   const int sliceCount = bitmask.sliceCount;
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
@@ -292,6 +380,7 @@ void main() {
     visibleSum += slice.projectedLength * max(total - sectorWeight(slice.occupied, edges), 0.0);
     // What is occluded within R is occluded from the sky too.
     const float skyOccludedWeight = sectorWeight(slice.skyOccupied | slice.occupied, edges);
+    specularSum += sliceSpecularVisibility(slice, slice.skyOccupied | slice.occupied, reflected, lobeAlpha);
     skyVisibleSum += slice.projectedLength * max(total - skyOccludedWeight, 0.0);
     totalSum += slice.projectedLength * total;
   }
@@ -309,4 +398,5 @@ void main() {
   const vec3 farGathered = totalSum > 0.0 ? farIndirect / totalSum : vec3(0.0);
   outSky = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
                 farGathered * receiver * bitmask.indirectStrength);
+  outSpecular = specularOutput(specularSum, skyVisibility, sliceCount);
 }

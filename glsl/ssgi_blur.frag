@@ -9,9 +9,12 @@ layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitSsgi) uniform sampler2D rawSsgi;
 layout(binding = kUnitSsgiSky) uniform sampler2D rawSky;
+// R = specular sky visibility, G = its weight, B = its bend (ssgi_bitmask.frag's specularOutput).
+layout(binding = kUnitSsgiSpecular) uniform sampler2D rawSpecular;
 
 layout(location = 0) out vec4 outSsgi;
 layout(location = 1) out vec4 outSky;
+layout(location = 2) out vec4 outSpecular;
 
 // A 7x7 window with Gaussian weights (sigma 2 pixels): it spans about two
 // of the SSGI pass's 4x4 tiles, each offset differently, so it averages
@@ -39,6 +42,9 @@ void main() {
   const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
   vec4 sum = vec4(0.0);
   vec4 skySum = vec4(0.0);
+  // Visibility and weight weighted by the blur's weight times the pixel's own
+  // (its G); the bend by that times the visibility, as the pass weighs it.
+  vec3 specularSum = vec3(0.0);
   float weightSum = 0.0;
   for (int dy = -kTapRadius; dy <= kTapRadius; ++dy)
     for (int dx = -kTapRadius; dx <= kTapRadius; ++dx) {
@@ -57,6 +63,12 @@ void main() {
                                               float(dx * dx + dy * dy) * kSpatialFalloff);
       sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
       skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
+      // The specular visibility over the inner 5x5 only (84 % of the
+      // Gaussian's weight): a fetch fewer on 24 of the 49 taps.
+      if (abs(dx) < kTapRadius && abs(dy) < kTapRadius) {
+        const vec3 specular = texelFetch(rawSpecular, rawNeighbour, 0).rgb;
+        specularSum += vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight);
+      }
       weightSum += weight;
     }
   // At full resolution the centre has weight 1. Below it, a pixel on a
@@ -64,4 +76,8 @@ void main() {
   const bool weighed = weightSum > 1e-4;
   outSsgi = weighed ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
   outSky = weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0);
+  // Where no neighbour's slices saw the lobe, the sky visibility stands in.
+  outSpecular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(weightSum, 1e-4),
+                                            specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
+                                     : vec4(outSky.r, 0.0, 0.0, 0.0);
 }

@@ -162,8 +162,9 @@ struct Renderer::Impl {
   }
 
   SsgiTextures ssgiOutput(bool raw) const {
-    return raw ? SsgiTextures{texture(Attachment::SsgiRaw), texture(Attachment::SsgiRawSky)}
-               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky)};
+    return raw ? SsgiTextures{texture(Attachment::SsgiRaw), texture(Attachment::SsgiRawSky),
+                              texture(Attachment::SsgiRawSpecular)}
+               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky), texture(Attachment::SsgiSpecular)};
   }
 
   // The light buffer: the scene's lights, each with its slot in the shadow

@@ -66,7 +66,7 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   CHECK(readOf(plan, "emissive") == nullptr);  // not drawn, not named: not written
   const TargetRead* ssgi = readOf(plan, "ssgi");
   REQUIRE(ssgi);
-  CHECK(ssgi->sources == std::vector<Attachment>{Attachment::Ssgi, Attachment::SsgiSky});
+  CHECK(ssgi->sources == std::vector<Attachment>{Attachment::Ssgi, Attachment::SsgiSky, Attachment::SsgiSpecular});
   for (const char* name : {"position", "normal", "albedo", "material", "depth", "lit"}) CHECK(readOf(plan, name));
 }
 

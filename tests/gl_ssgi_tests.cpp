@@ -200,7 +200,7 @@ TEST_CASE("Bitmask sky visibility beyond R: the Cornell box's closed walls") {
   renderer.setScene(loadScene("builtin:cornell"));
   RenderSettings settings = bitmaskBeyondRSettings();
   const Frame frame = renderer.render(settings);
-  REQUIRE(frame.ssgi.channels.size() == 8);
+  REQUIRE(frame.ssgi.channels.size() == 9);
   REQUIRE(frame.ssgi.channels[4] == "sky.Y");
   REQUIRE(frame.ssgi.channels[5] == "indirectFar.R");
 
@@ -245,7 +245,7 @@ TEST_CASE("Bitmask sky visibility and light beyond R against the reference's sky
   reference.samplesPerPixel = 256;  // standard error <= 0.031 per pixel, ~0.0005 on the RMSE over ~3500 pixels
   reference.radius = *frame.settings.ssgi.radius;
   const ReferenceImages truth = traceReference(renderer.scene(), frame, reference);
-  REQUIRE(truth.ao.channels == std::vector<std::string>{"ao.Y", "sky.Y"});
+  REQUIRE(truth.ao.channels == std::vector<std::string>{"ao.Y", "sky.Y", "specular.Y"});
   const ErrorStats sky = maskedError(frame.ssgi, 4, truth.ao, 1, frame.position);
   const ErrorStats ao = maskedError(frame.ssgi, 0, truth.ao, 0, frame.position);
   const ErrorStats skyFromAo = maskedError(frame.ssgi, 0, truth.ao, 1, frame.position);
@@ -309,7 +309,7 @@ TEST_CASE("The kernel methods write their AO within R as the sky visibility, and
       CAPTURE(blur);
       settings.ssgi.blur = blur;
       const Frame frame = renderer.render(settings);
-      REQUIRE(frame.ssgi.channels.size() == 8);
+      REQUIRE(frame.ssgi.channels.size() == 9);
       // Exact without the blur; 1e-3 with it (as above).
       const float tolerance = blur ? 1e-3f : 0.0f;
       for (int y = 0; y < frame.ssgi.height; ++y)

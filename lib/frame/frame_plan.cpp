@@ -44,8 +44,11 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", false, nullptr, true},
     {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", true, nullptr, true},
     {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", true, nullptr},
+    {Attachment::SsgiRawSpecular, "ssgi.rawSpecular", F::Rgba16F, -1, "", true, nullptr},
     {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi, true},
     {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", false, &Frame::ssgi},
+    // The specular sky visibility (ssgi channel 8) and, internal, its weight.
+    {Attachment::SsgiSpecular, "ssgi.specular", F::Rgba16F, -1, "", false, &Frame::ssgi},
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
     // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
     {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
@@ -165,9 +168,11 @@ void planAttachments(FramePlan& plan) {
   if (plan.ssgi) {
     allocate(Attachment::Ssgi);
     allocate(Attachment::SsgiSky);
+    allocate(Attachment::SsgiSpecular);
     if (plan.ssgi->blur) {
       allocate(Attachment::SsgiRaw);
       allocate(Attachment::SsgiRawSky);
+      allocate(Attachment::SsgiRawSpecular);
     }
   }
   if (plan.composite) allocate(Attachment::Lit);

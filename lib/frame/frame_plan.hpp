@@ -105,8 +105,10 @@ enum class Attachment {
   DirectDiffuse,
   SsgiRaw,  // the SSGI pass's output before the blur (its own resolution)
   SsgiRawSky,
+  SsgiRawSpecular,
   Ssgi,  // after the blur: what the composite reads and ssgi.exr holds
   SsgiSky,
+  SsgiSpecular,  // the specular lobe's sky visibility (R) and its weight (G, internal)
   Lit,
   BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
   Transmission,   // the transmission pass's throughput and path length; only for scenes that transmit

@@ -34,7 +34,8 @@ constexpr std::string_view kMaterialChannels[] = {"material.metallic", "material
 constexpr std::string_view kDepthChannels[] = {"depth.Z"};
 constexpr std::string_view kEmissiveChannels[] = {"emissive.R", "emissive.G", "emissive.B"};
 constexpr std::string_view kSsgiChannels[] = {"ao.Y",  "indirect.R",    "indirect.G",    "indirect.B",
-                                              "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B"};
+                                              "sky.Y", "indirectFar.R", "indirectFar.G", "indirectFar.B",
+                                              "specular.Y"};
 constexpr std::string_view kLitChannels[] = {"R", "G", "B", "A"};
 constexpr std::string_view kCoverageChannels[] = {"coverage.Y"};
 constexpr std::string_view kTransmissionChannels[] = {"transmission.R", "transmission.G", "transmission.B",
@@ -85,8 +86,9 @@ const FrameTarget kTargets[] = {
      "direction comes from the tangent frame, which drivers interpolate a little apart at silhouettes, and 0.02 is "
      "about 1 degree of it; the strength comes from 8-bit textures and factors (one step 3.9e-3)."},
     {"ssgi", &Frame::ssgi, kSsgiChannels, E::Radiance, M::Absolute, thresholds(5e-3, 5e-2, 1.0, 2e-2),
-     "AO within R, one-bounce indirect within R, sky visibility at any distance and indirect from beyond R, 0..~1; "
-     "absent with SSGI off. Two GPU textures (ao + indirect, then sky + indirectFar). Seeded and repeatable on one "
+     "AO within R, one-bounce indirect within R, sky visibility at any distance, indirect from beyond R, and the "
+     "specular lobe's sky visibility (the kernel methods: AO), 0..~1; absent with SSGI off. Three GPU textures (ao "
+     "+ indirect, sky + indirectFar, specular). Seeded and repeatable on one "
      "driver, but one of 64 kernel samples "
      "landing on another pixel moves AO by 1/64; 0.05 is about three such flips or a visible shade, and sky.Y is "
      "held to the same: its long-range samples flip the same way, one slab of a 32-sector mask moves it by ~1/32. "

@@ -23,6 +23,7 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
   if (variant.ssgi) {
     inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
     inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
+    inputs.ssgi->specular.bind(gpu::kUnitSsgiSpecular);
   }
   bindAmbientTables(inputs.environment, variant.sky, variant.environment);
   draw("composite", variant, output);

@@ -99,7 +99,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   }
   // Background pixels are discarded by the shader and keep the clear value:
   // open, no indirect light.
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
   draw("SSGI", settings.method, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 

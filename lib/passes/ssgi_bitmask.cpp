@@ -26,7 +26,7 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
   if (inputs.accumulateWeight > 0.0f) {
     // A running mean: background pixels are discarded and keep what the
     // first frame cleared them to.

@@ -17,8 +17,9 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   inputs.rawSsgi.occlusion.bind(gpu::kUnitSsgi);
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
+  inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
   const glm::vec4 background(1.0f, 0.0f, 0.0f, 0.0f);  // as the SSGI pass leaves it
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky};
+  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
   draw_.draw("SSGI blur", program_, outputs, background);
 }
 

@@ -49,7 +49,8 @@ class Tracer {
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
                         const Clearcoat& coat, const TransmissiveSurface& transmissive = {});
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
-                         Pcg32& random, glm::vec3* specularAlbedoOut = nullptr);
+                         Pcg32& random, glm::vec3* specularAlbedoOut = nullptr,
+                         float* specularVisibilityOut = nullptr);
   glm::vec3 sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random);
   glm::vec3 environmentIrradianceOverPi(const Surface& surface, const glm::vec3& origin, int count, Pcg32& random);
   glm::vec3 radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayDirection);

@@ -136,7 +136,7 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
 
   ReferenceImages images;
   images.samplesPerPixel = settings.samplesPerPixel;
-  images.ao = makeImage(width, height, {"ao.Y", "sky.Y"});
+  images.ao = makeImage(width, height, {"ao.Y", "sky.Y", "specular.Y"});
   images.indirect =
       makeImage(width, height, {"indirectR.R", "indirectR.G", "indirectR.B", "indirect.R", "indirect.G", "indirect.B"});
   images.lit = makeImage(width, height, {"R", "G", "B", "A"});

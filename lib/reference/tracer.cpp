@@ -28,12 +28,12 @@ namespace headlight::reference {
 void Tracer::tracePixel(int x, int y, const Outputs& out) {
   const Frame& frame = in_.frame;
   const std::size_t pixel = std::size_t(y) * std::size_t(frame.position.width) + std::size_t(x);
-  float* ao = &out.images.ao.pixels[pixel * 2];
+  float* ao = &out.images.ao.pixels[pixel * 3];
   float* indirect = &out.images.indirect.pixels[pixel * 6];
   float* lit = &out.images.lit.pixels[pixel * 4];
   if (frame.position.at(x, y, 3) == 0.0f) {
     const glm::vec3 sky = backgroundRadiance(backgroundRay(x, y));
-    ao[0] = ao[1] = 1.0f;
+    ao[0] = ao[1] = ao[2] = 1.0f;
     std::fill(indirect, indirect + 6, 0.0f);
     lit[0] = sky.r, lit[1] = sky.g, lit[2] = sky.b, lit[3] = 0.0f;
     if (in_.blendedScene) {
@@ -95,6 +95,7 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
   const glm::dvec3 indirectRMean = sumWithinRadius / count;
   ao[0] = float(aoValue);
   ao[1] = float(double(escaped) / count);
+  ao[2] = ao[1];  // specular.Y where no specular sample is taken (an unlit pixel); ambientLight's below
   for (int c = 0; c < 3; ++c) {
     indirect[c] = float(indirectRMean[c]);
     indirect[3 + c] = float(indirectMean[c]);
@@ -130,7 +131,7 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
   // A transmissive surface's diffuse lobe keeps only the share not transmitted.
   const float diffuseShare = 1.0f - transmissive.share;
   glm::vec3 specularAlbedo(0.0f);
-  glm::vec3 under = ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo) +
+  glm::vec3 under = ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo, &ao[2]) +
                     glm::vec3(indirectMean) * diffuseShare;
   if (!frame.emissive.empty())
     under += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));

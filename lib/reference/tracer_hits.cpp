@@ -212,9 +212,12 @@ glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position,
 // Anisotropy: the half vectors come from the stretched lobe, in its frame
 // (T, B, N), with its visibility. Sheen: each direction's base term is
 // scaled by the layer (sheenBaseScale), and the lobe itself is estimated
-// by sheenAmbient.
+// by sheenAmbient. The share of the lobe's Fresnel-free weight that
+// escapes is the specular sky visibility (ao_ref's specular.Y, compared with
+// the SSGI's specular.Y).
 glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis,
-                               const glm::vec3& skyMean, Pcg32& random, glm::vec3* specularAlbedoOut) {
+                               const glm::vec3& skyMean, Pcg32& random, glm::vec3* specularAlbedoOut,
+                               float* specularVisibilityOut) {
   const int m = in_.specularSamples;
   const float alpha = surface.roughness * surface.roughness;
   const bool stretched = surface.anisotropyStrength > 0.0f;
@@ -226,6 +229,8 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
     return glm::vec3(glm::dot(frame.tangent, v), glm::dot(frame.bitangent, v), nDot);
   };
   double scale = 0.0, bias = 0.0;
+  // specular.Y: the Fresnel-free weight of the samples that escape over all of it.
+  double escapedWeight = 0.0, lobeWeight = 0.0;
   glm::dvec3 specular(0.0);
   for (int j = 0; j < m; ++j) {
     const float xi0 = random.uniform(), xi1 = random.uniform();
@@ -244,13 +249,17 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
     const float fresnel = std::pow(1.0f - vDotH, 5.0f);
     scale += (1.0f - fresnel) * weight;
     bias += fresnel * weight;
+    lobeWeight += weight;
     const glm::vec3 direction = glm::normalize(toLight);
     // KHR_materials_iridescence: the film's Fresnel (one value per pixel) mixed in, as cookTorrance.
     const glm::vec3 sampleFresnel = glm::mix(surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel,
                                              surface.iridescenceFresnel, surface.iridescence);
-    if (unoccluded(origin, direction, std::numeric_limits<float>::infinity()))
+    if (unoccluded(origin, direction, std::numeric_limits<float>::infinity())) {
       specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction) * sheenBaseScale(surface, direction));
+      escapedWeight += weight;
+    }
   }
+  if (specularVisibilityOut && lobeWeight > 0.0) *specularVisibilityOut = float(escapedWeight / lobeWeight);
   const glm::vec3 specularAlbedo =
       glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
                surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
