@@ -72,8 +72,8 @@ struct SsgiSettings {
   // docs/BENCHMARKS.md, "Two resolutions".
   // Half and 2: cornell / slats / spheres / MetalRoughSpheres HDR-FLIP
   // 0.2429 / 0.0623 / 0.0497 / 0.0459 -> 0.2295 / 0.0626 / 0.0497 / 0.0468
-  // and SSGI time 2.0x -> 1.65x hemisphere-64's; quarter and 3 reach 1.5x at
-  // 0.2422 / 0.0625 / 0.0500 / 0.0470.
+  // and cornell's SSGI time 2.04x -> 1.64x hemisphere-64's; quarter and 3:
+  // 1.47-1.55x at 0.2422 / 0.0625 / 0.0500 / 0.0470 (docs/BENCHMARKS.md).
   SsgiResolution farResolution = SsgiResolution::Half;
   int farSliceCount = 2;
   // Bitmask frames averaged, each with rotated slices and jittered steps
