@@ -264,17 +264,31 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, kBindingSsgiBitmask)
   int downsample;           // resolution divisor of the SSGI target: 1, 2 or 4
   int rotationIndex;        // the seed + the accumulated frame's index: rotates slice directions and step jitter
   int skyStepCount;         // long-range depth samples per direction beyond R, for the sky visibility (0: none)
-  int pad0;
+  int part;                 // kBitmaskBoth, kBitmaskNearField or kBitmaskFarField: what the draw writes
   int pad1;
   int pad2;
 HL_BLOCK_END(bitmask)
+
+// SsgiBitmaskBlock::part. Both: location 0 the near field (AO and light
+// within R), location 1 the far field (sky visibility and light from beyond
+// R). NearField: location 0 only (the block's skyStepCount is 0). FarField:
+// the far field, to location 0, its sky visibility divided by the AO within
+// R (the blur multiplies it back by the full-resolution AO).
+HL_CONST(int, kBitmaskBoth, 0)
+HL_CONST(int, kBitmaskNearField, 1)
+HL_CONST(int, kBitmaskFarField, 2)
 
 // SSGI blur pass.
 HL_BLOCK_BEGIN(SsgiBlurBlock, kBindingSsgiBlur)
   float ssgiRadiusWorld;    // depth differences are judged against it
   int ssgiDownsample;       // the raw SSGI's resolution divisor (1, 2, 4)
-  float pad0;
-  float pad1;
+  int skyDownsample;        // the raw sky's: ssgiDownsample, or the far field's own pass's (2, 4)
+  int outputDownsample;     // the output's: 1, or the far field's when skyOnly
+  int skyTapRadius;         // the sky's window: 3 (7x7, sigma 2 texels), 1 (3x3, an upsample of a blurred sky), or
+                            // the far field's own blur's line
+  int skyOnly;              // 1: only the sky is filtered, and written to location 0 (the far field's own blur)
+  int skyAxisX;             // skyOnly: the line the window runs along, (1, 0) or (0, 1); (0, 0) a square
+  int skyAxisY;
 HL_BLOCK_END(blur)
 
 // Direct-light and composite passes.

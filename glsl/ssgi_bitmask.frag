@@ -31,8 +31,8 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 
 layout(location = 0) out vec4 outSsgi;
-layout(location = 1) out vec4 outSky;
-layout(location = 2) out vec4 outSpecular;
+layout(location = 2) out vec4 outSky;
+layout(location = 1) out vec4 outSpecular;
 
 // The world width of a pixel at view depth `viewZ` (negative in front).
 float pixelFootprint(float viewZ) {
@@ -393,10 +393,16 @@ void main() {
   // the occluded directions; the sums above are that integral over pi.
   const vec3 receiver = (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
   const vec3 gathered = totalSum > 0.0 ? indirect / totalSum : vec3(0.0);
-  outSsgi = vec4(ambientOcclusion, gathered * receiver * bitmask.indirectStrength);
+  const vec4 nearField = vec4(ambientOcclusion, gathered * receiver * bitmask.indirectStrength);
   // With no sky steps the mask above is the within-R one: sky = AO.
   const vec3 farGathered = totalSum > 0.0 ? farIndirect / totalSum : vec3(0.0);
-  outSky = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
-                farGathered * receiver * bitmask.indirectStrength);
+  const vec4 farField = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
+                             farGathered * receiver * bitmask.indirectStrength);
+  // The far field's own pass (a coarser resolution, lib/passes/ssgi_bitmask.hpp) writes it to location 0,
+  // its sky visibility as the part of the AO within R it leaves (the sky is open at most where that is): the
+  // blur multiplies it by the full-resolution AO, which keeps the contact detail a coarse sky would lose.
+  const float skyOfOpen = nearField.x > 1e-3 ? min(farField.x / nearField.x, 1.0) : 1.0;
+  outSsgi = bitmask.part == kBitmaskFarField ? vec4(skyOfOpen, farField.yzw) : nearField;
+  outSky = farField;
   outSpecular = specularOutput(specularSum, skyVisibility, sliceCount);
 }

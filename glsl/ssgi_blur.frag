@@ -2,14 +2,19 @@
 // raw SSGI averaged out, neighbours weighted by how alike their
 // G-buffer normal and depth are to this pixel's. The raw SSGI may be at
 // 1/2 or 1/4 of the resolution: then raw texel t stands for G-buffer pixel
-// t * divisor + divisor / 2, as the SSGI pass shaded it.
+// t * divisor + divisor / 2, as the SSGI pass shaded it. The raw sky may have
+// its own divisor (the bitmask method's far-field pass): it is blurred at
+// its own resolution first (skyOnly, the output at that divisor: a line of
+// texels along rows, then one along columns), then upsampled here from a
+// 3x3 window.
 #include "shared_layout.h"
 
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
 layout(binding = kUnitSsgi) uniform sampler2D rawSsgi;
 layout(binding = kUnitSsgiSky) uniform sampler2D rawSky;
-// R = specular sky visibility, G = its weight, B = its bend (ssgi_bitmask.frag's specularOutput).
+// R = specular sky visibility, G = its weight, B = its bend (ssgi_bitmask.frag's specularOutput),
+// on the raw sky's grid (the far field's pass writes it).
 layout(binding = kUnitSsgiSpecular) uniform sampler2D rawSpecular;
 
 layout(location = 0) out vec4 outSsgi;
@@ -21,63 +26,117 @@ layout(location = 2) out vec4 outSpecular;
 // their noise where the 4x4 box it replaced averaged one tile and showed the
 // tile's pattern. Measured on builtin:cornell at 256x256 against the
 // 4096-ray reference (docs/BENCHMARKS.md, "Structured artefacts").
+// A window of radius r has sigma 2r/3 texels: 2 for the 7x7, 2/3 for the
+// 3x3 upsample of a sky already blurred at its own resolution. The radii
+// are lib/passes/ssgi_blur.cpp's.
 const int kTapRadius = 3;
-const float kSpatialSigma = 2.0;
-const float kSpatialFalloff = 1.0 / (2.0 * kSpatialSigma * kSpatialSigma);
 
-void main() {
-  const ivec2 pixel = ivec2(gl_FragCoord.xy);
-  const vec4 centerPosition = texelFetch(gbufferPosition, pixel, 0);
-  if (centerPosition.a == 0.0) discard;  // background keeps the cleared value
-  const vec3 centerNormal = texelFetch(gbufferNormal, pixel, 0).xyz;
-  // View-space z of a world point: the view matrix's third row.
-  const vec4 viewDepthRow = vec4(frame.view[0][2], frame.view[1][2], frame.view[2][2], frame.view[3][2]);
-  const float centerDepth = dot(viewDepthRow, vec4(centerPosition.xyz, 1.0));
+// View-space z of a world point: the view matrix's third row.
+float viewDepth(vec3 world) {
+  return dot(vec4(frame.view[0][2], frame.view[1][2], frame.view[2][2], frame.view[3][2]), vec4(world, 1.0));
+}
+
+// The pixel the weights are judged against.
+struct Centre {
+  ivec2 pixel;
+  vec3 normal;
+  float depth;
+};
+
+// A window of raw texels (`radius` either side of `rawCentre` along x and y, raw texel u
+// standing for G-buffer pixel u * divisor + divisor / 2), weighted by the
+// Gaussian of its offset from `centreOnRaw` (raw texels) and by how alike
+// its normal and depth are to the centre's; `second` is summed with the same
+// weights when `withSecond`, and the specular visibility (on `first`'s grid)
+// of the taps within `specularRadius` (-1: none) into `specularSum`:
+// visibility and weight weighted by the blur's weight times the texel's own
+// (its G), the bend by that times the visibility, as the pass weighs them.
+void filterWindow(sampler2D first, sampler2D second, bool withSecond, int specularRadius, int divisor, ivec2 radius,
+                  ivec2 rawCentre, vec2 centreOnRaw, Centre centre, inout vec4 sum, inout vec4 secondSum,
+                  inout vec3 specularSum, inout float weightSum) {
   // A quarter of the SSGI radius: neighbours on the same surface differ by
   // far less, across a silhouette by more.
   const float depthScale = 0.25 * blur.ssgiRadiusWorld;
+  const float sigma = 2.0 * float(max(radius.x, radius.y)) / 3.0;
+  const float spatialFalloff = 1.0 / (2.0 * sigma * sigma);
   const ivec2 size = ivec2(frame.viewport.xy);
-  const int divisor = blur.ssgiDownsample;
-  const ivec2 rawSize = textureSize(rawSsgi, 0);
-  const ivec2 rawCenter = min(pixel / divisor, rawSize - 1);
-  vec4 sum = vec4(0.0);
-  vec4 skySum = vec4(0.0);
-  // Visibility and weight weighted by the blur's weight times the pixel's own
-  // (its G); the bend by that times the visibility, as the pass weighs it.
-  vec3 specularSum = vec3(0.0);
-  float weightSum = 0.0;
-  for (int dy = -kTapRadius; dy <= kTapRadius; ++dy)
-    for (int dx = -kTapRadius; dx <= kTapRadius; ++dx) {
-      const ivec2 rawNeighbour = clamp(rawCenter + ivec2(dx, dy), ivec2(0), rawSize - 1);
+  const ivec2 rawSize = textureSize(first, 0);
+  for (int dy = -radius.y; dy <= radius.y; ++dy)
+    for (int dx = -radius.x; dx <= radius.x; ++dx) {
+      const ivec2 rawNeighbour = clamp(rawCentre + ivec2(dx, dy), ivec2(0), rawSize - 1);
       const ivec2 neighbour = min(rawNeighbour * divisor + divisor / 2, size - 1);
       const vec4 position = texelFetch(gbufferPosition, neighbour, 0);
       if (position.a == 0.0) continue;
-      const float depth = dot(viewDepthRow, vec4(position.xyz, 1.0));
       // cos^8 by three squarings (llvmpipe's pow is an exp and a log).
-      float normalWeight = max(dot(centerNormal, texelFetch(gbufferNormal, neighbour, 0).xyz), 0.0);
+      float normalWeight = max(dot(centre.normal, texelFetch(gbufferNormal, neighbour, 0).xyz), 0.0);
       normalWeight *= normalWeight;
       normalWeight *= normalWeight;
       normalWeight *= normalWeight;
       // One exp for the depth and the Gaussian's distance together.
-      const float weight = normalWeight * exp(-abs(depth - centerDepth) / depthScale -
-                                              float(dx * dx + dy * dy) * kSpatialFalloff);
-      sum += texelFetch(rawSsgi, rawNeighbour, 0) * weight;
-      skySum += texelFetch(rawSky, rawNeighbour, 0) * weight;
-      // The specular visibility over the inner 5x5 only (84 % of the
-      // Gaussian's weight): a fetch fewer on 24 of the 49 taps.
-      if (abs(dx) < kTapRadius && abs(dy) < kTapRadius) {
+      const vec2 offset = vec2(rawCentre + ivec2(dx, dy)) - centreOnRaw;
+      const float weight = normalWeight * exp(-abs(viewDepth(position.xyz) - centre.depth) / depthScale -
+                                              dot(offset, offset) * spatialFalloff);
+      sum += texelFetch(first, rawNeighbour, 0) * weight;
+      if (withSecond) secondSum += texelFetch(second, rawNeighbour, 0) * weight;
+      if (abs(dx) <= specularRadius && abs(dy) <= specularRadius) {
         const vec3 specular = texelFetch(rawSpecular, rawNeighbour, 0).rgb;
         specularSum += vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight);
       }
       weightSum += weight;
     }
+}
+
+void main() {
+  // The G-buffer pixel this output texel stands for.
+  const int outputDivisor = blur.outputDownsample;
+  const ivec2 size = ivec2(frame.viewport.xy);
+  const ivec2 pixel = min(ivec2(gl_FragCoord.xy) * outputDivisor + outputDivisor / 2, size - 1);
+  const vec4 centrePosition = texelFetch(gbufferPosition, pixel, 0);
+  if (centrePosition.a == 0.0) discard;  // background keeps the cleared value
+  const Centre centre = Centre(pixel, texelFetch(gbufferNormal, pixel, 0).xyz, viewDepth(centrePosition.xyz));
+  const int skyDivisor = blur.skyDownsample;
+  const ivec2 rawSkyCentre = min(pixel / skyDivisor, textureSize(rawSky, 0) - 1);
+  vec4 skySum = vec4(0.0), unused = vec4(0.0);
+  vec3 specularSum = vec3(0.0), noSpecular = vec3(0.0);
+  float skyWeightSum = 0.0;
+  if (blur.skyOnly != 0) {
+    const ivec2 axis = ivec2(blur.skyAxisX, blur.skyAxisY);
+    const ivec2 radius = blur.skyTapRadius * (axis == ivec2(0) ? ivec2(1) : axis);
+    filterWindow(rawSky, rawSky, false, -1, skyDivisor, radius, rawSkyCentre, vec2(rawSkyCentre), centre, skySum,
+                 unused, noSpecular, skyWeightSum);
+    outSsgi = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
+    return;
+  }
+  const int divisor = blur.ssgiDownsample;
+  const ivec2 rawCentre = min(pixel / divisor, textureSize(rawSsgi, 0) - 1);
+  vec4 sum = vec4(0.0);
+  float weightSum = 0.0;
+  if (skyDivisor == divisor) {
+    // One grid: the sky takes the same weights, and the specular over the
+    // inner 5x5 of the 7x7 (84 % of the Gaussian's weight, a fetch fewer on
+    // 24 of the 49 taps).
+    filterWindow(rawSsgi, rawSky, true, kTapRadius - 1, divisor, ivec2(kTapRadius), rawCentre, vec2(rawCentre),
+                 centre, sum, skySum, specularSum, weightSum);
+    skyWeightSum = weightSum;
+  } else {
+    filterWindow(rawSsgi, rawSsgi, false, -1, divisor, ivec2(kTapRadius), rawCentre, vec2(rawCentre), centre, sum,
+                 unused, noSpecular, weightSum);
+    // The pixel's own place on the sky's grid (texel u stands for pixel
+    // u * d + d / 2), so that the upsample is not shifted toward one texel.
+    const vec2 centreOnSky = vec2(pixel - skyDivisor / 2) / float(skyDivisor);
+    // The specular on the sky's grid, over the whole upsample window.
+    filterWindow(rawSky, rawSky, false, blur.skyTapRadius, skyDivisor, ivec2(blur.skyTapRadius), rawSkyCentre,
+                 centreOnSky, centre, skySum, unused, specularSum, skyWeightSum);
+  }
   // At full resolution the centre has weight 1. Below it, a pixel on a
   // surface no raw texel nearby sampled (a thin strut) takes the nearest.
-  const bool weighed = weightSum > 1e-4;
-  outSsgi = weighed ? sum / weightSum : texelFetch(rawSsgi, rawCenter, 0);
-  outSky = weighed ? skySum / weightSum : texelFetch(rawSky, rawCenter, 0);
+  outSsgi = weightSum > 1e-4 ? sum / weightSum : texelFetch(rawSsgi, rawCentre, 0);
+  outSky = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
+  // A coarser sky holds the sky visibility over the AO within R (ssgi_bitmask.frag): times this pixel's AO.
+  if (skyDivisor != divisor) outSky.x *= outSsgi.x;
   // Where no neighbour's slices saw the lobe, the sky visibility stands in.
-  outSpecular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(weightSum, 1e-4),
+  const float specularWeights = skyDivisor == divisor ? weightSum : skyWeightSum;
+  outSpecular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(specularWeights, 1e-4),
                                             specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
                                      : vec4(outSky.r, 0.0, 0.0, 0.0);
 }

@@ -129,7 +129,7 @@ struct Renderer::Impl {
     height = imageHeight;
     for (const AttachmentRow& row : attachmentRows()) {
       gl::Texture& texture = textures[std::size_t(row.id)];
-      const int divisor = row.ssgiResolution && plan.ssgi ? plan.ssgi->downsample : 1;
+      const int divisor = plan.divisorOf(row.id);
       const int w = (width + divisor - 1) / divisor, h = (height + divisor - 1) / divisor;
       if (!plan.allocates(row.id))
         texture = gl::Texture();
@@ -259,6 +259,7 @@ struct Renderer::Impl {
     SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr,
                       used};
     inputs.downsample = step.downsample;
+    inputs.farDownsample = step.farDownsample;
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.
     timer.run("ssgi", [&] {
@@ -270,7 +271,9 @@ struct Renderer::Impl {
     });
     if (step.blur)
       timer.run("ssgi-blur", [&] {
-        ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample}, ssgiOutput(false));
+        ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample, step.farDownsample,
+                      step.splitsFarField() ? &texture(Attachment::SsgiFarSky) : nullptr},
+                     ssgiOutput(false));
       });
   }
 };

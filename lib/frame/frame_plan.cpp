@@ -20,51 +20,54 @@ constexpr SsgiMethodTraits kSsgiMethods[] = {
 // ---- Attachments -----------------------------------------------------------------
 
 using F = GpuFormat;
+using S = AttachmentScale;
 // The one table of GPU formats: a target's format is the format of the
 // attachment that holds it. Direct light is internal. The rows marked
 // radiance hold light: half float, or float32 with radiance-precision float.
 constexpr AttachmentRow kAttachmentRows[] = {
-    {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", false, &Frame::position},
-    {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", false, &Frame::normal},
-    {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", false, &Frame::albedo},
-    {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", false, &Frame::material},
-    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, kAssignedLocation, "EMISSIVE_TARGET", false,
+    {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", S::Image, &Frame::position},
+    {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", S::Image, &Frame::normal},
+    {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", S::Image, &Frame::albedo},
+    {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", S::Image, &Frame::material},
+    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, kAssignedLocation, "EMISSIVE_TARGET", S::Image,
      &Frame::emissive, true},
     // Sheen colour in sRGB8 like the albedo (it comes from sRGB textures and
     // factors; the targets' sRGB encoding is applied on write), sheen
     // roughness in the linear alpha: 8 bits like the material factors.
-    {Attachment::GbufferSheen, "gbuffer.sheen", F::Srgb8Alpha8, kAssignedLocation, "SHEEN_TARGET", false,
+    {Attachment::GbufferSheen, "gbuffer.sheen", F::Srgb8Alpha8, kAssignedLocation, "SHEEN_TARGET", S::Image,
      &Frame::sheen, false, Lobe::Sheen, gpu::kUnitSheenLobe},
     // The anisotropy direction resolved to world space in the G-buffer pass
     // (the tangent frame lives there), half float like the normal: 0.03 deg.
-    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET", false,
-     &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
-    {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", false, &Frame::depth},
-    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", false, nullptr, true},
-    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", false, nullptr, true},
-    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", true, nullptr, true},
-    {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", true, nullptr},
-    {Attachment::SsgiRawSpecular, "ssgi.rawSpecular", F::Rgba16F, -1, "", true, nullptr},
-    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", false, &Frame::ssgi, true},
-    {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", false, &Frame::ssgi},
+    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET",
+     S::Image, &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
+    {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", S::Image, &Frame::depth},
+    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", S::Image, nullptr, true},
+    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", S::Image, nullptr, true},
+    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", S::SsgiNear, nullptr, true},
+    {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
+    {Attachment::SsgiFarSky, "ssgi.farSky", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
+    // Written with the sky (the far field's pass): its lobe reaches past R.
+    {Attachment::SsgiRawSpecular, "ssgi.rawSpecular", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
+    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", S::Image, &Frame::ssgi, true},
+    {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
     // The specular sky visibility (ssgi channel 8) and, internal, its weight.
-    {Attachment::SsgiSpecular, "ssgi.specular", F::Rgba16F, -1, "", false, &Frame::ssgi},
-    {Attachment::Lit, "lit", F::Rgba16F, -1, "", false, &Frame::lit, true},
+    {Attachment::SsgiSpecular, "ssgi.specular", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
+    {Attachment::Lit, "lit", F::Rgba16F, -1, "", S::Image, &Frame::lit, true},
     // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
-    {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", false, &Frame::coverage},
+    {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", S::Image, &Frame::coverage},
     // Half float: a throughput 0..1 and a path length in world units.
-    {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", false, &Frame::transmission},
+    {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", S::Image, &Frame::transmission},
     // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
     // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
-    {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET", false,
-     &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
+    {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET",
+     S::Image, &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
     // The specular and clearcoat lobes (glsl/lobe_*_material.glsl). Half
     // floats: a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
     // it; the coat's octahedral normal needs ~11 bits per coordinate.
-    {Attachment::GbufferSpecularLobe, "gbuffer.specularLobe", F::Rgba16F, kAssignedLocation, "SPECULAR_TARGET", false,
-     &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
+    {Attachment::GbufferSpecularLobe, "gbuffer.specularLobe", F::Rgba16F, kAssignedLocation, "SPECULAR_TARGET",
+     S::Image, &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
     {Attachment::GbufferClearcoatLobe, "gbuffer.clearcoatLobe", F::Rgba16F, kAssignedLocation, "CLEARCOAT_TARGET",
-     false, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
+     S::Image, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -173,6 +176,7 @@ void planAttachments(FramePlan& plan) {
       allocate(Attachment::SsgiRaw);
       allocate(Attachment::SsgiRawSky);
       allocate(Attachment::SsgiRawSpecular);
+      if (plan.ssgi->splitsFarField()) allocate(Attachment::SsgiFarSky);
     }
   }
   if (plan.composite) allocate(Attachment::Lit);
@@ -291,6 +295,15 @@ const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method) {
 std::span<const AttachmentRow> attachmentRows() { return kAttachmentRows; }
 const AttachmentRow& attachmentRow(Attachment id) { return kAttachmentRows[std::size_t(id)]; }
 
+int FramePlan::divisorOf(Attachment id) const {
+  switch (attachmentRow(id).scale) {
+    case AttachmentScale::SsgiNear: return ssgi ? ssgi->downsample : 1;
+    case AttachmentScale::SsgiFar: return ssgi ? ssgi->farDownsample : 1;
+    case AttachmentScale::Image: break;
+  }
+  return 1;
+}
+
 std::vector<std::string_view> FramePlan::passNames() const {
   std::vector<std::string_view> names;
   if (shadows) names.push_back("shadows");
@@ -335,9 +348,13 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   // What a scene without a lobe does not pay for, named once.
   if (const std::uint32_t absent = ~scene.lobes & (lobeBit(Lobe::Count) - 1))
     plan.skipped.push_back({"lobes", "no material uses " + lobeNames(absent) + " (no attachment, no shader code)"});
-  if (skips.runs(Work::Ssgi))
-    plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1,
-                         ssgiDivisor(settings.ssgi.resolution), settings.ssgi.blur};
+  if (skips.runs(Work::Ssgi)) {
+    const int divisor = ssgiDivisor(settings.ssgi.resolution);
+    // The far field's own pass needs far samples to march and the blur to upsample it.
+    const bool farPass = method.marchesBeyondRadius && settings.ssgi.skyStepCount > 0 && settings.ssgi.blur;
+    plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1, divisor, settings.ssgi.blur,
+                         farPass ? std::max(divisor, ssgiDivisor(settings.ssgi.farResolution)) : divisor};
+  }
   if (skips.runs(Work::Direct))
     plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
                                      plan.shadows && scene.cubeShadowCasters > 0,

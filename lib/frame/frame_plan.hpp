@@ -104,8 +104,9 @@ enum class Attachment {
   DirectTowardEye,
   DirectDiffuse,
   SsgiRaw,  // the SSGI pass's output before the blur (its own resolution)
-  SsgiRawSky,
-  SsgiRawSpecular,
+  SsgiRawSky,  // at the far field's resolution (SsgiStep::farDownsample)
+  SsgiFarSky,  // the far field blurred at its own resolution, before the upsample; only when it has its own pass
+  SsgiRawSpecular,  // at the far field's resolution, as the sky
   Ssgi,  // after the blur: what the composite reads and ssgi.exr holds
   SsgiSky,
   SsgiSpecular,  // the specular lobe's sky visibility (R) and its weight (G, internal)
@@ -127,6 +128,10 @@ inline constexpr int kAssignedLocation = -2;
 // it are skipped (and named) by the plan.
 inline constexpr std::size_t kMaxGbufferColorAttachments = 8;
 
+// Which resolution an attachment has: the image's, or the SSGI pass's
+// (SsgiStep::downsample) or its far field's (SsgiStep::farDownsample).
+enum class AttachmentScale { Image, SsgiNear, SsgiFar };
+
 struct AttachmentRow {
   Attachment id;
   std::string_view name;  // in messages and --verbose
@@ -138,7 +143,7 @@ struct AttachmentRow {
   // An optional G-buffer attachment's name in gbuffer.frag: the plan defines
   // HAS_<gbufferDefine> and <gbufferDefine>_LOCATION (its location).
   std::string_view gbufferDefine;
-  bool ssgiResolution = false;     // sized by the SSGI divisor instead of the image
+  AttachmentScale scale = AttachmentScale::Image;
   // The frame target it holds (several rows: channels 4k..4k+3 in the k-th);
   // null for internal attachments.
   ImageF Frame::*target = nullptr;
@@ -204,6 +209,12 @@ struct SsgiStep {
   int frames = 1;      // accumulated frames (1 unless the method accumulates)
   int downsample = 1;  // the raw SSGI's divisor
   bool blur = false;   // SsgiRaw -> Ssgi through the blur; else the pass writes Ssgi directly
+  // The far field's divisor (SsgiRawSky). Above `downsample` (bitmask with
+  // sky steps and the blur on, ssgi-far-resolution coarser than
+  // ssgi-resolution) the far field has its own pass and its own blur
+  // (SsgiFarSky) before the upsample; else it is `downsample`.
+  int farDownsample = 1;
+  bool splitsFarField() const { return farDownsample > downsample; }
 };
 
 // A frame target and where it comes from.
@@ -237,6 +248,8 @@ struct FramePlan {
   std::vector<std::string> unrendered;            // what the scene uses that this frame cannot draw (warned)
 
   bool allocates(Attachment id) const { return allocate[std::size_t(id)]; }
+  // What an attachment's row's scale divides the image's size by (rounded up): 1, 2 or 4.
+  int divisorOf(Attachment id) const;
   GpuFormat formatOf(Attachment id) const { return format[std::size_t(id)]; }
   std::vector<std::string_view> passNames() const;
 };

@@ -43,7 +43,7 @@ static_assert(offsetof(LightingBlock, shadowNormalOffset) == 12);
 static_assert(offsetof(LightingBlock, shadowMapSize) == 16);
 static_assert(offsetof(LightingBlock, environmentRotationCos) == 20);
 static_assert(offsetof(LightingBlock, environmentBackground) == 28);
-static_assert(sizeof(SsgiBlurBlock) == 16);
+static_assert(sizeof(SsgiBlurBlock) == 32);
 static_assert(offsetof(SsgiBlurBlock, ssgiDownsample) == 4);
 static_assert(sizeof(ShadowBlock) == 80);
 static_assert(sizeof(SkyBlock) == 48);

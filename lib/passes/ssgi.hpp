@@ -41,6 +41,9 @@ struct SsgiInputs {
   const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by the methods that gather direct light
   const RenderSettings& settings;    // resolved: the block members that carry settings are filled from it
   int downsample = 1;                // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+  // The bitmask method's far field (SsgiTextures::sky): above `downsample`,
+  // its own pass at this divisor (SsgiStep::farDownsample); else `downsample`.
+  int farDownsample = 1;
   int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
   float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result
 };

@@ -18,15 +18,39 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   block.downsample = inputs.downsample;
   // The seed and the frame index together turn the slices and the step jitter.
   block.rotationIndex = int(inputs.settings.ssgi.seed % 65536u) + inputs.frameIndex;
-  block_.update(block);
-  block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   const GBuffer& gbuffer = inputs.gbuffer;
   gbuffer.depth.bind(gpu::kUnitGbufferDepth);
   gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
+  if (inputs.farDownsample <= inputs.downsample) {
+    block.part = gpu::kBitmaskBoth;
+    // The shader's locations: 0 near field, 1 specular, 2 sky (the far
+    // field's own pass writes the sky at 0, the specular at 1).
+    const gl::Texture* outputs[] = {&output.occlusion, &output.specular, &output.sky};
+    draw(inputs, block, outputs);
+    return;
+  }
+  // Two resolutions: the near field without sky steps, then the far field
+  // at its divisor with its own slice count.
+  gpu::SsgiBitmaskBlock nearField = block;
+  nearField.part = gpu::kBitmaskNearField;
+  nearField.skyStepCount = 0;
+  const gl::Texture* nearOutputs[] = {&output.occlusion};
+  draw(inputs, nearField, nearOutputs);
+  gpu::SsgiBitmaskBlock farField = block;
+  farField.part = gpu::kBitmaskFarField;
+  farField.downsample = inputs.farDownsample;
+  farField.sliceCount = inputs.settings.ssgi.farSliceCount;
+  const gl::Texture* farOutputs[] = {&output.sky, &output.specular};
+  draw(inputs, farField, farOutputs);
+}
+
+void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const gpu::SsgiBitmaskBlock& block,
+                           std::span<const gl::Texture* const> outputs) {
+  block_.update(block);
+  block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
   if (inputs.accumulateWeight > 0.0f) {
     // A running mean: background pixels are discarded and keep what the
     // first frame cleared them to.

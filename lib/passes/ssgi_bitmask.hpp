@@ -9,10 +9,16 @@
 // geometrically spaced samples, give the sky visibility at any distance and
 // the indirect light from beyond R (sectors only those samples cover).
 // Output: SsgiTextures, the same layout as the other methods.
+// The far field (the sky texture) is low-frequency: with a coarser far
+// divisor (SsgiInputs::farDownsample) it is its own pass there, with
+// ssgi-far-slices directions and the within-R slabs only as far as they
+// shadow the sky, and the near pass marches no sky steps. The near texture
+// is then exactly what a run with ssgi-sky-steps 0 writes.
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/ssgi_textures.hpp"
+#include "shared_layout.h"
 
 namespace headlight {
 
@@ -22,10 +28,13 @@ class SsgiBitmaskPass {
  public:
   SsgiBitmaskPass();
   // The frame block must be bound. Writes `output` (the G-buffer's size /
-  // downsample, rounded up).
+  // downsample, rounded up; the sky's / farDownsample).
   void run(const SsgiInputs& inputs, const SsgiTextures& output);
 
  private:
+  void draw(const SsgiInputs& inputs, const gpu::SsgiBitmaskBlock& block,
+            std::span<const gl::Texture* const> outputs);
+
   gl::Program program_;
   gl::Buffer block_;
   FullscreenDraw draw_;

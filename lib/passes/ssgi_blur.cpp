@@ -1,8 +1,24 @@
 #include "passes/ssgi_blur.hpp"
 
+#include "headlight/error.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
+namespace {
+
+// The far field's own blur: a line of 2 x 7 + 1 of its texels along rows,
+// then along columns (sigma 14/3 texels), i.e. 30 taps for a 15x15 window.
+// It is this wide because the far field's pass shades a quarter of the
+// pixels (or fewer) with 2 slices: cornell's HDR-FLIP with a 7x7 / 11x11 /
+// 15x15 window at half resolution 0.2508 / 0.2347 / 0.2294
+// (docs/BENCHMARKS.md, "Two resolutions").
+constexpr int kFarTapRadius = 7;
+// The upsample of the far field so blurred: 3x3 of its texels (sigma 2/3).
+constexpr int kUpsampleTapRadius = 1;
+// The 7x7 window (sigma 2) of the SSGI's own resolution.
+constexpr int kTapRadius = 3;
+
+}  // namespace
 
 SsgiBlurPass::SsgiBlurPass()
     : program_(buildFullscreenProgram("ssgi_blur.frag")), block_(gl::Buffer::create(sizeof(gpu::SsgiBlurBlock))) {}
@@ -11,15 +27,46 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   gpu::SsgiBlurBlock block{};
   block.ssgiRadiusWorld = inputs.ssgiRadiusWorld;
   block.ssgiDownsample = inputs.ssgiDownsample;
-  block_.update(block);
-  block_.bindUniform(gpu::SsgiBlurBlock::kBinding);
+  block.skyDownsample = inputs.ssgiDownsample;
+  block.outputDownsample = 1;
+  block.skyTapRadius = kTapRadius;
   inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
   inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   inputs.rawSsgi.occlusion.bind(gpu::kUnitSsgi);
+  if (inputs.skyDownsample > inputs.ssgiDownsample) {
+    if (inputs.farSky == nullptr) throw GlError("SSGI blur: a coarser sky and no target to blur it in");
+    blurFarField(block, inputs);
+    block.skyDownsample = inputs.skyDownsample;
+    block.skyTapRadius = kUpsampleTapRadius;
+  }
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
   inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
-  const glm::vec4 background(1.0f, 0.0f, 0.0f, 0.0f);  // as the SSGI pass leaves it
   const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
+  draw(block, outputs);
+}
+
+// The raw sky along rows into farSky, then farSky along columns back into
+// the raw sky (its raw values are not read again).
+void SsgiBlurPass::blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurInputs& inputs) {
+  gpu::SsgiBlurBlock line = block;
+  line.skyDownsample = line.outputDownsample = inputs.skyDownsample;
+  line.skyOnly = 1;
+  line.skyTapRadius = kFarTapRadius;
+  line.skyAxisX = 1;
+  inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
+  const gl::Texture* rows[] = {inputs.farSky};
+  draw(line, rows);
+  line.skyAxisX = 0;
+  line.skyAxisY = 1;
+  inputs.farSky->bind(gpu::kUnitSsgiSky);
+  const gl::Texture* columns[] = {&inputs.rawSsgi.sky};
+  draw(line, columns);
+}
+
+void SsgiBlurPass::draw(const gpu::SsgiBlurBlock& block, std::span<const gl::Texture* const> outputs) {
+  block_.update(block);
+  block_.bindUniform(gpu::SsgiBlurBlock::kBinding);
+  const glm::vec4 background(1.0f, 0.0f, 0.0f, 0.0f);  // as the SSGI pass leaves it
   draw_.draw("SSGI blur", program_, outputs, background);
 }
 

@@ -3,11 +3,16 @@
 // bitmask pass's 4x4 noise tiles) weighted by how alike the neighbour's
 // normal and depth are, so AO does not bleed across silhouettes.
 // Below full resolution it is also the upsample, with the same weights.
-// Input and output: SsgiTextures (both filtered with the same weights).
+// Input and output: SsgiTextures (both filtered with the same weights). A
+// raw sky coarser than the raw SSGI (the bitmask method's far-field pass) is
+// blurred at its own resolution (a wider window there, along rows into
+// `farSky`, then along columns back), then upsampled from a 3x3 window of it
+// with the same kind of weights.
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/ssgi_textures.hpp"
+#include "shared_layout.h"
 
 namespace headlight {
 
@@ -16,6 +21,10 @@ struct SsgiBlurInputs {
   SsgiTextures rawSsgi;          // the SSGI pass's output, at 1/ssgiDownsample of the G-buffer's size per side
   float ssgiRadiusWorld = 0.0f;  // the SSGI radius: depth differences are judged against it
   int ssgiDownsample = 1;        // 1, 2 or 4
+  int skyDownsample = 1;         // rawSsgi.sky's divisor: ssgiDownsample, or above it with `farSky`
+  // rawSsgi.sky's size, for the far field's blur along rows (skyDownsample >
+  // ssgiDownsample); that blur overwrites rawSsgi.sky.
+  const gl::Texture* farSky = nullptr;
 };
 
 class SsgiBlurPass {
@@ -25,6 +34,9 @@ class SsgiBlurPass {
   void run(const SsgiBlurInputs& inputs, const SsgiTextures& output);
 
  private:
+  void blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurInputs& inputs);
+  void draw(const gpu::SsgiBlurBlock& block, std::span<const gl::Texture* const> outputs);
+
   gl::Program program_;
   gl::Buffer block_;
   FullscreenDraw draw_;

@@ -154,6 +154,21 @@ const std::vector<Row>& table() {
            .choices = kSsgiResolutionNames},
           [](auto& s) -> auto& { return s.ssgi.resolution; }),
       row(
+          {.name = "ssgi-far-resolution",
+           .type = T::Choice,
+           .help = "bitmask SSGI: resolution the far field (sky visibility, light from beyond the radius) runs at, "
+                   "in its own pass the blur upsamples; never finer than ssgi-resolution (there: one pass for both)",
+           .choices = kSsgiResolutionNames},
+          [](auto& s) -> auto& { return s.ssgi.farResolution; }),
+      row(
+          {.name = "ssgi-far-slices",
+           .type = T::Int,
+           .help = "bitmask SSGI: screen-space directions per pixel of the far field's own pass (below "
+                   "ssgi-resolution; else ssgi-slices serves both)",
+           .minimum = 1,
+           .maximum = 32},
+          [](auto& s) -> auto& { return s.ssgi.farSliceCount; }),
+      row(
           {.name = "shadows", .type = T::Bool, .help = "shadow maps for the lights that cast shadows"},
           [](auto& s) -> auto& { return s.lighting.shadows; }),
       row(
@@ -345,6 +360,7 @@ void applyPreset(RenderSettings& settings, std::string_view preset) {
     settings.ssgi = defaults.ssgi;
     settings.ssgi.sliceCount = 4;
     settings.ssgi.stepCount = 24;
+    settings.ssgi.farSliceCount = 4;
     settings.lighting.shadowMapSize = 4096;
     settings.lighting.pcfRadius = 2.0f;
   } else if (preset == "seed") {

@@ -64,6 +64,18 @@ struct SsgiSettings {
   // from 0.281 to 0.230 and its indirect error from 0.58 to 0.46 (issue 16;
   // docs/BENCHMARKS.md, "Sky steps").
   int skyStepCount = 16;
+  // Bitmask: the far field (sky visibility and light from beyond R, the
+  // `sky` half of ssgi.exr) is low-frequency: its own pass runs at this
+  // resolution (never finer than `resolution`) with `farSliceCount`
+  // directions, and the blur upsamples it; the near field (AO and light
+  // within R) keeps `resolution`. At `resolution`, one pass draws both.
+  // docs/BENCHMARKS.md, "Two resolutions".
+  // Half and 2: cornell / slats / spheres / MetalRoughSpheres HDR-FLIP
+  // 0.2429 / 0.0623 / 0.0497 / 0.0459 -> 0.2295 / 0.0626 / 0.0497 / 0.0468
+  // and cornell's SSGI time 2.04x -> 1.64x hemisphere-64's; quarter and 3:
+  // 1.47-1.55x at 0.2422 / 0.0625 / 0.0500 / 0.0470 (docs/BENCHMARKS.md).
+  SsgiResolution farResolution = SsgiResolution::Half;
+  int farSliceCount = 2;
   // Bitmask frames averaged, each with rotated slices and jittered steps
   // (with a still camera, exact temporal accumulation).
   int frames = 1;
