@@ -380,7 +380,9 @@ void main() {
     visibleSum += slice.projectedLength * max(total - sectorWeight(slice.occupied, edges), 0.0);
     // What is occluded within R is occluded from the sky too.
     const float skyOccludedWeight = sectorWeight(slice.skyOccupied | slice.occupied, edges);
-    specularSum += sliceSpecularVisibility(slice, slice.skyOccupied | slice.occupied, reflected, lobeAlpha);
+    // The near field's own pass writes no specular (the far field's does).
+    if (bitmask.part != kBitmaskNearField)
+      specularSum += sliceSpecularVisibility(slice, slice.skyOccupied | slice.occupied, reflected, lobeAlpha);
     skyVisibleSum += slice.projectedLength * max(total - skyOccludedWeight, 0.0);
     totalSum += slice.projectedLength * total;
   }
