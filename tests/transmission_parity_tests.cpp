@@ -17,6 +17,7 @@
 #include "headlight/shapes.hpp"
 #include "reference/lobe_transmission.hpp"
 #include "support/gl.hpp"
+#include "support/parity.hpp"
 
 using namespace headlight;
 
@@ -120,27 +121,23 @@ TEST_CASE("transmission on the GPU matches the CPU ports per pixel") {
       if (throughputGpu == glm::vec3(0.0f)) continue;
       const bool isVolume = pathLength > 0.0f;
       (isVolume ? volume : thin)++;
-      const glm::vec3 position(frame.position.at(x, y, 0), frame.position.at(x, y, 1), frame.position.at(x, y, 2));
-      const glm::vec3 normal(frame.normal.at(x, y, 0), frame.normal.at(x, y, 1), frame.normal.at(x, y, 2));
-      const glm::vec3 albedo(frame.albedo.at(x, y, 0), frame.albedo.at(x, y, 1), frame.albedo.at(x, y, 2));
+      const glm::vec3 position = test::pixel3(frame.position, x, y), normal = test::pixel3(frame.normal, x, y);
       const Material& material = scene.materials[isVolume ? 2 : 1];
       const float transmission = material.transmission->transmissionFactor;
       reference::Surface surface =
-          reference::makeSurface(albedo, frame.material.at(x, y, 0), frame.material.at(x, y, 1), normal,
-                                 glm::normalize(frame.view.position - position));
+          reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0),
+                                 frame.material.at(x, y, 1), normal, glm::normalize(frame.view.position - position));
       surface.f0 = reference::iorF0(material.ior, surface.albedo, surface.metallic);
       const float blur = reference::transmissionRoughness(frame.material.at(x, y, 1), material.ior);
-      glm::vec3 expected(0.0f);
-      for (const Light& light : scene.lights) {
-        glm::vec3 toLight;
-        float distance = 0.0f;
-        const float attenuation = reference::lightAttenuation(light, position, toLight, distance);
-        if (attenuation <= 0.0f) continue;
-        const glm::vec3 term = reference::transmissiveCookTorrance(surface, toLight, transmission, blur) * light.color *
-                               light.intensity * attenuation;
-        if (glm::dot(normal, toLight) < 0.0f && term.r > 1e-4f) ++litFromBehind;
-        expected += term;
-      }
+      const auto transmissive = [&](const glm::vec3& toLight) {
+        return reference::transmissiveCookTorrance(surface, toLight, transmission, blur);
+      };
+      glm::vec3 expected = test::punctualLight(scene, position, transmissive);
+      // The light that reaches the pixel through the glass, from lights behind it.
+      const glm::vec3 fromBehind = test::punctualLight(scene, position, [&](const glm::vec3& toLight) {
+        return glm::dot(normal, toLight) < 0.0f ? transmissive(toLight) : glm::vec3(0.0f);
+      });
+      if (fromBehind.r > 1e-4f) ++litFromBehind;
       const glm::vec2 scaleBias = splitSum(surface.nDotV, surface.roughness);
       const glm::vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
       const float path = isVolume ? kVolumeThickness * kVolumeScale : 0.0f;
