@@ -24,6 +24,33 @@ namespace {
 // ignored (32 layers of alpha 0.1 leave 3 % of what is behind).
 constexpr int kMaxBlendLayers = 32;
 
+// The triangle a ray met: its corners' indices and world positions, the
+// barycentrics, and the face normal (unnormalised; glTF's front face is
+// counter-clockwise, flipped with the instance's winding) and whether the
+// ray meets that front.
+struct HitTriangle {
+  const std::uint32_t* corner;
+  float u, v, w;
+  glm::vec3 p0, p1, p2;
+  glm::vec3 faceNormal;
+  bool front;
+};
+
+HitTriangle hitTriangle(const InstanceShading& instance, const RTCHit& hit, const glm::vec3& rayDirection) {
+  HitTriangle triangle;
+  triangle.corner = &instance.primitive->indices[std::size_t(hit.primID) * 3];
+  triangle.u = hit.u, triangle.v = hit.v, triangle.w = 1.0f - hit.u - hit.v;
+  auto world = [&](std::uint32_t index) {
+    const float* p = &instance.worldPositions[std::size_t(index) * 3];
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  triangle.p0 = world(triangle.corner[0]), triangle.p1 = world(triangle.corner[1]);
+  triangle.p2 = world(triangle.corner[2]);
+  triangle.faceNormal = glm::cross(triangle.p1 - triangle.p0, triangle.p2 - triangle.p0) * instance.frontSign;
+  triangle.front = glm::dot(triangle.faceNormal, rayDirection) <= 0.0f;
+  return triangle;
+}
+
 }  // namespace
 
 // alphaMode BLEND along the primary ray: every blended layer in front of
@@ -71,15 +98,10 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
   const Primitive& primitive = *instance.primitive;
   const Material& material = *instance.material;
-  const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
-  const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
-  auto world = [&](std::uint32_t index) {
-    const float* p = &instance.worldPositions[std::size_t(index) * 3];
-    return glm::vec3(p[0], p[1], p[2]);
-  };
-  const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
-  const glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;
-  const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+  const HitTriangle hit = hitTriangle(instance, rayHit.hit, rayDirection);
+  const std::uint32_t* corner = hit.corner;
+  const float u = hit.u, v = hit.v, w = hit.w;
+  const bool front = hit.front;
   if (!front && !material.doubleSided) return false;
   glm::vec3 normal = instance.normalFromLocal * (w * primitive.normals[corner[0]] + u * primitive.normals[corner[1]] +
                                                  v * primitive.normals[corner[2]]);
@@ -109,7 +131,7 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   metallic = std::clamp(metallic, 0.0f, 1.0f);
   roughness = std::clamp(roughness, 0.0f, 1.0f);
 
-  const glm::vec3 position = w * p0 + u * p1 + v * p2;
+  const glm::vec3 position = w * hit.p0 + u * hit.p1 + v * hit.p2;
   const glm::vec3 view = -rayDirection;
   const glm::vec3 origin = position + normal * in_.epsilon;
   const Basis basis = basisAround(normal);
@@ -320,16 +342,12 @@ glm::vec3 Tracer::radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayD
   const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
   const Primitive& primitive = *instance.primitive;
   const Material& material = *instance.material;
-  const std::uint32_t* corner = &primitive.indices[std::size_t(rayHit.hit.primID) * 3];
-  const float u = rayHit.hit.u, v = rayHit.hit.v, w = 1.0f - u - v;
-  auto world = [&](std::uint32_t index) {
-    const float* p = &instance.worldPositions[std::size_t(index) * 3];
-    return glm::vec3(p[0], p[1], p[2]);
-  };
-  const glm::vec3 p0 = world(corner[0]), p1 = world(corner[1]), p2 = world(corner[2]);
-  glm::vec3 faceNormal = glm::cross(p1 - p0, p2 - p0) * instance.frontSign;  // glTF front face: counter-clockwise
-  const bool front = glm::dot(faceNormal, rayDirection) <= 0.0f;
+  const HitTriangle hit = hitTriangle(instance, rayHit.hit, rayDirection);
+  const std::uint32_t* corner = hit.corner;
+  const float u = hit.u, v = hit.v, w = hit.w;
+  const bool front = hit.front;
   if (!front && !material.doubleSided) return glm::vec3(0.0f);
+  glm::vec3 faceNormal = hit.faceNormal;
   if (!front) faceNormal = -faceNormal;
   const float faceLength = glm::length(faceNormal);
   // Degenerate triangles have no face normal; the ray's own direction
@@ -368,7 +386,7 @@ glm::vec3 Tracer::radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayD
   const glm::vec3 diffuse = (1.0f - metallic) * baseColor / kPi;
   glm::vec3 radiance = emissive;
   if (diffuse == glm::vec3(0.0f)) return radiance;
-  const glm::vec3 hitPosition = w * p0 + u * p1 + v * p2;
+  const glm::vec3 hitPosition = w * hit.p0 + u * hit.p1 + v * hit.p2;
   const glm::vec3 shadowOrigin = hitPosition + towardOrigin * in_.epsilon;
   glm::vec3 irradiance(0.0f);
   for (const Light& light : in_.scene.lights) {
