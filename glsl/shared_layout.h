@@ -127,7 +127,8 @@ using mat4 = glm::mat4;
 // Storage blocks (X(block, binding name, binding)): std430, below.
 #define HL_STORAGE_BLOCKS(X)                \
   X(LightBuffer, kBindingLights, 0)         \
-  X(ObjectBuffer, kBindingObjects, 1)
+  X(ObjectBuffer, kBindingObjects, 1)       \
+  X(VirtualLightBuffer, kBindingVirtualLights, 2)
 
 #define HL_UNIT_CONST(name, unit) HL_CONST(int, name, unit)
 #define HL_BINDING_CONST(block, name, binding) HL_CONST(int, name, binding)
@@ -265,9 +266,21 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, kBindingSsgiBitmask)
   int rotationIndex;        // the seed + the accumulated frame's index: rotates slice directions and step jitter
   int skyStepCount;         // long-range depth samples per direction beyond R, for the sky visibility (0: none)
   int part;                 // kBitmaskBoth, kBitmaskNearField or kBitmaskFarField: what the draw writes
-  int pad1;
-  int pad2;
+  int virtualLightCount;    // entries of the virtual light buffer the far field gathers (0: none)
+  int farLightSource;       // what the marches beyond R gather: kFarLightDirect, kFarLightEmission or kFarLightNone
 HL_BLOCK_END(bitmask)
+
+// SsgiBitmaskBlock::farLightSource. Without virtual lights the marches
+// beyond R gather the direct pass's Lambertian target (direct light and
+// emission); with them the virtual lights carry the direct light, and the
+// marches gather emission only (the G-buffer's emissive target), or
+// nothing in a scene without emission.
+HL_CONST(int, kFarLightDirect, 0)
+HL_CONST(int, kFarLightEmission, 1)
+HL_CONST(int, kFarLightNone, 2)
+// How many interleaved subsets the virtual lights are split into: each
+// pixel of a 4x4 tile gathers one (the far field's blur averages them).
+HL_CONST(int, kVirtualLightSubsets, 16)
 
 // SsgiBitmaskBlock::part. Both: location 0 the near field (AO and light
 // within R), location 1 the far field (sky visibility and light from beyond
@@ -360,6 +373,24 @@ HL_STORAGE_END(objects)
 HL_STORAGE_BEGIN(ObjectBuffer, kBindingObjects)
   GpuObject objectList[];
 HL_STORAGE_END(objects)
+#endif
+
+// One virtual point light (lib/passes/virtual_lights.hpp): a texel of a
+// light's view of the scene, re-emitting the light it receives as a
+// Lambertian surface. Radiant intensity toward w: flux * max(n . w, 0) / pi.
+struct GpuVirtualLight {
+  vec4 position;            // world; w unused
+  vec4 normal;              // world, unit, facing the light; w unused
+  vec4 flux;                // reflected flux (1 - metallic) albedo * received power, rgb; w unused
+};
+#ifdef __cplusplus
+HL_STORAGE_BEGIN(VirtualLightBuffer, kBindingVirtualLights)
+  // The C++ side uploads a std::vector<GpuVirtualLight>; this struct only names the binding.
+HL_STORAGE_END(virtualLights)
+#else
+HL_STORAGE_BEGIN(VirtualLightBuffer, kBindingVirtualLights)
+  GpuVirtualLight virtualLightList[];
+HL_STORAGE_END(virtualLights)
 #endif
 
 // Vertex attribute locations of the scene's primitives (lib/scene/gpu_scene.cpp).

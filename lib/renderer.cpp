@@ -27,6 +27,7 @@
 #include "image_io/environment_decode.hpp"
 #include "passes/blend.hpp"
 #include "passes/transmission.hpp"
+#include "passes/virtual_lights.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
@@ -104,6 +105,7 @@ struct Renderer::Impl {
   CompositePass composite;
   BlendPass blend;
   TransmissionPass transmission;
+  VirtualLightPass virtualLightPass;
   gl::Buffer frameBlock = gl::Buffer::create(sizeof(gpu::FrameBlock));
   gl::Buffer lightingBlock = gl::Buffer::create(sizeof(gpu::LightingBlock));
 
@@ -116,6 +118,10 @@ struct Renderer::Impl {
   ShadowMaps shadowMaps;   // kept across views: they do not depend on the camera
   int shadowMapSize = 0;   // what shadowMaps were made with; 0 = none yet
   std::vector<glm::vec4> shadowCoverage;  // and what the directional ones cover
+  // The bitmask SSGI's virtual lights: the scene's, not the view's, so made
+  // once per scene and budget (0 = none yet).
+  VirtualLights virtualLights;
+  int virtualLightBudget = 0;
 
   // Per image size: the plan's attachments (attachmentRows()), by Attachment.
   std::array<gl::Texture, kAttachmentCount> textures;
@@ -186,6 +192,17 @@ struct Renderer::Impl {
   // light's fit to the view would change.
   bool shadowsCurrent(int size, const CameraView& view) const {
     return shadowMapSize == size && directionalCoverage(scene.lights, gpuScene->bounds, &view) == shadowCoverage;
+  }
+
+  // Each light's views drawn into small G-buffers and read back as virtual
+  // lights; the frame block is the frame's again afterwards.
+  void makeVirtualLights(int budget, const GBufferVariant& variant, const gpu::FrameBlock& frame) {
+    virtualLights = virtualLightPass.run(*gpuScene, *gbufferPass, variant, scene.lights, budget,
+                                         [&](const CameraView& view, int size) {
+                                           frameBlock.update(makeFrameBlock(view, size, size));
+                                         });
+    virtualLightBudget = budget;
+    frameBlock.update(frame);
   }
 
   void dropShadows() {
@@ -260,6 +277,7 @@ struct Renderer::Impl {
                       used};
     inputs.downsample = step.downsample;
     inputs.farDownsample = step.farDownsample;
+    if (step.virtualLights > 0) inputs.virtualLights = &virtualLights;
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.
     timer.run("ssgi", [&] {
@@ -345,6 +363,8 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.uploadLights({});
   impl.shadowMaps = ShadowMaps{};
   impl.shadowMapSize = 0;
+  impl.virtualLights = VirtualLights{};
+  impl.virtualLightBudget = 0;
   // A map's tables are kept across scenes that share it (a batch); a scene
   // without one releases them.
   if (!impl.scene.environment) impl.environment.dropEnvironment();
@@ -383,7 +403,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   const FramePlan plan = planFrame(impl.summary, used, targets);
   frame.skipped = plan.skipped;
   impl.ensureAttachments(plan, used.width, used.height);
-  impl.frameBlock.update(makeFrameBlock(frame.view, used.width, used.height));
+  const gpu::FrameBlock frameBlock = makeFrameBlock(frame.view, used.width, used.height);
+  impl.frameBlock.update(frameBlock);
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
   PassTimer timer(impl.context);
@@ -392,6 +413,9 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   if (plan.dropShadowMaps) impl.dropShadows();
   if (plan.shadows && !impl.shadowsCurrent(plan.shadows->mapSize, frame.view))
     timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize, frame.view); });
+  if (plan.ssgi && plan.ssgi->virtualLights > 0 && impl.virtualLightBudget != plan.ssgi->virtualLights)
+    timer.run("virtual-lights",
+              [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
   impl.bindLighting(used.lighting);
   timer.run("gbuffer",
             [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });

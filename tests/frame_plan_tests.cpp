@@ -58,8 +58,8 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   REQUIRE(plan.composite);
   CHECK(*plan.composite == CompositeVariant{true, true});
   CHECK(plan.passNames() ==
-        std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky", "composite",
-                                      "readback"});
+        std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky",
+                                      "composite", "readback"});
   CHECK(!plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.allocates(Attachment::SsgiRaw));
   CHECK(plan.gbuffer.defines.empty());
@@ -77,8 +77,8 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   REQUIRE(plan.blend);
   CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
-  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky",
-                                                          "composite", "blend", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi",
+                                                          "ssgi-blur", "sky", "composite", "blend", "readback"});
   CHECK(plan.allocates(Attachment::BlendCoverage));
   CHECK(plan.allocates(Attachment::Lit));
   const TargetRead* coverage = readOf(plan, "coverage");
@@ -158,8 +158,8 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
   settings.ssgi.blur = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.allocates(Attachment::SsgiRaw));
-  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "gbuffer", "direct", "ssgi", "sky", "composite",
-                                                         "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi", "sky",
+                                                         "composite", "readback"});
   settings.ssgi.enabled = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.ssgi);

@@ -3,6 +3,8 @@
 // attachments that adds.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include "frame/frame_plan.hpp"
 #include "support/plan_settings.hpp"
 
@@ -27,8 +29,8 @@ TEST_CASE("SSGI plan: by default the far field is its own pass at half resolutio
   CHECK(plan.divisorOf(Attachment::SsgiSky) == 1);
   CHECK(plan.allocates(Attachment::SsgiFarSky));
   // The far field's passes are timed with the SSGI pass and its blur.
-  CHECK(plan.passNames() == std::vector<std::string_view>{"gbuffer", "direct", "ssgi", "ssgi-blur", "sky", "composite",
-                                                          "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "gbuffer", "direct", "ssgi", "ssgi-blur",
+                                                          "sky", "composite", "readback"});
 }
 
 TEST_CASE("SSGI plan: the far field's divisor follows ssgi-far-resolution, never finer than ssgi-resolution") {
@@ -68,5 +70,21 @@ TEST_CASE("SSGI plan: no far-field pass without sky steps, without the blur, or 
     CHECK(!plan.ssgi->splitsFarField());
     CHECK(plan.ssgi->farDownsample == plan.ssgi->downsample);
     CHECK(!plan.allocates(Attachment::SsgiFarSky));
+  }
+}
+
+TEST_CASE("SSGI plan: the bitmask method's far field gathers from virtual lights; the kernel methods have none") {
+  RenderSettings settings = test::resolvedPlanSettings();
+  REQUIRE(settings.ssgi.method == SsgiMethod::Bitmask);
+  settings.ssgi.virtualLightCount = 512;
+  CHECK(planWith(settings).ssgi->virtualLights == 512);
+  settings.ssgi.virtualLightCount = 0;
+  CHECK(planWith(settings).ssgi->virtualLights == 0);
+  const auto names = planWith(settings).passNames();
+  CHECK(std::find(names.begin(), names.end(), "virtual-lights") == names.end());
+  settings.ssgi.virtualLightCount = 512;
+  for (SsgiMethod kernel : {SsgiMethod::Hemisphere, SsgiMethod::Radiance}) {
+    settings.ssgi.method = kernel;
+    CHECK(planWith(settings).ssgi->virtualLights == 0);
   }
 }

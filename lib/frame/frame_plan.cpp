@@ -307,6 +307,7 @@ int FramePlan::divisorOf(Attachment id) const {
 std::vector<std::string_view> FramePlan::passNames() const {
   std::vector<std::string_view> names;
   if (shadows) names.push_back("shadows");
+  if (ssgi && ssgi->virtualLights > 0) names.push_back("virtual-lights");  // made once per scene
   names.push_back("gbuffer");
   if (direct) names.push_back("direct");
   if (ssgi) names.push_back("ssgi");
@@ -354,6 +355,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     const bool farPass = method.marchesBeyondRadius && settings.ssgi.skyStepCount > 0 && settings.ssgi.blur;
     plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1, divisor, settings.ssgi.blur,
                          farPass ? std::max(divisor, ssgiDivisor(settings.ssgi.farResolution)) : divisor};
+    if (method.marchesBeyondRadius) plan.ssgi->virtualLights = settings.ssgi.virtualLightCount;
   }
   if (skips.runs(Work::Direct))
     plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,

@@ -214,6 +214,9 @@ struct SsgiStep {
   // ssgi-resolution) the far field has its own pass and its own blur
   // (SsgiFarSky) before the upsample; else it is `downsample`.
   int farDownsample = 1;
+  // The most virtual point lights the far field gathers its light from
+  // beyond R from (lib/passes/virtual_lights.hpp); 0: the marches gather it.
+  int virtualLights = 0;
   bool splitsFarField() const { return farDownsample > downsample; }
 };
 

@@ -18,6 +18,7 @@
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/ssgi_bitmask.hpp"
+#include "passes/virtual_lights.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -44,6 +45,9 @@ struct SsgiInputs {
   // The bitmask method's far field (SsgiTextures::sky): above `downsample`,
   // its own pass at this divisor (SsgiStep::farDownsample); else `downsample`.
   int farDownsample = 1;
+  // The bitmask method's far field: the light from beyond R from these
+  // (VirtualLightPass), or null: from what its marches find.
+  const VirtualLights* virtualLights = nullptr;
   int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
   float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result
 };

@@ -24,6 +24,15 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
+  block.farLightSource = gpu::kFarLightDirect;
+  if (inputs.virtualLights) {
+    // The virtual lights carry the direct light from beyond R; the marches
+    // add what glows there.
+    block.virtualLightCount = inputs.virtualLights->count;
+    inputs.virtualLights->buffer.bindStorage(gpu::VirtualLightBuffer::kBinding);
+    block.farLightSource = gbuffer.emissive ? gpu::kFarLightEmission : gpu::kFarLightNone;
+    if (gbuffer.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
+  }
   if (inputs.farDownsample <= inputs.downsample) {
     block.part = gpu::kBitmaskBoth;
     // The shader's locations: 0 near field, 1 specular, 2 sky (the far

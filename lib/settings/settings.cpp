@@ -169,6 +169,15 @@ const std::vector<Row>& table() {
            .maximum = 32},
           [](auto& s) -> auto& { return s.ssgi.farSliceCount; }),
       row(
+          {.name = "ssgi-virtual-lights",
+           .type = T::Int,
+           .help = "bitmask SSGI: the light from beyond the radius as one bounce of the punctual lights off the "
+                   "surfaces they light, from at most this many virtual point lights (texels of each light's view "
+                   "of the scene; 0: gathered by the screen-space marches instead)",
+           .minimum = 0,
+           .maximum = 65536},
+          [](auto& s) -> auto& { return s.ssgi.virtualLightCount; }),
+      row(
           {.name = "shadows", .type = T::Bool, .help = "shadow maps for the lights that cast shadows"},
           [](auto& s) -> auto& { return s.lighting.shadows; }),
       row(

@@ -6,7 +6,9 @@
 //   build/tests/ssgi-flip-report [SIZE [RAYS [FLAGS...]]]
 // SIZE: image width and height (default 128); RAYS: the reference's rays per
 // pixel (default 1024); FLAGS: settings applied to the SSGI render only, as
-// `name=value` (e.g. ssgi-thickness=0.05), to compare a variant.
+// `name=value` (e.g. ssgi-thickness=0.05), to compare a variant. The
+// environment variable SCENES (a substring of the scene's name, e.g.
+// "near-wall") limits the report to the scenes that match.
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -101,7 +103,9 @@ int main(int argc, char** argv) {
     std::printf("| scene | default | --no-ssgi | default - no SSGI | mean lit / reference, default, no SSGI |\n"
                 "|---|---:|---:|---:|---|\n");
     std::fflush(stdout);
+    const char* only = std::getenv("SCENES");
     for (const SuiteScene& entry : suiteScenes()) try {
+      if (only && entry.name.find(only) == std::string::npos) continue;
       renderer.setScene(entry.build());
       const Camera camera = stability::cornellOrbitCamera(entry.orbitDegrees);
       const Camera* chosen = entry.orbitCamera ? &camera : nullptr;

@@ -76,6 +76,14 @@ struct SsgiSettings {
   // 1.47-1.55x at 0.2422 / 0.0625 / 0.0500 / 0.0470 (docs/BENCHMARKS.md).
   SsgiResolution farResolution = SsgiResolution::Half;
   int farSliceCount = 2;
+  // Bitmask: the light from beyond R as one bounce of the punctual lights
+  // off what each light sees, at most this many virtual point lights (a
+  // few texels of each light's view of the scene, lib/passes/virtual_lights.hpp),
+  // instead of what the screen-space marches find beyond R (0: the marches).
+  // 1024: cornell's HDR-FLIP 0.2295 -> 0.158 and its indirect error 0.427 ->
+  // 0.265 for +9 % SSGI time; 2048 bought 0.002 more on cornell for +18 %
+  // (docs/BENCHMARKS.md, "Virtual lights").
+  int virtualLightCount = 1024;
   // Bitmask frames averaged, each with rotated slices and jittered steps
   // (with a still camera, exact temporal accumulation).
   int frames = 1;
