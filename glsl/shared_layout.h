@@ -379,7 +379,7 @@ HL_STORAGE_END(objects)
 // light's view of the scene, re-emitting the light it receives as a
 // Lambertian surface. Radiant intensity toward w: flux * max(n . w, 0) / pi.
 struct GpuVirtualLight {
-  vec4 position;            // world; w unused
+  vec4 position;            // world; w = the index of its light in the light buffer
   vec4 normal;              // world, unit, facing the light; w unused
   vec4 flux;                // reflected flux (1 - metallic) albedo * received power, rgb; w unused
 };

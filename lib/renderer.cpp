@@ -277,7 +277,10 @@ struct Renderer::Impl {
                       used};
     inputs.downsample = step.downsample;
     inputs.farDownsample = step.farDownsample;
-    if (step.virtualLights > 0) inputs.virtualLights = &virtualLights;
+    if (step.virtualLights > 0) {
+      inputs.virtualLights = &virtualLights;
+      inputs.shadows = &shadowMaps;
+    }
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.
     timer.run("ssgi", [&] {

@@ -17,6 +17,7 @@
 #include "headlight/settings.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "passes/shadow.hpp"
 #include "passes/ssgi_bitmask.hpp"
 #include "passes/virtual_lights.hpp"
 #include "shared_layout.h"
@@ -48,6 +49,7 @@ struct SsgiInputs {
   // The bitmask method's far field: the light from beyond R from these
   // (VirtualLightPass), or null: from what its marches find.
   const VirtualLights* virtualLights = nullptr;
+  const ShadowMaps* shadows = nullptr;  // the lights' maps: what hides a virtual light near its light
   int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
   float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result
 };

@@ -8,7 +8,13 @@
 namespace headlight {
 
 SsgiBitmaskPass::SsgiBitmaskPass()
-    : program_(buildFullscreenProgram("ssgi_bitmask.frag")),
+    : programs_(fullscreenPrograms<SsgiBitmaskVariant>("ssgi_bitmask.frag",
+                                                       [](const SsgiBitmaskVariant& variant) {
+                                                         std::vector<std::string> defines;
+                                                         if (variant.planarShadows) defines.push_back("HAS_PLANAR_SHADOWS");
+                                                         if (variant.cubeShadows) defines.push_back("HAS_CUBE_SHADOWS");
+                                                         return defines;
+                                                       })),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
 
 void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
@@ -25,6 +31,7 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   gbuffer.material.bind(gpu::kUnitGbufferMaterial);
   inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   block.farLightSource = gpu::kFarLightDirect;
+  SsgiBitmaskVariant variant;
   if (inputs.virtualLights) {
     // The virtual lights carry the direct light from beyond R; the marches
     // add what glows there.
@@ -32,13 +39,22 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
     inputs.virtualLights->buffer.bindStorage(gpu::VirtualLightBuffer::kBinding);
     block.farLightSource = gbuffer.emissive ? gpu::kFarLightEmission : gpu::kFarLightNone;
     if (gbuffer.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
+    // The lights' shadow maps: a virtual light near its light is hidden
+    // where the light is.
+    if (inputs.shadows) {
+      variant.planarShadows = bool(inputs.shadows->planar);
+      variant.cubeShadows = bool(inputs.shadows->cube);
+      if (variant.planarShadows) inputs.shadows->planar.bind(gpu::kUnitShadowMaps2D);
+      if (variant.cubeShadows) inputs.shadows->cube.bind(gpu::kUnitShadowMapsCube);
+    }
   }
+  const gl::Program& program = programs_.get(variant);
   if (inputs.farDownsample <= inputs.downsample) {
     block.part = gpu::kBitmaskBoth;
     // The shader's locations: 0 near field, 1 specular, 2 sky (the far
     // field's own pass writes the sky at 0, the specular at 1).
     const gl::Texture* outputs[] = {&output.occlusion, &output.specular, &output.sky};
-    draw(inputs, block, outputs);
+    draw(inputs, program, block, outputs);
     return;
   }
   // Two resolutions: the near field without sky steps, then the far field
@@ -47,16 +63,16 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   nearField.part = gpu::kBitmaskNearField;
   nearField.skyStepCount = 0;
   const gl::Texture* nearOutputs[] = {&output.occlusion};
-  draw(inputs, nearField, nearOutputs);
+  draw(inputs, program, nearField, nearOutputs);
   gpu::SsgiBitmaskBlock farField = block;
   farField.part = gpu::kBitmaskFarField;
   farField.downsample = inputs.farDownsample;
   farField.sliceCount = inputs.settings.ssgi.farSliceCount;
   const gl::Texture* farOutputs[] = {&output.sky, &output.specular};
-  draw(inputs, farField, farOutputs);
+  draw(inputs, program, farField, farOutputs);
 }
 
-void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const gpu::SsgiBitmaskBlock& block,
+void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const gl::Program& program, const gpu::SsgiBitmaskBlock& block,
                            std::span<const gl::Texture* const> outputs) {
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
@@ -66,12 +82,12 @@ void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const gpu::SsgiBitmaskBlock
     glEnable(GL_BLEND);
     glBlendColor(0.0f, 0.0f, 0.0f, inputs.accumulateWeight);
     glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
-    draw_.draw("SSGI bitmask (accumulating)", program_, outputs);
+    draw_.draw("SSGI bitmask (accumulating)", program, outputs);
     glDisable(GL_BLEND);
     return;
   }
   // Background pixels are discarded and keep the clear value: open, no light.
-  draw_.draw("SSGI bitmask", program_, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  draw_.draw("SSGI bitmask", program, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
 }
 
 }  // namespace headlight

@@ -24,6 +24,13 @@ namespace headlight {
 
 struct SsgiInputs;  // passes/ssgi.hpp: the SSGI pass's inputs, whichever method
 
+// The program's variant: the shadow maps its virtual lights' visibility
+// reads (none without virtual lights).
+struct SsgiBitmaskVariant {
+  bool planarShadows = false, cubeShadows = false;
+  auto operator<=>(const SsgiBitmaskVariant&) const = default;
+};
+
 class SsgiBitmaskPass {
  public:
   SsgiBitmaskPass();
@@ -32,10 +39,10 @@ class SsgiBitmaskPass {
   void run(const SsgiInputs& inputs, const SsgiTextures& output);
 
  private:
-  void draw(const SsgiInputs& inputs, const gpu::SsgiBitmaskBlock& block,
+  void draw(const SsgiInputs& inputs, const gl::Program& program, const gpu::SsgiBitmaskBlock& block,
             std::span<const gl::Texture* const> outputs);
 
-  gl::Program program_;
+  ProgramCache<SsgiBitmaskVariant> programs_;
   gl::Buffer block_;
   FullscreenDraw draw_;
 };

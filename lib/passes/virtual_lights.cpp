@@ -154,7 +154,7 @@ VirtualLights VirtualLightPass::run(const GpuScene& scene, GBufferPass& gbuffer,
             (1.0f - materials.at(x, y, 0)) * glm::vec3(albedos.at(x, y, 0), albedos.at(x, y, 1), albedos.at(x, y, 2));
         const glm::vec3 flux = reflectedFlux(lights[view.light], view, x, y, size, p, n, diffuse);
         if (flux == glm::vec3(0.0f)) continue;
-        virtualLights.push_back({glm::vec4(p, 1.0f), glm::vec4(n, 0.0f), glm::vec4(flux, 0.0f)});
+        virtualLights.push_back({glm::vec4(p, float(view.light)), glm::vec4(n, 0.0f), glm::vec4(flux, 0.0f)});
       }
   }
   out.count = int(virtualLights.size());
