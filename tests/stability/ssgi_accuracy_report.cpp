@@ -1,0 +1,139 @@
+// Issue 16's measures of the SSGI against the ray-traced reference on its
+// four scenes, in one run (docs/BENCHMARKS.md): per scene, the HDR-FLIP of
+// lit against the reference's lit; the indirect light's relative RMSE, ssgi's
+// indirect + indirectFar against the reference's unlimited indirect over the
+// geometry pixels (the RMSE of the three channels over the reference's
+// mean), and their mean ratio; the sky visibility's RMSE; the AO RMSE at
+// R = 0.1 x the scene's diagonal (a second render with that radius against
+// the reference's ao.Y traced with it). Never runs in CI.
+//   build/tests/ssgi-accuracy-report [SIZE [RAYS [FLAGS...]]]
+// SIZE: image width and height (default 256); RAYS: the reference's rays per
+// pixel (default 4096: about 80 s on two cores); FLAGS: settings of the
+// renders as `name=value` (e.g. ssgi-virtual-lights=0), to compare a
+// variant. MetalRoughSpheresNoTextures comes from ../shared (or
+// $HEADLIGHT_SHARED_DIR); it is left out, and said so, where absent.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "diff/flip.hpp"
+#include "headlight/error.hpp"
+#include "headlight/reference.hpp"
+#include "headlight/renderer.hpp"
+#include "headlight/scene_loader.hpp"
+#include "headlight/settings.hpp"
+#include "support/assets.hpp"
+
+using namespace headlight;
+
+namespace {
+
+constexpr int kIndirect = 1, kSky = 4, kIndirectFar = 5;  // ssgi.exr's channels
+constexpr int kReferenceIndirect = 3;                      // indirect_ref's unlimited indirect.R
+
+double meanFlip(const ImageF& reference, const ImageF& test) {
+  const flip::RgbView a{reference.pixels.data(), reference.width, reference.height, reference.channelCount()};
+  const flip::RgbView b{test.pixels.data(), test.width, test.height, test.channelCount()};
+  return flip::hdrFlip(a, b).mean;
+}
+
+struct IndirectError {
+  double relativeRmse = 0, ratio = 0, skyRmse = 0;
+};
+
+IndirectError indirectError(const Frame& frame, const ReferenceImages& truth) {
+  double squared = 0, ours = 0, theirs = 0, sky = 0;
+  long values = 0, pixels = 0;
+  for (int y = 0; y < frame.ssgi.height; ++y)
+    for (int x = 0; x < frame.ssgi.width; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double a = frame.ssgi.at(x, y, kIndirect + c) + frame.ssgi.at(x, y, kIndirectFar + c);
+        const double b = truth.indirect.at(x, y, kReferenceIndirect + c);
+        squared += (a - b) * (a - b);
+        ours += a;
+        theirs += b;
+        ++values;
+      }
+      const double d = double(frame.ssgi.at(x, y, kSky)) - truth.ao.at(x, y, 1);
+      sky += d * d;
+      ++pixels;
+    }
+  if (values == 0 || theirs <= 0) return {};
+  return {std::sqrt(squared / double(values)) / (theirs / double(values)), ours / theirs,
+          std::sqrt(sky / double(pixels))};
+}
+
+double aoRmse(const Frame& frame, const ReferenceImages& truth) {
+  double squared = 0;
+  long pixels = 0;
+  for (int y = 0; y < frame.ssgi.height; ++y)
+    for (int x = 0; x < frame.ssgi.width; ++x) {
+      const double d = double(frame.ssgi.at(x, y, 0)) - truth.ao.at(x, y, 0);
+      squared += d * d;
+      ++pixels;
+    }
+  return std::sqrt(squared / double(pixels));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int size = argc > 1 ? std::atoi(argv[1]) : 256;
+  const int rays = argc > 2 ? std::atoi(argv[2]) : 4096;
+  try {
+    if (!referenceAvailable()) {
+      std::cerr << "ssgi-accuracy-report: this build has no Embree reference\n";
+      return 77;
+    }
+    RenderSettings settings;
+    settings.width = settings.height = size;
+    std::map<std::string, std::string> flags;
+    for (int i = 3; i < argc; ++i) {
+      const std::string flag = argv[i];
+      const auto equals = flag.find('=');
+      if (equals == std::string::npos) throw SettingsError("expected name=value, got '" + flag + "'");
+      flags[flag.substr(0, equals)] = flag.substr(equals + 1);
+    }
+    applySettingsText(settings, flags);
+    RenderSettings nearRadius = settings;
+    nearRadius.ssgi.radius.reset();
+    nearRadius.ssgi.radiusFraction = 0.1f;
+
+    Context context(ContextOptions{.backend = Backend::Auto, .errorPolicy = GlErrorPolicy::Throw, .eglDeviceName = {}});
+    Renderer renderer(context);
+    std::printf("%dx%d, %d reference rays; %s\n\n", size, size, rays, context.renderer().c_str());
+    std::printf("| scene | HDR-FLIP | indirect rel. RMSE | indirect ours / reference | sky RMSE | AO RMSE, R = 0.1 diag |\n"
+                "|---|---:|---:|---:|---:|---:|\n");
+    std::vector<std::string> scenes = {"builtin:cornell", "builtin:spheres", "builtin:slats"};
+    const std::string metalRough = test::metalRoughSpheresGltf().string();
+    if (test::exists(metalRough))
+      scenes.push_back(metalRough);
+    else
+      std::printf("(MetalRoughSpheresNoTextures left out: %s is missing)\n", metalRough.c_str());
+    for (const std::string& scene : scenes) {
+      renderer.setScene(loadScene(scene));
+      const Frame frame = renderer.render(settings);
+      const Frame nearFrame = renderer.render(nearRadius);
+      // lit and the unlimited indirect do not depend on R; ao.Y does: traced
+      // with the second render's.
+      ReferenceSettings reference;
+      reference.samplesPerPixel = rays;
+      reference.radius = *nearFrame.settings.ssgi.radius;
+      const ReferenceImages truth = traceReference(renderer.scene(), frame, reference);
+      const IndirectError indirect = indirectError(frame, truth);
+      const std::string name = scene == metalRough ? "MetalRoughSpheresNoTextures" : scene;
+      std::printf("| %s | %.4f | %.3f | %.3f | %.3f | %.4f |\n", name.c_str(), meanFlip(truth.lit, frame.lit),
+                  indirect.relativeRmse, indirect.ratio, indirect.skyRmse, aoRmse(nearFrame, truth));
+      std::fflush(stdout);
+    }
+  } catch (const Error& error) {
+    std::cerr << "ssgi-accuracy-report: " << error.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
