@@ -81,7 +81,7 @@ struct SsgiSettings {
   // few texels of each light's view of the scene, lib/passes/virtual_lights.hpp),
   // instead of what the screen-space marches find beyond R (0: the marches).
   // 1024: cornell's HDR-FLIP 0.2295 -> 0.131 and its indirect error 0.427 ->
-  // 0.211 for 14-17 % more SSGI time (the other scenes 3-7 %); 2048 bought
+  // 0.211 for 14-17 % more SSGI time (the other scenes up to 7 %); 2048 bought
   // 0.001 on cornell and lost it on slats; 512 lost 0.0006 on slats
   // (docs/BENCHMARKS.md, "Virtual lights").
   int virtualLightCount = 1024;
