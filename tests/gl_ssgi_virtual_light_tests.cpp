@@ -109,8 +109,14 @@ TEST_CASE("virtual lights: a light's views cover it whole") {
   spot.type = Light::Type::Spot;
   spot.direction = {0.0f, -1.0f, 0.0f};
   spot.outerConeAngle = 0.6f;
-  const std::vector<LightView> views = lightViews({pointLight({0.2f, 0.1f, 0.0f}, 1.0f), sun, spot}, bounds);
-  REQUIRE(views.size() == 8);  // six cube faces, the sun's square, the spot's cone
+  Light unshadowed = pointLight({0.0f, 0.0f, 0.0f}, 1.0f);
+  unshadowed.castsShadows = false;
+  const std::vector<LightView> views =
+      lightViews({pointLight({0.2f, 0.1f, 0.0f}, 1.0f), sun, unshadowed, spot}, bounds);
+  // Six cube faces, the sun's square, the spot's cone; none for the light
+  // that casts no shadow (its views are not in the draw budget).
+  REQUIRE(views.size() == 8);
+  CHECK(views[7].light == 3);
   CHECK(views[6].camera.orthographic);
   CHECK(lightViewSize(1024, 6) == 13);
   CHECK(lightViewSize(4, 6) == 1);  // never none: one texel per view

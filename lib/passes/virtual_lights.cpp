@@ -75,6 +75,10 @@ std::vector<LightView> lightViews(const std::vector<Light>& lights, const Bounds
   std::vector<LightView> views;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
+    // A light that casts no shadow gets no views: the views a scene's lights
+    // add are then its shadow maps' views, which --max-draws bounds
+    // (checkDrawBudget), once per scene.
+    if (!light.castsShadows) continue;
     const glm::vec3 direction = glm::normalize(light.direction);
     switch (light.type) {
       case Light::Type::Point:

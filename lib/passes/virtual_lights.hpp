@@ -31,8 +31,8 @@ struct LightView {
   float halfWidth = 0.0f;  // orthographic (directional): half the square's side, world units
 };
 
-// Every view of every light, in the lights' order: six for a point light,
-// one for a spot or directional light.
+// Every view of every light that casts shadows, in the lights' order: six
+// for a point light, one for a spot or directional light.
 std::vector<LightView> lightViews(const std::vector<Light>& lights, const Bounds& bounds);
 
 // What texel (x, y) of a `size` x `size` rendering of `view` covers: its
