@@ -31,6 +31,7 @@
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
+#include "passes/frame_block.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
@@ -75,17 +76,6 @@ Light defaultKeyLight() {
   light.intensity = 3.0f;
   light.castsShadows = true;
   return light;
-}
-
-gpu::FrameBlock makeFrameBlock(const CameraView& view, int width, int height) {
-  gpu::FrameBlock block{};
-  block.view = view.view;
-  block.projection = view.projection;
-  block.viewProjection = view.projection * view.view;
-  block.cameraPosition = glm::vec4(view.position, view.orthographic ? 1.0f : 0.0f);
-  block.viewport = glm::vec4(float(width), float(height), 1.0f / float(width), 1.0f / float(height));
-  block.depthToViewZ = glm::vec4(viewZCoefficients(view));
-  return block;
 }
 
 }  // namespace

@@ -12,11 +12,11 @@
 
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
-#include "gl/readback.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
+#include "passes/frame_block.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/virtual_lights.hpp"
 #include "scene/gpu_scene.hpp"
@@ -74,16 +74,8 @@ std::vector<gpu::GpuVirtualLight> makeVirtualLights(const Scene& scene, int budg
   frameBlock.bindUniform(gpu::FrameBlock::kBinding);
   VirtualLightPass pass;
   const VirtualLights lights =
-      pass.run(gpuScene, gbuffer, plan.gbuffer, scene.lights, budget, [&](const CameraView& view, int size) {
-        gpu::FrameBlock block{};
-        block.view = view.view;
-        block.projection = view.projection;
-        block.viewProjection = view.projection * view.view;
-        block.cameraPosition = glm::vec4(view.position, view.orthographic ? 1.0f : 0.0f);
-        block.viewport = glm::vec4(float(size), float(size), 1.0f / float(size), 1.0f / float(size));
-        block.depthToViewZ = glm::vec4(viewZCoefficients(view));
-        frameBlock.update(block);
-      });
+      pass.run(gpuScene, gbuffer, plan.gbuffer, scene.lights, budget,
+               [&](const CameraView& view, int size) { frameBlock.update(makeFrameBlock(view, size, size)); });
   std::vector<gpu::GpuVirtualLight> out(std::size_t(lights.count));
   if (!out.empty())
     glGetNamedBufferSubData(lights.buffer.id(), 0, GLsizeiptr(out.size() * sizeof(gpu::GpuVirtualLight)), out.data());

@@ -16,16 +16,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <string>
 #include <vector>
 
-#include "diff/flip.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/settings.hpp"
+#include "stability/report_args.hpp"
 #include "support/assets.hpp"
 
 using namespace headlight;
@@ -35,11 +34,6 @@ namespace {
 constexpr int kIndirect = 1, kSky = 4, kIndirectFar = 5;  // ssgi.exr's channels
 constexpr int kReferenceIndirect = 3;                      // indirect_ref's unlimited indirect.R
 
-double meanFlip(const ImageF& reference, const ImageF& test) {
-  const flip::RgbView a{reference.pixels.data(), reference.width, reference.height, reference.channelCount()};
-  const flip::RgbView b{test.pixels.data(), test.width, test.height, test.channelCount()};
-  return flip::hdrFlip(a, b).mean;
-}
 
 struct IndirectError {
   double relativeRmse = 0, ratio = 0, skyRmse = 0;
@@ -90,16 +84,7 @@ int main(int argc, char** argv) {
       std::cerr << "ssgi-accuracy-report: this build has no Embree reference\n";
       return 77;
     }
-    RenderSettings settings;
-    settings.width = settings.height = size;
-    std::map<std::string, std::string> flags;
-    for (int i = 3; i < argc; ++i) {
-      const std::string flag = argv[i];
-      const auto equals = flag.find('=');
-      if (equals == std::string::npos) throw SettingsError("expected name=value, got '" + flag + "'");
-      flags[flag.substr(0, equals)] = flag.substr(equals + 1);
-    }
-    applySettingsText(settings, flags);
+    RenderSettings settings = report::settingsFromArguments(argc, argv, 3, size);
     RenderSettings nearRadius = settings;
     nearRadius.ssgi.radius.reset();
     nearRadius.ssgi.radiusFraction = 0.1f;
@@ -127,7 +112,7 @@ int main(int argc, char** argv) {
       const ReferenceImages truth = traceReference(renderer.scene(), frame, reference);
       const IndirectError indirect = indirectError(frame, truth);
       const std::string name = scene == metalRough ? "MetalRoughSpheresNoTextures" : scene;
-      std::printf("| %s | %.4f | %.3f | %.3f | %.3f | %.4f |\n", name.c_str(), meanFlip(truth.lit, frame.lit),
+      std::printf("| %s | %.4f | %.3f | %.3f | %.3f | %.4f |\n", name.c_str(), report::meanFlip(truth.lit, frame.lit),
                   indirect.relativeRmse, indirect.ratio, indirect.skyRmse, aoRmse(nearFrame, truth));
       std::fflush(stdout);
     }

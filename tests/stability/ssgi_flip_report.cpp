@@ -13,16 +13,15 @@
 #include <cstdlib>
 #include <functional>
 #include <iostream>
-#include <map>
 #include <string>
 #include <vector>
 
-#include "diff/flip.hpp"
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/settings.hpp"
+#include "stability/report_args.hpp"
 #include "stability/stability.hpp"
 
 using namespace headlight;
@@ -57,11 +56,6 @@ std::vector<SuiteScene> suiteScenes() {
   };
 }
 
-double meanFlip(const ImageF& reference, const ImageF& test) {
-  const flip::RgbView a{reference.pixels.data(), reference.width, reference.height, reference.channelCount()};
-  const flip::RgbView b{test.pixels.data(), test.width, test.height, test.channelCount()};
-  return flip::hdrFlip(a, b).mean;
-}
 
 // Mean lit luminance (RGB summed) of `test` over that of `reference`, on the
 // pixels the reference covers: below 1, too dark on the whole.
@@ -85,16 +79,7 @@ int main(int argc, char** argv) {
       std::cerr << "ssgi-flip-report: this build has no Embree reference\n";
       return 77;
     }
-    RenderSettings ssgi;
-    ssgi.width = ssgi.height = size;
-    std::map<std::string, std::string> flags;
-    for (int i = 3; i < argc; ++i) {
-      const std::string flag = argv[i];
-      const auto equals = flag.find('=');
-      if (equals == std::string::npos) throw SettingsError("expected name=value, got '" + flag + "'");
-      flags[flag.substr(0, equals)] = flag.substr(equals + 1);
-    }
-    applySettingsText(ssgi, flags);
+    RenderSettings ssgi = report::settingsFromArguments(argc, argv, 3, size);
     RenderSettings off;
     off.width = off.height = size;
     off.ssgi.enabled = false;
@@ -115,7 +100,7 @@ int main(int argc, char** argv) {
       settings.samplesPerPixel = rays;
       settings.radius = *withSsgi.settings.ssgi.radius;
       const ReferenceImages truth = traceReference(renderer.scene(), withSsgi, settings);
-      const double a = meanFlip(truth.lit, withSsgi.lit), b = meanFlip(truth.lit, without.lit);
+      const double a = report::meanFlip(truth.lit, withSsgi.lit), b = report::meanFlip(truth.lit, without.lit);
       std::printf("| %s | %.4f | %.4f | %+.4f%s | %.3f, %.3f |\n", entry.name.c_str(), a, b, a - b,
                   a > b + 5e-5 ? " (worse)" : "", meanLitRatio(truth.lit, withSsgi.lit),
                   meanLitRatio(truth.lit, without.lit));
