@@ -143,11 +143,11 @@ uint pcgHash(uint value) {
 }
 float unitFromHash(uint hash) { return float(hash >> 8) * (1.0 / 16777216.0); }
 
-// The light a surface seen beyond R sends (`direct`: its direct pass's
-// Lambertian radiance, emission included): all of it, or with virtual
-// lights, which carry the direct light from beyond R, its emission alone.
-vec3 farLight(ivec2 pixel, vec3 direct) {
-  if (bitmask.farLightSource == kFarLightDirect) return direct;
+// The light a surface seen beyond R sends: its direct pass's Lambertian
+// radiance (emission included), or with virtual lights, which carry the
+// direct light from beyond R, its emission alone.
+vec3 farLight(ivec2 pixel) {
+  if (bitmask.farLightSource == kFarLightDirect) return texelFetch(directDiffuse, pixel, 0).rgb;
   if (bitmask.farLightSource == kFarLightEmission) return texelFetch(gbufferEmissive, pixel, 0).rgb;
   return vec3(0.0);
 }
@@ -209,7 +209,8 @@ void marchWithinRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
     const vec3 light = texelFetch(directDiffuse, point.pixel, 0).rgb;
     slice.indirect += (slice.projectedLength * sectorWeight(fresh, edges)) * light;
     if (skyFresh != 0u)
-      slice.farIndirect += (slice.projectedLength * sectorWeight(skyFresh, edges)) * farLight(point.pixel, light);
+      slice.farIndirect += (slice.projectedLength * sectorWeight(skyFresh, edges)) *
+                           (bitmask.farLightSource == kFarLightDirect ? light : farLight(point.pixel));
   }
 }
 
@@ -240,7 +241,7 @@ void marchBeyondRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
     slice.skyOccupied |= skyMask;
     if (skyFresh != 0u && dot(point.normal, offsetFront) < 0.0 && bitmask.farLightSource != kFarLightNone)
       slice.farIndirect += (slice.projectedLength * sectorWeight(skyFresh, edges)) *
-                           farLight(point.pixel, texelFetch(directDiffuse, point.pixel, 0).rgb);
+                           farLight(point.pixel);
   }
 }
 
