@@ -279,7 +279,7 @@ float openWithinRadius(OccludingSlices slices, vec3 toEye, vec3 direction) {
     float weight = max(1.0 - outOfPlane * outOfPlane, 0.0);
     weight *= weight;
     weight *= weight;
-    const float theta = atan(dot(direction, slices.side[s]), dot(direction, toEye));
+    const float theta = fastAtan2(dot(direction, slices.side[s]), dot(direction, toEye));
     const int sector = int(floor((theta - slices.lowest[s]) / sectorAngle));
     const bool covered = sector >= 0 && sector < kSectors && (slices.occupied[s] & (1u << uint(sector))) != 0u;
     total += weight;

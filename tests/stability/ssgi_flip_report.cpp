@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
       settings.radius = *withSsgi.settings.ssgi.radius;
       const ReferenceImages truth = traceReference(renderer.scene(), withSsgi, settings);
       const double a = report::meanFlip(truth.lit, withSsgi.lit), b = report::meanFlip(truth.lit, without.lit);
-      std::printf("| %s | %.4f | %.4f | %+.4f%s | %.3f, %.3f |\n", entry.name.c_str(), a, b, a - b,
+      std::printf("| %s | %.5f | %.5f | %+.5f%s | %.3f, %.3f |\n", entry.name.c_str(), a, b, a - b,
                   a > b + 5e-5 ? " (worse)" : "", meanLitRatio(truth.lit, withSsgi.lit),
                   meanLitRatio(truth.lit, without.lit));
       std::fflush(stdout);
