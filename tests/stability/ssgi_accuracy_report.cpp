@@ -5,7 +5,11 @@
 // geometry pixels (the RMSE of the three channels over the reference's
 // mean), and their mean ratio; the sky visibility's RMSE; the AO RMSE at
 // R = 0.1 x the scene's diagonal (a second render with that radius against
-// the reference's ao.Y traced with it). Never runs in CI.
+// the reference's ao.Y traced with it). A second table splits the indirect
+// light at the default R: ssgi's indirect (the near field) against the
+// reference's indirectR, and indirectFar against indirect - indirectR, each
+// as a mean ratio and an RMSE over the reference's mean of that part (a
+// second trace, at the default R). Never runs in CI.
 //   build/tests/ssgi-accuracy-report [SIZE [RAYS [FLAGS...]]]
 // SIZE: image width and height (default 256); RAYS: the reference's rays per
 // pixel (default 4096: about 80 s on two cores); FLAGS: settings of the
@@ -32,7 +36,7 @@ using namespace headlight;
 namespace {
 
 constexpr int kIndirect = 1, kSky = 4, kIndirectFar = 5;  // ssgi.exr's channels
-constexpr int kReferenceIndirect = 3;                      // indirect_ref's unlimited indirect.R
+constexpr int kReferenceWithinR = 0, kReferenceIndirect = 3;  // indirect_ref's indirectR.R, unlimited indirect.R
 
 
 struct IndirectError {
@@ -60,6 +64,31 @@ IndirectError indirectError(const Frame& frame, const ReferenceImages& truth) {
   if (values == 0 || theirs <= 0) return {};
   return {std::sqrt(squared / double(values)) / (theirs / double(values)), ours / theirs,
           std::sqrt(sky / double(pixels))};
+}
+
+// The indirect light within R (near) or beyond it (far), ours against the
+// reference's, over the geometry pixels: mean ratio and RMSE / reference mean.
+struct PartError {
+  double ratio = 0, relativeRmse = 0;
+};
+PartError partError(const Frame& frame, const ReferenceImages& truth, bool far) {
+  double squared = 0, ours = 0, theirs = 0;
+  long values = 0;
+  for (int y = 0; y < frame.ssgi.height; ++y)
+    for (int x = 0; x < frame.ssgi.width; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double withinR = truth.indirect.at(x, y, kReferenceWithinR + c);
+        const double a = frame.ssgi.at(x, y, (far ? kIndirectFar : kIndirect) + c);
+        const double b = far ? truth.indirect.at(x, y, kReferenceIndirect + c) - withinR : withinR;
+        squared += (a - b) * (a - b);
+        ours += a;
+        theirs += b;
+        ++values;
+      }
+    }
+  if (values == 0 || theirs <= 0) return {};
+  return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
 }
 
 double aoRmse(const Frame& frame, const ReferenceImages& truth) {
@@ -100,6 +129,7 @@ int main(int argc, char** argv) {
       scenes.push_back(metalRough);
     else
       std::printf("(MetalRoughSpheresNoTextures left out: %s is missing)\n", metalRough.c_str());
+    std::string splitRows;
     for (const std::string& scene : scenes) {
       renderer.setScene(loadScene(scene));
       const Frame frame = renderer.render(settings);
@@ -115,7 +145,17 @@ int main(int argc, char** argv) {
       std::printf("| %s | %.4f | %.3f | %.3f | %.3f | %.4f |\n", name.c_str(), report::meanFlip(truth.lit, frame.lit),
                   indirect.relativeRmse, indirect.ratio, indirect.skyRmse, aoRmse(nearFrame, truth));
       std::fflush(stdout);
+      reference.radius = *frame.settings.ssgi.radius;
+      const ReferenceImages split = traceReference(renderer.scene(), frame, reference);
+      const PartError nearPart = partError(frame, split, false), farPart = partError(frame, split, true);
+      char row[256];
+      std::snprintf(row, sizeof row, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", name.c_str(), *frame.settings.ssgi.radius,
+                    nearPart.ratio, nearPart.relativeRmse, farPart.ratio, farPart.relativeRmse);
+      splitRows += row;
     }
+    std::printf("\nThe indirect light split at the default R (ours / reference, and RMSE over the reference's mean of the part):\n\n"
+                "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE |\n|---|---:|---:|---:|---:|---:|\n%s",
+                splitRows.c_str());
   } catch (const Error& error) {
     std::cerr << "ssgi-accuracy-report: " << error.what() << "\n";
     return 1;
