@@ -12,7 +12,7 @@
 // second trace, at the default R). Never runs in CI.
 //   build/tests/ssgi-accuracy-report [SIZE [RAYS [FLAGS...]]]
 // SIZE: image width and height (default 256); RAYS: the reference's rays per
-// pixel (default 4096: about 80 s on two cores); FLAGS: settings of the
+// pixel (default 4096: about 135 s on two cores, two traces a scene); FLAGS: settings of the
 // renders as `name=value` (e.g. ssgi-virtual-lights=0), to compare a
 // variant. MetalRoughSpheresNoTextures comes from ../shared (or
 // $HEADLIGHT_SHARED_DIR); it is left out, and said so, where absent.
