@@ -228,8 +228,12 @@ void marchBeyondRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
   const float edgeOffset = min(toEdge.x, toEdge.y);
   const float firstOffset = max(radiusPixels, 1.0);
   if (edgeOffset <= firstOffset) return;
+  // offset_k = first (edge / first)^((k + jitter) / K), one factor a step
+  // (two pow calls a march, not one a step).
+  const float growth = pow(edgeOffset / firstOffset, 1.0 / float(skyStepCount));
+  float offset = firstOffset * pow(growth, jitter) / growth;
   for (int k = 0; k < skyStepCount; ++k) {
-    const float offset = firstOffset * pow(edgeOffset / firstOffset, (float(k) + jitter) / float(skyStepCount));
+    offset *= growth;
     MarchPoint point;
     const int found = marchPoint(origin + stepDirection * offset, position, point);
     if (found == kMarchOffScreen) break;
