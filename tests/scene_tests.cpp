@@ -17,6 +17,8 @@
 
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
+#include "headlight/limits.hpp"
+#include "headlight/shapes.hpp"
 #include "headlight/scene_loader.hpp"
 #include "support/assets.hpp"
 #include "gltf_test_files.hpp"
@@ -85,6 +87,43 @@ TEST_CASE("generateNormals weights by area and falls back to +Z") {
 }
 
 // ---- Built-in scenes ---------------------------------------------------------
+
+// A scene built in code that breaks Primitive's contract would be drawn with
+// reads past its vertex buffers: checkSceneRanges (setScene's check) refuses it.
+TEST_CASE("checkSceneRanges refuses a primitive whose attribute counts or indices break Primitive's contract") {
+  const auto sceneWith = [](Primitive primitive) {
+    Scene scene;
+    scene.source = "built";
+    scene.primitives.push_back(std::move(primitive));
+    scene.instances.push_back(Instance{});
+    return scene;
+  };
+  const Primitive quad = makeQuad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  REQUIRE(quad.positions.size() == 4);
+  CHECK_NOTHROW(checkSceneRanges(sceneWith(quad)));
+
+  Primitive shortTexcoords = quad;
+  shortTexcoords.texcoords.resize(3);
+  CHECK_THROWS_WITH_AS(checkSceneRanges(sceneWith(shortTexcoords)),
+                       "built: primitive 0 has 4 positions but 3 texcoords (TEXCOORD_0), expected none or 4", SceneError);
+  Primitive noTexcoords = quad;
+  noTexcoords.texcoords.clear();
+  CHECK_NOTHROW(checkSceneRanges(sceneWith(noTexcoords)));
+
+  Primitive noNormals = quad;
+  noNormals.normals.clear();
+  CHECK_THROWS_WITH_AS(checkSceneRanges(sceneWith(noNormals)),
+                       "built: primitive 0 has 4 positions but 0 normals, expected 4", SceneError);
+  Primitive extraColors = quad;
+  extraColors.colors.resize(5, glm::vec4(1.0f));
+  CHECK_THROWS_WITH_AS(checkSceneRanges(sceneWith(extraColors)), doctest::Contains("5 colors, expected none or 4"),
+                       SceneError);
+
+  Primitive pastTheEnd = quad;
+  pastTheEnd.indices.back() = 4;
+  CHECK_THROWS_WITH_AS(checkSceneRanges(sceneWith(pastTheEnd)),
+                       doctest::Contains("primitive 0 has index 4 at 5, expected at most 4 - 1"), SceneError);
+}
 
 TEST_CASE("built-in scenes are well formed") {
   for (const std::string& name : builtinSceneNames()) {

@@ -109,6 +109,7 @@ class RangeCheck {
   explicit RangeCheck(const Scene& scene) : scene_(scene) {}
 
   void run() {
+    for (std::size_t index = 0; index < scene_.primitives.size(); ++index) primitive(index);
     for (std::size_t index = 0; index < scene_.instances.size(); ++index) instance(index);
     for (std::size_t index = 0; index < scene_.cameras.size(); ++index) camera(index);
     for (std::size_t index = 0; index < scene_.lights.size(); ++index) light(index);
@@ -141,6 +142,31 @@ class RangeCheck {
              ", expected 0.." + number(kMaxLightValue) + " so that float rendering stays finite");
       }
     }
+  }
+
+  // Scene.hpp's contract for a primitive: normals for every position, the
+  // other attributes none or one per position, every index a position. The
+  // GL draws what breaks it with reads past its buffers (undefined; garbage
+  // or a crash in the driver), so a scene built in code that breaks it is
+  // refused here, as the reference refuses it.
+  void primitive(std::size_t index) const {
+    const Primitive& primitive = scene_.primitives[index];
+    const std::string name = "primitive " + std::to_string(index);
+    const std::size_t count = primitive.positions.size();
+    const auto attribute = [&](std::size_t size, const char* what, bool optional) {
+      if (size == count || (optional && size == 0)) return;
+      fail(name + " has " + std::to_string(count) + " positions but " + std::to_string(size) + " " + what +
+           ", expected " + (optional ? "none or " : "") + std::to_string(count));
+    };
+    attribute(primitive.normals.size(), "normals", false);
+    attribute(primitive.texcoords.size(), "texcoords (TEXCOORD_0)", true);
+    attribute(primitive.texcoords1.size(), "texcoords (TEXCOORD_1)", true);
+    attribute(primitive.tangents.size(), "tangents", true);
+    attribute(primitive.colors.size(), "colors", true);
+    for (std::size_t at = 0; at < primitive.indices.size(); ++at)
+      if (primitive.indices[at] >= count)
+        fail(name + " has index " + std::to_string(primitive.indices[at]) + " at " + std::to_string(at) + ", expected at most " +
+             std::to_string(count) + " - 1 (its position count)");
   }
 
   void instance(std::size_t index) const {

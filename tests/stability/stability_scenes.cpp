@@ -99,6 +99,7 @@ Scene zeroAreaScene() {
   wall.positions.insert(wall.positions.end(), {{0, 0.5f, -1}, {0, 0.5f, -1}, {0, 0.5f, -1}});
   wall.positions.insert(wall.positions.end(), {{-0.5f, 1, -1}, {0, 1, -1}, {0.5f, 1, -1}});
   for (std::uint32_t i = 0; i < 6; ++i) wall.indices.push_back(first + i);
+  wall.texcoords.resize(wall.positions.size(), glm::vec2(0.0f));  // one per position, as Primitive asks
   wall.normals.clear();
   generateNormals(wall);
   recomputeBounds(wall);

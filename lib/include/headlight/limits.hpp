@@ -62,8 +62,10 @@ inline constexpr double kMaxLightValue = 1e12;
 
 // Throws SceneError "<scene.source>: <element> ..." for a value outside those
 // ranges or not finite: instance transforms and world bounds, cameras,
-// lights, emissive and base colour factors, the sky. loadGltf and
-// Renderer::setScene call it, so built and loaded scenes get the same rules.
+// lights, emissive and base colour factors, the sky; and for a primitive that
+// breaks Primitive's contract (an attribute count other than its positions',
+// an index past them). loadGltf and Renderer::setScene call it, so built and
+// loaded scenes get the same rules.
 void checkSceneRanges(const Scene& scene);
 
 // Passes that draw the whole scene in one frame, at most: the G-buffer, one
