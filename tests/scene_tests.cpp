@@ -105,7 +105,8 @@ TEST_CASE("checkSceneRanges refuses a primitive whose attribute counts or indice
   Primitive shortTexcoords = quad;
   shortTexcoords.texcoords.resize(3);
   CHECK_THROWS_WITH_AS(checkSceneRanges(sceneWith(shortTexcoords)),
-                       "built: primitive 0 has 4 positions but 3 texcoords (TEXCOORD_0), expected none or 4", SceneError);
+                       "built: primitive 0 has 4 positions but 3 texcoords (TEXCOORD_0), expected none or 4",
+                       SceneError);
   Primitive noTexcoords = quad;
   noTexcoords.texcoords.clear();
   CHECK_NOTHROW(checkSceneRanges(sceneWith(noTexcoords)));

@@ -165,8 +165,8 @@ class RangeCheck {
     attribute(primitive.colors.size(), "colors", true);
     for (std::size_t at = 0; at < primitive.indices.size(); ++at)
       if (primitive.indices[at] >= count)
-        fail(name + " has index " + std::to_string(primitive.indices[at]) + " at " + std::to_string(at) + ", expected at most " +
-             std::to_string(count) + " - 1 (its position count)");
+        fail(name + " has index " + std::to_string(primitive.indices[at]) + " at " + std::to_string(at) +
+             ", expected at most " + std::to_string(count) + " - 1 (its position count)");
   }
 
   void instance(std::size_t index) const {

@@ -149,13 +149,16 @@ int main(int argc, char** argv) {
       const ReferenceImages split = traceReference(renderer.scene(), frame, reference);
       const PartError nearPart = partError(frame, split, false), farPart = partError(frame, split, true);
       char row[256];
-      std::snprintf(row, sizeof row, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", name.c_str(), *frame.settings.ssgi.radius,
-                    nearPart.ratio, nearPart.relativeRmse, farPart.ratio, farPart.relativeRmse);
+      std::snprintf(row, sizeof row, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", name.c_str(),
+                    *frame.settings.ssgi.radius, nearPart.ratio, nearPart.relativeRmse, farPart.ratio,
+                    farPart.relativeRmse);
       splitRows += row;
     }
-    std::printf("\nThe indirect light split at the default R (ours / reference, and RMSE over the reference's mean of the part):\n\n"
-                "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE |\n|---|---:|---:|---:|---:|---:|\n%s",
-                splitRows.c_str());
+    std::printf(
+        "\nThe indirect light split at the default R (ours / reference, and RMSE over the reference's mean of the "
+        "part):\n\n"
+        "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE |\n|---|---:|---:|---:|---:|---:|\n%s",
+        splitRows.c_str());
   } catch (const Error& error) {
     std::cerr << "ssgi-accuracy-report: " << error.what() << "\n";
     return 1;
