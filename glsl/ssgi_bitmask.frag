@@ -389,6 +389,16 @@ float sinHalfTurn(float x) {
 // with its long tails; times Smith's G1 for L (Schlick's form, k = alpha / 2),
 // which fades the lobe at the horizon. (The split sum's N.L cancels in
 // BRDF cos.)
+// The bend has two parts: the horizon's (the whole hemisphere's lobe mean,
+// nonzero on an open plane at a grazing angle) and the occluders' (the open
+// part's mean from there). The horizon's part counts at kHorizonBendShare.
+// In full it made every open floor worse (the stability suite's NaN-vertex
+// floor worse than no SSGI: HDR-FLIP 0.00966 against 0.00954); left out,
+// balls lost the turn of their grazing reflections (spheres 0.0419 ->
+// 0.0437, MetalRoughSpheres 0.0403 -> 0.0415). At 3/4: NaN-vertex 0.00942,
+// flat plane 0.00674 -> 0.00622, grazing floor 0.00627 -> 0.00573, spheres
+// 0.0422, MetalRoughSpheres 0.0409 (docs/BENCHMARKS.md, "Session 10").
+const float kHorizonBendShare = 0.75;
 vec3 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float alpha) {
   const vec3 axis = cross(slice.side, slice.toEye);
   const float outOfPlane = dot(reflected, axis);
@@ -416,7 +426,10 @@ vec3 sliceSpecularVisibility(Slice slice, uint covered, vec3 reflected, float al
   if (total <= 1e-12) return vec3(0.0);
   // The normal's angle in the slice is lowest + pi/2: positive bends toward it.
   const float towardNormal = slice.lowest + 0.5 * kPi >= thetaR ? 1.0 : -1.0;
-  const float bend = open > 1e-12 ? towardNormal * (openAngle / open) : 0.0;
+  // The lobe's mean over the hemisphere, then the open part's mean from it.
+  const float horizonBend = totalAngle / total;
+  const float occluderBend = open > 1e-12 ? openAngle / open - horizonBend : 0.0;
+  const float bend = open > 1e-12 ? towardNormal * (occluderBend + kHorizonBendShare * horizonBend) : 0.0;
   const float visible = weight * open / total;
   return vec3(visible, weight, visible * bend);
 }
