@@ -126,6 +126,62 @@ TEST_CASE("checkSceneRanges refuses a primitive whose attribute counts or indice
                        doctest::Contains("primitive 0 has index 4 at 5, expected at most 4 - 1"), SceneError);
 }
 
+// What an instance and a material name must exist, and an image hold its
+// texels: the passes index the scene's tables with them.
+TEST_CASE("checkSceneRanges refuses an instance, material texture or image that names what the scene lacks") {
+  const auto texturedScene = [] {
+    Scene scene;
+    scene.source = "built";
+    scene.primitives.push_back(makeQuad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}));
+    scene.images.push_back(ImageData{"checker", 2, 2, std::vector<std::uint8_t>(16, 255)});
+    Material material;
+    material.name = "painted";
+    material.baseColorTexture.image = 0;
+    scene.materials.push_back(material);
+    scene.instances.push_back(Instance{0, glm::mat4(1.0f), 0});
+    return scene;
+  };
+  CHECK_NOTHROW(checkSceneRanges(texturedScene()));
+
+  Scene noPrimitive = texturedScene();
+  noPrimitive.instances[0].primitive = 1;
+  CHECK_THROWS_WITH_AS(checkSceneRanges(noPrimitive),
+                       "built: instance 0 names primitive 1, expected 0..0 (the scene has 1)", SceneError);
+  Scene noMaterial = texturedScene();
+  noMaterial.instances[0].material = 3;
+  CHECK_THROWS_WITH_AS(checkSceneRanges(noMaterial),
+                       "built: instance 0 names material 3, expected -1 (the default) or 0..0 (the scene has 1)",
+                       SceneError);
+  Scene belowDefault = texturedScene();
+  belowDefault.instances[0].material = -2;
+  CHECK_THROWS_AS(checkSceneRanges(belowDefault), SceneError);
+  Scene defaultMaterial = texturedScene();
+  defaultMaterial.instances[0].material = -1;
+  CHECK_NOTHROW(checkSceneRanges(defaultMaterial));
+
+  Scene missingImage = texturedScene();
+  missingImage.materials[0].baseColorTexture.image = 1;
+  CHECK_THROWS_WITH_AS(checkSceneRanges(missingImage),
+                       "built: material 0 'painted' samples image 1 as its BASE_COLOR texture, expected 0..0 (the "
+                       "scene has 1)",
+                       SceneError);
+  // An extension's texture goes through the same table.
+  Scene missingCoatImage = texturedScene();
+  missingCoatImage.materials[0].clearcoat = MaterialClearcoat{};
+  missingCoatImage.materials[0].clearcoat->clearcoatNormalTexture.image = 7;
+  CHECK_THROWS_WITH_AS(checkSceneRanges(missingCoatImage), doctest::Contains("image 7 as its CLEARCOAT_NORMAL"),
+                       SceneError);
+
+  Scene shortImage = texturedScene();
+  shortImage.images[0].rgba.resize(15);
+  CHECK_THROWS_WITH_AS(checkSceneRanges(shortImage), "built: image 0 'checker' has 15 bytes, expected 16 (RGBA8, 2x2)",
+                       SceneError);
+  Scene emptyImage = texturedScene();
+  emptyImage.images[0] = ImageData{"empty", 0, 4, {}};
+  CHECK_THROWS_WITH_AS(checkSceneRanges(emptyImage), "built: image 0 'empty' is 0x4, expected at least 1x1",
+                       SceneError);
+}
+
 TEST_CASE("built-in scenes are well formed") {
   for (const std::string& name : builtinSceneNames()) {
     CAPTURE(name);

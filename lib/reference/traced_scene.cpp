@@ -1,10 +1,10 @@
 #include "reference/traced_scene.hpp"
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
 
 #include "headlight/error.hpp"
+#include "headlight/limits.hpp"
 #include "reference/texture_sampler.hpp"
 
 namespace headlight::reference {
@@ -51,9 +51,16 @@ bool cutOut(const InstanceShading& instance, unsigned triangle, float u, float v
 }
 
 TracedScene buildScene(const Scene& scene, int threads) {
+  // The renderer's contract for a scene (its instances, primitives and
+  // materials name what exists, attribute counts match): the embedder's
+  // scene may not have been through setScene or the loader.
+  checkSceneRanges(scene);
   // "threads=N" also bounds Embree's own BVH-building threads.
-  TracedScene traced{
-      EmbreeDevice(threads > 0 ? "threads=" + std::to_string(threads) : std::string()), EmbreeScene(), {}};
+  TracedScene traced{EmbreeDevice(threads > 0 ? "threads=" + std::to_string(threads) : std::string()),
+                     EmbreeScene(),
+                     EmbreeScene(),
+                     false,
+                     {}};
   traced.device.check("rtcNewDevice");
   traced.scene = EmbreeScene(traced.device.get());
   traced.blended = EmbreeScene(traced.device.get());
@@ -61,13 +68,6 @@ TracedScene buildScene(const Scene& scene, int threads) {
   traced.instances.resize(scene.instances.size());
   for (std::size_t id = 0; id < scene.instances.size(); ++id) {
     const Instance& instance = scene.instances[id];
-    const std::string what = scene.source + ": instance " + std::to_string(id);
-    if (instance.primitive < 0 || std::size_t(instance.primitive) >= scene.primitives.size())
-      throw Error("traceReference: " + what + " names primitive " + std::to_string(instance.primitive) +
-                  "; the scene has " + std::to_string(scene.primitives.size()));
-    if (instance.material < -1 || (instance.material >= 0 && std::size_t(instance.material) >= scene.materials.size()))
-      throw Error("traceReference: " + what + " names material " + std::to_string(instance.material) +
-                  "; the scene has " + std::to_string(scene.materials.size()));
     const Primitive& primitive = scene.primitives[std::size_t(instance.primitive)];
     const Material& material =
         instance.material >= 0 ? scene.materials[std::size_t(instance.material)] : defaultMaterial();
@@ -76,24 +76,6 @@ TracedScene buildScene(const Scene& scene, int threads) {
     // Rays cannot hit a point or a line: the reference does not see them
     // (their G-buffer pixels are still shading points).
     if (triangleCount == 0 || vertexCount == 0 || primitive.mode != PrimitiveMode::Triangles) continue;
-    if (primitive.normals.size() != vertexCount ||
-        (!primitive.texcoords.empty() && primitive.texcoords.size() != vertexCount) ||
-        (!primitive.texcoords1.empty() && primitive.texcoords1.size() != vertexCount) ||
-        (!primitive.colors.empty() && primitive.colors.size() != vertexCount))
-      throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has " +
-                  std::to_string(vertexCount) + " positions but " + std::to_string(primitive.normals.size()) +
-                  " normals, " + std::to_string(primitive.texcoords.size()) + " texcoords and " +
-                  std::to_string(primitive.colors.size()) + " colors");
-    const std::uint32_t largest =
-        *std::max_element(primitive.indices.begin(), primitive.indices.begin() + 3 * triangleCount);
-    if (largest >= vertexCount)
-      throw Error("traceReference: " + what + ": primitive " + std::to_string(instance.primitive) + " has index " +
-                  std::to_string(largest) + " but " + std::to_string(vertexCount) + " vertices");
-    for (const TextureRef* ref :
-         {&material.baseColorTexture, &material.emissiveTexture, &material.metallicRoughnessTexture})
-      if (ref->present() && std::size_t(ref->image) >= scene.images.size())
-        throw Error("traceReference: " + what + ": material \"" + material.name + "\" names image " +
-                    std::to_string(ref->image) + "; the scene has " + std::to_string(scene.images.size()));
 
     // The scene keeps its own reference to an attached geometry; this one
     // goes at the end of the iteration.
@@ -121,7 +103,8 @@ TracedScene buildScene(const Scene& scene, int threads) {
                             unsigned(id));
       traced.hasBlended = traced.hasBlended || material.blended();
     }
-    traced.device.check(what + " (" + std::to_string(triangleCount) + " triangles)");
+    traced.device.check(scene.source + ": instance " + std::to_string(id) + " (" + std::to_string(triangleCount) +
+                        " triangles)");
 
     InstanceShading& shading = traced.instances[id];
     shading.scene = &scene;

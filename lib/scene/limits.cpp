@@ -7,6 +7,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "scene/material_textures.hpp"
 #include "settings/option_binding.hpp"
 
 namespace headlight {
@@ -109,6 +110,7 @@ class RangeCheck {
   explicit RangeCheck(const Scene& scene) : scene_(scene) {}
 
   void run() {
+    for (std::size_t index = 0; index < scene_.images.size(); ++index) image(index);
     for (std::size_t index = 0; index < scene_.primitives.size(); ++index) primitive(index);
     for (std::size_t index = 0; index < scene_.instances.size(); ++index) instance(index);
     for (std::size_t index = 0; index < scene_.cameras.size(); ++index) camera(index);
@@ -169,11 +171,32 @@ class RangeCheck {
              ", expected at most " + std::to_string(count) + " - 1 (its position count)");
   }
 
+  // Scene.hpp's contract for an image: RGBA8, width x height texels.
+  void image(std::size_t index) const {
+    const ImageData& image = scene_.images[index];
+    const std::string name = "image " + std::to_string(index) + " '" + image.name + "'";
+    if (image.width <= 0 || image.height <= 0)
+      fail(name + " is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+           ", expected at least 1x1");
+    const std::uint64_t expected = 4 * std::uint64_t(image.width) * std::uint64_t(image.height);
+    if (image.rgba.size() != expected)
+      fail(name + " has " + std::to_string(image.rgba.size()) + " bytes, expected " + std::to_string(expected) +
+           " (RGBA8, " + std::to_string(image.width) + "x" + std::to_string(image.height) + ")");
+  }
+
+  // An instance names a primitive and a material (-1: the default) the scene has.
   void instance(std::size_t index) const {
     const Instance& instance = scene_.instances[index];
     const std::string name = "instance " + std::to_string(index);
+    if (instance.primitive < 0 || std::size_t(instance.primitive) >= scene_.primitives.size())
+      fail(name + " names primitive " + std::to_string(instance.primitive) + ", expected 0.." +
+           std::to_string(int(scene_.primitives.size()) - 1) + " (the scene has " +
+           std::to_string(scene_.primitives.size()) + ")");
+    if (instance.material < -1 || (instance.material >= 0 && std::size_t(instance.material) >= scene_.materials.size()))
+      fail(name + " names material " + std::to_string(instance.material) + ", expected -1 (the default) or 0.." +
+           std::to_string(int(scene_.materials.size()) - 1) + " (the scene has " +
+           std::to_string(scene_.materials.size()) + ")");
     matrix(instance.worldFromLocal, name, "a world transform entry of");
-    if (instance.primitive < 0 || std::size_t(instance.primitive) >= scene_.primitives.size()) return;
     const Bounds& bounds = scene_.primitives[std::size_t(instance.primitive)].bounds;
     if (bounds.empty()) return;
     const glm::dmat4 world(instance.worldFromLocal);
@@ -220,6 +243,16 @@ class RangeCheck {
     const Material& material = scene_.materials[index];
     const std::string name = "material " + std::to_string(index) + " '" + material.name + "'";
     lightValue(material.emissiveFactor, name, "emissive");
+    // Every texture it samples names an image the scene has (the table the
+    // upload and the passes walk: lib/scene/material_textures.hpp).
+    for (const MaterialTextureRow& row : materialTextureRows()) {
+      const TextureRef* ref = row.ref(material);
+      if (ref == nullptr || !ref->present()) continue;
+      if (std::size_t(ref->image) >= scene_.images.size())
+        fail(name + " samples image " + std::to_string(ref->image) + " as its " + row.define +
+             " texture, expected 0.." + std::to_string(int(scene_.images.size()) - 1) + " (the scene has " +
+             std::to_string(scene_.images.size()) + ")");
+    }
     for (int channel = 0; channel < 4; ++channel) {
       if (!std::isfinite(material.baseColorFactor[channel]))
         fail(name + " has a non-finite baseColorFactor in channel " + std::to_string(channel));

@@ -62,10 +62,12 @@ inline constexpr double kMaxLightValue = 1e12;
 
 // Throws SceneError "<scene.source>: <element> ..." for a value outside those
 // ranges or not finite: instance transforms and world bounds, cameras,
-// lights, emissive and base colour factors, the sky; and for a primitive that
+// lights, emissive and base colour factors, the sky; for a primitive that
 // breaks Primitive's contract (an attribute count other than its positions',
-// an index past them). loadGltf and Renderer::setScene call it, so built and
-// loaded scenes get the same rules.
+// an index past them); for an instance naming a primitive or material the
+// scene lacks, a material texture naming a missing image, and an image whose
+// RGBA8 bytes are not width x height. loadGltf, Renderer::setScene and the
+// reference's trace call it, so built and loaded scenes get the same rules.
 void checkSceneRanges(const Scene& scene);
 
 // Passes that draw the whole scene in one frame, at most: the G-buffer, one
