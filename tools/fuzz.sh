@@ -39,7 +39,7 @@ common=(lib/settings/options.cpp lib/output/fingerprint.cpp lib/output/bounded_r
 case "$target" in
   gltf-loader)
     sources=("${common[@]}" lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp lib/scene/shapes.cpp
-             lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp
+             lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp lib/scene/material_textures.cpp
              lib/image_io/texture_decode.cpp lib/environment/environment_load.cpp lib/image_io/environment_decode.cpp
              tests/fuzz/gltf_loader_fuzz.cpp)
     libs=($(pkg-config --libs OpenImageIO libxxhash draco) -ltinygltf -lmeshoptimizer) ;;

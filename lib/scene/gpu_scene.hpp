@@ -13,29 +13,6 @@
 
 namespace headlight {
 
-// Which optional inputs a G-buffer shader variant reads; a bit set, built
-// into the shader as #defines.
-enum GBufferFeature : FeatureBits {
-  kFeatureTexcoords = FeatureBits{1} << 0,
-  kFeatureTangents = FeatureBits{1} << 1,
-  kFeatureBaseColorTexture = FeatureBits{1} << 2,
-  kFeatureMetallicRoughnessTexture = FeatureBits{1} << 3,
-  kFeatureNormalTexture = FeatureBits{1} << 4,
-  kFeatureOcclusionTexture = FeatureBits{1} << 5,
-  kFeatureEmissiveTexture = FeatureBits{1} << 6,
-  kFeatureAlphaMask = FeatureBits{1} << 7,     // alphaMode MASK: discard below the cutoff
-  kFeatureVertexColors = FeatureBits{1} << 8,  // COLOR_0 multiplies base colour and alpha
-  kFeatureTexcoords1 = FeatureBits{1} << 9,    // the primitive has TEXCOORD_1 (a material drawn with it samples that set)
-  kFeatureTextureTransform = FeatureBits{1} << 10,  // KHR_texture_transform: some texture's UVs go through its matrix
-  kFeatureUnlit = FeatureBits{1} << 11,             // KHR_materials_unlit: flagged in the material target's A
-  // The texture reads TEXCOORD_1 instead of TEXCOORD_0, one bit per texture.
-  kFeatureBaseColorTexcoord1 = FeatureBits{1} << 12,
-  kFeatureMetallicRoughnessTexcoord1 = FeatureBits{1} << 13,
-  kFeatureNormalTexcoord1 = FeatureBits{1} << 14,
-  kFeatureOcclusionTexcoord1 = FeatureBits{1} << 15,
-  kFeatureEmissiveTexcoord1 = FeatureBits{1} << 16,
-};
-
 // The #defines that build `features` into a shader (HAS_TEXCOORDS, ...,
 // ALPHA_MASK): one table for the G-buffer and shadow passes.
 std::vector<std::string> featureDefines(FeatureBits features);

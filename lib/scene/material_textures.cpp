@@ -1,7 +1,5 @@
 #include "scene/material_textures.hpp"
 
-#include "scene/gpu_scene.hpp"
-
 namespace headlight {
 
 namespace {

@@ -14,9 +14,32 @@
 
 namespace headlight {
 
-// A set of GBufferFeature bits (lib/scene/gpu_scene.hpp); 64: the
-// KHR_materials_* textures need more than 32.
+// A set of GBufferFeature bits (below); 64: the KHR_materials_* textures
+// need more than 32.
 using FeatureBits = std::uint64_t;
+
+// Which optional inputs a G-buffer shader variant reads; a bit set, built
+// into the shader as #defines.
+enum GBufferFeature : FeatureBits {
+  kFeatureTexcoords = FeatureBits{1} << 0,
+  kFeatureTangents = FeatureBits{1} << 1,
+  kFeatureBaseColorTexture = FeatureBits{1} << 2,
+  kFeatureMetallicRoughnessTexture = FeatureBits{1} << 3,
+  kFeatureNormalTexture = FeatureBits{1} << 4,
+  kFeatureOcclusionTexture = FeatureBits{1} << 5,
+  kFeatureEmissiveTexture = FeatureBits{1} << 6,
+  kFeatureAlphaMask = FeatureBits{1} << 7,     // alphaMode MASK: discard below the cutoff
+  kFeatureVertexColors = FeatureBits{1} << 8,  // COLOR_0 multiplies base colour and alpha
+  kFeatureTexcoords1 = FeatureBits{1} << 9,  // the primitive has TEXCOORD_1 (a material drawn with it samples that set)
+  kFeatureTextureTransform = FeatureBits{1} << 10,  // KHR_texture_transform: some texture's UVs go through its matrix
+  kFeatureUnlit = FeatureBits{1} << 11,             // KHR_materials_unlit: flagged in the material target's A
+  // The texture reads TEXCOORD_1 instead of TEXCOORD_0, one bit per texture.
+  kFeatureBaseColorTexcoord1 = FeatureBits{1} << 12,
+  kFeatureMetallicRoughnessTexcoord1 = FeatureBits{1} << 13,
+  kFeatureNormalTexcoord1 = FeatureBits{1} << 14,
+  kFeatureOcclusionTexcoord1 = FeatureBits{1} << 15,
+  kFeatureEmissiveTexcoord1 = FeatureBits{1} << 16,
+};
 
 enum class MaterialTexture {
   BaseColor,
