@@ -23,7 +23,12 @@ inline bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isf
 // inputs.
 class Tracer {
  public:
-  explicit Tracer(const TraceInputs& in) : in_(in) { rtcInitIntersectContext(&context_); }
+  explicit Tracer(const TraceInputs& in)
+      : in_(in),
+        clipFromWorld_(in.frame.view.projection * in.frame.view.view),
+        worldFromClip_(glm::inverse(clipFromWorld_)) {
+    rtcInitIntersectContext(&context_);
+  }
   void tracePixel(int x, int y, const Outputs& out);
 
  private:
@@ -33,6 +38,7 @@ class Tracer {
   void readLobes(int x, int y, Surface& surface) const;
   RTCRayHit traceFromSurface(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& toEye);
   bool unoccluded(const glm::vec3& origin, const glm::vec3& direction, float far);
+  bool shownOnScreen(const glm::vec3& point);
   TransmissiveSurface transmissiveSurfaceHere(int x, int y);
   glm::vec3 transmittedLight(const Surface& surface, const glm::vec3& position, const TransmissiveSurface& t,
                              const glm::vec3& specularAlbedo, Pcg32& random);
@@ -100,6 +106,7 @@ class Tracer {
   }
 
   const TraceInputs& in_;
+  glm::mat4 clipFromWorld_, worldFromClip_;  // the frame's view (shownOnScreen)
   RTCIntersectContext context_;
 };
 

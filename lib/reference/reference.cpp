@@ -37,6 +37,10 @@ std::span<const Option<ReferenceSettings>> referenceOptions() {
       bindOption<ReferenceSettings>(
           {"reference-samples", OptionType::Int, "reference rays per pixel (cosine-weighted hemisphere)", 1, 1 << 20},
           [](auto& s) -> auto& { return s.samplesPerPixel; }),
+      bindOption<ReferenceSettings>(
+          {"reference-screen-bound", OptionType::Bool,
+           "within R, only surfaces the frame shows occlude and send light: the best a screen-space method can do"},
+          [](auto& s) -> auto& { return s.screenBound; }),
   };
   return rows;
 }

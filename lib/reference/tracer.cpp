@@ -83,6 +83,10 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
       continue;
     }
     const float t = rayHit.ray.tfar;
+    if (in_.settings.screenBound && t < radius && !shownOnScreen(origin + direction * t)) {
+      ++open;  // a screen-space method sees nothing there
+      continue;
+    }
     if (t >= radius) ++open;
     const glm::dvec3 contribution = glm::dvec3(diffuseWeight * radianceLeaving(rayHit, direction));
     sum += contribution;
@@ -226,6 +230,23 @@ bool Tracer::unoccluded(const glm::vec3& origin, const glm::vec3& direction, flo
   RTCRay ray = makeRayHit(origin, direction, far).ray;
   rtcOccluded1(in_.rtcScene, &context_, &ray);
   return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+// True when `point` (world, on a surface) is in the frame's view and the
+// camera sees it: nothing lies between it and the near plane along its
+// camera ray (perspective and orthographic alike).
+bool Tracer::shownOnScreen(const glm::vec3& point) {
+  const glm::vec4 clip = clipFromWorld_ * glm::vec4(point, 1.0f);
+  if (!(clip.w > 0.0f)) return false;
+  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+  if (std::abs(ndc.x) > 1.0f || std::abs(ndc.y) > 1.0f || std::abs(ndc.z) > 1.0f) return false;
+  const glm::vec4 nearPoint = worldFromClip_ * glm::vec4(ndc.x, ndc.y, -1.0f, 1.0f);
+  const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
+  const glm::vec3 toPoint = point - origin;
+  const float distance = glm::length(toPoint);
+  // Short of the point by a few epsilons: the ray must not meet the surface it lies on.
+  const float far = distance - 4.0f * in_.epsilon;
+  return far <= 0.0f || unoccluded(origin, toPoint / distance, far);
 }
 
 // The transmissive surface the pixel's primary ray meets first, if any.

@@ -9,10 +9,13 @@
 // light at the default R: ssgi's indirect (the near field) against the
 // reference's indirectR, and indirectFar against indirect - indirectR, each
 // as a mean ratio and an RMSE over the reference's mean of that part (a
-// second trace, at the default R). Never runs in CI.
+// second trace, at the default R), and the screen-space bound at that R
+// (ReferenceSettings::screenBound, a third trace): its error against the
+// truth, the least a method that reads only the screen must make, and ours
+// against it. Never runs in CI.
 //   build/tests/ssgi-accuracy-report [SIZE [RAYS [FLAGS...]]]
 // SIZE: image width and height (default 256); RAYS: the reference's rays per
-// pixel (default 4096: about 135 s on two cores, two traces a scene); FLAGS: settings of the
+// pixel (default 4096: about 200 s on two cores, three traces a scene); FLAGS: settings of the
 // renders as `name=value` (e.g. ssgi-virtual-lights=0), to compare a
 // variant. MetalRoughSpheresNoTextures comes from ../shared (or
 // $HEADLIGHT_SHARED_DIR); it is left out, and said so, where absent.
@@ -91,6 +94,26 @@ PartError partError(const Frame& frame, const ReferenceImages& truth, bool far) 
   return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
 }
 
+// Two references' light over the frame's geometry pixels (`first` against
+// `truth`, channels from `channel`): mean ratio and RMSE / truth's mean.
+PartError referenceError(const Frame& frame, const ReferenceImages& first, const ReferenceImages& truth, int channel) {
+  double squared = 0, ours = 0, theirs = 0;
+  long values = 0;
+  for (int y = 0; y < frame.position.height; ++y)
+    for (int x = 0; x < frame.position.width; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      for (int c = 0; c < 3; ++c) {
+        const double a = first.indirect.at(x, y, channel + c), b = truth.indirect.at(x, y, channel + c);
+        squared += (a - b) * (a - b);
+        ours += a;
+        theirs += b;
+        ++values;
+      }
+    }
+  if (values == 0 || theirs <= 0) return {};
+  return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
+}
+
 double aoRmse(const Frame& frame, const ReferenceImages& truth) {
   double squared = 0;
   long pixels = 0;
@@ -148,16 +171,27 @@ int main(int argc, char** argv) {
       reference.radius = *frame.settings.ssgi.radius;
       const ReferenceImages split = traceReference(renderer.scene(), frame, reference);
       const PartError nearPart = partError(frame, split, false), farPart = partError(frame, split, true);
-      char row[256];
-      std::snprintf(row, sizeof row, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f |\n", name.c_str(),
-                    *frame.settings.ssgi.radius, nearPart.ratio, nearPart.relativeRmse, farPart.ratio,
-                    farPart.relativeRmse);
+      // The screen-space bound at the same R: how far from the truth a method
+      // that reads only the screen must stay, and how far ours is from it.
+      reference.screenBound = true;
+      const ReferenceImages bound = traceReference(renderer.scene(), frame, reference);
+      const PartError boundNear = referenceError(frame, bound, split, kReferenceWithinR);
+      const PartError boundAll = referenceError(frame, bound, split, kReferenceIndirect);
+      const IndirectError oursToBound = indirectError(frame, bound);
+      char row[320];
+      std::snprintf(row, sizeof row, "| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f |\n",
+                    name.c_str(), *frame.settings.ssgi.radius, nearPart.ratio, nearPart.relativeRmse, farPart.ratio,
+                    farPart.relativeRmse, boundNear.ratio, boundNear.relativeRmse, boundAll.relativeRmse,
+                    oursToBound.relativeRmse);
       splitRows += row;
     }
     std::printf(
         "\nThe indirect light split at the default R (ours / reference, and RMSE over the reference's mean of the "
-        "part):\n\n"
-        "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE |\n|---|---:|---:|---:|---:|---:|\n%s",
+        "part); then the screen-space bound (the reference with only surfaces the frame shows within R): its "
+        "within-R light against the truth's, its indirect light (all distances) against the truth's, and ours "
+        "against it:\n\n"
+        "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE | bound within R: ratio | rel. RMSE "
+        "| bound, all: rel. RMSE | ours to bound: rel. RMSE |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n%s",
         splitRows.c_str());
   } catch (const Error& error) {
     std::cerr << "ssgi-accuracy-report: " << error.what() << "\n";

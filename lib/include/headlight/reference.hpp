@@ -20,6 +20,12 @@ struct ReferenceSettings {
   float radius = 0.0f;  // world units, > 0: the R of "within R" (pass the SSGI radius the frame used)
   unsigned seed = 1;    // per-pixel random streams derive from it: results do not depend on threads
   int threads = 0;      // 0 = all hardware threads
+  // Within R, only surfaces the frame shows (in its view and not hidden
+  // behind another) occlude and send light; a ray meeting a hidden one
+  // there counts as open within R and brings no light. What a method that
+  // reads only the screen could find at best: the screen-space bound
+  // (docs/ACCURACY.md §2.5). Off: the truth.
+  bool screenBound = false;
 };
 
 // The user-settable rows of ReferenceSettings (`reference` and `bench` read them).
