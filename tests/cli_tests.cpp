@@ -136,6 +136,25 @@ TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels
     CHECK(image.spec().channelindex(channel) >= 0);
     CHECK(image.spec().get_string_attribute("headlight:reference:samplesPerPixel") == "64");
     CHECK(std::stod(image.spec().get_string_attribute("headlight:reference:aoMeanStandardError")) > 0.0);
+    CHECK(image.spec().get_string_attribute("headlight:reference:screenBound") == "off");
+  }
+  fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("reference --reference-screen-bound says so in every file's metadata" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  const fs::path out = freshFolder("reference-bound") / "out";
+  const Run run = runHeadlight(
+      "reference builtin:spheres --width 32 --height 24 --reference-samples 16 "
+      "--reference-screen-bound --out " +
+      quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  for (const char* name : {"ao_ref.exr", "indirect_ref.exr", "lit_ref.exr"}) {
+    CAPTURE(name);
+    OIIO::ImageBuf image((out / name).string());
+    REQUIRE(image.read());
+    CHECK(image.spec().get_string_attribute("headlight:reference:screenBound") == "on");
   }
   fs::remove_all(out.parent_path());
 }

@@ -83,6 +83,8 @@ int runReference(const std::vector<std::string>& args) {
   const ExrAttributes metadata{
       {"headlight:reference:samplesPerPixel", std::to_string(reference.samplesPerPixel)},
       {"headlight:reference:radiusWorld", std::to_string(settings.radius)},
+      // The screen-space bound is not the truth: say which one this is.
+      {"headlight:reference:screenBound", settings.screenBound ? "on" : "off"},
       {"headlight:reference:aoMeanStandardError", std::to_string(reference.aoMeanStandardError)},
       {"headlight:reference:aoMaxStandardError", std::to_string(reference.aoMaxStandardError)},
       {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},
