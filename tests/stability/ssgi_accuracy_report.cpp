@@ -12,7 +12,8 @@
 // second trace, at the default R), and the screen-space bound at that R
 // (ReferenceSettings::screenBound, a third trace): its error against the
 // truth, the least a method that reads only the screen must make, and ours
-// against it. Never runs in CI.
+// against it; then that split by surface (the floor and the rest). Never
+// runs in CI.
 //   build/tests/ssgi-accuracy-report [SIZE [RAYS [FLAGS...]]]
 // SIZE: image width and height (default 256); RAYS: the reference's rays per
 // pixel (default 4096: about 200 s on two cores, three traces a scene); FLAGS: settings of the
@@ -114,6 +115,49 @@ PartError referenceError(const Frame& frame, const ReferenceImages& first, const
   return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
 }
 
+// The split by surface: the floor (world normal within 8 degrees of +Y,
+// where builtin:spheres' balls stand) and the rest, each part (within R,
+// beyond R) as ours / reference and its squared error's share of the whole
+// image's all-distance squared error. Where the error sits, in numbers.
+std::string surfaceSplitRows(const std::string& name, const Frame& frame, const ReferenceImages& truth) {
+  double total = 0, squared[2][2] = {}, ours[2][2] = {}, theirs[2][2] = {};
+  long pixels[2] = {};
+  for (int y = 0; y < frame.ssgi.height; ++y)
+    for (int x = 0; x < frame.ssgi.width; ++x) {
+      if (frame.position.at(x, y, 3) == 0.0f) continue;
+      const int surface = frame.normal.at(x, y, 1) > 0.99f ? 0 : 1;
+      ++pixels[surface];
+      for (int c = 0; c < 3; ++c) {
+        const double withinR = truth.indirect.at(x, y, kReferenceWithinR + c);
+        const double beyondR = truth.indirect.at(x, y, kReferenceIndirect + c) - withinR;
+        const double near = frame.ssgi.at(x, y, kIndirect + c), far = frame.ssgi.at(x, y, kIndirectFar + c);
+        const double parts[2][2] = {{near, withinR}, {far, beyondR}};
+        for (int part = 0; part < 2; ++part) {
+          const double d = parts[part][0] - parts[part][1];
+          squared[surface][part] += d * d;
+          ours[surface][part] += parts[part][0];
+          theirs[surface][part] += parts[part][1];
+        }
+        const double all = near + far - withinR - beyondR;
+        total += all * all;
+      }
+    }
+  std::string rows;
+  const char* names[2] = {"floor", "the rest"};
+  for (int surface = 0; surface < 2; ++surface) {
+    if (pixels[surface] == 0) continue;
+    char row[256];
+    const auto ratio = [&](int part) {
+      return theirs[surface][part] > 0 ? ours[surface][part] / theirs[surface][part] : 0.0;
+    };
+    const auto share = [&](int part) { return total > 0 ? squared[surface][part] / total : 0.0; };
+    std::snprintf(row, sizeof row, "| %s | %s | %ld | %.3f | %.2f | %.3f | %.2f |\n", name.c_str(), names[surface],
+                  pixels[surface], ratio(0), share(0), ratio(1), share(1));
+    rows += row;
+  }
+  return rows;
+}
+
 double aoRmse(const Frame& frame, const ReferenceImages& truth) {
   double squared = 0;
   long pixels = 0;
@@ -152,7 +196,7 @@ int main(int argc, char** argv) {
       scenes.push_back(metalRough);
     else
       std::printf("(MetalRoughSpheresNoTextures left out: %s is missing)\n", metalRough.c_str());
-    std::string splitRows;
+    std::string splitRows, surfaceRows;
     for (const std::string& scene : scenes) {
       renderer.setScene(loadScene(scene));
       const Frame frame = renderer.render(settings);
@@ -184,6 +228,7 @@ int main(int argc, char** argv) {
                     farPart.relativeRmse, boundNear.ratio, boundNear.relativeRmse, boundAll.relativeRmse,
                     oursToBound.relativeRmse);
       splitRows += row;
+      surfaceRows += surfaceSplitRows(name, frame, split);
     }
     std::printf(
         "\nThe indirect light split at the default R (ours / reference, and RMSE over the reference's mean of the "
@@ -193,6 +238,12 @@ int main(int argc, char** argv) {
         "| scene | R | within R: ratio | rel. RMSE | beyond R: ratio | rel. RMSE | bound within R: ratio | rel. RMSE "
         "| bound, all: rel. RMSE | ours to bound: rel. RMSE |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n%s",
         splitRows.c_str());
+    std::printf(
+        "\nThe same split by surface (floor: world normal y > 0.99), ours / reference and each part's squared "
+        "error as a share of the image's (all distances):\n\n"
+        "| scene | surface | pixels | within R: ratio | share | beyond R: ratio | share |\n"
+        "|---|---|---:|---:|---:|---:|---:|\n%s",
+        surfaceRows.c_str());
   } catch (const Error& error) {
     std::cerr << "ssgi-accuracy-report: " << error.what() << "\n";
     return 1;
