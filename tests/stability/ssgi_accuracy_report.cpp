@@ -70,49 +70,46 @@ IndirectError indirectError(const Frame& frame, const ReferenceImages& truth) {
           std::sqrt(sky / double(pixels))};
 }
 
-// The indirect light within R (near) or beyond it (far), ours against the
-// reference's, over the geometry pixels: mean ratio and RMSE / reference mean.
+// Light compared over the geometry pixels, three channels each: mean ratio
+// and RMSE / the reference's mean. `ours(x, y, c)` and `theirs(x, y, c)`
+// read the two sides.
 struct PartError {
   double ratio = 0, relativeRmse = 0;
 };
-PartError partError(const Frame& frame, const ReferenceImages& truth, bool far) {
-  double squared = 0, ours = 0, theirs = 0;
-  long values = 0;
-  for (int y = 0; y < frame.ssgi.height; ++y)
-    for (int x = 0; x < frame.ssgi.width; ++x) {
-      if (frame.position.at(x, y, 3) == 0.0f) continue;
-      for (int c = 0; c < 3; ++c) {
-        const double withinR = truth.indirect.at(x, y, kReferenceWithinR + c);
-        const double a = frame.ssgi.at(x, y, (far ? kIndirectFar : kIndirect) + c);
-        const double b = far ? truth.indirect.at(x, y, kReferenceIndirect + c) - withinR : withinR;
-        squared += (a - b) * (a - b);
-        ours += a;
-        theirs += b;
-        ++values;
-      }
-    }
-  if (values == 0 || theirs <= 0) return {};
-  return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
-}
-
-// Two references' light over the frame's geometry pixels (`first` against
-// `truth`, channels from `channel`): mean ratio and RMSE / truth's mean.
-PartError referenceError(const Frame& frame, const ReferenceImages& first, const ReferenceImages& truth, int channel) {
-  double squared = 0, ours = 0, theirs = 0;
+template <typename Ours, typename Theirs>
+PartError lightError(const Frame& frame, Ours ours, Theirs theirs) {
+  double squared = 0, oursSum = 0, theirsSum = 0;
   long values = 0;
   for (int y = 0; y < frame.position.height; ++y)
     for (int x = 0; x < frame.position.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
       for (int c = 0; c < 3; ++c) {
-        const double a = first.indirect.at(x, y, channel + c), b = truth.indirect.at(x, y, channel + c);
+        const double a = ours(x, y, c), b = theirs(x, y, c);
         squared += (a - b) * (a - b);
-        ours += a;
-        theirs += b;
+        oursSum += a;
+        theirsSum += b;
         ++values;
       }
     }
-  if (values == 0 || theirs <= 0) return {};
-  return {ours / theirs, std::sqrt(squared / double(values)) / (theirs / double(values))};
+  if (values == 0 || theirsSum <= 0) return {};
+  return {oursSum / theirsSum, std::sqrt(squared / double(values)) / (theirsSum / double(values))};
+}
+
+// The indirect light within R (near) or beyond it (far), ours against the reference's.
+PartError partError(const Frame& frame, const ReferenceImages& truth, bool far) {
+  return lightError(
+      frame, [&](int x, int y, int c) { return double(frame.ssgi.at(x, y, (far ? kIndirectFar : kIndirect) + c)); },
+      [&](int x, int y, int c) {
+        const double withinR = truth.indirect.at(x, y, kReferenceWithinR + c);
+        return far ? truth.indirect.at(x, y, kReferenceIndirect + c) - withinR : withinR;
+      });
+}
+
+// Two references' light (`first` against `truth`), channels from `channel`.
+PartError referenceError(const Frame& frame, const ReferenceImages& first, const ReferenceImages& truth, int channel) {
+  return lightError(
+      frame, [&](int x, int y, int c) { return double(first.indirect.at(x, y, channel + c)); },
+      [&](int x, int y, int c) { return double(truth.indirect.at(x, y, channel + c)); });
 }
 
 // The split by surface: the floor (world normal within 8 degrees of +Y,
