@@ -189,6 +189,7 @@ TEST_CASE("bench writes a CSV whose every row has a time and an error, and a cha
     CHECK(std::stod(fields[column("indirect_rmse")]) >= 0.0);
     CHECK(std::stod(fields[column("lit_flip")]) > 0.0);  // SSGI against a path tracer: never identical
     CHECK(std::stod(fields[column("lit_flip")]) < 1.0);
+    CHECK(fields[column("reference_screen_bound")] == "0");  // the truth, unless asked
     onFront += fields[column("pareto_ao")] == "1";
     seedRows += fields[column("seed_default")] == "1";
     ++rows;

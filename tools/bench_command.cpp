@@ -210,6 +210,7 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOpt
   row.litFlip = hdrFlipMean(frame.lit, reference.lit);
   row.referenceSamples = reference.samplesPerPixel;
   row.referenceAoStandardError = reference.aoMeanStandardError;
+  row.referenceScreenBound = reference.screenBound;
   row.renderer = frame.glRenderer;
   row.backend = frame.backend;
   row.machine = machineDescription();

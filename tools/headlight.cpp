@@ -84,7 +84,7 @@ int runReference(const std::vector<std::string>& args) {
       {"headlight:reference:samplesPerPixel", std::to_string(reference.samplesPerPixel)},
       {"headlight:reference:radiusWorld", std::to_string(settings.radius)},
       // The screen-space bound is not the truth: say which one this is.
-      {"headlight:reference:screenBound", settings.screenBound ? "on" : "off"},
+      {"headlight:reference:screenBound", reference.screenBound ? "on" : "off"},
       {"headlight:reference:aoMeanStandardError", std::to_string(reference.aoMeanStandardError)},
       {"headlight:reference:aoMaxStandardError", std::to_string(reference.aoMaxStandardError)},
       {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},

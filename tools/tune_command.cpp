@@ -225,8 +225,10 @@ int runTuneCommand(const std::vector<std::string>& args) {
   comments.push_back("tune: frame-ms = " + number(row.frameMs.median, 6) + " (median of " +
                      std::to_string(row.repetitions) + "; ssgi " + number(row.ssgiMs.median) + " ms) on " +
                      row.renderer);
-  comments.push_back("tune: reference = " + std::to_string(row.referenceSamples) +
-                     " rays/pixel, mean AO standard error " + number(row.referenceAoStandardError, 3));
+  comments.push_back(
+      "tune: reference = " + std::to_string(row.referenceSamples) + " rays/pixel, mean AO standard error " +
+      number(row.referenceAoStandardError, 3) +
+      (row.referenceScreenBound ? ", the screen-space bound (--reference-screen-bound), not the truth" : ""));
   comments.push_back("use: headlight render SCENE --settings FILE (flags after --settings override it)");
   writeTextFile(command.outDir, settingsFileText(configs[*chosen].settings, comments));
   if (!quiet)

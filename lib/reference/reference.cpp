@@ -140,6 +140,7 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
 
   ReferenceImages images;
   images.samplesPerPixel = settings.samplesPerPixel;
+  images.screenBound = settings.screenBound;
   images.ao = makeImage(width, height, {"ao.Y", "sky.Y", "specular.Y"});
   images.indirect =
       makeImage(width, height, {"indirectR.R", "indirectR.G", "indirectR.B", "indirect.R", "indirect.G", "indirect.B"});

@@ -167,7 +167,7 @@ const char* kCsvHeaderEnd =
     "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
     "ao_rmse,ao_mae,sky_rmse,sky_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,lit_flip,"
-    "reference_samples,reference_ao_se,pareto_ao,renderer,backend,machine";
+    "reference_samples,reference_ao_se,reference_screen_bound,pareto_ao,renderer,backend,machine";
 
 std::string csvField(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
@@ -193,8 +193,9 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
         << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
-        << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.paretoAo << ','
-        << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine) << "\n";
+        << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.referenceScreenBound
+        << ',' << r.paretoAo << ',' << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine)
+        << "\n";
   }
   detail::writeTextAtomically(path, out.str());
 }
@@ -207,25 +208,27 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
     auto summary = [](const Summary& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.minimum}, {"max", s.maximum}};
     };
-    json["rows"].push_back(
-        {{"scene", r.scene},
-         {"width", r.width},
-         {"height", r.height},
-         {"label", r.label},
-         {"settings", r.settings},
-         {"seed_default", r.seedDefault},
-         {"repetitions", r.repetitions},
-         {"frame_ms", summary(r.frameMs)},
-         {"ssgi_ms", summary(r.ssgiMs)},
-         {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
-         {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
-         {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
-         {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}, {"flip", r.litFlip}}},
-         {"reference", {{"samples", r.referenceSamples}, {"ao_standard_error", r.referenceAoStandardError}}},
-         {"pareto_ao", r.paretoAo},
-         {"renderer", r.renderer},
-         {"backend", r.backend},
-         {"machine", r.machine}});
+    const nlohmann::json reference{{"samples", r.referenceSamples},
+                                   {"ao_standard_error", r.referenceAoStandardError},
+                                   {"screen_bound", r.referenceScreenBound}};
+    json["rows"].push_back({{"scene", r.scene},
+                            {"width", r.width},
+                            {"height", r.height},
+                            {"label", r.label},
+                            {"settings", r.settings},
+                            {"seed_default", r.seedDefault},
+                            {"repetitions", r.repetitions},
+                            {"frame_ms", summary(r.frameMs)},
+                            {"ssgi_ms", summary(r.ssgiMs)},
+                            {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
+                            {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
+                            {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},
+                            {"lit", {{"relative_rmse", r.lit.relativeRmse}, {"ssim", r.litSsim}, {"flip", r.litFlip}}},
+                            {"reference", reference},
+                            {"pareto_ao", r.paretoAo},
+                            {"renderer", r.renderer},
+                            {"backend", r.backend},
+                            {"machine", r.machine}});
   }
   detail::writeTextAtomically(path, json.dump(2) + "\n");
 }

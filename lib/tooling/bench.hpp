@@ -74,6 +74,7 @@ struct BenchRow {
   double litFlip = 0;  // mean HDR-FLIP (lib/diff/flip.hpp) of lit against lit_ref, over all pixels
   int referenceSamples = 0;
   double referenceAoStandardError = 0;
+  bool referenceScreenBound = false;  // the errors are against the screen-space bound, not the truth
   bool paretoAo = false;  // on the (frame time, AO RMSE) front of its scene and resolution
   std::string renderer;   // GL_RENDERER
   std::string backend;

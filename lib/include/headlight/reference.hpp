@@ -44,6 +44,7 @@ struct ReferenceImages {
   // + one-bounce indirect (unlimited) + emission; A = coverage.
   ImageF lit;
   int samplesPerPixel = 0;
+  bool screenBound = false;        // traced as the screen-space bound (ReferenceSettings::screenBound), not the truth
   double aoMeanStandardError = 0;  // mean over geometry pixels of sqrt(p(1-p)/(n-1))
   double aoMaxStandardError = 0;
   double indirectMeanStandardError = 0;  // of indirect (unlimited), mean over pixels and channels
