@@ -119,44 +119,32 @@ TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no
   fs::remove_all(folder);
 }
 
-TEST_CASE("reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error" *
-          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
-  const fs::path out = freshFolder("reference") / "out";
-  const Run run =
-      runHeadlight("reference --width 32 --height 24 --reference-samples 64 --strict --out " + quote(out.string()));
-  INFO(run.output);
-  REQUIRE(run.exitCode == 0);
-  const std::pair<const char*, const char*> files[] = {
-      {"ao_ref.exr", "ao.Y"}, {"ao_ref.exr", "sky.Y"}, {"indirect_ref.exr", "indirectR.R"}, {"lit_ref.exr", "R"}};
-  for (const auto& [name, channel] : files) {
-    CAPTURE(name);
-    OIIO::ImageBuf image((out / name).string());
-    REQUIRE(image.read());
-    CHECK(image.spec().width == 32);
-    CHECK(image.spec().channelindex(channel) >= 0);
-    CHECK(image.spec().get_string_attribute("headlight:reference:samplesPerPixel") == "64");
-    CHECK(std::stod(image.spec().get_string_attribute("headlight:reference:aoMeanStandardError")) > 0.0);
-    CHECK(image.spec().get_string_attribute("headlight:reference:screenBound") == "off");
+TEST_CASE(
+    "reference writes ao_ref, indirect_ref and lit_ref with their channels and standard error, and says "
+    "whether it is the screen-space bound" *
+    doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  for (const bool bound : {false, true}) {
+    CAPTURE(bound);
+    const fs::path out = freshFolder("reference") / "out";
+    const Run run =
+        runHeadlight("reference --width 32 --height 24 --reference-samples 64 --strict " +
+                     std::string(bound ? "--reference-screen-bound " : "") + "--out " + quote(out.string()));
+    INFO(run.output);
+    REQUIRE(run.exitCode == 0);
+    const std::pair<const char*, const char*> files[] = {
+        {"ao_ref.exr", "ao.Y"}, {"ao_ref.exr", "sky.Y"}, {"indirect_ref.exr", "indirectR.R"}, {"lit_ref.exr", "R"}};
+    for (const auto& [name, channel] : files) {
+      CAPTURE(name);
+      OIIO::ImageBuf image((out / name).string());
+      REQUIRE(image.read());
+      CHECK(image.spec().width == 32);
+      CHECK(image.spec().channelindex(channel) >= 0);
+      CHECK(image.spec().get_string_attribute("headlight:reference:samplesPerPixel") == "64");
+      CHECK(std::stod(image.spec().get_string_attribute("headlight:reference:aoMeanStandardError")) > 0.0);
+      CHECK(image.spec().get_string_attribute("headlight:reference:screenBound") == (bound ? "on" : "off"));
+    }
+    fs::remove_all(out.parent_path());
   }
-  fs::remove_all(out.parent_path());
-}
-
-TEST_CASE("reference --reference-screen-bound says so in every file's metadata" *
-          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
-  const fs::path out = freshFolder("reference-bound") / "out";
-  const Run run = runHeadlight(
-      "reference builtin:spheres --width 32 --height 24 --reference-samples 16 "
-      "--reference-screen-bound --out " +
-      quote(out.string()));
-  INFO(run.output);
-  REQUIRE(run.exitCode == 0);
-  for (const char* name : {"ao_ref.exr", "indirect_ref.exr", "lit_ref.exr"}) {
-    CAPTURE(name);
-    OIIO::ImageBuf image((out / name).string());
-    REQUIRE(image.read());
-    CHECK(image.spec().get_string_attribute("headlight:reference:screenBound") == "on");
-  }
-  fs::remove_all(out.parent_path());
 }
 
 TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart" *
