@@ -106,7 +106,7 @@ class Tracer {
   }
 
   const TraceInputs& in_;
-  glm::mat4 clipFromWorld_, worldFromClip_;  // the frame's view (shownOnScreen)
+  glm::mat4 clipFromWorld_, worldFromClip_;  // the frame's view (shownOnScreen, primaryRay)
   RTCIntersectContext context_;
 };
 

@@ -290,12 +290,10 @@ glm::vec3 Tracer::backgroundRay(int x, int y) const {
 // The primary ray through the centre of top-first pixel (x, y), from the
 // near plane (perspective and orthographic alike).
 std::pair<glm::vec3, glm::vec3> Tracer::primaryRay(int x, int y) const {
-  const CameraView& view = in_.frame.view;
   const float width = float(in_.frame.position.width), height = float(in_.frame.position.height);
   const glm::vec2 ndc((float(x) + 0.5f) / width * 2.0f - 1.0f, (height - float(y) - 0.5f) / height * 2.0f - 1.0f);
-  const glm::mat4 worldFromClip = glm::inverse(view.projection * view.view);
-  const glm::vec4 nearPoint = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
-  const glm::vec4 farPoint = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+  const glm::vec4 nearPoint = worldFromClip_ * glm::vec4(ndc, -1.0f, 1.0f);
+  const glm::vec4 farPoint = worldFromClip_ * glm::vec4(ndc, 1.0f, 1.0f);
   const glm::vec3 origin = glm::vec3(nearPoint) / nearPoint.w;
   return {origin, glm::normalize(glm::vec3(farPoint) / farPoint.w - origin)};
 }
