@@ -91,10 +91,19 @@ using mat4 = glm::mat4;
   X(kUnitTransmissionTexture, 39)         \
   X(kUnitThicknessTexture, 40)            \
   X(kUnitTransmissionBackground, 41)      \
-  X(kUnitSsgiSpecular, 42)
+  X(kUnitSsgiSpecular, 42)                \
+  X(kUnitPassAccumulated0, 43)            \
+  X(kUnitPassAccumulated1, 44)            \
+  X(kUnitPassAccumulated2, 45)            \
+  X(kUnitPassAccumulated3, 46)
 
-// Image units (X(name, unit)), for image load/store: none yet.
-#define HL_IMAGE_UNITS(X)
+// Image units (X(name, unit)), for image load/store: a fullscreen pass's
+// compute form writes its outputs 0..3 to these (glsl/fullscreen_entry.comp).
+#define HL_IMAGE_UNITS(X)    \
+  X(kImagePassOutput0, 0)    \
+  X(kImagePassOutput1, 1)    \
+  X(kImagePassOutput2, 2)    \
+  X(kImagePassOutput3, 3)
 
 // Uniform blocks (X(block, binding name, binding)): std140, below.
 #define HL_UNIFORM_BLOCKS(X)                \
@@ -136,6 +145,14 @@ HL_TEXTURE_UNITS(HL_UNIT_CONST)
 HL_IMAGE_UNITS(HL_UNIT_CONST)
 HL_UNIFORM_BLOCKS(HL_BINDING_CONST)
 HL_STORAGE_BLOCKS(HL_BINDING_CONST)
+
+// A fullscreen pass's entries (glsl/fullscreen_entry.frag, .comp): the
+// accumulated frames' weight is the default block's uniform at this
+// location (set with glProgramUniform1f, never looked up by name), and the
+// compute form's work groups are this many pixels square (64 invocations:
+// two warps or one wavefront).
+HL_CONST(int, kLocationAccumulateWeight, 0)
+HL_CONST(int, kPassGroupSize, 8)
 
 // The SSGI kernel never has more samples than this (the seed's count).
 HL_CONST(int, kMaxKernelSamples, 64)

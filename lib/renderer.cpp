@@ -43,25 +43,31 @@ namespace headlight {
 namespace {
 
 // Runs GL work between two glFinish calls, so the wall time is the GPU's
-// (timer queries would exclude the CPU side that llvmpipe also spends), and
-// reports the pass's GL errors by name.
+// plus the CPU side that llvmpipe also spends (and a first frame's shader
+// compiles), and inside a GL_TIME_ELAPSED query, which times the GPU's own
+// work as the GPU sees it; reports the pass's GL errors by name.
 class PassTimer {
  public:
-  explicit PassTimer(Context& context) : context_(context) {}
+  explicit PassTimer(Context& context) : context_(context), query_(gl::Query::create(GL_TIME_ELAPSED)) {}
+  // `form`: a fullscreen pass's, recorded with its time.
   template <class Work>
-  void run(const char* pass, Work&& work) {
+  void run(const char* pass, Work&& work, std::optional<PassForm> form = std::nullopt) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
+    glBeginQuery(GL_TIME_ELAPSED, query_.id());
     work();
+    glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     const auto end = std::chrono::steady_clock::now();
     context_.checkErrors(pass);
-    times_.push_back({pass, std::chrono::duration<double, std::milli>(end - start).count()});
+    times_.push_back({pass, std::chrono::duration<double, std::milli>(end - start).count(),
+                      double(query_.result()) * 1e-6, form ? std::string(passFormName(*form)) : std::string()});
   }
   std::vector<PassTime> times() const { return times_; }
 
  private:
   Context& context_;
+  gl::Query query_;  // one at a time: passes are not nested
   std::vector<PassTime> times_;
 };
 
@@ -81,10 +87,14 @@ Light defaultKeyLight() {
 }  // namespace
 
 struct Renderer::Impl {
-  explicit Impl(Context& context) : context(context) { context.checkErrors("building the renderer"); }
+  explicit Impl(Context& context)
+      : context(context), softwareRasterizer(isSoftwareRasterizer(context.renderer())) {
+    context.checkErrors("building the renderer");
+  }
   void loadScene(Scene newScene);  // Renderer::setScene's work
 
   Context& context;
+  const bool softwareRasterizer;  // llvmpipe and the like: fullscreen-form auto's per-pass choice
   ResourceLimits limits;
   std::uint64_t sceneBytes = 0;  // estimateSceneBytes of the current scene
   EnvironmentPass environment;
@@ -260,7 +270,7 @@ struct Renderer::Impl {
     }
   }
 
-  void runSsgi(const FramePlan& plan, const RenderSettings& used, PassTimer& timer) {
+  void runSsgi(const FramePlan& plan, const RenderSettings& used, const PassForms& forms, PassTimer& timer) {
     const SsgiStep& step = *plan.ssgi;
     const GBuffer gb = gbuffer();
     SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr,
@@ -271,21 +281,30 @@ struct Renderer::Impl {
       inputs.virtualLights = &virtualLights;
       inputs.shadows = &shadowMaps;
     }
+    inputs.form = forms[std::size_t(FullscreenPassId::Ssgi)];
     const SsgiTextures output = ssgiOutput(step.blur);
     // Accumulated frames: a running mean of rotated slice sets.
-    timer.run("ssgi", [&] {
-      for (int index = 0; index < step.frames; ++index) {
-        inputs.frameIndex = index;
-        inputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
-        ssgi.run(inputs, output);
-      }
-    });
-    if (step.blur)
-      timer.run("ssgi-blur", [&] {
-        ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample, step.farDownsample,
-                      step.splitsFarField() ? &texture(Attachment::SsgiFarSky) : nullptr},
-                     ssgiOutput(false));
-      });
+    timer.run(
+        "ssgi",
+        [&] {
+          for (int index = 0; index < step.frames; ++index) {
+            inputs.frameIndex = index;
+            if (step.frames > 1) inputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
+            ssgi.run(inputs, output);
+          }
+        },
+        inputs.form);
+    if (step.blur) {
+      const PassForm blurForm = forms[std::size_t(FullscreenPassId::SsgiBlur)];
+      timer.run(
+          "ssgi-blur",
+          [&] {
+            ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample, step.farDownsample,
+                          step.splitsFarField() ? &texture(Attachment::SsgiFarSky) : nullptr, blurForm},
+                         ssgiOutput(false));
+          },
+          blurForm);
+    }
   }
 };
 
@@ -347,8 +366,7 @@ void Renderer::Impl::loadScene(Scene newScene) {
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
   impl.summary = summarizeScene(impl.scene);
-  // The default settings' frame, planned and its programs built now, so
-  // that the first frame times shading, not compiling.
+  // The default settings' G-buffer variant, for the G-buffer pass's draw groups.
   const FramePlan plan = planFrame(impl.summary, resolveSettings(RenderSettings{}, impl.scene), {});
   impl.gbufferPass.emplace(*impl.gpuScene, plan.gbuffer);
   // At least one element: a zero-sized buffer cannot be bound.
@@ -361,11 +379,8 @@ void Renderer::Impl::loadScene(Scene newScene) {
   // A map's tables are kept across scenes that share it (a batch); a scene
   // without one releases them.
   if (!impl.scene.environment) impl.environment.dropEnvironment();
-  if (plan.direct) impl.directLight.prepare(*plan.direct);
-  if (plan.ssgi) impl.ssgi.prepare(plan.ssgi->method->method);
-  if (plan.composite) impl.composite.prepare(*plan.composite);
-  if (plan.transmission) impl.transmission.prepare(*impl.gpuScene, *plan.transmission);
-  if (plan.blend) impl.blend.prepare(*impl.gpuScene, *plan.blend);
+  // The other passes' programs are built when a frame first runs them: a
+  // frame compiles only what its plan draws (--targets depth: no lighting).
   impl.context.checkErrors("uploading " + impl.scene.source);
 }
 
@@ -400,6 +415,9 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   impl.frameBlock.update(frameBlock);
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
+  // How each fullscreen pass runs this frame (fragment or compute).
+  const PassForms forms = choosePassForms(used.fullscreenForm, impl.softwareRasterizer);
+  const auto formOf = [&](FullscreenPassId id) { return forms[std::size_t(id)]; };
   PassTimer timer(impl.context);
   // Shadow maps are remade only when their size or what the directional
   // ones cover changes; with shadows off the lights read "no map".
@@ -417,20 +435,28 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   if (plan.direct) {
     const DirectLightTargets direct{impl.texture(Attachment::DirectTowardEye),
                                     plan.direct->diffuseTarget ? &impl.texture(Attachment::DirectDiffuse) : nullptr};
-    timer.run("direct", [&] { impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct); });
+    const PassForm form = formOf(FullscreenPassId::Direct);
+    timer.run("direct", [&] { impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct, form); }, form);
   }
-  if (plan.ssgi) impl.runSsgi(plan, used, timer);
+  if (plan.ssgi) impl.runSsgi(plan, used, forms, timer);
   // The sky tables are made on the first frame that needs them (and again
   // only when the sky's colours change).
   if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
-    timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky); });
+    timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky, formOf(FullscreenPassId::SkyTables)); },
+              formOf(FullscreenPassId::SkyTables));
   if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
-    timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
+    timer.run(
+        "environment",
+        [&] { impl.environment.updateEnvironment(*impl.scene.environment, formOf(FullscreenPassId::SkyTables)); },
+        formOf(FullscreenPassId::SkyTables));
   if (plan.composite) {
     const SsgiTextures ssgi = impl.ssgiOutput(false);
     const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),
                                  plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
-    timer.run("composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite); });
+    const PassForm form = formOf(FullscreenPassId::Composite);
+    timer.run(
+        "composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite, form); },
+        form);
   }
   if (plan.transmission) {
     const GBufferTargets gbufferTargets = impl.gbufferTargets(plan.gbuffer);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "gl/shader_library.hpp"
+#include "passes/fullscreen.hpp"
 #include "shared_layout.h"
 #include "support/gl.hpp"
 
@@ -45,44 +46,64 @@ const std::vector<ProgramSource>& programSources() {
       {{"shadow.vert", "shadow.frag"},
        {"ALPHA_MASK", "HAS_TEXCOORDS", "HAS_BASE_COLOR_TEXTURE", "HAS_TEXCOORDS_1", "BASE_COLOR_TEXCOORD_1",
         "HAS_TEXTURE_TRANSFORM"}},
-      {{"fullscreen.vert", "direct_light.frag"},
-       {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "WRITE_DIFFUSE_RADIANCE"}},
-      {{"fullscreen.vert", "ssgi.frag"}, {"METHOD_RADIANCE"}},
-      {{"fullscreen.vert", "ssgi_bitmask.frag"}, {}},
-      {{"fullscreen.vert", "ssgi_blur.frag"}, {}},
-      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY"}},
-      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY", "HAS_ENVIRONMENT"}},
-      // The specular and clearcoat lobes (glsl/lobe_*.glsl): their textures and attachments.
+      // The specular and clearcoat lobes (glsl/lobe_*.glsl): their textures and attachments (the lighting
+      // passes' reads of them: passSources()).
       {{"gbuffer.vert", "gbuffer.frag"},
        {"HAS_TEXCOORDS", "HAS_SPECULAR_TEXTURE", "HAS_SPECULAR_COLOR_TEXTURE", "HAS_CLEARCOAT_TEXTURE",
         "HAS_CLEARCOAT_ROUGHNESS_TEXTURE", "HAS_CLEARCOAT_NORMAL_TEXTURE", "HAS_SPECULAR_TARGET",
         "SPECULAR_TARGET_LOCATION 4", "HAS_CLEARCOAT_TARGET", "CLEARCOAT_TARGET_LOCATION 5", "HAS_SPECULAR_LOBE",
         "HAS_CLEARCOAT_LOBE"}},
-      {{"fullscreen.vert", "direct_light.frag"}, {"HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
-      {{"fullscreen.vert", "composite.frag"}, {"HAS_SKY", "HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
-      {{"fullscreen.vert", "brdf_lut.frag"}, {}},
-      {{"fullscreen.vert", "sky_prefilter.frag"}, {}},
-      {{"fullscreen.vert", "sky_irradiance.frag"}, {}},
-      // KHR_materials_iridescence: the lobe's attachment, its textures, and the lighting passes that read it.
+      // KHR_materials_iridescence: the lobe's attachment and its textures.
       {{"gbuffer.vert", "gbuffer.frag"},
        {"HAS_TEXCOORDS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TARGET",
         "IRIDESCENCE_TARGET_LOCATION 4", "HAS_IRIDESCENCE_TEXTURE", "HAS_IRIDESCENCE_THICKNESS_TEXTURE",
         "IRIDESCENCE_TEXCOORD_1"}},
-      {{"fullscreen.vert", "direct_light.frag"}, {"HAS_IRIDESCENCE_LOBE"}},
-      {{"fullscreen.vert", "composite.frag"}, {"HAS_SSGI", "HAS_SKY", "HAS_IRIDESCENCE_LOBE"}},
       {{"gbuffer.vert", "gbuffer.frag"},
        {"BLEND_FORWARD", "HAS_SKY", "HAS_TEXCOORDS", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TEXTURE",
         "HAS_IRIDESCENCE_THICKNESS_TEXTURE"}},
-      // The sheen and anisotropy lobes: their G-buffer targets and textures,
-      // and the lighting passes' reads of the targets.
+      // The sheen and anisotropy lobes: their G-buffer targets and textures.
       {{"gbuffer.vert", "gbuffer.frag"},
        {"HAS_TEXCOORDS", "HAS_SHEEN_LOBE", "HAS_SHEEN_TARGET", "SHEEN_TARGET_LOCATION 4", "HAS_SHEEN_COLOR_TEXTURE",
         "HAS_SHEEN_ROUGHNESS_TEXTURE", "HAS_ANISOTROPY_LOBE", "HAS_ANISOTROPY_TARGET", "ANISOTROPY_TARGET_LOCATION 5",
         "HAS_ANISOTROPY_TEXTURE"}},
-      {{"fullscreen.vert", "direct_light.frag"}, {"HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
-      {{"fullscreen.vert", "composite.frag"}, {"HAS_SKY", "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
   };
   return sources;
+}
+
+// Every fullscreen pass's body (lib/passes/fullscreen.hpp), with the
+// PassOutputs members its passes write and the #defines that make all of its
+// inputs active. Each is linked in both forms and accumulating, so the
+// entries' own units (the accumulated outputs) are read too.
+struct PassSource {
+  std::string_view body;
+  std::vector<std::string_view> outputs;
+  std::vector<std::string> defines;
+};
+const std::vector<PassSource>& passSources() {
+  static const std::vector<PassSource> sources = {
+      {"direct_light.glsl", {"towardEye", "diffuse"}, {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"}},
+      {"direct_light.glsl", {"towardEye"}, {"HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
+      {"direct_light.glsl", {"towardEye"}, {"HAS_IRIDESCENCE_LOBE"}},
+      {"direct_light.glsl", {"towardEye"}, {"HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
+      {"ssgi.glsl", {"nearField", "sky", "specular"}, {"METHOD_RADIANCE"}},
+      {"ssgi_bitmask.glsl", {"nearField", "farField", "farFieldOverNear", "specular"}, {}},
+      {"ssgi_blur.glsl", {"nearField", "sky", "specular", "skyLine"}, {}},
+      {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY"}},
+      {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY", "HAS_ENVIRONMENT"}},
+      {"composite.glsl", {"radiance"}, {"HAS_SKY", "HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
+      {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY", "HAS_IRIDESCENCE_LOBE"}},
+      {"composite.glsl", {"radiance"}, {"HAS_SKY", "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
+      {"brdf_lut.glsl", {"scaleBias"}, {}},
+      {"sky_prefilter.glsl", {"radiance"}, {}},
+      {"sky_irradiance.glsl", {"irradianceOverPi"}, {}},
+  };
+  return sources;
+}
+
+gl::Program passProgram(const PassSource& source, PassForm form, bool accumulates) {
+  PassEntry entry{form, accumulates, {}};
+  for (std::string_view member : source.outputs) entry.outputs.emplace_back(member, GL_RGBA16F);
+  return buildPassProgram(source.body, entry, source.defines);
 }
 
 struct LinkedProgram {
@@ -94,6 +115,10 @@ std::vector<LinkedProgram> linkAll() {
   std::vector<LinkedProgram> programs;
   for (const ProgramSource& source : programSources())
     programs.push_back({std::string(source.files.back()), detail::buildProgram(source.files, source.defines)});
+  for (const PassSource& source : passSources())
+    for (PassForm form : {PassForm::Fragment, PassForm::Compute})
+      programs.push_back({std::string(source.body) + " (" + std::string(passFormName(form)) + ")",
+                          passProgram(source, form, true)});
   return programs;
 }
 
@@ -223,8 +248,7 @@ GLint memberOffset(GLuint program, const char* member) {
 
 TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   sharedContext();
-  const std::string_view ssgiFiles[] = {"fullscreen.vert", "ssgi.frag"};
-  const gl::Program ssgi = detail::buildProgram(ssgiFiles);
+  const gl::Program ssgi = passProgram({"ssgi.glsl", {"nearField"}, {}}, PassForm::Fragment, false);
   CHECK(blockDataSize(ssgi.id(), "SsgiBlock") == GLint(sizeof(gpu::SsgiBlock)));
   CHECK(memberOffset(ssgi.id(), "SsgiBlock.radiusWorld") == GLint(offsetof(gpu::SsgiBlock, radiusWorld)));
   CHECK(memberOffset(ssgi.id(), "SsgiBlock.indirectStrength") == GLint(offsetof(gpu::SsgiBlock, indirectStrength)));
@@ -247,21 +271,19 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   CHECK(blockDataSize(gbuffer.id(), "MaterialBlock") == GLint(sizeof(gpu::MaterialBlock)));
   CHECK(memberOffset(gbuffer.id(), "MaterialBlock.factors") == GLint(offsetof(gpu::MaterialBlock, factors)));
 
-  const std::string_view compositeFiles[] = {"fullscreen.vert", "composite.frag"};
-  const gl::Program composite = detail::buildProgram(compositeFiles);
+  const gl::Program composite = passProgram({"composite.glsl", {"radiance"}, {}}, PassForm::Fragment, false);
   CHECK(blockDataSize(composite.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
   CHECK(memberOffset(composite.id(), "LightingBlock.skyIntensity") ==
         GLint(offsetof(gpu::LightingBlock, skyIntensity)));
 
-  const std::string_view blurFiles[] = {"fullscreen.vert", "ssgi_blur.frag"};
-  const gl::Program blur = detail::buildProgram(blurFiles);
+  const gl::Program blur = passProgram({"ssgi_blur.glsl", {"nearField"}, {}}, PassForm::Compute, false);
   CHECK(blockDataSize(blur.id(), "SsgiBlurBlock") == GLint(sizeof(gpu::SsgiBlurBlock)));
   CHECK(memberOffset(blur.id(), "SsgiBlurBlock.ssgiDownsample") == GLint(offsetof(gpu::SsgiBlurBlock, ssgiDownsample)));
 
   // The lights are std430 and read through a struct: every member's offset.
-  const std::string_view directFiles[] = {"fullscreen.vert", "direct_light.frag"};
-  const std::string directDefines[] = {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"};
-  const gl::Program direct = detail::buildProgram(directFiles, directDefines);
+  const gl::Program direct =
+      passProgram({"direct_light.glsl", {"towardEye"}, {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"}}, PassForm::Fragment,
+                  false);
   CHECK(blockDataSize(direct.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
   CHECK(memberOffset(direct.id(), "LightingBlock.pcfRadius") == GLint(offsetof(gpu::LightingBlock, pcfRadius)));
   CHECK(memberOffset(direct.id(), "LightingBlock.shadowMapSize") == GLint(offsetof(gpu::LightingBlock, shadowMapSize)));

@@ -1,10 +1,51 @@
 #include "frame/frame_plan.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "shared_layout.h"
 
 namespace headlight {
+
+std::string_view passFormName(PassForm form) { return form == PassForm::Compute ? "compute" : "fragment"; }
+
+std::span<const FullscreenPassRow> fullscreenPassRows() {
+  // softwareForm: MEASURED below (docs/BENCHMARKS.md, "Fullscreen forms").
+  static constexpr FullscreenPassRow kRows[] = {
+      {.id = FullscreenPassId::Direct, .name = "direct", .softwareForm = PassForm::Fragment},
+      {.id = FullscreenPassId::Ssgi, .name = "ssgi", .softwareForm = PassForm::Fragment},
+      {.id = FullscreenPassId::SsgiBlur, .name = "ssgi-blur", .softwareForm = PassForm::Fragment},
+      {.id = FullscreenPassId::Composite, .name = "composite", .softwareForm = PassForm::Fragment},
+      {.id = FullscreenPassId::SkyTables, .name = "sky", .softwareForm = PassForm::Fragment},
+  };
+  static_assert(std::size(kRows) == kFullscreenPassCount);
+  return kRows;
+}
+
+const FullscreenPassRow& fullscreenPassRow(FullscreenPassId id) {
+  const FullscreenPassRow& row = fullscreenPassRows()[std::size_t(id)];
+  if (row.id != id) throw std::logic_error("fullscreenPassRows: rows out of FullscreenPassId order");
+  return row;
+}
+
+PassForms choosePassForms(FullscreenForm setting, bool softwareRasterizer) {
+  PassForms forms{};
+  for (const FullscreenPassRow& row : fullscreenPassRows()) {
+    PassForm& form = forms[std::size_t(row.id)];
+    switch (setting) {
+      case FullscreenForm::Fragment: form = PassForm::Fragment; break;
+      case FullscreenForm::Compute: form = PassForm::Compute; break;
+      case FullscreenForm::Auto: form = softwareRasterizer ? row.softwareForm : PassForm::Compute; break;
+    }
+  }
+  return forms;
+}
+
+bool isSoftwareRasterizer(std::string_view glRenderer) {
+  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "SwiftShader", "Software Rasterizer"})
+    if (glRenderer.find(name) != std::string_view::npos) return true;
+  return false;
+}
 namespace {
 
 // ---- SSGI methods --------------------------------------------------------------

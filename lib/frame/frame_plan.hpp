@@ -79,6 +79,37 @@ struct SsgiMethodTraits {
 };
 const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method);
 
+// ---- Fullscreen passes and their forms ---------------------------------------
+
+// How a fullscreen pass runs (lib/passes/fullscreen.hpp): its body,
+// `PassOutputs shadePixel(ivec2 pixel)`, under a fullscreen triangle's
+// fragment shader or a compute dispatch.
+enum class PassForm { Fragment, Compute };
+std::string_view passFormName(PassForm form);  // "fragment", "compute"
+
+enum class FullscreenPassId { Direct, Ssgi, SsgiBlur, Composite, SkyTables, Count };
+inline constexpr std::size_t kFullscreenPassCount = std::size_t(FullscreenPassId::Count);
+
+struct FullscreenPassRow {
+  FullscreenPassId id;
+  std::string_view name;  // its PassTime::pass
+  // Auto's form on a software rasteriser: the faster one measured on
+  // llvmpipe (docs/BENCHMARKS.md, "Fullscreen forms").
+  PassForm softwareForm;
+};
+// Every fullscreen pass, in FullscreenPassId order.
+std::span<const FullscreenPassRow> fullscreenPassRows();
+const FullscreenPassRow& fullscreenPassRow(FullscreenPassId id);
+
+// The forms of one frame's fullscreen passes, by FullscreenPassId.
+using PassForms = std::array<PassForm, kFullscreenPassCount>;
+// What `setting` runs each pass as: fragment or compute as asked; auto:
+// compute on a hardware GPU, the row's measured form on a software
+// rasteriser.
+PassForms choosePassForms(FullscreenForm setting, bool softwareRasterizer);
+// GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, swrast, SwiftShader).
+bool isSoftwareRasterizer(std::string_view glRenderer);
+
 // ---- Attachments -------------------------------------------------------------
 
 // How the GPU stores an attachment (lib/gl/target_formats.hpp maps it to GL).

@@ -45,6 +45,10 @@ void deleteSampler(GLuint id) {
   if (haveCurrent()) glDeleteSamplers(1, &id);
 }
 
+void deleteQuery(GLuint id) {
+  if (haveCurrent()) glDeleteQueries(1, &id);
+}
+
 Texture::Texture(GLenum target, GLenum internalFormat, int width, int height, int layers, int levels)
     : target_(target), internalFormat_(internalFormat), width_(width), height_(height), layers_(layers) {
   GLuint id = 0;
@@ -111,6 +115,15 @@ VertexArray VertexArray::create() {
   VertexArray vertexArray;
   vertexArray.adopt(createOne(glCreateVertexArrays));
   return vertexArray;
+}
+
+Query Query::create(GLenum target) {
+  GLuint id = 0;
+  glCreateQueries(target, 1, &id);
+  if (id == 0) throw GlError("glCreateQueries returned no name");
+  Query query;
+  query.adopt(id);
+  return query;
 }
 
 Sampler Sampler::create() {

@@ -61,6 +61,7 @@ void deleteVertexArray(GLuint id);
 void deleteProgram(GLuint id);
 void deleteShader(GLuint id);
 void deleteSampler(GLuint id);
+void deleteQuery(GLuint id);
 
 // An immutable-storage texture (glTextureStorage*). One class for every
 // target the renderer uses: the factories name the target, target() and
@@ -147,6 +148,19 @@ class Sampler : public Name<deleteSampler> {
   static Sampler create();
   void set(GLenum parameter, GLint value) const { glSamplerParameteri(id(), parameter, value); }
   void bind(int unit) const { glBindSampler(GLuint(unit), id()); }
+};
+
+// A query object of one target (GL_TIME_ELAPSED for the passes' GPU time).
+class Query : public Name<deleteQuery> {
+ public:
+  Query() = default;  // owns nothing
+  static Query create(GLenum target);
+  // Blocks until the GPU has the result (after a glFinish it has).
+  GLuint64 result() const {
+    GLuint64 value = 0;
+    glGetQueryObjectui64v(id(), GL_QUERY_RESULT, &value);
+    return value;
+  }
 };
 
 // A linked program. link() throws GlError with the info log (and the

@@ -46,18 +46,24 @@ void appendExpanded(std::string_view fileName, std::set<std::string>& included, 
 GLenum stageOf(std::string_view file) {
   if (file.ends_with(".vert")) return GL_VERTEX_SHADER;
   if (file.ends_with(".frag")) return GL_FRAGMENT_SHADER;
-  throw GlError("shader library: cannot tell the stage of '" + std::string(file) + "' (.vert or .frag)");
+  if (file.ends_with(".comp")) return GL_COMPUTE_SHADER;
+  throw GlError("shader library: cannot tell the stage of '" + std::string(file) + "' (.vert, .frag or .comp)");
 }
 
 }  // namespace
 
 std::string buildShaderSource(std::string_view fileName, std::span<const std::string> defines) {
+  const std::string_view files[] = {fileName};
+  return buildShaderSource(files, defines);
+}
+
+std::string buildShaderSource(std::span<const std::string_view> files, std::span<const std::string> defines) {
   std::string source = "#version 450 core\n";
   for (const auto& define : defines) source += "#define " + define + "\n";
   std::set<std::string> included;
   std::vector<std::string> fileNames;
   std::string body;
-  appendExpanded(fileName, included, fileNames, body);
+  for (std::string_view file : files) appendExpanded(file, included, fileNames, body);
   // Which number is which file, for reading compiler logs.
   for (std::size_t i = 0; i < fileNames.size(); ++i)
     source += "// file " + std::to_string(i) + ": " + fileNames[i] + "\n";
@@ -65,15 +71,22 @@ std::string buildShaderSource(std::string_view fileName, std::span<const std::st
 }
 
 gl::Program buildProgram(std::span<const std::string_view> files, std::span<const std::string> defines) {
+  std::vector<StageFiles> stages;
+  for (const std::string_view& file : files) stages.push_back({std::span(&file, 1)});
+  return buildProgram(stages, defines);
+}
+
+gl::Program buildProgram(std::span<const StageFiles> stageFiles, std::span<const std::string> defines) {
   std::vector<gl::Program::Stage> stages;
-  for (std::string_view file : files) {
-    std::string name(file);
+  for (const StageFiles& files : stageFiles) {
+    std::string name;
+    for (std::string_view file : files.files) name += (name.empty() ? "" : " + ") + std::string(file);
     if (!defines.empty()) {
       name += " [";
       for (std::size_t i = 0; i < defines.size(); ++i) name += (i ? ", " : "") + defines[i];
       name += "]";
     }
-    stages.push_back({stageOf(file), name, buildShaderSource(file, defines)});
+    stages.push_back({stageOf(files.files.back()), name, buildShaderSource(files.files, defines)});
   }
   return gl::Program::link(stages);
 }

@@ -25,9 +25,18 @@ std::string_view shaderText(std::string_view name);
 // expanded (each file at most once). #line directives keep compiler messages
 // pointing at the right line of the right file (numbered by include order).
 std::string buildShaderSource(std::string_view fileName, std::span<const std::string> defines);
+// The same for one stage made of several files in order (a fullscreen pass's
+// body, then its entry), included files shared: each at most once.
+std::string buildShaderSource(std::span<const std::string_view> files, std::span<const std::string> defines);
 
 // Compiles and links a program from stage files (the stage is taken from the
-// extension: .vert, .frag). Throws GlError with the compiler's log.
+// extension: .vert, .frag, .comp). Throws GlError with the compiler's log.
 gl::Program buildProgram(std::span<const std::string_view> files, std::span<const std::string> defines = {});
+// The same with each stage made of several files (the last one's extension
+// names the stage).
+struct StageFiles {
+  std::span<const std::string_view> files;
+};
+gl::Program buildProgram(std::span<const StageFiles> stages, std::span<const std::string> defines);
 
 }  // namespace headlight::detail

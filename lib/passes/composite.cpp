@@ -5,7 +5,7 @@
 namespace headlight {
 
 CompositePass::CompositePass()
-    : FullscreenPass("composite.frag", [](const Variant& variant) {
+    : FullscreenPass("composite.glsl", [](const Variant& variant) {
         std::vector<std::string> defines;
         if (variant.ssgi) defines.emplace_back("HAS_SSGI");
         if (variant.sky) defines.emplace_back("HAS_SKY");
@@ -14,7 +14,8 @@ CompositePass::CompositePass()
         return defines;
       }) {}
 
-void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant) {
+void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant,
+                        PassForm form) {
   inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
   inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
   inputs.gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
@@ -26,7 +27,8 @@ void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output
     inputs.ssgi->specular.bind(gpu::kUnitSsgiSpecular);
   }
   bindAmbientTables(inputs.environment, variant.sky, variant.environment);
-  draw("composite", variant, output);
+  const PassOutput outputs[] = {{"radiance", &output}};
+  FullscreenPass::run("composite", variant, form, outputs);
 }
 
 }  // namespace headlight

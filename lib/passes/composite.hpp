@@ -6,6 +6,7 @@
 // (the seed's ssgi_ao there: the hemisphere and radiance methods write their
 // AO within R as ssgi_sky, so their images are the seed's).
 // Output GL_RGBA16F linear radiance; background pixels get the sky, alpha 0.
+// Body: glsl/composite.glsl, in either form.
 #include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
@@ -32,7 +33,7 @@ class CompositePass : public FullscreenPass<CompositeVariant> {
   using Variant = CompositeVariant;
   CompositePass();
   // The lighting block must be bound (sky intensity).
-  void run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant);
+  void run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant, PassForm form);
 };
 
 }  // namespace headlight

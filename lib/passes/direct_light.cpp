@@ -5,7 +5,7 @@
 namespace headlight {
 
 DirectLightPass::DirectLightPass()
-    : FullscreenPass("direct_light.frag", [](const Variant& variant) {
+    : FullscreenPass("direct_light.glsl", [](const Variant& variant) {
         std::vector<std::string> defines;
         if (variant.emissive) defines.emplace_back("HAS_EMISSIVE");
         if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
@@ -16,7 +16,7 @@ DirectLightPass::DirectLightPass()
       }) {}
 
 void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets,
-                          const Variant& variant) {
+                          const Variant& variant, PassForm form) {
   const GBuffer& gbuffer = inputs.gbuffer;
   const ShadowMaps& shadows = inputs.shadows;
   gbuffer.position.bind(gpu::kUnitGbufferPosition);
@@ -26,8 +26,8 @@ void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTarg
   if (variant.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
   if (variant.planarShadows) shadows.planar.bind(gpu::kUnitShadowMaps2D);
   if (variant.cubeShadows) shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  const gl::Texture* outputs[] = {&targets.towardEye, targets.diffuse};
-  draw("direct light", variant, std::span(outputs, variant.diffuseTarget ? 2 : 1), glm::vec4(0.0f));
+  const PassOutput outputs[] = {{"towardEye", &targets.towardEye}, {"diffuse", targets.diffuse}};
+  FullscreenPass::run("direct light", variant, form, std::span(outputs, variant.diffuseTarget ? 2 : 1));
 }
 
 }  // namespace headlight

@@ -1,10 +1,10 @@
 #pragma once
 // The direct-light pass: every punctual light (glTF units and range falloff,
 // PCF-filtered shadows where a map exists) plus emission, from the G-buffer.
-//   target 0 GL_RGBA16F  radiance toward the eye (Cook-Torrance GGX)
-//   target 1 GL_RGBA16F  Lambertian radiance leaving the surface, for the SSGI
-//                        `radiance` method to gather; made only when asked
-// Background pixels stay 0.
+//   towardEye GL_RGBA16F  radiance toward the eye (Cook-Torrance GGX)
+//   diffuse   GL_RGBA16F  Lambertian radiance leaving the surface, for the SSGI
+//                         methods to gather; made only when asked
+// Background pixels are 0. Body: glsl/direct_light.glsl, in either form.
 #include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
@@ -29,7 +29,8 @@ class DirectLightPass : public FullscreenPass<DirectLightVariant> {
   DirectLightPass();
   // The lighting block (light count, PCF radius) and the light buffer must be
   // bound.
-  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant);
+  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant,
+           PassForm form);
 };
 
 }  // namespace headlight

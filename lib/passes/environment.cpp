@@ -6,10 +6,7 @@
 namespace headlight {
 
 EnvironmentPass::EnvironmentPass()
-    : brdfProgram_(buildFullscreenProgram("brdf_lut.frag")),
-      prefilterProgram_(buildFullscreenProgram("sky_prefilter.frag")),
-      irradianceProgram_(buildFullscreenProgram("sky_irradiance.frag")),
-      skyBlock_(gl::Buffer::create(sizeof(gpu::SkyBlock))) {
+    : skyBlock_(gl::Buffer::create(sizeof(gpu::SkyBlock))) {
   tables_.brdfLut = gl::Texture::create2D(GL_RG16F, gpu::kBrdfLutSize, gpu::kBrdfLutSize);
   tables_.skyPrefiltered = gl::Texture::create2D(GL_RGBA16F, gpu::kSkyTableWidth, gpu::kSkyRoughnessLevels);
   tables_.skyIrradiance = gl::Texture::create2D(GL_RGBA16F, gpu::kSkyTableWidth, 1);
@@ -19,7 +16,12 @@ EnvironmentPass::EnvironmentPass()
     glTextureParameteri(table->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(table->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
-  draw_.draw("BRDF table", brdfProgram_, tables_.brdfLut);
+}
+
+void EnvironmentPass::makeBrdfTable(PassForm form) {
+  if (brdfMade_) return;
+  brdfPass_.run("BRDF table", "scaleBias", tables_.brdfLut, form);
+  brdfMade_ = true;
 }
 
 bool EnvironmentPass::holds(const Sky& sky) const {
@@ -29,14 +31,15 @@ bool EnvironmentPass::holds(const Sky& sky) const {
          tabulatedSky_->ground == sky.ground;
 }
 
-void EnvironmentPass::updateSky(const Sky& sky) {
+void EnvironmentPass::updateSky(const Sky& sky, PassForm form) {
+  makeBrdfTable(form);
   if (holds(sky)) return;
   tabulatedSky_ = sky;
   gpu::SkyBlock block{glm::vec4(sky.zenith, 0.0f), glm::vec4(sky.horizon, 0.0f), glm::vec4(sky.ground, 0.0f)};
   skyBlock_.update(block);
   skyBlock_.bindUniform(gpu::SkyBlock::kBinding);
-  draw_.draw("prefiltered sky table", prefilterProgram_, tables_.skyPrefiltered);
-  draw_.draw("sky irradiance table", irradianceProgram_, tables_.skyIrradiance);
+  prefilterPass_.run("prefiltered sky table", "radiance", tables_.skyPrefiltered, form);
+  irradiancePass_.run("sky irradiance table", "irradianceOverPi", tables_.skyIrradiance, form);
 }
 
 namespace {
@@ -58,7 +61,8 @@ gl::Texture uploadEquirect(const environment::EquirectImage& image) {
 
 }  // namespace
 
-void EnvironmentPass::updateEnvironment(const EnvironmentMap& map) {
+void EnvironmentPass::updateEnvironment(const EnvironmentMap& map, PassForm form) {
+  makeBrdfTable(form);
   if (holdsEnvironment(map)) return;
   const environment::EnvironmentTables prefiltered = environment::prefilterEnvironment(map);
   const environment::EquirectImage& level0 = prefiltered.specular.front();

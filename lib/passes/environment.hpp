@@ -1,7 +1,7 @@
 #pragma once
 // The tables image-based ambient light reads, computed on the GPU once:
 //  - the split-sum BRDF table (Karis 2013): 64 x 64 RG16F, (N.V, roughness)
-//    -> (scale, bias) of F0; once per renderer;
+//    -> (scale, bias) of F0; once per renderer, with the first tables made;
 //  - the prefiltered sky: 64 x kSkyRoughnessLevels RGBA16F, (direction.y,
 //    roughness) -> GGX-filtered radiance. The sky depends only on the
 //    direction's height, so a 2D table holds what a cube map would;
@@ -13,6 +13,9 @@
 // a roughness level), its irradiance over pi and the map itself (the
 // background), prefiltered on the CPU (environment/environment_prefilter.hpp)
 // once per map content: a batch of scenes with the same map reuses them.
+// The GPU tables are fullscreen passes (glsl/brdf_lut.glsl,
+// sky_prefilter.glsl, sky_irradiance.glsl), in either form.
+#include <variant>
 #include <optional>
 #include <string>
 
@@ -39,22 +42,37 @@ void bindAmbientTables(const EnvironmentTables& tables, bool sky, bool environme
 
 class EnvironmentPass {
  public:
-  EnvironmentPass();                 // builds the programs and the BRDF table
-  void updateSky(const Sky& sky);    // recomputes the sky tables if the sky's colours changed
+  EnvironmentPass();  // allocates the tables; programs are built on first use
+  // Recomputes the sky tables if the sky's colours changed (and makes the
+  // BRDF table if it is not made yet).
+  void updateSky(const Sky& sky, PassForm form);
   bool holds(const Sky& sky) const;  // the sky tables are this sky's (intensity aside)
   const EnvironmentTables& tables() const { return tables_; }
   // Prefilters and uploads the map's tables unless they are this map's
   // (same content hash) already.
-  void updateEnvironment(const EnvironmentMap& map);
+  // (And makes the BRDF table if it is not made yet.)
+  void updateEnvironment(const EnvironmentMap& map, PassForm form);
   bool holdsEnvironment(const EnvironmentMap& map) const { return environmentHash_ == map.sourceHash; }
   void dropEnvironment();  // a scene without a map: its textures are released
 
  private:
-  gl::Program brdfProgram_;
-  gl::Program prefilterProgram_;
-  gl::Program irradianceProgram_;
+  // One table's fullscreen pass: the body's one output, no variants.
+  class TablePass : FullscreenPass<std::monostate> {
+   public:
+    explicit TablePass(std::string_view body)
+        : FullscreenPass(body, [](const std::monostate&) { return std::vector<std::string>{}; }) {}
+    void run(std::string_view what, std::string_view member, const gl::Texture& table, PassForm form) {
+      const PassOutput outputs[] = {{member, &table}};
+      FullscreenPass::run(what, {}, form, outputs);
+    }
+  };
+  void makeBrdfTable(PassForm form);
+
+  TablePass brdfPass_{"brdf_lut.glsl"};
+  TablePass prefilterPass_{"sky_prefilter.glsl"};
+  TablePass irradiancePass_{"sky_irradiance.glsl"};
+  bool brdfMade_ = false;
   gl::Buffer skyBlock_;
-  FullscreenDraw draw_;
   EnvironmentTables tables_;
   std::optional<Sky> tabulatedSky_;  // the colours the sky tables hold
   std::string environmentHash_;      // the map the environment tables hold; empty: none

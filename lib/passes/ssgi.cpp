@@ -46,8 +46,8 @@ std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed) {
 }
 
 SsgiPass::SsgiPass()
-    : FullscreenPass("ssgi.frag",
-                     [](SsgiMethod method) {
+    : FullscreenPass("ssgi.glsl",
+                     [](const SsgiMethod& method) {
                        const std::string_view define = ssgiMethodTraits(method).kernelDefine;
                        return define.empty() ? std::vector<std::string>{} : std::vector<std::string>{std::string(define)};
                      }),
@@ -65,19 +65,11 @@ void SsgiPass::updateKernel(int sampleCount, unsigned seed) {
   kernelSeed_ = seed;
 }
 
-void SsgiPass::prepare(SsgiMethod method) {
-  if (ssgiMethodTraits(method).program == SsgiProgram::Bitmask) {
-    if (!bitmask_) bitmask_.emplace();
-  } else {
-    FullscreenPass::prepare(method);
-  }
-}
-
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   const SsgiSettings& settings = inputs.settings.ssgi;
   const SsgiMethodTraits& method = ssgiMethodTraits(settings.method);
   if (method.program == SsgiProgram::Bitmask) {
-    prepare(settings.method);
+    if (!bitmask_) bitmask_.emplace();
     bitmask_->run(inputs, output);
     return;
   }
@@ -97,10 +89,9 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
     gbuffer.material.bind(gpu::kUnitGbufferMaterial);
     inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   }
-  // Background pixels are discarded by the shader and keep the clear value:
-  // open, no indirect light.
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
-  draw("SSGI", settings.method, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  const PassOutput outputs[] = {
+      {"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
+  FullscreenPass::run("SSGI", settings.method, inputs.form, outputs, inputs.accumulateWeight);
 }
 
 }  // namespace headlight

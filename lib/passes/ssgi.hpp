@@ -51,16 +51,17 @@ struct SsgiInputs {
   const VirtualLights* virtualLights = nullptr;
   const ShadowMaps* shadows = nullptr;  // the lights' maps: what hides a virtual light near its light
   int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
-  float accumulateWeight = 0.0f;     // 0: overwrite the output; else blend in as (1 - w) output + w result
+  // Accumulated frames (SsgiStep::frames > 1): 0 overwrites the output, w
+  // blends in as (1 - w) output + w result; none: a single frame.
+  std::optional<float> accumulateWeight;
+  PassForm form = PassForm::Fragment;  // fragment or compute (lib/passes/fullscreen.hpp)
 };
 
-// Variants: one per kernel method (ssgi.frag); the bitmask method is its
-// own pass (ssgi_bitmask.frag), built on first use.
+// Variants: one per kernel method (glsl/ssgi.glsl); the bitmask method is
+// its own pass (glsl/ssgi_bitmask.glsl). Programs are built on first use.
 class SsgiPass : public FullscreenPass<SsgiMethod> {
  public:
   SsgiPass();
-  // Builds `method`'s program ahead of its first frame.
-  void prepare(SsgiMethod method);
   // Reads `inputs` and the frame block; writes `output` (the size
   // SsgiInputs::downsample says).
   void run(const SsgiInputs& inputs, const SsgiTextures& output);

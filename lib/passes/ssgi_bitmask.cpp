@@ -8,13 +8,13 @@
 namespace headlight {
 
 SsgiBitmaskPass::SsgiBitmaskPass()
-    : programs_(fullscreenPrograms<SsgiBitmaskVariant>("ssgi_bitmask.frag",
-                                                       [](const SsgiBitmaskVariant& variant) {
-                                                         std::vector<std::string> defines;
-                                                         if (variant.planarShadows) defines.push_back("HAS_PLANAR_SHADOWS");
-                                                         if (variant.cubeShadows) defines.push_back("HAS_CUBE_SHADOWS");
-                                                         return defines;
-                                                       })),
+    : FullscreenPass("ssgi_bitmask.glsl",
+                     [](const SsgiBitmaskVariant& variant) {
+                       std::vector<std::string> defines;
+                       if (variant.planarShadows) defines.push_back("HAS_PLANAR_SHADOWS");
+                       if (variant.cubeShadows) defines.push_back("HAS_CUBE_SHADOWS");
+                       return defines;
+                     }),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
 
 void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
@@ -48,13 +48,11 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
       if (variant.cubeShadows) inputs.shadows->cube.bind(gpu::kUnitShadowMapsCube);
     }
   }
-  const gl::Program& program = programs_.get(variant);
   if (inputs.farDownsample <= inputs.downsample) {
     block.part = gpu::kBitmaskBoth;
-    // The shader's locations: 0 near field, 1 specular, 2 sky (the far
-    // field's own pass writes the sky at 0, the specular at 1).
-    const gl::Texture* outputs[] = {&output.occlusion, &output.specular, &output.sky};
-    draw(inputs, program, block, outputs);
+    const PassOutput outputs[] = {
+        {"nearField", &output.occlusion}, {"farField", &output.sky}, {"specular", &output.specular}};
+    draw(inputs, variant, block, outputs);
     return;
   }
   // Two resolutions: the near field without sky steps, then the far field
@@ -62,32 +60,21 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
   gpu::SsgiBitmaskBlock nearField = block;
   nearField.part = gpu::kBitmaskNearField;
   nearField.skyStepCount = 0;
-  const gl::Texture* nearOutputs[] = {&output.occlusion};
-  draw(inputs, program, nearField, nearOutputs);
+  const PassOutput nearOutputs[] = {{"nearField", &output.occlusion}};
+  draw(inputs, variant, nearField, nearOutputs);
   gpu::SsgiBitmaskBlock farField = block;
   farField.part = gpu::kBitmaskFarField;
   farField.downsample = inputs.farDownsample;
   farField.sliceCount = inputs.settings.ssgi.farSliceCount;
-  const gl::Texture* farOutputs[] = {&output.sky, &output.specular};
-  draw(inputs, program, farField, farOutputs);
+  const PassOutput farOutputs[] = {{"farFieldOverNear", &output.sky}, {"specular", &output.specular}};
+  draw(inputs, variant, farField, farOutputs);
 }
 
-void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const gl::Program& program, const gpu::SsgiBitmaskBlock& block,
-                           std::span<const gl::Texture* const> outputs) {
+void SsgiBitmaskPass::draw(const SsgiInputs& inputs, const SsgiBitmaskVariant& variant,
+                           const gpu::SsgiBitmaskBlock& block, std::span<const PassOutput> outputs) {
   block_.update(block);
   block_.bindUniform(gpu::SsgiBitmaskBlock::kBinding);
-  if (inputs.accumulateWeight > 0.0f) {
-    // A running mean: background pixels are discarded and keep what the
-    // first frame cleared them to.
-    glEnable(GL_BLEND);
-    glBlendColor(0.0f, 0.0f, 0.0f, inputs.accumulateWeight);
-    glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
-    draw_.draw("SSGI bitmask (accumulating)", program, outputs);
-    glDisable(GL_BLEND);
-    return;
-  }
-  // Background pixels are discarded and keep the clear value: open, no light.
-  draw_.draw("SSGI bitmask", program, outputs, glm::vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  FullscreenPass::run("SSGI bitmask", variant, inputs.form, outputs, inputs.accumulateWeight);
 }
 
 }  // namespace headlight

@@ -31,7 +31,7 @@ struct SsgiBitmaskVariant {
   auto operator<=>(const SsgiBitmaskVariant&) const = default;
 };
 
-class SsgiBitmaskPass {
+class SsgiBitmaskPass : FullscreenPass<SsgiBitmaskVariant> {
  public:
   SsgiBitmaskPass();
   // The frame block must be bound. Writes `output` (the G-buffer's size /
@@ -39,12 +39,10 @@ class SsgiBitmaskPass {
   void run(const SsgiInputs& inputs, const SsgiTextures& output);
 
  private:
-  void draw(const SsgiInputs& inputs, const gl::Program& program, const gpu::SsgiBitmaskBlock& block,
-            std::span<const gl::Texture* const> outputs);
+  void draw(const SsgiInputs& inputs, const SsgiBitmaskVariant& variant, const gpu::SsgiBitmaskBlock& block,
+            std::span<const PassOutput> outputs);
 
-  ProgramCache<SsgiBitmaskVariant> programs_;
   gl::Buffer block_;
-  FullscreenDraw draw_;
 };
 
 }  // namespace headlight

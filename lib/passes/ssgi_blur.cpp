@@ -21,7 +21,8 @@ constexpr int kTapRadius = 3;
 }  // namespace
 
 SsgiBlurPass::SsgiBlurPass()
-    : program_(buildFullscreenProgram("ssgi_blur.frag")), block_(gl::Buffer::create(sizeof(gpu::SsgiBlurBlock))) {}
+    : FullscreenPass("ssgi_blur.glsl", [](const std::monostate&) { return std::vector<std::string>{}; }),
+      block_(gl::Buffer::create(sizeof(gpu::SsgiBlurBlock))) {}
 
 void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output) {
   gpu::SsgiBlurBlock block{};
@@ -41,8 +42,9 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   }
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
   inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
-  const gl::Texture* outputs[] = {&output.occlusion, &output.sky, &output.specular};
-  draw(block, outputs);
+  const PassOutput outputs[] = {
+      {"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
+  draw(block, inputs.form, outputs);
 }
 
 // The raw sky along rows into farSky, then farSky along columns back into
@@ -54,20 +56,19 @@ void SsgiBlurPass::blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurI
   line.skyTapRadius = kFarTapRadius;
   line.skyAxisX = 1;
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
-  const gl::Texture* rows[] = {inputs.farSky};
-  draw(line, rows);
+  const PassOutput rows[] = {{"skyLine", inputs.farSky}};
+  draw(line, inputs.form, rows);
   line.skyAxisX = 0;
   line.skyAxisY = 1;
   inputs.farSky->bind(gpu::kUnitSsgiSky);
-  const gl::Texture* columns[] = {&inputs.rawSsgi.sky};
-  draw(line, columns);
+  const PassOutput columns[] = {{"skyLine", &inputs.rawSsgi.sky}};
+  draw(line, inputs.form, columns);
 }
 
-void SsgiBlurPass::draw(const gpu::SsgiBlurBlock& block, std::span<const gl::Texture* const> outputs) {
+void SsgiBlurPass::draw(const gpu::SsgiBlurBlock& block, PassForm form, std::span<const PassOutput> outputs) {
   block_.update(block);
   block_.bindUniform(gpu::SsgiBlurBlock::kBinding);
-  const glm::vec4 background(1.0f, 0.0f, 0.0f, 0.0f);  // as the SSGI pass leaves it
-  draw_.draw("SSGI blur", program_, outputs, background);
+  FullscreenPass::run("SSGI blur", {}, form, outputs);
 }
 
 }  // namespace headlight

@@ -7,7 +7,9 @@
 // raw sky coarser than the raw SSGI (the bitmask method's far-field pass) is
 // blurred at its own resolution (a wider window there, along rows into
 // `farSky`, then along columns back), then upsampled from a 3x3 window of it
-// with the same kind of weights.
+// with the same kind of weights. Body: glsl/ssgi_blur.glsl, in either form.
+#include <variant>
+
 #include "gl/objects.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
@@ -25,9 +27,10 @@ struct SsgiBlurInputs {
   // rawSsgi.sky's size, for the far field's blur along rows (skyDownsample >
   // ssgiDownsample); that blur overwrites rawSsgi.sky.
   const gl::Texture* farSky = nullptr;
+  PassForm form = PassForm::Fragment;
 };
 
-class SsgiBlurPass {
+class SsgiBlurPass : FullscreenPass<std::monostate> {
  public:
   SsgiBlurPass();
   // The frame block must be bound. `output` has the G-buffer's size.
@@ -35,11 +38,9 @@ class SsgiBlurPass {
 
  private:
   void blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurInputs& inputs);
-  void draw(const gpu::SsgiBlurBlock& block, std::span<const gl::Texture* const> outputs);
+  void draw(const gpu::SsgiBlurBlock& block, PassForm form, std::span<const PassOutput> outputs);
 
-  gl::Program program_;
   gl::Buffer block_;
-  FullscreenDraw draw_;
 };
 
 }  // namespace headlight

@@ -23,6 +23,7 @@ constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance", "bitm
 constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
 constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
 constexpr std::string_view kRadiancePrecisionNames[] = {"half", "float"};
+constexpr std::string_view kFullscreenFormNames[] = {"auto", "fragment", "compute"};
 constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
 
 // The largest image side; width x height is further bounded in validate().
@@ -239,6 +240,13 @@ const std::vector<Row>& table() {
            .choices = kRadiancePrecisionNames,
            .autoMeaning = "float when the scene's lights or emitters may exceed half's range"},
           [](auto& s) -> auto& { return s.radiancePrecision; }),
+      row(
+          {.name = "fullscreen-form",
+           .type = T::Choice,
+           .help = "how the fullscreen passes run: auto (compute on a GPU; on llvmpipe each pass's measured faster "
+                   "form), fragment or compute; the pixels are the same",
+           .choices = kFullscreenFormNames},
+          [](auto& s) -> auto& { return s.fullscreenForm; }),
   };
   return rows;
 }

@@ -38,7 +38,13 @@ struct SkippedWork {
 
 struct PassTime {
   std::string pass;
-  double milliseconds = 0;  // bounded by glFinish before and after
+  double milliseconds = 0;  // wall time, bounded by glFinish before and after (CPU work included)
+  // The GPU's own time for the pass's commands (a GL_TIME_ELAPSED query);
+  // negative where the driver reports none.
+  double gpuMilliseconds = -1;
+  // How a fullscreen pass ran ("fragment" or "compute", --fullscreen-form);
+  // empty for the other passes.
+  std::string form;
 };
 
 struct Frame {

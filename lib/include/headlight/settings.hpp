@@ -115,6 +115,14 @@ enum class Tonemap { Aces, Reinhard };
 // file size; float holds any light a scene can give.
 enum class RadiancePrecision { Half, Float };
 
+// How the fullscreen passes (direct light, SSGI and its blur, composite, the
+// sky tables) run: as a fullscreen triangle's fragment shader or as a compute
+// dispatch over the same per-pixel body. Auto chooses per pass: compute on a
+// hardware GPU (data-centre GPUs starve fragment shading: 11-33x), and on a
+// software rasteriser (llvmpipe) the form measured faster for that pass
+// (docs/BENCHMARKS.md, "Fullscreen forms"). Both forms give the same pixels.
+enum class FullscreenForm { Auto, Fragment, Compute };
+
 struct RenderSettings {
   int width = 640;            // pixels; width x height at most 2^26
   int height = 480;           // pixels
@@ -126,6 +134,8 @@ struct RenderSettings {
   // Auto: float when the scene has a light or an emitter bright enough that
   // half may clamp (resolve: autoRadiancePrecision), else half.
   std::optional<RadiancePrecision> radiancePrecision;
+  // Each pass's form as it ran is in Frame::timings (PassTime::form).
+  FullscreenForm fullscreenForm = FullscreenForm::Auto;
 
   // Checks every row's range and the rules between settings; throws
   // SettingsError naming the setting, the allowed range and the value.

@@ -4,6 +4,8 @@
 // which is not filterable, and pixel-exact reads keep the method repeatable.
 // Both the G-buffer and this target are in GL's bottom-up pixel order, so no
 // y flip is needed anywhere here (the seed's uv.y = 1 - uv.y came from wgpu).
+// A fullscreen pass's body: fullscreen_entry.frag or .comp runs it per
+// output pixel.
 #include "shared_layout.h"
 #include "ssgi_common.glsl"
 
@@ -17,20 +19,23 @@ layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 #endif
 
-layout(location = 0) out vec4 outSsgi;
-// This kernel sees no farther than R: its AO within R is its sky visibility.
-layout(location = 1) out vec4 outSky;
-// And its specular sky visibility (no lobe: the AO again), weight 1.
-layout(location = 2) out vec4 outSpecular;
+// SsgiTextures' three, as every SSGI method writes them.
+struct PassOutputs {
+  vec4 nearField;  // AO, indirect light within R
+  // This kernel sees no farther than R: its AO within R is its sky visibility.
+  vec4 sky;
+  // And its specular sky visibility (no lobe: the AO again), weight 1.
+  vec4 specular;
+};
 
-void main() {
+PassOutputs shadePixel(ivec2 outputPixel) {
   // Below full resolution each output pixel shades the G-buffer pixel at
   // the centre of the block it stands for.
   const int divisor = ssgi.downsample;
-  const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
   const ivec2 pixel = min(outputPixel * divisor + divisor / 2, ivec2(frame.viewport.xy) - 1);
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
-  if (worldPosition.a == 0.0) discard;  // background: keeps the cleared (1, 0, 0, 0)
+  // Background: open, no indirect light.
+  if (worldPosition.a == 0.0) return PassOutputs(vec4(1.0, 0.0, 0.0, 0.0), vec4(1.0, 0.0, 0.0, 0.0), vec4(1.0, 0.0, 0.0, 0.0));
 
   const vec3 viewPosition = (frame.view * vec4(worldPosition.xyz, 1.0)).xyz;
   // Normals are stored as unit vectors (not remapped to 0..1): no * 2 - 1.
@@ -71,7 +76,6 @@ void main() {
   // cosine-distributed kernel directions that is albedo * mean(L).
   indirect *= (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
 #endif
-  outSsgi = vec4(ambientOcclusion, indirect * (ssgi.indirectStrength / float(sampleCount)));
-  outSky = vec4(ambientOcclusion, 0.0, 0.0, 0.0);
-  outSpecular = vec4(ambientOcclusion, 1.0, 0.0, 0.0);
+  return PassOutputs(vec4(ambientOcclusion, indirect * (ssgi.indirectStrength / float(sampleCount))),
+                     vec4(ambientOcclusion, 0.0, 0.0, 0.0), vec4(ambientOcclusion, 1.0, 0.0, 0.0));
 }

@@ -1,8 +1,9 @@
 // Direct light (lib/passes/direct_light.hpp): every punctual light with its
-// shadow, plus emission. Target 0 is the radiance toward the eye
-// (Cook-Torrance); with WRITE_DIFFUSE_RADIANCE, target 1 is the Lambertian
-// radiance the surface sends in every direction, which the SSGI `radiance`
-// method gathers as one-bounce light (docs/ACCURACY.md).
+// shadow, plus emission. `towardEye` is the radiance toward the eye
+// (Cook-Torrance); `diffuse` (written with WRITE_DIFFUSE_RADIANCE) is the
+// Lambertian radiance the surface sends in every direction, which the SSGI
+// methods gather as one-bounce light (docs/ACCURACY.md). A fullscreen pass's
+// body: fullscreen_entry.frag or .comp runs it per pixel.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -16,15 +17,18 @@
 layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
 #endif
 
-layout(location = 0) out vec4 outDirect;
-#ifdef WRITE_DIFFUSE_RADIANCE
-layout(location = 1) out vec4 outDiffuse;
-#endif
+struct PassOutputs {
+  vec4 towardEye;
+  vec4 diffuse;
+};
 
-void main() {
-  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+PassOutputs shadePixel(ivec2 pixel) {
+  PassOutputs o;
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
-  if (worldPosition.a == 0.0) discard;  // background: stays cleared to 0
+  if (worldPosition.a == 0.0) {  // background: no light
+    o.towardEye = o.diffuse = vec4(0.0);
+    return o;
+  }
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_CLEARCOAT_LOBE
   const Clearcoat coat = clearcoatAt(pixel, surface.view);
@@ -52,11 +56,10 @@ void main() {
   const vec3 emission = vec3(0.0);
 #endif
 #ifdef HAS_CLEARCOAT_LOBE
-  outDirect = vec4(towardEye + clearcoatLayer(coat, emission, vec3(0.0)), 1.0);  // the coat darkens emission too
+  o.towardEye = vec4(towardEye + clearcoatLayer(coat, emission, vec3(0.0)), 1.0);  // the coat darkens emission too
 #else
-  outDirect = vec4(towardEye + emission, 1.0);
+  o.towardEye = vec4(towardEye + emission, 1.0);
 #endif
-#ifdef WRITE_DIFFUSE_RADIANCE
-  outDiffuse = vec4((1.0 - surface.metallic) * surface.albedo / kPi * irradiance + emission, 1.0);
-#endif
+  o.diffuse = vec4((1.0 - surface.metallic) * surface.albedo / kPi * irradiance + emission, 1.0);
+  return o;
 }

@@ -12,7 +12,8 @@
 // (environment.glsl), and the background is the map (or 0 with
 // --no-environment-background). An unlit pixel (KHR_materials_unlit:
 // material A = 1) shows its base colour alone, untouched by lights,
-// shadows, sky, SSGI and emission.
+// shadows, sky, SSGI and emission. A fullscreen pass's body:
+// fullscreen_entry.frag or .comp runs it per pixel.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "brdf.glsl"
@@ -29,34 +30,31 @@ layout(binding = kUnitSsgiSky) uniform sampler2D ssgiSkyTexture;
 layout(binding = kUnitSsgiSpecular) uniform sampler2D ssgiSpecularTexture;
 #endif
 
-layout(location = 0) out vec4 outRadiance;
+struct PassOutputs {
+  vec4 radiance;
+};
 
-void main() {
-  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+vec4 shadeRadiance(ivec2 pixel) {
   const vec4 worldPosition = texelFetch(gbufferPosition, pixel, 0);
   if (worldPosition.a == 0.0) {
-    // Background: the sky seen through this pixel (roughness-0 row = the
-    // sky itself), coverage 0.
-    const vec4 clip = vec4((gl_FragCoord.xy * frame.viewport.zw) * 2.0 - 1.0, 1.0, 1.0);
+    // Background: the sky seen through this pixel's centre (roughness-0 row
+    // = the sky itself), coverage 0.
+    const vec4 clip = vec4(((vec2(pixel) + 0.5) * frame.viewport.zw) * 2.0 - 1.0, 1.0, 1.0);
     const vec4 viewFar = inverse(frame.projection) * clip;
     const vec3 rayView = frame.cameraPosition.w > 0.5 ? vec3(0.0, 0.0, -1.0) : viewFar.xyz / viewFar.w;
     const vec3 rayWorld = normalize(transpose(mat3(frame.view)) * rayView);
 #if defined(HAS_ENVIRONMENT)
     // The map at full resolution, not its 128 x 64 roughness-0 layer.
-    outRadiance = vec4(lighting.environmentBackground != 0 ? environmentRadiance(rayWorld) * lighting.skyIntensity
-                                                           : vec3(0.0), 0.0);
+    return vec4(lighting.environmentBackground != 0 ? environmentRadiance(rayWorld) * lighting.skyIntensity
+                                                    : vec3(0.0), 0.0);
 #elif defined(HAS_SKY)
-    outRadiance = vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
+    return vec4(prefilteredSky(rayWorld, 0.0) * lighting.skyIntensity, 0.0);
 #else
-    outRadiance = vec4(0.0);
+    return vec4(0.0);
 #endif
-    return;
   }
   const vec4 material = texelFetch(gbufferMaterial, pixel, 0);
-  if (material.a > 0.5) {
-    outRadiance = vec4(texelFetch(gbufferAlbedo, pixel, 0).rgb, 1.0);
-    return;
-  }
+  if (material.a > 0.5) return vec4(texelFetch(gbufferAlbedo, pixel, 0).rgb, 1.0);
   const Surface surface = surfaceAt(pixel, worldPosition.xyz);
 #ifdef HAS_SSGI
   const vec4 sky = texelFetch(ssgiSkyTexture, pixel, 0);
@@ -86,5 +84,7 @@ void main() {
   const Clearcoat coat = clearcoatAt(pixel, surface.view);
   ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, skyVisibility));
 #endif
-  outRadiance = vec4(texelFetch(directTexture, pixel, 0).rgb + ambient, 1.0);
+  return vec4(texelFetch(directTexture, pixel, 0).rgb + ambient, 1.0);
 }
+
+PassOutputs shadePixel(ivec2 pixel) { return PassOutputs(shadeRadiance(pixel)); }

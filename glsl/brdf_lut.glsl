@@ -1,15 +1,19 @@
 // Split-sum BRDF table (Karis 2013): for (N.V, roughness) the scale and bias
-// that turn F0 into the directional albedo of GGX specular.
+// that turn F0 into the directional albedo of GGX specular. A fullscreen
+// pass's body: fullscreen_entry.frag or .comp runs it per texel.
 #include "shared_layout.h"
 #include "sampling.glsl"
 
-layout(location = 0) out vec2 outScaleBias;
+struct PassOutputs {
+  vec4 scaleBias;  // RG; the table is RG16F
+};
 
 const uint kSampleCount = 512u;  // half-float output; 512 keeps the noise below its precision
 
-void main() {
-  const float nDotV = max(tableValue(gl_FragCoord.x, float(kBrdfLutSize), 0.0, 1.0), 1e-4);
-  const float roughness = tableValue(gl_FragCoord.y, float(kBrdfLutSize), 0.0, 1.0);
+PassOutputs shadePixel(ivec2 texel) {
+  const vec2 centre = vec2(texel) + 0.5;
+  const float nDotV = max(tableValue(centre.x, float(kBrdfLutSize), 0.0, 1.0), 1e-4);
+  const float roughness = tableValue(centre.y, float(kBrdfLutSize), 0.0, 1.0);
   const float alpha = roughness * roughness;
   const vec3 view = vec3(sqrt(1.0 - nDotV * nDotV), 0.0, nDotV);
   vec2 scaleBias = vec2(0.0);
@@ -23,5 +27,5 @@ void main() {
     const float fresnel = pow(1.0 - vDotH, 5.0);
     scaleBias += vec2((1.0 - fresnel) * weight, fresnel * weight);
   }
-  outScaleBias = scaleBias / float(kSampleCount);
+  return PassOutputs(vec4(scaleBias / float(kSampleCount), 0.0, 0.0));
 }

@@ -20,7 +20,9 @@
 // from inside its walls is too light where the walls leave the screen.
 // Reads the G-buffer's depth (linearised by the frame's coefficients), not
 // the position target. Its pure functions are in ssgi_common.glsl; what reads
-// textures is here.
+// textures is here. A fullscreen pass's body: fullscreen_entry.frag or .comp
+// runs it per output pixel, writing the members lib/passes/ssgi_bitmask.cpp
+// names for the part it draws.
 #include "shared_layout.h"
 #include "ssgi_common.glsl"
 #include "shadows.glsl"  // with virtual lights: HAS_PLANAR_SHADOWS, HAS_CUBE_SHADOWS (SsgiBitmaskVariant)
@@ -32,9 +34,15 @@ layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
 
-layout(location = 0) out vec4 outSsgi;
-layout(location = 2) out vec4 outSky;
-layout(location = 1) out vec4 outSpecular;
+struct PassOutputs {
+  vec4 nearField;  // AO and indirect light within R (SsgiTextures::occlusion)
+  vec4 farField;   // sky visibility and indirect light beyond R (SsgiTextures::sky), with both parts in one pass
+  // The far field's own pass (a coarser resolution, lib/passes/ssgi_bitmask.hpp) writes this to the sky
+  // instead: its sky visibility as the part of the AO within R it leaves (the sky is open at most where that
+  // is), which the blur multiplies by the full-resolution AO, keeping the contact detail a coarse sky would lose.
+  vec4 farFieldOverNear;
+  vec4 specular;  // specularOutput (SsgiTextures::specular)
+};
 
 // The world width of a pixel at view depth `viewZ` (negative in front).
 float pixelFootprint(float viewZ) {
@@ -448,13 +456,15 @@ vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
               specularSum.y / float(max(sliceCount, 1)), bend, 0.0);
 }
 
-void main() {
+PassOutputs shadePixel(ivec2 outputPixel) {
   const int divisor = bitmask.downsample;
-  const ivec2 outputPixel = ivec2(gl_FragCoord.xy);
   const ivec2 size = ivec2(frame.viewport.xy);
   const ivec2 pixel = min(outputPixel * divisor + divisor / 2, size - 1);
   const float depth = texelFetch(gbufferDepth, pixel, 0).r;
-  if (depth >= 1.0) discard;  // background: keeps the cleared (1, 0, 0, 0)
+  if (depth >= 1.0) {  // background: open, no light
+    const vec4 open = vec4(1.0, 0.0, 0.0, 0.0);
+    return PassOutputs(open, open, open, open);
+  }
 
   const vec3 position = viewPositionAt(pixel, depth);
   const vec3 normal = normalize(mat3(frame.view) * texelFetch(gbufferNormal, pixel, 0).xyz);
@@ -548,11 +558,7 @@ void main() {
   }
   const vec4 farField = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
                              farGathered * receiver * bitmask.indirectStrength);
-  // The far field's own pass (a coarser resolution, lib/passes/ssgi_bitmask.hpp) writes it to location 0,
-  // its sky visibility as the part of the AO within R it leaves (the sky is open at most where that is): the
-  // blur multiplies it by the full-resolution AO, which keeps the contact detail a coarse sky would lose.
   const float skyOfOpen = nearField.x > 1e-3 ? min(farField.x / nearField.x, 1.0) : 1.0;
-  outSsgi = bitmask.part == kBitmaskFarField ? vec4(skyOfOpen, farField.yzw) : nearField;
-  outSky = farField;
-  outSpecular = specularOutput(specularSum, skyVisibility, sliceCount);
+  return PassOutputs(nearField, farField, vec4(skyOfOpen, farField.yzw),
+                     specularOutput(specularSum, skyVisibility, sliceCount));
 }

@@ -1,16 +1,20 @@
 // The sky filtered by GGX lobes around a direction, for the split sum's
-// first factor (with N = V = R, as usual). Row = roughness level.
+// first factor (with N = V = R, as usual). Row = roughness level. A
+// fullscreen pass's body: fullscreen_entry.frag or .comp runs it per texel.
 #include "shared_layout.h"
 #include "sampling.glsl"
 #include "sky.glsl"
 
-layout(location = 0) out vec4 outRadiance;
+struct PassOutputs {
+  vec4 radiance;
+};
 
 const uint kSampleCount = 512u;
 
-void main() {
-  const vec3 reflected = directionAtHeight(tableValue(gl_FragCoord.x, float(kSkyTableWidth), -1.0, 1.0));
-  const float roughness = tableValue(gl_FragCoord.y, float(kSkyRoughnessLevels), 0.0, 1.0);
+PassOutputs shadePixel(ivec2 texel) {
+  const vec2 centre = vec2(texel) + 0.5;
+  const vec3 reflected = directionAtHeight(tableValue(centre.x, float(kSkyTableWidth), -1.0, 1.0));
+  const float roughness = tableValue(centre.y, float(kSkyRoughnessLevels), 0.0, 1.0);
   const float alpha = roughness * roughness;
   const mat3 basis = basisAround(reflected);
   vec3 sum = vec3(0.0);
@@ -23,5 +27,5 @@ void main() {
     sum += skyRadiance(light) * nDotL;
     weight += nDotL;
   }
-  outRadiance = vec4(sum / max(weight, 1e-7), 1.0);
+  return PassOutputs(vec4(sum / max(weight, 1e-7), 1.0));
 }

@@ -6,7 +6,8 @@
 // its own divisor (the bitmask method's far-field pass): it is blurred at
 // its own resolution first (skyOnly, the output at that divisor: a line of
 // texels along rows, then one along columns), then upsampled here from a
-// 3x3 window.
+// 3x3 window. A fullscreen pass's body: fullscreen_entry.frag or .comp runs
+// it per output pixel (lib/passes/ssgi_blur.cpp names the members it writes).
 #include "shared_layout.h"
 
 layout(binding = kUnitGbufferPosition) uniform sampler2D gbufferPosition;
@@ -17,9 +18,12 @@ layout(binding = kUnitSsgiSky) uniform sampler2D rawSky;
 // on the raw sky's grid (the far field's pass writes it).
 layout(binding = kUnitSsgiSpecular) uniform sampler2D rawSpecular;
 
-layout(location = 0) out vec4 outSsgi;
-layout(location = 1) out vec4 outSky;
-layout(location = 2) out vec4 outSpecular;
+struct PassOutputs {
+  vec4 nearField;  // the AO and light within R (SsgiTextures::occlusion)
+  vec4 sky;
+  vec4 specular;
+  vec4 skyLine;  // skyOnly: the raw sky blurred along one axis at its own resolution
+};
 
 // A 7x7 window with Gaussian weights (sigma 2 pixels): it spans about two
 // of the SSGI pass's 4x4 tiles, each offset differently, so it averages
@@ -86,13 +90,17 @@ void filterWindow(sampler2D first, sampler2D second, bool withSecond, int specul
     }
 }
 
-void main() {
+PassOutputs shadePixel(ivec2 outputPixel) {
   // The G-buffer pixel this output texel stands for.
   const int outputDivisor = blur.outputDownsample;
   const ivec2 size = ivec2(frame.viewport.xy);
-  const ivec2 pixel = min(ivec2(gl_FragCoord.xy) * outputDivisor + outputDivisor / 2, size - 1);
+  const ivec2 pixel = min(outputPixel * outputDivisor + outputDivisor / 2, size - 1);
   const vec4 centrePosition = texelFetch(gbufferPosition, pixel, 0);
-  if (centrePosition.a == 0.0) discard;  // background keeps the cleared value
+  PassOutputs o;
+  if (centrePosition.a == 0.0) {  // background: open, no light, as the SSGI pass leaves it
+    o.nearField = o.sky = o.specular = o.skyLine = vec4(1.0, 0.0, 0.0, 0.0);
+    return o;
+  }
   const Centre centre = Centre(pixel, texelFetch(gbufferNormal, pixel, 0).xyz, viewDepth(centrePosition.xyz));
   const int skyDivisor = blur.skyDownsample;
   const ivec2 rawSkyCentre = min(pixel / skyDivisor, textureSize(rawSky, 0) - 1);
@@ -104,8 +112,8 @@ void main() {
     const ivec2 radius = blur.skyTapRadius * (axis == ivec2(0) ? ivec2(1) : axis);
     filterWindow(rawSky, rawSky, false, -1, skyDivisor, radius, rawSkyCentre, vec2(rawSkyCentre), centre, skySum,
                  unused, noSpecular, skyWeightSum);
-    outSsgi = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
-    return;
+    o.skyLine = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
+    return o;
   }
   const int divisor = blur.ssgiDownsample;
   const ivec2 rawCentre = min(pixel / divisor, textureSize(rawSsgi, 0) - 1);
@@ -130,13 +138,15 @@ void main() {
   }
   // At full resolution the centre has weight 1. Below it, a pixel on a
   // surface no raw texel nearby sampled (a thin strut) takes the nearest.
-  outSsgi = weightSum > 1e-4 ? sum / weightSum : texelFetch(rawSsgi, rawCentre, 0);
-  outSky = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
-  // A coarser sky holds the sky visibility over the AO within R (ssgi_bitmask.frag): times this pixel's AO.
-  if (skyDivisor != divisor) outSky.x *= outSsgi.x;
+  o.nearField = weightSum > 1e-4 ? sum / weightSum : texelFetch(rawSsgi, rawCentre, 0);
+  o.sky = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
+  // A coarser sky holds the sky visibility over the AO within R (ssgi_bitmask.glsl): times this pixel's AO.
+  if (skyDivisor != divisor) o.sky.x *= o.nearField.x;
   // Where no neighbour's slices saw the lobe, the sky visibility stands in.
   const float specularWeights = skyDivisor == divisor ? weightSum : skyWeightSum;
-  outSpecular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(specularWeights, 1e-4),
-                                            specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
-                                     : vec4(outSky.r, 0.0, 0.0, 0.0);
+  o.specular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(specularWeights, 1e-4),
+                                           specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
+                                    : vec4(o.sky.r, 0.0, 0.0, 0.0);
+  o.skyLine = o.sky;
+  return o;
 }
