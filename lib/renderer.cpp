@@ -439,16 +439,17 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     timer.run("direct", [&] { impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct, form); }, form);
   }
   if (plan.ssgi) impl.runSsgi(plan, used, forms, timer);
-  // The sky tables are made on the first frame that needs them (and again
+  // The split-sum BRDF table once per renderer, before the first pass that
+  // reads it; the sky tables on the first frame that needs them (and again
   // only when the sky's colours change).
+  if ((plan.composite || plan.transmission || plan.blend) && !impl.environment.hasBrdfTable())
+    timer.run("brdf-table", [&] { impl.environment.makeBrdfTable(formOf(FullscreenPassId::SkyTables)); },
+              formOf(FullscreenPassId::SkyTables));
   if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
     timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky, formOf(FullscreenPassId::SkyTables)); },
               formOf(FullscreenPassId::SkyTables));
   if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
-    timer.run(
-        "environment",
-        [&] { impl.environment.updateEnvironment(*impl.scene.environment, formOf(FullscreenPassId::SkyTables)); },
-        formOf(FullscreenPassId::SkyTables));
+    timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
   if (plan.composite) {
     const SsgiTextures ssgi = impl.ssgiOutput(false);
     const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),

@@ -123,10 +123,12 @@ json summaryJson(const std::vector<Job>& jobs, const std::vector<JobResult>& res
     }
     if (r.status == JobResult::Status::Rendered) {
       ++rendered;
-      json passes = json::object();
+      json passes = json::object(), gpuPasses = json::object(), forms = json::object();
       for (const PassTime& pass : r.passes) {
         passes[pass.pass] = pass.milliseconds;
         passTotals[pass.pass] += pass.milliseconds;
+        if (pass.gpuMilliseconds >= 0) gpuPasses[pass.pass] = pass.gpuMilliseconds;
+        if (!pass.form.empty()) forms[pass.pass] = pass.form;
       }
       json fileList = json::array();
       for (const WrittenFile& file : r.files)
@@ -136,6 +138,8 @@ json summaryJson(const std::vector<Job>& jobs, const std::vector<JobResult>& res
                             {"saturated_pixels", file.saturatedPixels}});
       files += r.files.size();
       entry["passes_ms"] = passes;
+      entry["passes_gpu_ms"] = gpuPasses;
+      entry["forms"] = forms;
       entry["render_ms"] = r.renderMs;
       entry["write_ms"] = r.writeMs;
       entry["peak_rss_kb"] = r.peakRssKb;
@@ -198,7 +202,11 @@ namespace {
 void printFrameDetails(const Frame& frame) {
   double total = 0;
   for (const PassTime& time : frame.timings) {
-    std::fprintf(stderr, "pass %-10s %9.2f ms\n", time.pass.c_str(), time.milliseconds);
+    // Wall time (glFinish-bounded, a first frame's compiles included), then the GPU's own, then the form.
+    std::fprintf(stderr, "pass %-10s %9.2f ms", time.pass.c_str(), time.milliseconds);
+    if (time.gpuMilliseconds >= 0) std::fprintf(stderr, "  gpu %9.3f ms", time.gpuMilliseconds);
+    if (!time.form.empty()) std::fprintf(stderr, "  %s", time.form.c_str());
+    std::fprintf(stderr, "\n");
     total += time.milliseconds;
   }
   std::fprintf(stderr, "pass %-10s %9.2f ms\n", "total", total);

@@ -29,7 +29,9 @@ METHOD, BLUR, RESOLUTION, FRAMES = "ssgi-method", "ssgi-blur", "ssgi-resolution"
 # Columns that differ between two rows of one configuration: its label and its measurements.
 CHANGING = {"label", "frame_ms_median", "frame_ms_min", "frame_ms_max", "ssgi_ms_median", "ssgi_ms_min",
             "ssgi_ms_max", "ao_rmse", "ao_mae", "sky_rmse", "sky_mae", "indirect_rmse", "indirect_rel_rmse",
-            "lit_rel_rmse", "lit_ssim", "lit_flip", "pareto_ao", "repetitions", "seed_default"}
+            "lit_rel_rmse", "lit_ssim", "lit_flip", "pareto_ao", "repetitions", "seed_default",
+            "frame_gpu_ms_median", "frame_gpu_ms_min", "frame_gpu_ms_max", "ssgi_gpu_ms_median", "ssgi_gpu_ms_min",
+            "ssgi_gpu_ms_max", "forms"}
 
 
 def pareto(points):

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 #include <optional>
+#include <limits>
 #include <sstream>
 
 #include "headlight/error.hpp"
@@ -64,6 +65,12 @@ std::vector<Option<BenchCommand>> benchOptions() {
   rows.push_back(bindOption<C>(
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
       [](auto& c) -> auto& { return c.chart; }));
+  rows.push_back(bindOption<C>(
+      {.name = "reference",
+       .type = T::Bool,
+       .help = "trace the Embree reference and measure each configuration's errors against it (--no-reference: "
+               "time only, errors nan, no chart; a 4K frame need not wait on a 4K reference)"},
+      [](auto& c) -> auto& { return c.traceReference; }));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
   for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
   rows.push_back(settingsFileOption<C>(&C::base));
@@ -162,36 +169,51 @@ std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, in
 namespace {
 
 // Frame time without readback (a cost of getting images to the CPU, not of
-// rendering) and without shadows (made once per scene, then cached).
-double frameMilliseconds(const Frame& frame) {
+// rendering) and without shadows (made once per scene, then cached); `gpu`:
+// the passes' GPU time instead of their wall time.
+double frameMilliseconds(const Frame& frame, bool gpu) {
   double total = 0;
   for (const PassTime& time : frame.timings)
-    if (time.pass != "readback" && time.pass != "shadows") total += time.milliseconds;
+    if (time.pass != "readback" && time.pass != "shadows") total += gpu ? time.gpuMilliseconds : time.milliseconds;
   return total;
 }
 
-double ssgiMilliseconds(const Frame& frame) {
+double ssgiMilliseconds(const Frame& frame, bool gpu) {
   double total = 0;
   for (const PassTime& time : frame.timings)
-    if (time.pass == "ssgi" || time.pass == "ssgi-blur") total += time.milliseconds;
+    if (time.pass == "ssgi" || time.pass == "ssgi-blur") total += gpu ? time.gpuMilliseconds : time.milliseconds;
   return total;
 }
+
+// Each timed frame's wall and GPU times.
+struct FrameTimes {
+  std::vector<double> frame, ssgi, frameGpu, ssgiGpu;
+};
 
 // Times one configuration: `warmup` frames, then `repetitions` timed ones.
-Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOptions& options,
-                 std::vector<double>& frameTimes, std::vector<double>& ssgiTimes) {
+Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOptions& options, FrameTimes& times) {
   for (int i = 0; i < options.warmup; ++i) renderer.render(config.settings);
   Frame frame;
   for (int i = 0; i < options.repetitions; ++i) {
     frame = renderer.render(config.settings);
-    frameTimes.push_back(frameMilliseconds(frame));
-    ssgiTimes.push_back(ssgiMilliseconds(frame));
+    times.frame.push_back(frameMilliseconds(frame, false));
+    times.ssgi.push_back(ssgiMilliseconds(frame, false));
+    times.frameGpu.push_back(frameMilliseconds(frame, true));
+    times.ssgiGpu.push_back(ssgiMilliseconds(frame, true));
   }
   return frame;
 }
 
-BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options,
-                 std::vector<double> frameTimes, std::vector<double> ssgiTimes, const ReferenceImages& reference) {
+std::string formsText(const Frame& frame) {
+  std::string text;
+  for (const PassTime& time : frame.timings)
+    if (!time.form.empty()) (text += text.empty() ? "" : " ") += time.pass + "=" + time.form;
+  return text;
+}
+
+// A row without errors: what --no-reference measures.
+BenchRow timedRow(const Frame& frame, const BenchConfig& config, const MeasureOptions& options,
+                  const FrameTimes& times) {
   BenchRow row;
   row.scene = frame.sceneSource;
   row.width = frame.settings.width;
@@ -200,8 +222,25 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOpt
   row.settings = settingsAsText(frame.settings);
   row.seedDefault = config.seedDefault;
   row.repetitions = options.repetitions;
-  row.frameMs = summarize(frameTimes);
-  row.ssgiMs = summarize(ssgiTimes);
+  row.frameMs = summarize(times.frame);
+  row.ssgiMs = summarize(times.ssgi);
+  row.frameGpuMs = summarize(times.frameGpu);
+  row.ssgiGpuMs = summarize(times.ssgiGpu);
+  row.forms = formsText(frame);
+  row.renderer = frame.glRenderer;
+  row.backend = frame.backend;
+  row.machine = machineDescription();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  row.ao.rmse = row.ao.meanAbsolute = row.sky.rmse = row.sky.meanAbsolute = nan;
+  row.indirect.rmse = row.indirect.relativeRmse = row.lit.relativeRmse = row.litSsim = row.litFlip = nan;
+  row.referenceTraced = false;
+  return row;
+}
+
+BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options,
+                 const FrameTimes& times, const ReferenceImages& reference) {
+  BenchRow row = timedRow(frame, config, options, times);
+  row.referenceTraced = true;
   row.ao = maskedError(frame.ssgi, 0, reference.ao, 0, frame.position);
   row.sky = maskedError(frame.ssgi, 4, reference.ao, 1, frame.position);  // sky.Y in both
   row.indirect = maskedColorError(frame.ssgi, 1, reference.indirect, 0, frame.position);
@@ -211,9 +250,6 @@ BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOpt
   row.referenceSamples = reference.samplesPerPixel;
   row.referenceAoStandardError = reference.aoMeanStandardError;
   row.referenceScreenBound = reference.screenBound;
-  row.renderer = frame.glRenderer;
-  row.backend = frame.backend;
-  row.machine = machineDescription();
   return row;
 }
 
@@ -256,8 +292,13 @@ std::vector<BenchRow> measureConfigs(Renderer& renderer, const std::vector<Bench
   std::map<float, ReferenceImages> references;
   for (const BenchConfig& config : configs) {
     progress.update(done, sceneName + " " + config.label);
-    std::vector<double> frameTimes, ssgiTimes;
-    const Frame frame = timeFrames(renderer, config, options, frameTimes, ssgiTimes);
+    FrameTimes times;
+    const Frame frame = timeFrames(renderer, config, options, times);
+    if (!options.traceReference) {
+      rows.push_back(timedRow(frame, config, options, times));
+      ++done;
+      continue;
+    }
     const float radius = *frame.settings.ssgi.radius;
     if (!references.count(radius)) {
       progress.update(done, sceneName + " reference R=" + std::to_string(radius));
@@ -265,7 +306,7 @@ std::vector<BenchRow> measureConfigs(Renderer& renderer, const std::vector<Bench
       settings.radius = radius;
       references.emplace(radius, traceReference(renderer.scene(), frame, settings));
     }
-    rows.push_back(measure(frame, config, options, frameTimes, ssgiTimes, references.at(radius)));
+    rows.push_back(measure(frame, config, options, times, references.at(radius)));
     ++done;
   }
   return rows;
@@ -302,7 +343,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
     std::cout << benchHelp();
     return 0;
   }
-  if (!referenceAvailable()) throw Error("headlight bench needs the reference: this build has no Embree");
+  if (command.traceReference && !referenceAvailable())
+    throw Error("headlight bench needs the reference: this build has no Embree (--no-reference times only)");
   std::optional<Context> context;  // made once the first scene has loaded: a refused scene needs no GL
   std::optional<Renderer> renderer;
   std::vector<BenchRow> rows;
@@ -310,7 +352,7 @@ int runBenchCommand(const std::vector<std::string>& args) {
   const std::size_t configsPerGroup = benchConfigs(command, 1, 1).size();
   Progress progress(command.scenes.size() * command.resolutions.size() * configsPerGroup, !quiet, "configs");
   std::size_t done = 0;
-  const MeasureOptions measureOptions{command.repetitions, command.warmup, command.reference};
+  const MeasureOptions measureOptions{command.repetitions, command.warmup, command.reference, command.traceReference};
   for (const std::string& sceneName : command.scenes) {
     Scene scene = loadCommandScene(sceneName, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
     if (!context) {
@@ -336,7 +378,8 @@ int runBenchCommand(const std::vector<std::string>& args) {
   writeBenchCsv(rows, out / "bench.csv");
   writeBenchJson(rows, joinArgs(args), out / "bench.json");
   if (!quiet) std::cout << (out / "bench.csv").string() << "\n" << (out / "bench.json").string() << "\n";
-  if (command.chart && !drawChart(out / "bench.csv", out))
+  // The chart plots errors: none without a reference.
+  if (command.chart && command.traceReference && !drawChart(out / "bench.csv", out))
     throw IoError((out / "bench.png").string() + ": the chart script failed (is python3-matplotlib installed?)");
   return 0;
 }

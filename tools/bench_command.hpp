@@ -61,6 +61,7 @@ struct BenchCommand {
   RenderSettings base;               // what every configuration starts from (render flags)
   std::vector<SettingSweep> sweeps;  // empty: defaultBenchSweeps()
   ReferenceSettings reference;       // rays per pixel (--reference-samples)
+  bool traceReference = true;        // --no-reference: time only (no errors, no chart, no Embree needed)
   int repetitions = 5;               // timed frames per configuration (median and spread reported)
   int warmup = 2;                    // untimed frames first (shader variants, caches)
   bool chart = true;
@@ -94,6 +95,7 @@ struct MeasureOptions {
   int repetitions = 5;
   int warmup = 2;
   ReferenceSettings reference;
+  bool traceReference = true;  // false: the rows' errors are nan (BenchRow::referenceTraced)
 };
 // Times each configuration on the renderer's scene and measures its errors
 // against the reference, traced once per SSGI radius (the G-buffer is the

@@ -28,15 +28,14 @@ const FullscreenPassRow& fullscreenPassRow(FullscreenPassId id) {
   return row;
 }
 
-PassForms choosePassForms(FullscreenForm setting, bool softwareRasterizer) {
+PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer) {
   PassForms forms{};
   for (const FullscreenPassRow& row : fullscreenPassRows()) {
     PassForm& form = forms[std::size_t(row.id)];
-    switch (setting) {
-      case FullscreenForm::Fragment: form = PassForm::Fragment; break;
-      case FullscreenForm::Compute: form = PassForm::Compute; break;
-      case FullscreenForm::Auto: form = softwareRasterizer ? row.softwareForm : PassForm::Compute; break;
-    }
+    if (setting)
+      form = *setting == FullscreenForm::Compute ? PassForm::Compute : PassForm::Fragment;
+    else
+      form = softwareRasterizer ? row.softwareForm : PassForm::Compute;
   }
   return forms;
 }

@@ -106,7 +106,7 @@ using PassForms = std::array<PassForm, kFullscreenPassCount>;
 // What `setting` runs each pass as: fragment or compute as asked; auto:
 // compute on a hardware GPU, the row's measured form on a software
 // rasteriser.
-PassForms choosePassForms(FullscreenForm setting, bool softwareRasterizer);
+PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer);
 // GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, swrast, SwiftShader).
 bool isSoftwareRasterizer(std::string_view glRenderer);
 

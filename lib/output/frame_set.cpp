@@ -64,6 +64,11 @@ json manifestJson(const Frame& frame, const OutputOptions& options, bool complet
   j["renderer"] = frame.glRenderer;
   j["ignored"] = frame.ignored;  // glTF features not rendered
   j["settings"] = settings;
+  // How each fullscreen pass ran: "fragment" or "compute" (fullscreen-form).
+  json forms = json::object();
+  for (const PassTime& pass : frame.timings)
+    if (!pass.form.empty()) forms[pass.pass] = pass.form;
+  j["forms"] = forms;
   j["files"] = json::array();
   return j;
 }

@@ -51,6 +51,9 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
   spec.attribute("headlight:ignored", ignored);
   spec.attribute("headlight:conventions",
                  "right-handed world, +Y up; camera looks down -Z; rows top first; depth.Z = view-space depth");
+  // How each fullscreen pass ran (fragment or compute; fullscreen-form).
+  for (const PassTime& pass : frame.timings)
+    if (!pass.form.empty()) spec.attribute("headlight:form:" + pass.pass, pass.form);
   // As used: "auto" values appear as the numbers they resolved to.
   for (const auto& [name, value] : settingsAsText(frame.settings))
     spec.attribute(std::string(kSettingAttributePrefix) + name, value);

@@ -32,7 +32,6 @@ bool EnvironmentPass::holds(const Sky& sky) const {
 }
 
 void EnvironmentPass::updateSky(const Sky& sky, PassForm form) {
-  makeBrdfTable(form);
   if (holds(sky)) return;
   tabulatedSky_ = sky;
   gpu::SkyBlock block{glm::vec4(sky.zenith, 0.0f), glm::vec4(sky.horizon, 0.0f), glm::vec4(sky.ground, 0.0f)};
@@ -61,8 +60,7 @@ gl::Texture uploadEquirect(const environment::EquirectImage& image) {
 
 }  // namespace
 
-void EnvironmentPass::updateEnvironment(const EnvironmentMap& map, PassForm form) {
-  makeBrdfTable(form);
+void EnvironmentPass::updateEnvironment(const EnvironmentMap& map) {
   if (holdsEnvironment(map)) return;
   const environment::EnvironmentTables prefiltered = environment::prefilterEnvironment(map);
   const environment::EquirectImage& level0 = prefiltered.specular.front();

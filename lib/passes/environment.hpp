@@ -43,15 +43,17 @@ void bindAmbientTables(const EnvironmentTables& tables, bool sky, bool environme
 class EnvironmentPass {
  public:
   EnvironmentPass();  // allocates the tables; programs are built on first use
-  // Recomputes the sky tables if the sky's colours changed (and makes the
-  // BRDF table if it is not made yet).
+  // The BRDF table, made once (every pass that reads the split sum needs it:
+  // the composite's sky term, transmission's throughput, the blend pass).
+  bool hasBrdfTable() const { return brdfMade_; }
+  void makeBrdfTable(PassForm form);
+  // Recomputes the sky tables if the sky's colours changed.
   void updateSky(const Sky& sky, PassForm form);
   bool holds(const Sky& sky) const;  // the sky tables are this sky's (intensity aside)
   const EnvironmentTables& tables() const { return tables_; }
   // Prefilters and uploads the map's tables unless they are this map's
   // (same content hash) already.
-  // (And makes the BRDF table if it is not made yet.)
-  void updateEnvironment(const EnvironmentMap& map, PassForm form);
+  void updateEnvironment(const EnvironmentMap& map);
   bool holdsEnvironment(const EnvironmentMap& map) const { return environmentHash_ == map.sourceHash; }
   void dropEnvironment();  // a scene without a map: its textures are released
 
@@ -66,7 +68,6 @@ class EnvironmentPass {
       FullscreenPass::run(what, {}, form, outputs);
     }
   };
-  void makeBrdfTable(PassForm form);
 
   TablePass brdfPass_{"brdf_lut.glsl"};
   TablePass prefilterPass_{"sky_prefilter.glsl"};

@@ -23,7 +23,7 @@ constexpr std::string_view kSsgiMethodNames[] = {"hemisphere", "radiance", "bitm
 constexpr std::string_view kSsgiResolutionNames[] = {"full", "half", "quarter"};
 constexpr std::string_view kTonemapNames[] = {"aces", "reinhard"};
 constexpr std::string_view kRadiancePrecisionNames[] = {"half", "float"};
-constexpr std::string_view kFullscreenFormNames[] = {"auto", "fragment", "compute"};
+constexpr std::string_view kFullscreenFormNames[] = {"fragment", "compute"};
 constexpr std::string_view kPresetNames[] = {"fast", "default", "high", "seed"};
 
 // The largest image side; width x height is further bounded in validate().
@@ -243,9 +243,10 @@ const std::vector<Row>& table() {
       row(
           {.name = "fullscreen-form",
            .type = T::Choice,
-           .help = "how the fullscreen passes run: auto (compute on a GPU; on llvmpipe each pass's measured faster "
-                   "form), fragment or compute; the pixels are the same",
-           .choices = kFullscreenFormNames},
+           .help = "how the fullscreen passes (direct light, SSGI, blur, composite, sky tables) run: as a fullscreen "
+                   "triangle's fragment shader or a compute dispatch; the pixels are the same",
+           .choices = kFullscreenFormNames,
+           .autoMeaning = "per pass: compute on a GPU, on llvmpipe the form measured faster"},
           [](auto& s) -> auto& { return s.fullscreenForm; }),
   };
   return rows;

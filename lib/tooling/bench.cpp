@@ -166,6 +166,7 @@ const char* kCsvHeaderStart = "scene,label,";
 const char* kCsvHeaderEnd =
     "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"
+    "frame_gpu_ms_median,frame_gpu_ms_min,frame_gpu_ms_max,ssgi_gpu_ms_median,ssgi_gpu_ms_min,ssgi_gpu_ms_max,forms,"
     "ao_rmse,ao_mae,sky_rmse,sky_mae,indirect_rmse,indirect_rel_rmse,lit_rel_rmse,lit_ssim,lit_flip,"
     "reference_samples,reference_ao_se,reference_screen_bound,pareto_ao,renderer,backend,machine";
 
@@ -191,6 +192,9 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
     }
     out << r.seedDefault << ',' << r.repetitions << ',' << r.frameMs.median << ',' << r.frameMs.minimum << ','
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
+        << r.frameGpuMs.median << ',' << r.frameGpuMs.minimum << ',' << r.frameGpuMs.maximum << ','
+        << r.ssgiGpuMs.median << ',' << r.ssgiGpuMs.minimum << ',' << r.ssgiGpuMs.maximum << ',' << csvField(r.forms)
+        << ','
         << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
         << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.referenceScreenBound
@@ -208,7 +212,8 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
     auto summary = [](const Summary& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.minimum}, {"max", s.maximum}};
     };
-    const nlohmann::json reference{{"samples", r.referenceSamples},
+    const nlohmann::json reference{{"traced", r.referenceTraced},
+                                   {"samples", r.referenceSamples},
                                    {"ao_standard_error", r.referenceAoStandardError},
                                    {"screen_bound", r.referenceScreenBound}};
     json["rows"].push_back({{"scene", r.scene},
@@ -220,6 +225,9 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
                             {"repetitions", r.repetitions},
                             {"frame_ms", summary(r.frameMs)},
                             {"ssgi_ms", summary(r.ssgiMs)},
+                            {"frame_gpu_ms", summary(r.frameGpuMs)},
+                            {"ssgi_gpu_ms", summary(r.ssgiGpuMs)},
+                            {"forms", r.forms},
                             {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
                             {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
                             {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},

@@ -66,6 +66,14 @@ struct BenchRow {
   int repetitions = 0;
   Summary frameMs;           // passes of one frame (G-buffer to composite), shadows cached, readback excluded
   Summary ssgiMs;            // SSGI (+ blur)
+  // The same passes' GPU time (GL_TIME_ELAPSED queries: what the GPU spent,
+  // without the CPU side llvmpipe adds to the wall times above).
+  Summary frameGpuMs;
+  Summary ssgiGpuMs;
+  std::string forms;  // how each fullscreen pass ran, "direct=fragment ssgi=compute ..." (fullscreen-form)
+  // No reference was traced (bench --no-reference): the error fields are
+  // written as nan, and the rows time the configurations only.
+  bool referenceTraced = true;
   ErrorStats ao;             // vs ao_ref within R
   ErrorStats sky;            // sky visibility (ssgi sky.Y) vs ao_ref's sky.Y, any distance
   ColorErrorStats indirect;  // vs indirect_ref within R

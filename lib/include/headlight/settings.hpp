@@ -121,7 +121,7 @@ enum class RadiancePrecision { Half, Float };
 // hardware GPU (data-centre GPUs starve fragment shading: 11-33x), and on a
 // software rasteriser (llvmpipe) the form measured faster for that pass
 // (docs/BENCHMARKS.md, "Fullscreen forms"). Both forms give the same pixels.
-enum class FullscreenForm { Auto, Fragment, Compute };
+enum class FullscreenForm { Fragment, Compute };
 
 struct RenderSettings {
   int width = 640;            // pixels; width x height at most 2^26
@@ -134,8 +134,9 @@ struct RenderSettings {
   // Auto: float when the scene has a light or an emitter bright enough that
   // half may clamp (resolve: autoRadiancePrecision), else half.
   std::optional<RadiancePrecision> radiancePrecision;
-  // Each pass's form as it ran is in Frame::timings (PassTime::form).
-  FullscreenForm fullscreenForm = FullscreenForm::Auto;
+  // Auto chooses per pass, so it stays auto in a frame's settings; each
+  // pass's form as it ran is in Frame::timings (PassTime::form).
+  std::optional<FullscreenForm> fullscreenForm;
 
   // Checks every row's range and the rules between settings; throws
   // SettingsError naming the setting, the allowed range and the value.
