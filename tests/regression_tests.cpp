@@ -8,6 +8,10 @@
 // renderer string as this render (the EXRs' headlight:renderer) must match
 // within Pass, since nothing but our code can have moved it.
 //
+// Every golden is compared in both fullscreen forms (--fullscreen-form
+// fragment and compute, lib/passes/fullscreen.hpp): the forms must give the
+// same pixels, so one golden serves both.
+//
 // Goldens made from a shared asset (../shared, beside the checkout) are a
 // test case of their own, skipped at registration when none of their assets
 // is there, so that doctest counts them as skipped and not as passed. Each
@@ -72,9 +76,9 @@ std::string rendererOf(const fs::path& exr) {
   return image.init_spec(exr.string(), 0, 0) ? image.spec().get_string_attribute("headlight:renderer") : "";
 }
 
-// Setting rows that change no EXR pixel (they shape preview.png only): a
-// golden need not agree on them.
-const std::set<std::string> kPreviewOnlySettings{"tonemap", "exposure"};
+// Setting rows that change no EXR pixel (preview.png's tone curve and
+// exposure; how the fullscreen passes run): a golden need not agree on them.
+const std::set<std::string> kPixelNeutralSettings{"tonemap", "exposure", "fullscreen-form"};
 
 // The golden holds pixels and the settings that made them: a row recorded
 // in both must agree (a changed default fails here, naming the row, before
@@ -87,7 +91,7 @@ void checkSettings(const fs::path& goldenExr, const fs::path& actualExr) {
   const std::map<std::string, std::string> defaults = settingsAsText(RenderSettings{});
   CHECK_MESSAGE(!actual.empty(), actualExr.string() << " records no settings");
   for (const auto& [row, value] : actual) {
-    if (kPreviewOnlySettings.count(row)) continue;
+    if (kPixelNeutralSettings.count(row)) continue;
     const auto recorded = golden.find(row);
     if (recorded != golden.end()) {
       CHECK_MESSAGE(recorded->second == value, "setting " << row << ": golden " << recorded->second << ", render "
@@ -107,9 +111,9 @@ struct Tally {
   int compared = 0;       // rendered and diffed
 };
 
-// Renders and diffs one golden; false if the render failed.
-bool compareGolden(const Golden& golden) {
-  const fs::path work = fs::path(HEADLIGHT_BUILD_DIR) / "regression";
+// Renders and diffs one golden in one fullscreen form; false if the render failed.
+bool compareGolden(const Golden& golden, const std::string& form) {
+  const fs::path work = fs::path(HEADLIGHT_BUILD_DIR) / ("regression-" + form);
   const fs::path expected = fs::path(HEADLIGHT_SOURCE_DIR) / "reference_images" / golden.name;
   const fs::path actual = work / golden.name / "actual";
   fs::remove_all(work / golden.name);
@@ -117,7 +121,8 @@ bool compareGolden(const Golden& golden) {
   // --strict: a GL error fails the render instead of leaving a warning.
   const std::string command = "cd " + test::shellQuote(HEADLIGHT_SOURCE_DIR) + " && " +
                               test::shellQuote(HEADLIGHT_EXE) + " render " + golden.scene + " " + golden.flags +
-                              " --strict --quiet --out " + test::shellQuote(actual.string()) +
+                              " --strict --quiet --fullscreen-form " + form + " --out " +
+                              test::shellQuote(actual.string()) +
                               // The targets tools/update_goldens.sh writes: every EXR (emissive as
                               // zeros where nothing emits), no preview.
                               " --targets position,normal,albedo,material,depth,emissive,ssgi,lit";
@@ -152,21 +157,24 @@ bool compareGolden(const Golden& golden) {
   return true;
 }
 
-Tally compareGoldens(bool fromFile) {
+Tally compareGoldens(bool fromFile, const std::string& form) {
   Tally tally;
   for (const Golden& golden : goldens()) {
     if (golden.fromFile() != fromFile) continue;
     CAPTURE(golden.name);
+    CAPTURE(form);
     ++tally.listed;
     if (!golden.assetPresent()) {
       MESSAGE("golden " << golden.name << " not compared: " << golden.scene << " is absent");
       ++tally.skippedAbsent;
       continue;
     }
-    tally.compared += compareGolden(golden) ? 1 : 0;
+    tally.compared += compareGolden(golden, form) ? 1 : 0;
   }
   return tally;
 }
+
+const char* const kForms[] = {"fragment", "compute"};
 
 void checkTally(const Tally& tally, const char* kind) {
   MESSAGE("compared " << tally.compared << " of " << tally.listed << " " << std::string(kind) << " goldens ("
@@ -177,12 +185,12 @@ void checkTally(const Tally& tally, const char* kind) {
 
 }  // namespace
 
-TEST_CASE("every built-in golden renders the same, target by target") {
+TEST_CASE("every built-in golden renders the same, target by target, in both fullscreen forms") {
   REQUIRE(goldens().size() >= 4);
-  checkTally(compareGoldens(false), "built-in");
+  for (const char* form : kForms) checkTally(compareGoldens(false, form), "built-in");
 }
 
-TEST_CASE("every golden of a shared asset renders the same, target by target" *
+TEST_CASE("every golden of a shared asset renders the same, target by target, in both fullscreen forms" *
           doctest::skip(!kAnySharedAssetPresent)) {
-  checkTally(compareGoldens(true), "shared-asset");
+  for (const char* form : kForms) checkTally(compareGoldens(true, form), "shared-asset");
 }

@@ -188,6 +188,7 @@ double ssgiMilliseconds(const Frame& frame, bool gpu) {
 // Each timed frame's wall and GPU times.
 struct FrameTimes {
   std::vector<double> frame, ssgi, frameGpu, ssgiGpu;
+  std::map<std::string, std::vector<double>> passWall, passGpu;  // by PassTime::pass
 };
 
 // Times one configuration: `warmup` frames, then `repetitions` timed ones.
@@ -200,6 +201,10 @@ Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOpt
     times.ssgi.push_back(ssgiMilliseconds(frame, false));
     times.frameGpu.push_back(frameMilliseconds(frame, true));
     times.ssgiGpu.push_back(ssgiMilliseconds(frame, true));
+    for (const PassTime& time : frame.timings) {
+      times.passWall[time.pass].push_back(time.milliseconds);
+      if (time.gpuMilliseconds >= 0) times.passGpu[time.pass].push_back(time.gpuMilliseconds);
+    }
   }
   return frame;
 }
@@ -227,6 +232,8 @@ BenchRow timedRow(const Frame& frame, const BenchConfig& config, const MeasureOp
   row.frameGpuMs = summarize(times.frameGpu);
   row.ssgiGpuMs = summarize(times.ssgiGpu);
   row.forms = formsText(frame);
+  for (const auto& [pass, values] : times.passWall) row.passMs[pass] = summarize(values);
+  for (const auto& [pass, values] : times.passGpu) row.passGpuMs[pass] = summarize(values);
   row.renderer = frame.glRenderer;
   row.backend = frame.backend;
   row.machine = machineDescription();

@@ -212,6 +212,12 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
     auto summary = [](const Summary& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.minimum}, {"max", s.maximum}};
     };
+    nlohmann::json passes = nlohmann::json::object();
+    for (const auto& [pass, wall] : r.passMs) {
+      passes[pass]["ms"] = summary(wall);
+      const auto gpu = r.passGpuMs.find(pass);
+      if (gpu != r.passGpuMs.end()) passes[pass]["gpu_ms"] = summary(gpu->second);
+    }
     const nlohmann::json reference{{"traced", r.referenceTraced},
                                    {"samples", r.referenceSamples},
                                    {"ao_standard_error", r.referenceAoStandardError},
@@ -228,6 +234,7 @@ void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& comman
                             {"frame_gpu_ms", summary(r.frameGpuMs)},
                             {"ssgi_gpu_ms", summary(r.ssgiGpuMs)},
                             {"forms", r.forms},
+                            {"passes", passes},
                             {"ao", {{"rmse", r.ao.rmse}, {"mae", r.ao.meanAbsolute}, {"pixels", r.ao.pixels}}},
                             {"sky", {{"rmse", r.sky.rmse}, {"mae", r.sky.meanAbsolute}}},
                             {"indirect", {{"rmse", r.indirect.rmse}, {"relative_rmse", r.indirect.relativeRmse}}},

@@ -70,6 +70,9 @@ struct BenchRow {
   // without the CPU side llvmpipe adds to the wall times above).
   Summary frameGpuMs;
   Summary ssgiGpuMs;
+  // Each pass's wall and GPU time (bench.json's "passes"), by PassTime::pass.
+  std::map<std::string, Summary> passMs;
+  std::map<std::string, Summary> passGpuMs;
   std::string forms;  // how each fullscreen pass ran, "direct=fragment ssgi=compute ..." (fullscreen-form)
   // No reference was traced (bench --no-reference): the error fields are
   // written as nan, and the rows time the configurations only.
