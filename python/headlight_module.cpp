@@ -437,7 +437,25 @@ PYBIND11_MODULE(headlight, m) {
             for (const PassTime& t : f.timings) times[py::str(t.pass)] = t.milliseconds;
             return times;
           },
-          "dict: pass -> milliseconds, in the order the passes ran")
+          "dict: pass -> milliseconds, in the order the passes ran (wall time, bounded by glFinish)")
+      .def_property_readonly(
+          "gpu_times",
+          [](const Frame& f) {
+            py::dict times;
+            for (const PassTime& t : f.timings)
+              if (t.gpuMilliseconds >= 0) times[py::str(t.pass)] = t.gpuMilliseconds;
+            return times;
+          },
+          "dict: pass -> the GPU's own milliseconds (GL_TIME_ELAPSED), in the order the passes ran")
+      .def_property_readonly(
+          "forms",
+          [](const Frame& f) {
+            py::dict forms;
+            for (const PassTime& t : f.timings)
+              if (!t.form.empty()) forms[py::str(t.pass)] = t.form;
+            return forms;
+          },
+          "dict: fullscreen pass -> 'fragment' or 'compute', how it ran (the fullscreen-form setting)")
       .def_property_readonly(
           "settings", [](const Frame& f) { return settingsAsText(f.settings); },
           "the settings as used (auto resolved), by row name, as text")

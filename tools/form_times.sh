@@ -2,8 +2,11 @@
 # Each fullscreen pass's time as a fragment shader and as a compute dispatch
 # on this machine (docs/BENCHMARKS.md, "Fullscreen forms"): headlight bench
 # --no-reference sweeps fullscreen-form over both forms, ROUNDS times with
-# the order swapped every round, and the table gives each pass's median GPU
-# time (GL_TIME_ELAPSED) per form over the rounds' medians, and their ratio.
+# the order swapped every round, and the table gives each pass's median time
+# per form over the rounds' medians, and their ratio. TIME=wall (default:
+# glFinish-bounded, what llvmpipe must be judged by, since its
+# GL_TIME_ELAPSED counts a compute dispatch as 0) or TIME=gpu (timer queries:
+# the measure on a hardware GPU).
 # Usage: tools/form_times.sh [ROUNDS] [WxH,...] [SCENE...]   (extra bench
 # flags through BENCH_FLAGS, e.g. BENCH_FLAGS="--ssgi-frames 4")
 set -eu
@@ -22,9 +25,10 @@ while [ "$round" -lt "$rounds" ]; do
     --sweep fullscreen-form=$order ${BENCH_FLAGS:-} --out "$work/round$round"
   round=$((round + 1))
 done
-/usr/bin/python3 - "$work" "$rounds" <<'PY'
+/usr/bin/python3 - "$work" "$rounds" "${TIME:-wall}" <<'PY'
 import json, statistics, sys, collections
-work, rounds = sys.argv[1], int(sys.argv[2])
+work, rounds, kind = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+key = "gpu_ms" if kind == "gpu" else "ms"
 times = collections.defaultdict(list)  # (scene, size, pass, form) -> [median per round]
 renderer = ""
 for r in range(rounds):
@@ -34,9 +38,10 @@ for r in range(rounds):
         form = row["settings"]["fullscreen-form"]
         renderer = row["renderer"]
         for name, t in row["passes"].items():
-            if "gpu_ms" in t:
-                times[(row["scene"], f'{row["width"]}x{row["height"]}', name, form)].append(t["gpu_ms"]["median"])
-print(f"renderer: {renderer}; {rounds} rounds, medians of 7 frames each; GPU ms (GL_TIME_ELAPSED)\n")
+            if key in t:
+                times[(row["scene"], f'{row["width"]}x{row["height"]}', name, form)].append(t[key]["median"])
+what = "GPU ms (GL_TIME_ELAPSED)" if kind == "gpu" else "wall ms (glFinish-bounded)"
+print(f"renderer: {renderer}; {rounds} rounds, medians of 7 frames each; {what}\n")
 print("| scene | size | pass | fragment ms | compute ms | compute / fragment |")
 print("|---|---|---|---:|---:|---:|")
 keys = sorted({k[:3] for k in times})

@@ -10,12 +10,15 @@ namespace headlight {
 std::string_view passFormName(PassForm form) { return form == PassForm::Compute ? "compute" : "fragment"; }
 
 std::span<const FullscreenPassRow> fullscreenPassRows() {
-  // softwareForm: MEASURED below (docs/BENCHMARKS.md, "Fullscreen forms").
+  // softwareForm: the faster form on llvmpipe, wall time, tools/form_times.sh on cornell and spheres at
+  // 256x256 and 640x480 (docs/BENCHMARKS.md, "Fullscreen forms"): compute / fragment was 1.03-1.15 for
+  // direct, 0.98-1.53 for SSGI, 0.99-1.33 for the blur, 0.83-1.03 for the composite. The tables run once
+  // per renderer and were not told apart: fragment, as before.
   static constexpr FullscreenPassRow kRows[] = {
       {.id = FullscreenPassId::Direct, .name = "direct", .softwareForm = PassForm::Fragment},
       {.id = FullscreenPassId::Ssgi, .name = "ssgi", .softwareForm = PassForm::Fragment},
       {.id = FullscreenPassId::SsgiBlur, .name = "ssgi-blur", .softwareForm = PassForm::Fragment},
-      {.id = FullscreenPassId::Composite, .name = "composite", .softwareForm = PassForm::Fragment},
+      {.id = FullscreenPassId::Composite, .name = "composite", .softwareForm = PassForm::Compute},
       {.id = FullscreenPassId::SkyTables, .name = "sky", .softwareForm = PassForm::Fragment},
   };
   static_assert(std::size(kRows) == kFullscreenPassCount);

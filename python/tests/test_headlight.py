@@ -69,6 +69,19 @@ def test_pass_times_and_settings_as_used():
     assert frame.settings["exposure"] == "0.5"
 
 
+def test_gpu_times_and_forms():
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    computed = r.render(width=32, height=32, fullscreen_form="compute")
+    assert set(computed.forms) >= {"direct", "ssgi", "ssgi-blur", "composite"}
+    assert all(form == "compute" for form in computed.forms.values())
+    assert "gbuffer" not in computed.forms  # geometry passes have no form
+    assert all(ms >= 0 for ms in computed.gpu_times.values()) and "ssgi" in computed.gpu_times
+    fragment = r.render(width=32, height=32, fullscreen_form="fragment")
+    assert all(form == "fragment" for form in fragment.forms.values())
+    assert computed.settings["fullscreen-form"] == "compute"
+
+
 def test_settings_table_is_the_clis():
     names = [row["name"] for row in headlight.settings()]
     assert "ssgi_samples" in names and "shadow_map_size" in names and "width" in names
