@@ -17,17 +17,15 @@
 #include <vector>
 
 #include "context/context_access.hpp"
-#include "gl/objects.hpp"
-#include "gl/readback.hpp"
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
+#include "gl/objects.hpp"
+#include "gl/readback.hpp"
 #include "gl/target_formats.hpp"
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
 #include "image_io/environment_decode.hpp"
 #include "passes/blend.hpp"
-#include "passes/transmission.hpp"
-#include "passes/virtual_lights.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
@@ -36,6 +34,8 @@
 #include "passes/shadow.hpp"
 #include "passes/ssgi.hpp"
 #include "passes/ssgi_blur.hpp"
+#include "passes/transmission.hpp"
+#include "passes/virtual_lights.hpp"
 #include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
@@ -93,8 +93,7 @@ Light defaultKeyLight() {
 }  // namespace
 
 struct Renderer::Impl {
-  explicit Impl(Context& context)
-      : context(context), softwareRasterizer(isSoftwareRasterizer(context.renderer())) {
+  explicit Impl(Context& context) : context(context), softwareRasterizer(isSoftwareRasterizer(context.renderer())) {
     context.checkErrors("building the renderer");
   }
   void loadScene(Scene newScene);  // Renderer::setScene's work
@@ -120,9 +119,9 @@ struct Renderer::Impl {
   SceneSummary summary;
   std::optional<GpuScene> gpuScene;
   std::optional<GBufferPass> gbufferPass;
-  gl::Buffer lightBuffer;  // scene.lights packed, with the shadow slots of shadowMaps
-  ShadowMaps shadowMaps;   // kept across views: they do not depend on the camera
-  int shadowMapSize = 0;   // what shadowMaps were made with; 0 = none yet
+  gl::Buffer lightBuffer;                 // scene.lights packed, with the shadow slots of shadowMaps
+  ShadowMaps shadowMaps;                  // kept across views: they do not depend on the camera
+  int shadowMapSize = 0;                  // what shadowMaps were made with; 0 = none yet
   std::vector<glm::vec4> shadowCoverage;  // and what the directional ones cover
   // The bitmask SSGI's virtual lights: the scene's, not the view's, so made
   // once per scene and budget (0 = none yet).
@@ -153,10 +152,14 @@ struct Renderer::Impl {
 
   // The G-buffer's attachments as the passes after it read them.
   GBuffer gbuffer() const {
-    return {texture(Attachment::GbufferPosition), texture(Attachment::GbufferNormal),
-            texture(Attachment::GbufferAlbedo),   texture(Attachment::GbufferMaterial),
-            texture(Attachment::GbufferEmissive), texture(Attachment::GbufferDepth),
-            width,                                height};
+    return {texture(Attachment::GbufferPosition),
+            texture(Attachment::GbufferNormal),
+            texture(Attachment::GbufferAlbedo),
+            texture(Attachment::GbufferMaterial),
+            texture(Attachment::GbufferEmissive),
+            texture(Attachment::GbufferDepth),
+            width,
+            height};
   }
 
   // What the G-buffer pass draws into: its colour attachments by location.
@@ -176,7 +179,8 @@ struct Renderer::Impl {
   SsgiTextures ssgiOutput(bool raw) const {
     return raw ? SsgiTextures{texture(Attachment::SsgiRaw), texture(Attachment::SsgiRawSky),
                               texture(Attachment::SsgiRawSpecular)}
-               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky), texture(Attachment::SsgiSpecular)};
+               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky),
+                              texture(Attachment::SsgiSpecular)};
   }
 
   // The light buffer: the scene's lights, each with its slot in the shadow
@@ -203,10 +207,9 @@ struct Renderer::Impl {
   // Each light's views drawn into small G-buffers and read back as virtual
   // lights; the frame block is the frame's again afterwards.
   void makeVirtualLights(int budget, const GBufferVariant& variant, const gpu::FrameBlock& frame) {
-    virtualLights = virtualLightPass.run(*gpuScene, *gbufferPass, variant, scene.lights, budget,
-                                         [&](const CameraView& view, int size) {
-                                           frameBlock.update(makeFrameBlock(view, size, size));
-                                         });
+    virtualLights = virtualLightPass.run(
+        *gpuScene, *gbufferPass, variant, scene.lights, budget,
+        [&](const CameraView& view, int size) { frameBlock.update(makeFrameBlock(view, size, size)); });
     virtualLightBudget = budget;
     frameBlock.update(frame);
   }
@@ -431,29 +434,34 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   if (plan.shadows && !impl.shadowsCurrent(plan.shadows->mapSize, frame.view))
     timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize, frame.view); });
   if (plan.ssgi && plan.ssgi->virtualLights > 0 && impl.virtualLightBudget != plan.ssgi->virtualLights)
-    timer.run("virtual-lights",
-              [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
+    timer.run("virtual-lights", [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
   impl.bindLighting(used.lighting);
-  timer.run("gbuffer",
-            [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
+  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
   const GBuffer gbuffer = impl.gbuffer();
   impl.bindLobeTargets(plan.gbuffer);
   if (plan.direct) {
     const DirectLightTargets direct{impl.texture(Attachment::DirectTowardEye),
                                     plan.direct->diffuseTarget ? &impl.texture(Attachment::DirectDiffuse) : nullptr};
     const PassForm form = formOf(FullscreenPassId::Direct);
-    timer.run("direct", [&] { impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct, form); }, form);
+    timer.run(
+        "direct",
+        [&] {
+          impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct, form);
+        },
+        form);
   }
   if (plan.ssgi) impl.runSsgi(plan, used, forms, timer);
   // The split-sum BRDF table once per renderer, before the first pass that
   // reads it; the sky tables on the first frame that needs them (and again
   // only when the sky's colours change).
   if ((plan.composite || plan.transmission || plan.blend) && !impl.environment.hasBrdfTable())
-    timer.run("brdf-table", [&] { impl.environment.makeBrdfTable(formOf(FullscreenPassId::SkyTables)); },
-              formOf(FullscreenPassId::SkyTables));
+    timer.run(
+        "brdf-table", [&] { impl.environment.makeBrdfTable(formOf(FullscreenPassId::SkyTables)); },
+        formOf(FullscreenPassId::SkyTables));
   if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
-    timer.run("sky", [&] { impl.environment.updateSky(impl.scene.sky, formOf(FullscreenPassId::SkyTables)); },
-              formOf(FullscreenPassId::SkyTables));
+    timer.run(
+        "sky", [&] { impl.environment.updateSky(impl.scene.sky, formOf(FullscreenPassId::SkyTables)); },
+        formOf(FullscreenPassId::SkyTables));
   if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
     timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
   if (plan.composite) {
@@ -462,15 +470,14 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
                                  plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
     const PassForm form = formOf(FullscreenPassId::Composite);
     timer.run(
-        "composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite, form); },
-        form);
+        "composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite, form); }, form);
   }
   if (plan.transmission) {
     const GBufferTargets gbufferTargets = impl.gbufferTargets(plan.gbuffer);
-    const TransmissionInputs inputs{*impl.gpuScene,     *impl.gbufferPass, gbufferTargets,
-                                    plan.gbuffer,       impl.shadowMaps,   impl.environment.tables()};
-    const TransmissionTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::Transmission),
-                                      impl.width, impl.height};
+    const TransmissionInputs inputs{*impl.gpuScene, *impl.gbufferPass, gbufferTargets,
+                                    plan.gbuffer,   impl.shadowMaps,   impl.environment.tables()};
+    const TransmissionTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::Transmission), impl.width,
+                                      impl.height};
     timer.run("transmission", [&] { impl.transmission.run(inputs, targets, *plan.transmission); });
   }
   if (plan.blend) {

@@ -177,6 +177,18 @@ glm::mat4 matrixArgument(const py::handle& value, const std::string& name) {
   return m;
 }
 
+// pass -> value(pass) for each of the frame's passes in the order they ran,
+// leaving out those whose value is None.
+template <class Value>
+py::dict passDict(const Frame& frame, Value value) {
+  py::dict passes;
+  for (const PassTime& time : frame.timings) {
+    py::object item = value(time);
+    if (!item.is_none()) passes[py::str(time.pass)] = item;
+  }
+  return passes;
+}
+
 std::optional<Camera> cameraFromKwargs(const py::kwargs& kwargs) {
   auto given = [&](const char* name) { return kwargs.contains(name) && !kwargs[name].is_none(); };
   const bool lookAt = given("eye") || given("target");
@@ -216,8 +228,7 @@ std::optional<Camera> cameraFromKwargs(const py::kwargs& kwargs) {
     camera.projection = Camera::Projection::Orthographic;
     camera.ymag = camera.xmag = 0.5f * height;
   } else {
-    const float fov =
-        given("fov") ? finiteNumber(kwargs["fov"], "fov", "degrees in (0, 180)") : kDefaultFovDegrees;
+    const float fov = given("fov") ? finiteNumber(kwargs["fov"], "fov", "degrees in (0, 180)") : kDefaultFovDegrees;
     if (!(fov > 0.0f && fov < 180.0f)) badArgument("fov", "degrees in (0, 180)", kwargs["fov"]);
     camera.yfov = glm::radians(fov);
   }
@@ -372,8 +383,8 @@ PYBIND11_MODULE(headlight, m) {
             if (image == nullptr) {
               std::string known;
               for (const auto& [name, target] : frame.targets()) (known += known.empty() ? "" : ", ") += name;
-              throw py::key_error("no target " + py::repr(key).cast<std::string>() + " in this frame (it has " +
-                                  known + ")");
+              throw py::key_error("no target " + py::repr(key).cast<std::string>() + " in this frame (it has " + known +
+                                  ")");
             }
             return imageArray(*image, self);
           },
@@ -384,7 +395,8 @@ PYBIND11_MODULE(headlight, m) {
              return py::isinstance<py::str>(key) && findTarget(frame, key.cast<std::string>()) != nullptr;
            })
       .def("__iter__", [](const Frame& frame) { return py::iter(targetNames(frame)); })
-      .def("keys", [](const Frame& frame) { return targetNames(frame); }, "the target names, in output order")
+      .def(
+          "keys", [](const Frame& frame) { return targetNames(frame); }, "the target names, in output order")
       .def(
           "values",
           [](py::object self) {
@@ -432,28 +444,22 @@ PYBIND11_MODULE(headlight, m) {
       .def_property_readonly("orthographic", [](const Frame& f) { return f.view.orthographic; })
       .def_property_readonly(
           "times",
-          [](const Frame& f) {
-            py::dict times;
-            for (const PassTime& t : f.timings) times[py::str(t.pass)] = t.milliseconds;
-            return times;
-          },
+          [](const Frame& f) { return passDict(f, [](const PassTime& t) { return py::float_(t.milliseconds); }); },
           "dict: pass -> milliseconds, in the order the passes ran (wall time, bounded by glFinish)")
       .def_property_readonly(
           "gpu_times",
           [](const Frame& f) {
-            py::dict times;
-            for (const PassTime& t : f.timings)
-              if (t.gpuMilliseconds >= 0) times[py::str(t.pass)] = t.gpuMilliseconds;
-            return times;
+            return passDict(f, [](const PassTime& t) {
+              return t.gpuMilliseconds >= 0 ? py::object(py::float_(t.gpuMilliseconds)) : py::object(py::none());
+            });
           },
-          "dict: pass -> the GPU's own milliseconds (GL_TIME_ELAPSED), in the order the passes ran")
+          "dict: pass -> the GPU's own milliseconds (GL_TIME_ELAPSED; absent where the driver gave none)")
       .def_property_readonly(
           "forms",
           [](const Frame& f) {
-            py::dict forms;
-            for (const PassTime& t : f.timings)
-              if (!t.form.empty()) forms[py::str(t.pass)] = t.form;
-            return forms;
+            return passDict(f, [](const PassTime& t) {
+              return t.form.empty() ? py::object(py::none()) : py::object(py::str(t.form));
+            });
           },
           "dict: fullscreen pass -> 'fragment' or 'compute', how it ran (the fullscreen-form setting)")
       .def_property_readonly(

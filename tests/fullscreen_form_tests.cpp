@@ -36,10 +36,9 @@ double largestDifference(const ImageF& a, const ImageF& b) {
 int checkForms(const Frame& frame, PassForm form) {
   int fullscreen = 0;
   for (const PassTime& time : frame.timings) {
-    const bool isFullscreen =
-        std::any_of(fullscreenPassRows().begin(), fullscreenPassRows().end(),
-                    [&](const FullscreenPassRow& row) { return row.name == time.pass; }) ||
-        time.pass == "brdf-table";
+    const bool isFullscreen = std::any_of(fullscreenPassRows().begin(), fullscreenPassRows().end(),
+                                          [&](const FullscreenPassRow& row) { return row.name == time.pass; }) ||
+                              time.pass == "brdf-table";
     CAPTURE(time.pass);
     if (isFullscreen) {
       CHECK(time.form == passFormName(form));

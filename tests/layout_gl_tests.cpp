@@ -34,9 +34,10 @@ const std::vector<ProgramSource>& programSources() {
   static const std::vector<ProgramSource> sources = {
       {{"gbuffer.vert", "gbuffer.frag"},
        {"HAS_TEXCOORDS", "HAS_TANGENTS", "HAS_BASE_COLOR_TEXTURE", "HAS_METALLIC_ROUGHNESS_TEXTURE",
-        "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4", "ALPHA_MASK",
-        "HAS_VERTEX_COLORS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "UNLIT", "BASE_COLOR_TEXCOORD_1",
-        "METALLIC_ROUGHNESS_TEXCOORD_1", "NORMAL_TEXCOORD_1", "OCCLUSION_TEXCOORD_1", "EMISSIVE_TEXCOORD_1"}},
+        "HAS_NORMAL_TEXTURE", "HAS_OCCLUSION_TEXTURE", "HAS_EMISSIVE_TEXTURE", "HAS_EMISSIVE_TARGET",
+        "EMISSIVE_TARGET_LOCATION 4", "ALPHA_MASK", "HAS_VERTEX_COLORS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM",
+        "UNLIT", "BASE_COLOR_TEXCOORD_1", "METALLIC_ROUGHNESS_TEXCOORD_1", "NORMAL_TEXCOORD_1", "OCCLUSION_TEXCOORD_1",
+        "EMISSIVE_TEXCOORD_1"}},
       // The transmission pass's forward variant (lib/passes/transmission.hpp).
       {{"gbuffer.vert", "gbuffer.frag"},
        {"TRANSMISSION_FORWARD", "HAS_TEXCOORDS", "HAS_TRANSMISSION_TEXTURE", "HAS_THICKNESS_TEXTURE",
@@ -117,8 +118,8 @@ std::vector<LinkedProgram> linkAll() {
     programs.push_back({std::string(source.files.back()), detail::buildProgram(source.files, source.defines)});
   for (const PassSource& source : passSources())
     for (PassForm form : {PassForm::Fragment, PassForm::Compute})
-      programs.push_back({std::string(source.body) + " (" + std::string(passFormName(form)) + ")",
-                          passProgram(source, form, true)});
+      programs.push_back(
+          {std::string(source.body) + " (" + std::string(passFormName(form)) + ")", passProgram(source, form, true)});
   return programs;
 }
 
@@ -179,13 +180,13 @@ std::vector<std::pair<std::string, GLint>> samplerUnits(GLuint program) {
 TEST_CASE("shared layout: every listed block is linked with its C++ size and its row's binding") {
   Context& context = sharedContext();
   const std::vector<LinkedProgram> programs = linkAll();
-#define HL_CHECK_BLOCK(interface, block, name, value)                                                             \
-  {                                                                                                                 \
-    const std::optional<BlockFacts> facts = findBlock(programs, interface, #block);                                 \
-    INFO(#block);                                                                                                   \
-    REQUIRE_MESSAGE(facts, "no linked program has it active: add its pass's program to programSources()");         \
-    CHECK(facts->binding == value);                                                                                 \
-    if (interface == GL_UNIFORM_BLOCK) CHECK(facts->size == GLint(sizeof(gpu::block)));                             \
+#define HL_CHECK_BLOCK(interface, block, name, value)                                                      \
+  {                                                                                                        \
+    const std::optional<BlockFacts> facts = findBlock(programs, interface, #block);                        \
+    INFO(#block);                                                                                          \
+    REQUIRE_MESSAGE(facts, "no linked program has it active: add its pass's program to programSources()"); \
+    CHECK(facts->binding == value);                                                                        \
+    if (interface == GL_UNIFORM_BLOCK) CHECK(facts->size == GLint(sizeof(gpu::block)));                    \
   }
 #define HL_CHECK_UNIFORM_BLOCK(block, name, value) HL_CHECK_BLOCK(GL_UNIFORM_BLOCK, block, name, value)
 #define HL_CHECK_STORAGE_BLOCK(block, name, value) HL_CHECK_BLOCK(GL_SHADER_STORAGE_BLOCK, block, name, value)
@@ -261,7 +262,8 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   const std::string_view gbufferFiles[] = {"gbuffer.vert", "gbuffer.frag"};
   const gl::Program gbuffer = detail::buildProgram(gbufferFiles);
   // The instances' transforms are std430 and read through a struct: its stride and members.
-  const GLuint objects = glGetProgramResourceIndex(gbuffer.id(), GL_BUFFER_VARIABLE, "ObjectBuffer.objectList[0].normalFromLocal");
+  const GLuint objects =
+      glGetProgramResourceIndex(gbuffer.id(), GL_BUFFER_VARIABLE, "ObjectBuffer.objectList[0].normalFromLocal");
   REQUIRE(objects != GL_INVALID_INDEX);
   const GLenum objectProperties[] = {GL_OFFSET, GL_TOP_LEVEL_ARRAY_STRIDE};
   GLint objectValues[2] = {-1, -1};
@@ -281,9 +283,8 @@ TEST_CASE("uniform blocks: the linked GLSL layout matches the C++ structs") {
   CHECK(memberOffset(blur.id(), "SsgiBlurBlock.ssgiDownsample") == GLint(offsetof(gpu::SsgiBlurBlock, ssgiDownsample)));
 
   // The lights are std430 and read through a struct: every member's offset.
-  const gl::Program direct =
-      passProgram({"direct_light.glsl", {"towardEye"}, {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"}}, PassForm::Fragment,
-                  false);
+  const gl::Program direct = passProgram(
+      {"direct_light.glsl", {"towardEye"}, {"HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"}}, PassForm::Fragment, false);
   CHECK(blockDataSize(direct.id(), "LightingBlock") == GLint(sizeof(gpu::LightingBlock)));
   CHECK(memberOffset(direct.id(), "LightingBlock.pcfRadius") == GLint(offsetof(gpu::LightingBlock, pcfRadius)));
   CHECK(memberOffset(direct.id(), "LightingBlock.shadowMapSize") == GLint(offsetof(gpu::LightingBlock, shadowMapSize)));

@@ -20,15 +20,15 @@
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
-#include "output/fingerprint.hpp"
-#include "tooling/command_line.hpp"
-#include "tooling/command_setup.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/targets.hpp"
+#include "output/fingerprint.hpp"
 #include "output/folder_lock.hpp"
 #include "output/frame_set.hpp"
 #include "progress.hpp"
+#include "tooling/command_line.hpp"
+#include "tooling/command_setup.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -213,7 +213,6 @@ void printFrameDetails(const Frame& frame) {
   for (const SkippedWork& skipped : frame.skipped)
     std::fprintf(stderr, "skipped %-10s %s\n", skipped.work.c_str(), skipped.reason.c_str());
 }
-
 
 // A half-float target that clamped is said on stderr, with the way out:
 // the summary line alone is easy to miss in a batch.

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
-#include <limits>
 #include <sstream>
 
 #include "headlight/error.hpp"
@@ -244,8 +244,8 @@ BenchRow timedRow(const Frame& frame, const BenchConfig& config, const MeasureOp
   return row;
 }
 
-BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options,
-                 const FrameTimes& times, const ReferenceImages& reference) {
+BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options, const FrameTimes& times,
+                 const ReferenceImages& reference) {
   BenchRow row = timedRow(frame, config, options, times);
   row.referenceTraced = true;
   row.ao = maskedError(frame.ssgi, 0, reference.ao, 0, frame.position);

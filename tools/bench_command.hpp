@@ -69,7 +69,7 @@ struct BenchCommand {
   bool help = false;
   ContextOptions context;
   SceneLoadOptions sceneLoad;  // as render's (sceneInputOptions): --allow-external-paths, --strict-gltf, --scene
-  ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
+  ResourceLimits limits;       // --max-memory, --max-instances, --max-triangles, --max-texels
 };
 
 // Throws SettingsError for a bad flag or value.

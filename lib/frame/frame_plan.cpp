@@ -81,8 +81,8 @@ constexpr AttachmentRow kAttachmentRows[] = {
      &Frame::sheen, false, Lobe::Sheen, gpu::kUnitSheenLobe},
     // The anisotropy direction resolved to world space in the G-buffer pass
     // (the tangent frame lives there), half float like the normal: 0.03 deg.
-    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET",
-     S::Image, &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
+    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET", S::Image,
+     &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
     {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", S::Image, &Frame::depth},
     {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", S::Image, nullptr, true},
     {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", S::Image, nullptr, true},
@@ -123,14 +123,14 @@ struct FrameFacts {
   bool wantSsgi = true;
   bool ssgiOn = true;
   bool ssgiReadsDirect = true;
-  bool shadowsOn = true;      // --shadows
-  bool shadowCasters = true;  // a light of the scene casts shadows
-  bool skyLit = true;         // sky intensity > 0
-  bool environment = false;   // an environment map replaces the sky
-  bool environmentLit = true; // environment intensity > 0
-  bool sceneEmits = true;     // a material has a non-zero emissiveFactor
-  bool sceneBlends = true;    // a material is alphaMode BLEND
-  bool sceneTransmits = true; // a material is drawn by the transmission pass (Material::transmissive)
+  bool shadowsOn = true;       // --shadows
+  bool shadowCasters = true;   // a light of the scene casts shadows
+  bool skyLit = true;          // sky intensity > 0
+  bool environment = false;    // an environment map replaces the sky
+  bool environmentLit = true;  // environment intensity > 0
+  bool sceneEmits = true;      // a material has a non-zero emissiveFactor
+  bool sceneBlends = true;     // a material is alphaMode BLEND
+  bool sceneTransmits = true;  // a material is drawn by the transmission pass (Material::transmissive)
 };
 
 bool ssgiRuns(const FrameFacts& f) { return f.ssgiOn && (f.wantLit || f.wantSsgi); }
@@ -239,7 +239,7 @@ void planGBuffer(FramePlan& plan, const SceneSummary& scene, bool emissive) {
     const std::size_t location = gbuffer.colorAttachments.size();
     if (location == kMaxGbufferColorAttachments) {
       plan.skipped.push_back({std::string(row.name), "the G-buffer has no colour attachment left (GL 4.5 guarantees " +
-                                                          std::to_string(kMaxGbufferColorAttachments) + ")"});
+                                                         std::to_string(kMaxGbufferColorAttachments) + ")"});
       plan.unrendered.push_back(std::string(row.name) + " is not rendered: the G-buffer has no colour attachment left");
       continue;
     }
@@ -274,7 +274,8 @@ void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& 
 SceneSummary summarizeScene(const Scene& scene) {
   SceneSummary summary;
   for (const Light& light : scene.lights)
-    if (light.castsShadows) (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
+    if (light.castsShadows)
+      (light.type == Light::Type::Point ? summary.cubeShadowCasters : summary.planarShadowCasters)++;
   summary.emissive = scene.hasEmissive();
   summary.blended = scene.hasBlended();
   summary.environment = scene.environment != nullptr;
@@ -297,11 +298,13 @@ struct LobeRow {
   bool (*usedBy)(const Material&);
 };
 constexpr LobeRow kLobeRows[] = {
-    {Lobe::Specular, "specular (KHR_materials_specular, _ior)", "HAS_SPECULAR_LOBE", [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
+    {Lobe::Specular, "specular (KHR_materials_specular, _ior)", "HAS_SPECULAR_LOBE",
+     [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
     {Lobe::Clearcoat, "clearcoat", "HAS_CLEARCOAT_LOBE", [](const Material& m) { return m.clearcoat.has_value(); }},
     {Lobe::Sheen, "sheen", "HAS_SHEEN_LOBE", [](const Material& m) { return m.sheen.has_value(); }},
     {Lobe::Anisotropy, "anisotropy", "HAS_ANISOTROPY_LOBE", [](const Material& m) { return m.anisotropy.has_value(); }},
-    {Lobe::Iridescence, "iridescence", "HAS_IRIDESCENCE_LOBE", [](const Material& m) { return m.iridescence.has_value(); }},
+    {Lobe::Iridescence, "iridescence", "HAS_IRIDESCENCE_LOBE",
+     [](const Material& m) { return m.iridescence.has_value(); }},
 };
 static_assert(std::size(kLobeRows) == kLobeCount);
 }  // namespace
@@ -340,9 +343,12 @@ const AttachmentRow& attachmentRow(Attachment id) { return kAttachmentRows[std::
 
 int FramePlan::divisorOf(Attachment id) const {
   switch (attachmentRow(id).scale) {
-    case AttachmentScale::SsgiNear: return ssgi ? ssgi->downsample : 1;
-    case AttachmentScale::SsgiFar: return ssgi ? ssgi->farDownsample : 1;
-    case AttachmentScale::Image: break;
+    case AttachmentScale::SsgiNear:
+      return ssgi ? ssgi->downsample : 1;
+    case AttachmentScale::SsgiFar:
+      return ssgi ? ssgi->farDownsample : 1;
+    case AttachmentScale::Image:
+      break;
   }
   return 1;
 }
@@ -412,17 +418,17 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   // Transmissive surfaces refract the composite's lit image and are lit as
   // blended ones are; they wait for it only when it is drawn.
   if (scene.transmission && skips.runs(Work::Transmission)) {
-    plan.transmission = TransmissionVariant{plan.shadows && scene.planarShadowCasters > 0,
-                                            plan.shadows && scene.cubeShadowCasters > 0, skips.runs(Work::Sky),
-                                            plan.environmentTables};
+    plan.transmission =
+        TransmissionVariant{plan.shadows && scene.planarShadowCasters > 0, plan.shadows && scene.cubeShadowCasters > 0,
+                            skips.runs(Work::Sky), plan.environmentTables};
     plan.gbuffer.deferTransmissive = true;
   }
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))
-    plan.blend = BlendVariant{plan.shadows && scene.planarShadowCasters > 0,
-                              plan.shadows && scene.cubeShadowCasters > 0, skips.runs(Work::Sky),
-                              plan.environmentTables, scene.lobes};
+    plan.blend =
+        BlendVariant{plan.shadows && scene.planarShadowCasters > 0, plan.shadows && scene.cubeShadowCasters > 0,
+                     skips.runs(Work::Sky), plan.environmentTables, scene.lobes};
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

@@ -134,11 +134,11 @@ enum class Attachment {
   GbufferDepth,
   DirectTowardEye,
   DirectDiffuse,
-  SsgiRaw,  // the SSGI pass's output before the blur (its own resolution)
-  SsgiRawSky,  // at the far field's resolution (SsgiStep::farDownsample)
-  SsgiFarSky,  // the far field blurred at its own resolution, before the upsample; only when it has its own pass
+  SsgiRaw,          // the SSGI pass's output before the blur (its own resolution)
+  SsgiRawSky,       // at the far field's resolution (SsgiStep::farDownsample)
+  SsgiFarSky,       // the far field blurred at its own resolution, before the upsample; only when it has its own pass
   SsgiRawSpecular,  // at the far field's resolution, as the sky
-  Ssgi,  // after the blur: what the composite reads and ssgi.exr holds
+  Ssgi,             // after the blur: what the composite reads and ssgi.exr holds
   SsgiSky,
   SsgiSpecular,  // the specular lobe's sky visibility (R) and its weight (G, internal)
   Lit,
@@ -193,9 +193,10 @@ const AttachmentRow& attachmentRow(Attachment id);
 // ---- Passes and their variants -----------------------------------------------
 
 struct GBufferVariant {
-  std::vector<Attachment> colorAttachments;  // in location order (the index is the location); optional ones only when planned
-  std::vector<std::string> defines;          // HAS_<gbufferDefine> and its _LOCATION, then lobeDefines(lobes)
-  std::uint32_t lobes = 0;                   // the lobes whose attachments are planned
+  std::vector<Attachment>
+      colorAttachments;              // in location order (the index is the location); optional ones only when planned
+  std::vector<std::string> defines;  // HAS_<gbufferDefine> and its _LOCATION, then lobeDefines(lobes)
+  std::uint32_t lobes = 0;           // the lobes whose attachments are planned
   // The transmission pass runs: KHR_materials_transmission surfaces are left
   // out here and drawn into the G-buffer by that pass, after the composite
   // has lit the opaque image they refract.
@@ -273,13 +274,13 @@ struct FramePlan {
   bool environmentTables = false;
   std::optional<CompositeVariant> composite;
   std::optional<TransmissionVariant> transmission;  // after the composite, before the blend pass
-  std::optional<BlendVariant> blend;  // after the composite, over lit
+  std::optional<BlendVariant> blend;                // after the composite, over lit
 
-  std::array<bool, kAttachmentCount> allocate{};  // by Attachment
+  std::array<bool, kAttachmentCount> allocate{};     // by Attachment
   std::array<GpuFormat, kAttachmentCount> format{};  // by Attachment: the row's, or Rgba32F for radiance in float
-  std::vector<TargetRead> reads;                  // the targets read back, in frameTargets() order
-  std::vector<SkippedWork> skipped;               // the work left out, and why (--verbose)
-  std::vector<std::string> unrendered;            // what the scene uses that this frame cannot draw (warned)
+  std::vector<TargetRead> reads;                     // the targets read back, in frameTargets() order
+  std::vector<SkippedWork> skipped;                  // the work left out, and why (--verbose)
+  std::vector<std::string> unrendered;               // what the scene uses that this frame cannot draw (warned)
 
   bool allocates(Attachment id) const { return allocate[std::size_t(id)]; }
   // What an attachment's row's scale divides the image's size by (rounded up): 1, 2 or 4.

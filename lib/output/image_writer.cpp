@@ -277,11 +277,11 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   for (std::size_t i = 0; i < jobs.size(); ++i)
     tasks.push_back([&, i] {
       const Job& job = jobs[i];
-      written[i] = job.target ? writeExrChecked(frame, frame.*job.target->image,
-                                                outDir / (std::string(job.target->name) + ".exr"),
-                                                halfStorage(*job.target, frame), {}, options.compression,
-                                                options.nonFinite, job.stats)
-                              : writePreview(frame, outDir / "preview.png");
+      written[i] =
+          job.target
+              ? writeExrChecked(frame, frame.*job.target->image, outDir / (std::string(job.target->name) + ".exr"),
+                                halfStorage(*job.target, frame), {}, options.compression, options.nonFinite, job.stats)
+              : writePreview(frame, outDir / "preview.png");
     });
   runParallel(tasks, options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency())));
 

@@ -17,10 +17,10 @@
 namespace headlight {
 
 struct CompositeInputs {
-  const GBuffer& gbuffer;     // position, normal, albedo, material
-  const gl::Texture& direct;  // DirectLightTargets::towardEye
-  const SsgiTextures* ssgi;   // blurred SSGI; null with SSGI off (ambient then unoccluded but for
-                              // the material's occlusion)
+  const GBuffer& gbuffer;                // position, normal, albedo, material
+  const gl::Texture& direct;             // DirectLightTargets::towardEye
+  const SsgiTextures* ssgi;              // blurred SSGI; null with SSGI off (ambient then unoccluded but for
+                                         // the material's occlusion)
   const EnvironmentTables& environment;  // read only by the variant with the sky term
 };
 

@@ -15,8 +15,8 @@ DirectLightPass::DirectLightPass()
         return defines;
       }) {}
 
-void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets,
-                          const Variant& variant, PassForm form) {
+void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant,
+                          PassForm form) {
   const GBuffer& gbuffer = inputs.gbuffer;
   const ShadowMaps& shadows = inputs.shadows;
   gbuffer.position.bind(gpu::kUnitGbufferPosition);

@@ -29,8 +29,7 @@ class DirectLightPass : public FullscreenPass<DirectLightVariant> {
   DirectLightPass();
   // The lighting block (light count, PCF radius) and the light buffer must be
   // bound.
-  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant,
-           PassForm form);
+  void run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant, PassForm form);
 };
 
 }  // namespace headlight

@@ -5,8 +5,7 @@
 
 namespace headlight {
 
-EnvironmentPass::EnvironmentPass()
-    : skyBlock_(gl::Buffer::create(sizeof(gpu::SkyBlock))) {
+EnvironmentPass::EnvironmentPass() : skyBlock_(gl::Buffer::create(sizeof(gpu::SkyBlock))) {
   tables_.brdfLut = gl::Texture::create2D(GL_RG16F, gpu::kBrdfLutSize, gpu::kBrdfLutSize);
   tables_.skyPrefiltered = gl::Texture::create2D(GL_RGBA16F, gpu::kSkyTableWidth, gpu::kSkyRoughnessLevels);
   tables_.skyIrradiance = gl::Texture::create2D(GL_RGBA16F, gpu::kSkyTableWidth, 1);
@@ -64,11 +63,11 @@ void EnvironmentPass::updateEnvironment(const EnvironmentMap& map) {
   if (holdsEnvironment(map)) return;
   const environment::EnvironmentTables prefiltered = environment::prefilterEnvironment(map);
   const environment::EquirectImage& level0 = prefiltered.specular.front();
-  tables_.environmentSpecular = gl::Texture::create2DArray(GL_RGBA16F, level0.width, level0.height,
-                                                           int(prefiltered.specular.size()));
+  tables_.environmentSpecular =
+      gl::Texture::create2DArray(GL_RGBA16F, level0.width, level0.height, int(prefiltered.specular.size()));
   for (std::size_t layer = 0; layer < prefiltered.specular.size(); ++layer)
-    glTextureSubImage3D(tables_.environmentSpecular.id(), 0, 0, 0, GLint(layer), level0.width, level0.height, 1,
-                        GL_RGB, GL_FLOAT, prefiltered.specular[layer].rgb.data());
+    glTextureSubImage3D(tables_.environmentSpecular.id(), 0, 0, 0, GLint(layer), level0.width, level0.height, 1, GL_RGB,
+                        GL_FLOAT, prefiltered.specular[layer].rgb.data());
   setEquirectSampling(tables_.environmentSpecular);
   tables_.environmentIrradiance = uploadEquirect(prefiltered.irradianceOverPi);
   tables_.environmentBackground = uploadEquirect(environment::equirectOf(map));

@@ -15,9 +15,9 @@
 // once per map content: a batch of scenes with the same map reuses them.
 // The GPU tables are fullscreen passes (glsl/brdf_lut.glsl,
 // sky_prefilter.glsl, sky_irradiance.glsl), in either form.
-#include <variant>
 #include <optional>
 #include <string>
+#include <variant>
 
 #include "gl/objects.hpp"
 #include "headlight/scene.hpp"

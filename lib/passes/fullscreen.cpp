@@ -9,11 +9,16 @@ namespace {
 // The image format qualifier (GLSL) of an output texture's internal format.
 std::string_view imageFormatQualifier(GLenum internalFormat) {
   switch (internalFormat) {
-    case GL_RGBA32F: return "rgba32f";
-    case GL_RGBA16F: return "rgba16f";
-    case GL_RG16F: return "rg16f";
-    case GL_RGBA8: return "rgba8";
-    default: return {};
+    case GL_RGBA32F:
+      return "rgba32f";
+    case GL_RGBA16F:
+      return "rgba16f";
+    case GL_RG16F:
+      return "rg16f";
+    case GL_RGBA8:
+      return "rgba8";
+    default:
+      return {};
   }
 }
 
@@ -37,8 +42,8 @@ gl::Program buildPassProgram(std::string_view body, const PassEntry& entry, std:
     if (entry.form == PassForm::Compute) {
       const std::string_view qualifier = imageFormatQualifier(format);
       if (qualifier.empty())
-        throw GlError(std::string(body) + ": output " + member + " has internal format 0x" +
-                      std::to_string(format) + ", which no image format qualifier names");
+        throw GlError(std::string(body) + ": output " + member + " has internal format 0x" + std::to_string(format) +
+                      ", which no image format qualifier names");
       all.push_back("PASS_OUTPUT" + std::to_string(i) + "_FORMAT " + std::string(qualifier));
     }
   }
@@ -65,10 +70,10 @@ void FullscreenRunner::run(std::string_view what, const gl::Program& program, Pa
   const int width = outputs[0].texture->width(), height = outputs[0].texture->height();
   for (const PassOutput& output : outputs)
     if (output.texture->width() != width || output.texture->height() != height)
-      throw GlError("FullscreenRunner: " + std::string(what) + "'s outputs differ in size (" + std::string(output.member) +
-                    " is " + std::to_string(output.texture->width()) + "x" + std::to_string(output.texture->height()) +
-                    ", " + std::string(outputs[0].member) + " " + std::to_string(width) + "x" + std::to_string(height) +
-                    ")");
+      throw GlError("FullscreenRunner: " + std::string(what) + "'s outputs differ in size (" +
+                    std::string(output.member) + " is " + std::to_string(output.texture->width()) + "x" +
+                    std::to_string(output.texture->height()) + ", " + std::string(outputs[0].member) + " " +
+                    std::to_string(width) + "x" + std::to_string(height) + ")");
   if (accumulateWeight) glProgramUniform1f(program.id(), gpu::kLocationAccumulateWeight, *accumulateWeight);
   program.use();
   if (form == PassForm::Compute) {

@@ -49,7 +49,8 @@ SsgiPass::SsgiPass()
     : FullscreenPass("ssgi.glsl",
                      [](const SsgiMethod& method) {
                        const std::string_view define = ssgiMethodTraits(method).kernelDefine;
-                       return define.empty() ? std::vector<std::string>{} : std::vector<std::string>{std::string(define)};
+                       return define.empty() ? std::vector<std::string>{}
+                                             : std::vector<std::string>{std::string(define)};
                      }),
       blockBuffer_(gl::Buffer::create(sizeof(gpu::SsgiBlock))),
       noise_(gl::Texture::create2D(GL_RG16F, 4, 4)) {}
@@ -89,8 +90,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
     gbuffer.material.bind(gpu::kUnitGbufferMaterial);
     inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   }
-  const PassOutput outputs[] = {
-      {"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
+  const PassOutput outputs[] = {{"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
   FullscreenPass::run("SSGI", settings.method, inputs.form, outputs, inputs.accumulateWeight);
 }
 

@@ -50,7 +50,7 @@ struct SsgiInputs {
   // (VirtualLightPass), or null: from what its marches find.
   const VirtualLights* virtualLights = nullptr;
   const ShadowMaps* shadows = nullptr;  // the lights' maps: what hides a virtual light near its light
-  int frameIndex = 0;                // rotates the slices and step jitter between accumulated frames
+  int frameIndex = 0;                   // rotates the slices and step jitter between accumulated frames
   // Accumulated frames (SsgiStep::frames > 1): 0 overwrites the output, w
   // blends in as (1 - w) output + w result; none: a single frame.
   std::optional<float> accumulateWeight;

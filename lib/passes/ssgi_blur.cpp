@@ -42,8 +42,7 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   }
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
   inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
-  const PassOutput outputs[] = {
-      {"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
+  const PassOutput outputs[] = {{"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
   draw(block, inputs.form, outputs);
 }
 

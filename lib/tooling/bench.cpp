@@ -194,8 +194,7 @@ void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::pat
         << r.frameMs.maximum << ',' << r.ssgiMs.median << ',' << r.ssgiMs.minimum << ',' << r.ssgiMs.maximum << ','
         << r.frameGpuMs.median << ',' << r.frameGpuMs.minimum << ',' << r.frameGpuMs.maximum << ','
         << r.ssgiGpuMs.median << ',' << r.ssgiGpuMs.minimum << ',' << r.ssgiGpuMs.maximum << ',' << csvField(r.forms)
-        << ','
-        << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
+        << ',' << r.ao.rmse << ',' << r.ao.meanAbsolute << ',' << r.sky.rmse << ',' << r.sky.meanAbsolute << ','
         << r.indirect.rmse << ',' << r.indirect.relativeRmse << ',' << r.lit.relativeRmse << ',' << r.litSsim << ','
         << r.litFlip << ',' << r.referenceSamples << ',' << r.referenceAoStandardError << ',' << r.referenceScreenBound
         << ',' << r.paretoAo << ',' << csvField(r.renderer) << ',' << csvField(r.backend) << ',' << csvField(r.machine)

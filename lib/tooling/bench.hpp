@@ -64,8 +64,8 @@ struct BenchRow {
   std::map<std::string, std::string> settings;
   bool seedDefault = false;  // the seed spec's settings (hemisphere, 64, radius 0.5, bias 0.025, no blur)
   int repetitions = 0;
-  Summary frameMs;           // passes of one frame (G-buffer to composite), shadows cached, readback excluded
-  Summary ssgiMs;            // SSGI (+ blur)
+  Summary frameMs;  // passes of one frame (G-buffer to composite), shadows cached, readback excluded
+  Summary ssgiMs;   // SSGI (+ blur)
   // The same passes' GPU time (GL_TIME_ELAPSED queries: what the GPU spent,
   // without the CPU side llvmpipe adds to the wall times above).
   Summary frameGpuMs;
@@ -86,8 +86,8 @@ struct BenchRow {
   int referenceSamples = 0;
   double referenceAoStandardError = 0;
   bool referenceScreenBound = false;  // the errors are against the screen-space bound, not the truth
-  bool paretoAo = false;  // on the (frame time, AO RMSE) front of its scene and resolution
-  std::string renderer;   // GL_RENDERER
+  bool paretoAo = false;              // on the (frame time, AO RMSE) front of its scene and resolution
+  std::string renderer;               // GL_RENDERER
   std::string backend;
   std::string machine;  // CPU model and core count
 };

@@ -95,7 +95,7 @@ struct SsgiSettings {
 };
 
 struct LightingSettings {
-  bool shadows = true;                // shadow maps for lights that cast shadows
+  bool shadows = true;  // shadow maps for lights that cast shadows
   // Texels per side (point lights' cube faces: half); auto: 4x the longer
   // image side to the next power of two, 1024..2048.
   std::optional<int> shadowMapSize;
