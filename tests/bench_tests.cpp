@@ -2,6 +2,9 @@
 // (Its speed is measured by `headlight bench`, never asserted.)
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <limits>
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -88,6 +91,12 @@ TEST_CASE("summarize gives median and spread" * doctest::test_suite("bench")) {
   CHECK(odd.minimum == 1);
   CHECK(odd.maximum == 5);
   CHECK(summarize({4, 1, 3, 2}).median == 2.5);
+  // An unknown GPU time (nan) is left out, not sorted among the numbers; none known: nan.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Summary partly = summarize({nan, 4, 2});
+  CHECK(partly.median == 3);
+  CHECK(partly.minimum == 2);
+  CHECK(std::isnan(summarize({nan, nan}).median));
 }
 
 TEST_CASE("bench.csv and bench.json hold every row with its time and error" * doctest::test_suite("bench")) {

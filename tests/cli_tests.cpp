@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
@@ -189,6 +192,71 @@ TEST_CASE("bench writes a CSV whose every row has a time and an error, and a cha
   CHECK(chart.read());
   CHECK(fs::file_size(out / "bench.svg") > 1000);
   CHECK_FALSE(fs::exists(out / "frames.png"));  // no ssgi-frames sweep, no error-against-N chart
+  fs::remove_all(out.parent_path());
+}
+
+// bench's CSV as rows of name -> field (the header's names).
+std::vector<std::map<std::string, std::string>> readBenchCsv(const fs::path& path) {
+  std::ifstream csv(path);
+  std::string header, line;
+  std::getline(csv, header);
+  std::vector<std::string> columns;
+  std::stringstream headerStream(header);
+  for (std::string column; std::getline(headerStream, column, ',');) columns.push_back(column);
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(csv, line)) {
+    std::stringstream lineStream(line);
+    std::map<std::string, std::string> row;
+    std::size_t i = 0;
+    for (std::string field; std::getline(lineStream, field, ',') && i < columns.size(); ++i) row[columns[i]] = field;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_CASE("bench --no-reference times both fullscreen forms with GPU columns, and needs no reference") {
+  const fs::path out = freshFolder("bench-forms") / "out";
+  const Run run = runHeadlight(
+      "bench builtin:cornell --resolutions 32x24 --no-reference --sweep fullscreen-form=fragment,compute "
+      "--repetitions 2 --warmup 1 --quiet --out " +
+      quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  const auto rows = readBenchCsv(out / "bench.csv");
+  REQUIRE(rows.size() == 2 + 1);  // two forms + the seed default
+  int compute = 0;
+  for (const auto& row : rows) {
+    CHECK(std::stod(row.at("frame_ms_median")) > 0.0);
+    // Known (a number >= 0), or nan where llvmpipe gave no GPU time for a pass of every frame.
+    for (const char* gpu : {"frame_gpu_ms_median", "ssgi_gpu_ms_median"})
+      CHECK((row.at(gpu) == "nan" || std::stod(row.at(gpu)) >= 0.0));
+    CHECK(row.at("ao_rmse") == "nan");  // no reference, no error
+    if (row.at("fullscreen-form") == "compute") {
+      ++compute;
+      CHECK(row.at("forms").find("ssgi=compute") != std::string::npos);
+      CHECK(row.at("forms").find("fragment") == std::string::npos);
+    }
+  }
+  CHECK(compute == 1);
+  CHECK_FALSE(fs::exists(out / "bench.png"));  // the chart plots errors: none without a reference
+  fs::remove_all(out.parent_path());
+}
+
+TEST_CASE("bench sweeping ssgi=on,off measures no SSGI as open and unlit" * doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  const fs::path out = freshFolder("bench-ssgi-off") / "out";
+  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --sweep ssgi=on,off --repetitions 1 "
+                               "--warmup 0 --reference-samples 16 --no-chart --quiet --out " +
+                               quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  const auto rows = readBenchCsv(out / "bench.csv");
+  REQUIRE(rows.size() == 2 + 1);
+  std::map<std::string, double> aoError;
+  for (const auto& row : rows)
+    if (row.at("seed_default") == "0") aoError[row.at("ssgi")] = std::stod(row.at("ao_rmse"));
+  REQUIRE(aoError.size() == 2);
+  // Without SSGI every pixel is taken as open (AO 1): further from cornell's reference AO than the default's.
+  CHECK(aoError["off"] > aoError["on"]);
   fs::remove_all(out.parent_path());
 }
 

@@ -1,7 +1,7 @@
 // The two forms of every fullscreen pass (lib/passes/fullscreen.hpp): the
 // same body under a fragment entry and a compute entry must give the same
-// pixels. Each case renders one configuration in both forms on llvmpipe
-// (compute shaders run there) and compares every target the pass feeds, and
+// pixels. Each case renders one configuration in both forms (on llvmpipe in
+// CI: compute shaders run there) and compares every target the pass feeds, and
 // checks that each fullscreen pass ran in the form asked for and says so.
 #include <doctest/doctest.h>
 
@@ -48,7 +48,7 @@ int checkForms(const Frame& frame, PassForm form) {
     } else {
       CHECK(time.form.empty());
     }
-    CHECK(time.gpuMilliseconds <= time.milliseconds * 1.01 + 0.01);
+    CHECK(time.gpuMilliseconds <= time.milliseconds * 1.5 + 1.0);
   }
   return fullscreen;
 }
@@ -123,15 +123,19 @@ TEST_CASE("forms: accumulated SSGI frames blend in the entry alike in both forms
 TEST_CASE("forms: auto runs each pass in its row's form on llvmpipe, and names the form") {
   const Scene scene = makeBuiltinScene("cornell");
   const Frame frame = test::renderFresh(scene, test::smallSettings(64, 48));
-  REQUIRE(isSoftwareRasterizer(frame.glRenderer));
-  const PassForms forms = choosePassForms(std::nullopt, true);
+  // Whatever this machine is: on llvmpipe (CI) each row's measured form, on a GPU compute.
+  const bool software = isSoftwareRasterizer(frame.glRenderer);
+  const PassForms forms = choosePassForms(std::nullopt, software);
+  int checked = 0;
   for (const PassTime& time : frame.timings)
     for (const FullscreenPassRow& row : fullscreenPassRows())
       if (row.name == time.pass) {
         CAPTURE(time.pass);
         CHECK(time.form == passFormName(forms[std::size_t(row.id)]));
-        CHECK(forms[std::size_t(row.id)] == row.softwareForm);
+        CHECK(forms[std::size_t(row.id)] == (software ? row.softwareForm : PassForm::Compute));
+        ++checked;
       }
+  CHECK(checked >= 4);  // direct, ssgi, ssgi-blur, composite (and sky on a first frame)
   // On a hardware GPU auto is compute for every pass; asked for, a form is that form.
   for (PassForm form : choosePassForms(std::nullopt, false)) CHECK(form == PassForm::Compute);
   for (PassForm form : choosePassForms(FullscreenForm::Fragment, false)) CHECK(form == PassForm::Fragment);

@@ -14,6 +14,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
+#include "headlight/targets.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "progress.hpp"
@@ -168,20 +169,26 @@ std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, in
 
 namespace {
 
+// A pass's wall time, or with `gpu` its GPU time (nan where the driver gave
+// none: the sum is then unknown too, never an undercount).
+double passMilliseconds(const PassTime& time, bool gpu) {
+  if (!gpu) return time.milliseconds;
+  return time.gpuMilliseconds >= 0 ? time.gpuMilliseconds : std::numeric_limits<double>::quiet_NaN();
+}
+
 // Frame time without readback (a cost of getting images to the CPU, not of
-// rendering) and without shadows (made once per scene, then cached); `gpu`:
-// the passes' GPU time instead of their wall time.
+// rendering) and without shadows (made once per scene, then cached).
 double frameMilliseconds(const Frame& frame, bool gpu) {
   double total = 0;
   for (const PassTime& time : frame.timings)
-    if (time.pass != "readback" && time.pass != "shadows") total += gpu ? time.gpuMilliseconds : time.milliseconds;
+    if (time.pass != "readback" && time.pass != "shadows") total += passMilliseconds(time, gpu);
   return total;
 }
 
 double ssgiMilliseconds(const Frame& frame, bool gpu) {
   double total = 0;
   for (const PassTime& time : frame.timings)
-    if (time.pass == "ssgi" || time.pass == "ssgi-blur") total += gpu ? time.gpuMilliseconds : time.milliseconds;
+    if (time.pass == "ssgi" || time.pass == "ssgi-blur") total += passMilliseconds(time, gpu);
   return total;
 }
 
@@ -244,13 +251,28 @@ BenchRow timedRow(const Frame& frame, const BenchConfig& config, const MeasureOp
   return row;
 }
 
+// What the composite takes for SSGI when it is off: every pixel open (AO,
+// sky and specular visibility 1) and no indirect light, in ssgi.exr's layout.
+ImageF openSsgi(const Frame& frame) {
+  ImageF image;
+  image.width = frame.lit.width;
+  image.height = frame.lit.height;
+  for (std::string_view channel : findFrameTarget("ssgi")->channels) image.channels.emplace_back(channel);
+  image.pixels.resize(std::size_t(image.width) * std::size_t(image.height) * image.channels.size());
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = image.channels[i % image.channels.size()].ends_with(".Y") ? 1.0f : 0.0f;
+  return image;
+}
+
 BenchRow measure(const Frame& frame, const BenchConfig& config, const MeasureOptions& options, const FrameTimes& times,
                  const ReferenceImages& reference) {
   BenchRow row = timedRow(frame, config, options, times);
   row.referenceTraced = true;
-  row.ao = maskedError(frame.ssgi, 0, reference.ao, 0, frame.position);
-  row.sky = maskedError(frame.ssgi, 4, reference.ao, 1, frame.position);  // sky.Y in both
-  row.indirect = maskedColorError(frame.ssgi, 1, reference.indirect, 0, frame.position);
+  // --sweep ssgi=on,off: no SSGI is measured as the image the composite used.
+  const ImageF ssgi = frame.ssgi.empty() ? openSsgi(frame) : frame.ssgi;
+  row.ao = maskedError(ssgi, 0, reference.ao, 0, frame.position);
+  row.sky = maskedError(ssgi, 4, reference.ao, 1, frame.position);  // sky.Y in both
+  row.indirect = maskedColorError(ssgi, 1, reference.indirect, 0, frame.position);
   row.lit = maskedColorError(frame.lit, 0, reference.lit, 0, frame.position);
   row.litSsim = maskedSsim(frame.lit, reference.lit, frame.position);
   row.litFlip = hdrFlipMean(frame.lit, reference.lit);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -139,7 +140,13 @@ std::vector<bool> paretoFront(const std::vector<std::pair<double, double>>& poin
 
 Summary summarize(std::vector<double> values) {
   Summary summary;
-  if (values.empty()) return summary;
+  // Unknown values (nan: a GPU time the driver did not give) are left out;
+  // none known: all nan.
+  std::erase_if(values, [](double value) { return std::isnan(value); });
+  if (values.empty()) {
+    summary.median = summary.minimum = summary.maximum = std::numeric_limits<double>::quiet_NaN();
+    return summary;
+  }
   std::sort(values.begin(), values.end());
   const std::size_t n = values.size();
   summary.median = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);

@@ -45,7 +45,8 @@ double hdrFlipMean(const ImageF& test, const ImageF& reference);
 // is at least as good in both and better in one.
 std::vector<bool> paretoFront(const std::vector<std::pair<double, double>>& timeError);
 
-// Median and spread of repeated measurements.
+// Median and spread of repeated measurements (nan values left out; all nan
+// or none: nan).
 struct Summary {
   double median = 0;
   double minimum = 0;
