@@ -487,7 +487,8 @@ PYBIND11_MODULE(headlight, m) {
   py::class_<PyRenderer>(m, "Renderer",
                          "A GL context and a renderer. Usable from any thread, one call at a time (the context is "
                          "made current on the calling thread for each call); calls release the GIL.")
-      .def(py::init([](const py::object& backend, const py::object& device, const py::object& strict) {
+      .def(py::init([](const py::object& backend, const py::object& device, const py::object& strict,
+                       const py::object& deviceFallback) {
              ContextOptions options;
              options.backend = parseBackend(textArgument(backend, "backend", "'auto', 'egl' or 'osmesa'"));
              if (!py::isinstance<py::bool_>(strict) && !isNumpyBool(strict))
@@ -508,12 +509,19 @@ PYBIND11_MODULE(headlight, m) {
                                        py::repr(device).cast<std::string>(),
                                    {"device"});
              }
+             if (!py::isinstance<py::bool_>(deviceFallback) && !isNumpyBool(deviceFallback))
+               throw SettingsError("device_fallback: expected True or False, got " +
+                                       py::repr(deviceFallback).cast<std::string>(),
+                                   {"device_fallback"});
+             options.deviceFallback = py::bool_(deviceFallback);
              py::gil_scoped_release release;
              return std::make_unique<PyRenderer>(options);
            }),
            py::arg("backend") = "auto", py::arg("device") = py::none(), py::arg("strict") = true,
+           py::arg("device_fallback") = false,
            "backend: 'auto' (EGL, then OSMesa), 'egl' or 'osmesa'; device: EGL device index or name "
-           "(e.g. 'EGL_MESA_device_software', '/dev/dri/renderD128'); strict: GL errors raise GlError")
+           "(e.g. 'EGL_MESA_device_software', '/dev/dri/renderD128'), a ContextError naming the devices there "
+           "are if it cannot be used, unless device_fallback; strict: GL errors raise GlError")
       .def(
           "set_scene",
           [](PyRenderer& self, const py::object& scene, const py::object& allowExternalPaths,

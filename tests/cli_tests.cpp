@@ -111,6 +111,26 @@ TEST_CASE("--device takes an EGL device index or name; an unknown name is exit 1
   fs::remove_all(folder);
 }
 
+TEST_CASE("--device N that does not exist is exit 1 naming the devices, even with --backend auto") {
+  const fs::path folder = freshFolder("device-missing");
+  // Issue 30: it used to fall back to OSMesa in silence, exit 0.
+  const Run missing = runHeadlight("render builtin:cornell --device 7 --width 16 --height 16 --out " +
+                                   quote((folder / "missing").string()));
+  INFO(missing.output);
+  CHECK(missing.exitCode == 1);
+  CHECK(missing.output.find("EGL device 7") != std::string::npos);
+  CHECK(missing.output.find("EGL device 0") != std::string::npos);  // the devices there are
+  CHECK(missing.output.find("--device-fallback") != std::string::npos);
+  CHECK_FALSE(fs::exists(folder / "missing"));
+  const Run fallback = runHeadlight("render builtin:cornell --device 7 --device-fallback --width 16 --height 16 "
+                                    "--verbose --out " +
+                                    quote((folder / "fallback").string()));
+  INFO(fallback.output);
+  CHECK(fallback.exitCode == 0);
+  CHECK(fallback.output.find("only 1 device(s) exist") != std::string::npos);  // --verbose says why
+  fs::remove_all(folder);
+}
+
 TEST_CASE("a context that cannot be made is exit 1 saying what was tried, and no output") {
   const fs::path folder = freshFolder("nocontext");
   const Run run = runHeadlight("render --backend egl --device 99 --out " + quote((folder / "out").string()));

@@ -197,6 +197,11 @@ std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) 
                           c.context.eglDeviceName = device;
                         }
                       }),
+      actionOption<C>({.name = "device-fallback",
+                       .type = T::Switch,
+                       .help = "if the --device asked for cannot be used, render on another (the surfaceless "
+                               "platform, then OSMesa with --backend auto) instead of failing"},
+                      [](C& c, const OptionValue&) { c.context.deviceFallback = true; }),
       actionOption<C>({.name = "strict", .type = T::Switch, .help = "treat OpenGL errors as fatal (default: warn)"},
                       [](C& c, const OptionValue&) { c.context.errorPolicy = GlErrorPolicy::Throw; }),
       actionOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing but errors"},

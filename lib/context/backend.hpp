@@ -23,8 +23,10 @@ class PlatformContext {
 // Each appends a line per attempt to `attempts` ("EGL device 0: ...") and
 // returns null if no context could be made; it never throws for a missing
 // driver, so that Backend::Auto can go on to the next backend. `device` < 0
-// and an empty `deviceName` mean the first device that works.
-std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName,
+// and an empty `deviceName` mean the first device that works; a device asked
+// for that fails falls back to the surfaceless platform only with
+// `deviceFallback` (ContextOptions::deviceFallback).
+std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName, bool deviceFallback,
                                                   std::vector<std::string>& attempts);
 // libOSMesa is opened with dlopen here, on first use: linking it would load
 // Mesa's LLVM into every process, EGL users and `headlight --version` included.

@@ -160,10 +160,15 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   releaseCurrentPlatform();  // creation makes the new context current
   if (options.backend == Backend::Auto || options.backend == Backend::Egl) {
     std::lock_guard lock(backendMutex(Backend::Egl));
-    impl_->platform = detail::createEglContext(options.eglDevice, options.eglDeviceName, attempts);
+    impl_->platform =
+        detail::createEglContext(options.eglDevice, options.eglDeviceName, options.deviceFallback, attempts);
     impl_->backend = Backend::Egl;
   }
-  if (!impl_->platform && (options.backend == Backend::Auto || options.backend == Backend::OSMesa)) {
+  // A device asked for names an EGL device: OSMesa only when the caller allows a fallback.
+  const bool deviceAsked = options.eglDevice >= 0 || !options.eglDeviceName.empty();
+  const bool osmesaAllowed = options.backend == Backend::OSMesa ||
+                             (options.backend == Backend::Auto && (!deviceAsked || options.deviceFallback));
+  if (!impl_->platform && osmesaAllowed) {
     std::lock_guard lock(backendMutex(Backend::OSMesa));
     impl_->platform = detail::createOSMesaContext(attempts);
     impl_->backend = Backend::OSMesa;
@@ -171,6 +176,9 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
   if (!impl_->platform) {
     std::string message =
         "no OpenGL 4.5 core context (backend " + std::string(backendName(options.backend)) + "); tried:";
+    if (deviceAsked && !osmesaAllowed && options.backend == Backend::Auto)
+      attempts.push_back("OSMesa: not tried, a device was asked for (--device-fallback, device_fallback=True, or "
+                         "ContextOptions::deviceFallback to allow it)");
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }

@@ -183,8 +183,13 @@ std::unique_ptr<PlatformContext> tryDevicePlatform(int wanted, const std::string
     return nullptr;
   }
   if (wanted >= count) {
+    std::string list;  // the devices there are, with their names, for the message
+    for (int i = 0; i < count; ++i) {
+      const char* extensions = queryString != nullptr ? queryString(devices[i], EGL_EXTENSIONS) : nullptr;
+      (list += list.empty() ? "" : "; ") += deviceNames(i, devices[i], extensions).label;
+    }
     attempts.push_back("EGL device " + std::to_string(wanted) + ": only " + std::to_string(count) +
-                       " device(s) exist (0.." + std::to_string(count - 1) + ")");
+                       " device(s) exist (0.." + std::to_string(count - 1) + "): " + list);
     return nullptr;
   }
   std::string known;  // for the message when no device has the wanted name
@@ -224,10 +229,11 @@ std::unique_ptr<PlatformContext> trySurfacelessPlatform(std::vector<std::string>
 
 }  // namespace
 
-std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName,
+std::unique_ptr<PlatformContext> createEglContext(int device, const std::string& deviceName, bool deviceFallback,
                                                   std::vector<std::string>& attempts) {
   if (auto context = tryDevicePlatform(device, deviceName, attempts)) return context;
-  if (device >= 0 || !deviceName.empty()) return nullptr;  // a specific device was asked for: no silent fallback
+  // A specific device was asked for: no silent fallback.
+  if ((device >= 0 || !deviceName.empty()) && !deviceFallback) return nullptr;
   return trySurfacelessPlatform(attempts);
 }
 

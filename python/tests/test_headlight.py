@@ -118,6 +118,12 @@ def test_errors_are_exceptions_with_the_librarys_message():
 def test_a_missing_device_is_an_error_not_a_crash():
     expect(headlight.ContextError, lambda: headlight.Renderer(backend="egl", device=99), "99")
     expect(headlight.ContextError, lambda: headlight.Renderer(backend="egl", device="no-such-device"), "no-such-device")
+    # Backend auto too: a device asked for is never silently replaced by OSMesa (issue 30)...
+    expect(headlight.ContextError, lambda: headlight.Renderer(device=7), "EGL device 0")
+    expect(headlight.ContextError, lambda: headlight.Renderer(device="nvidia"), "nvidia")
+    # ...unless the caller allows it.
+    assert headlight.Renderer(device=7, device_fallback=True).backend in ("egl", "osmesa")
+    expect(headlight.SettingsError, lambda: headlight.Renderer(device_fallback="yes"), "device_fallback")
 
 
 def test_write_writes_the_clis_files():

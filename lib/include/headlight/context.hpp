@@ -47,9 +47,13 @@ struct ContextOptions {
   // Non-empty: the EGL device with this name: its DRM device or render-node
   // file ("/dev/dri/renderD128"), its driver or renderer name, or one of its
   // extensions ("EGL_MESA_device_software" is llvmpipe). With eglDevice >= 0
-  // as well, that device must also have the name. No silent fallback to
-  // another device or backend when the named one fails.
+  // as well, that device must also have the name.
   std::string eglDeviceName;
+  // A device asked for (eglDevice or eglDeviceName) that cannot be used is a
+  // ContextError naming the devices that exist, whatever the backend: on a
+  // multi-GPU node a typo must not mean hours of software rendering. True:
+  // go on to the other EGL platforms and (backend auto) OSMesa instead.
+  bool deviceFallback = false;
 };
 
 class Context {
