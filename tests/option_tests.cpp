@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -185,6 +186,19 @@ TEST_CASE("commandLineMessage words only the settings an error names, and only w
   std::vector<std::string> named;
   CHECK(messageOf([&] { applyPreset(settings, "slow"); }, &named).find("preset: expected one of") == 0);
   CHECK(named == std::vector<std::string>{"preset"});
+}
+
+TEST_CASE("bench's default sweep measures every method, the default (bitmask) among them") {
+  const auto configs = cli::benchConfigs(cli::parseBenchArgs({}), 64, 48);
+  std::map<SsgiMethod, int> perMethod;
+  for (const cli::BenchConfig& config : configs)
+    if (!config.seedDefault) ++perMethod[config.settings.ssgi.method];
+  CHECK(perMethod[SsgiMethod::Hemisphere] > 0);
+  CHECK(perMethod[SsgiMethod::Radiance] > 0);
+  // Bitmask over slices x steps x radii x resolutions; sample counts do not apply to it.
+  CHECK(perMethod[SsgiMethod::Bitmask] == 3 * 2 * 3 * 2);
+  for (const cli::BenchConfig& config : configs)
+    if (config.settings.ssgi.method == SsgiMethod::Bitmask) CHECK(config.label.find("ssgi-samples") == std::string::npos);
 }
 
 TEST_CASE("bench sweeps any setting row; the product skips what the settings refuse") {

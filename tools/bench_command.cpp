@@ -61,7 +61,9 @@ std::vector<Option<BenchCommand>> benchOptions() {
                                  }));
   for (auto& row :
        measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
-                             "ssgi-method, ssgi-samples, ssgi-radius-fraction, ssgi-blur, ssgi-resolution)"))
+                             "hemisphere and radiance over ssgi-samples, ssgi-radius-fraction, ssgi-blur, "
+                             "ssgi-resolution; bitmask over ssgi-slices, ssgi-steps, ssgi-radius-fraction, "
+                             "ssgi-resolution)"))
     rows.push_back(std::move(row));
   rows.push_back(bindOption<C>(
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
@@ -100,10 +102,13 @@ SettingSweep parseSweep(const std::string& text) {
   return sweep;
 }
 
-std::vector<SettingSweep> defaultBenchSweeps() {
-  return {parseSweep("ssgi-method=hemisphere,radiance"), parseSweep("ssgi-samples=4,8,16,32,64"),
-          parseSweep("ssgi-radius-fraction=0.075,0.15,0.3"), parseSweep("ssgi-blur=on,off"),
-          parseSweep("ssgi-resolution=full,half")};
+std::vector<std::vector<SettingSweep>> defaultBenchSweeps() {
+  return {{parseSweep("ssgi-method=hemisphere,radiance"), parseSweep("ssgi-samples=4,8,16,32,64"),
+           parseSweep("ssgi-radius-fraction=0.075,0.15,0.3"), parseSweep("ssgi-blur=on,off"),
+           parseSweep("ssgi-resolution=full,half")},
+          // The default method (issue 30: the default sweep never measured it).
+          {parseSweep("ssgi-method=bitmask"), parseSweep("ssgi-slices=1,2,4"), parseSweep("ssgi-steps=8,16"),
+           parseSweep("ssgi-radius-fraction=0.075,0.15,0.3"), parseSweep("ssgi-resolution=full,half")}};
 }
 
 std::vector<BenchConfig> sweepConfigs(const RenderSettings& base, const std::vector<SettingSweep>& sweeps, int width,
@@ -155,8 +160,13 @@ std::vector<BenchConfig> sweepConfigs(const RenderSettings& base, const std::vec
 }
 
 std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, int height) {
-  std::vector<BenchConfig> configs =
-      sweepConfigs(command.base, command.sweeps.empty() ? defaultBenchSweeps() : command.sweeps, width, height);
+  std::vector<BenchConfig> configs;
+  if (!command.sweeps.empty())
+    configs = sweepConfigs(command.base, command.sweeps, width, height);
+  else
+    for (const std::vector<SettingSweep>& product : defaultBenchSweeps())
+      for (BenchConfig& config : sweepConfigs(command.base, product, width, height))
+        configs.push_back(std::move(config));
   // The seed spec's own numbers, whatever the scene's size: the point to beat.
   BenchConfig seed{RenderSettings{}, "preset=seed ssgi-blur=off", true};
   seed.settings.width = width;

@@ -50,16 +50,18 @@ std::vector<Option<Command>> measurementOptions(std::string_view sweepHelp) {
   return rows;
 }
 
-// What the bench sweeps when no --sweep is given: both methods, sample
-// counts, radii around the auto radius, blur and SSGI resolution.
-std::vector<SettingSweep> defaultBenchSweeps();
+// What the bench sweeps when no --sweep is given, as products of sweeps:
+// the kernel methods over sample counts, radii around the auto radius, blur
+// and SSGI resolution; and the default method, bitmask, over its slices and
+// steps, the radii and the SSGI resolution (sample counts do not apply to it).
+std::vector<std::vector<SettingSweep>> defaultBenchSweeps();
 
 struct BenchCommand {
   std::vector<std::string> scenes;  // default: the built-ins
   std::string outDir = "bench";
   std::vector<std::pair<int, int>> resolutions{{128, 96}};
   RenderSettings base;               // what every configuration starts from (render flags)
-  std::vector<SettingSweep> sweeps;  // empty: defaultBenchSweeps()
+  std::vector<SettingSweep> sweeps;  // empty: every product of defaultBenchSweeps()
   ReferenceSettings reference;       // rays per pixel (--reference-samples)
   bool traceReference = true;        // --no-reference: time only (no errors, no chart, no Embree needed)
   int repetitions = 5;               // timed frames per configuration (median and spread reported)
