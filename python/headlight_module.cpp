@@ -510,9 +510,9 @@ PYBIND11_MODULE(headlight, m) {
                                    {"device"});
              }
              if (!py::isinstance<py::bool_>(deviceFallback) && !isNumpyBool(deviceFallback))
-               throw SettingsError("device_fallback: expected True or False, got " +
-                                       py::repr(deviceFallback).cast<std::string>(),
-                                   {"device_fallback"});
+               throw SettingsError(
+                   "device_fallback: expected True or False, got " + py::repr(deviceFallback).cast<std::string>(),
+                   {"device_fallback"});
              options.deviceFallback = py::bool_(deviceFallback);
              py::gil_scoped_release release;
              return std::make_unique<PyRenderer>(options);

@@ -13,9 +13,9 @@
 
 #include "diff/flip.hpp"
 #include "headlight/error.hpp"
-#include "tooling/bench.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
+#include "tooling/bench.hpp"
 
 using namespace headlight;
 

@@ -122,12 +122,42 @@ TEST_CASE("--device N that does not exist is exit 1 naming the devices, even wit
   CHECK(missing.output.find("EGL device 0") != std::string::npos);  // the devices there are
   CHECK(missing.output.find("--device-fallback") != std::string::npos);
   CHECK_FALSE(fs::exists(folder / "missing"));
-  const Run fallback = runHeadlight("render builtin:cornell --device 7 --device-fallback --width 16 --height 16 "
-                                    "--verbose --out " +
-                                    quote((folder / "fallback").string()));
+  const Run fallback = runHeadlight(
+      "render builtin:cornell --device 7 --device-fallback --width 16 --height 16 "
+      "--verbose --out " +
+      quote((folder / "fallback").string()));
   INFO(fallback.output);
   CHECK(fallback.exitCode == 0);
   CHECK(fallback.output.find("only 1 device(s) exist") != std::string::npos);  // --verbose says why
+  fs::remove_all(folder);
+}
+
+TEST_CASE("F3D's habits are usage errors that name headlight's flag, and nothing is rendered") {
+  const fs::path folder = freshFolder("f3d-habits");
+  struct Habit {
+    std::string args;
+    std::string says;
+  };
+  const Habit habits[] = {
+      {"--ssgi off", "--no-ssgi"},  // rendered a scene called "off" with SSGI on, then failed
+      {"--out " + quote((folder / "x.png").string()), "--out is a folder"},  // made a folder called x.png
+      {"--output x.png", "--out DIR"},
+      {"--resolution 64,48", "--width W --height H"},
+      {"--hdri studio.hdr", "--environment FILE"},
+  };
+  for (const Habit& habit : habits) {
+    const Run run = runHeadlight("render builtin:cornell " + habit.args);
+    INFO(habit.args);
+    INFO(run.output);
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find(habit.says) != std::string::npos);
+  }
+  CHECK_FALSE(fs::exists(folder / "x.png"));
+  // The forms that are ours still work.
+  const Run ours = runHeadlight("render builtin:cornell --ssgi=off --width 16 --height 16 --quiet --out " +
+                                quote((folder / "x").string()));
+  INFO(ours.output);
+  CHECK(ours.exitCode == 0);
   fs::remove_all(folder);
 }
 
@@ -264,9 +294,10 @@ TEST_CASE("bench --no-reference times both fullscreen forms with GPU columns, an
 
 TEST_CASE("bench sweeping ssgi=on,off measures no SSGI as open and unlit" * doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("bench-ssgi-off") / "out";
-  const Run run = runHeadlight("bench builtin:cornell --resolutions 32x24 --sweep ssgi=on,off --repetitions 1 "
-                               "--warmup 0 --reference-samples 16 --no-chart --quiet --out " +
-                               quote(out.string()));
+  const Run run = runHeadlight(
+      "bench builtin:cornell --resolutions 32x24 --sweep ssgi=on,off --repetitions 1 "
+      "--warmup 0 --reference-samples 16 --no-chart --quiet --out " +
+      quote(out.string()));
   INFO(run.output);
   REQUIRE(run.exitCode == 0);
   const auto rows = readBenchCsv(out / "bench.csv");
@@ -334,8 +365,9 @@ TEST_CASE("--version, --help and a usage error do not load OpenImageIO; a render
 TEST_CASE("a missing image module is exit 1 naming the path and the remedy, and no output") {
   const fs::path folder = freshFolder("no-module");
   const std::string missing = (folder / "nowhere" / "libheadlight-image-io.so").string();
-  const Run run = headlight::test::runCommand("HEADLIGHT_IMAGE_MODULE=" + quote(missing) + " " + quote(HEADLIGHT_EXE) +
-                                              " render --width 16 --height 16 --out " + quote((folder / "out").string()));
+  const Run run =
+      headlight::test::runCommand("HEADLIGHT_IMAGE_MODULE=" + quote(missing) + " " + quote(HEADLIGHT_EXE) +
+                                  " render --width 16 --height 16 --out " + quote((folder / "out").string()));
   INFO(run.output);
   CHECK(run.exitCode == 1);
   CHECK(run.output.find(missing) != std::string::npos);

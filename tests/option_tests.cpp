@@ -137,7 +137,7 @@ TEST_CASE("parser rules hold for every row: ranges, auto, on/off, unknown names"
 // The library's messages name settings, never flags; Error::settings() lists
 // them, and the CLI words them as flags (commandLineMessage).
 static std::string messageOf(const std::function<void()>& call, std::vector<std::string>* settings = nullptr,
-                      std::string* commandLine = nullptr) {
+                             std::string* commandLine = nullptr) {
   try {
     call();
   } catch (const Error& error) {
@@ -176,8 +176,8 @@ TEST_CASE("validate() reads the table's ranges; the rules between settings stay"
 TEST_CASE("commandLineMessage words only the settings an error names, and only where they stand alone") {
   CHECK(commandLineMessage(SettingsError("camera 3: a/camera.gltf has 1 camera(s)", {"camera"})) ==
         "--camera 3: a/camera.gltf has 1 camera(s)");
-  CHECK(commandLineMessage(LimitError("x.gltf: 9 MiB, more than max-memory allows (8 MiB); raise max-memory",
-                                      {"max-memory"})) ==
+  CHECK(commandLineMessage(
+            LimitError("x.gltf: 9 MiB, more than max-memory allows (8 MiB); raise max-memory", {"max-memory"})) ==
         "x.gltf: 9 MiB, more than --max-memory allows (8 MiB); raise --max-memory");
   CHECK(commandLineMessage(SettingsError("width 3: too small")) == "width 3: too small");  // names nothing
   CHECK(commandLineMessage(std::runtime_error("camera 3")) == "camera 3");
@@ -198,7 +198,8 @@ TEST_CASE("bench's default sweep measures every method, the default (bitmask) am
   // Bitmask over slices x steps x radii x resolutions; sample counts do not apply to it.
   CHECK(perMethod[SsgiMethod::Bitmask] == 3 * 2 * 3 * 2);
   for (const cli::BenchConfig& config : configs)
-    if (config.settings.ssgi.method == SsgiMethod::Bitmask) CHECK(config.label.find("ssgi-samples") == std::string::npos);
+    if (config.settings.ssgi.method == SsgiMethod::Bitmask)
+      CHECK(config.label.find("ssgi-samples") == std::string::npos);
 }
 
 TEST_CASE("bench sweeps any setting row; the product skips what the settings refuse") {
@@ -326,8 +327,8 @@ TEST_CASE("render, reference, bench and tune refuse a scene over a limit or with
            R"("bufferViews":[{"buffer":0,"byteLength":72}],"buffers":[{"byteLength":72,"uri":")" +
            uri + R"("}]})";
   };
-  const std::string inside = folder.write("assets/two.gltf", gltf("data:application/octet-stream;base64," +
-                                                                     test::base64(bytes))).string();
+  const std::string inside =
+      folder.write("assets/two.gltf", gltf("data:application/octet-stream;base64," + test::base64(bytes))).string();
   const std::string outside = folder.write("assets/outside.gltf", gltf("../outside.bin")).string();
   const std::string out = test::shellQuote((folder.path() / "out").string());
 

@@ -14,9 +14,9 @@
 
 #include "headlight/error.hpp"
 #include "headlight/reference.hpp"
-#include "headlight/targets.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/targets.hpp"
 #include "progress.hpp"
 #include "tooling/bench.hpp"
 
@@ -59,11 +59,10 @@ std::vector<Option<BenchCommand>> benchOptions() {
                                    if (c.resolutions.empty())
                                      throw SettingsError("--resolutions: expected WxH,..., got an empty list");
                                  }));
-  for (auto& row :
-       measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
-                             "hemisphere and radiance over ssgi-samples, ssgi-radius-fraction, ssgi-blur, "
-                             "ssgi-resolution; bitmask over ssgi-slices, ssgi-steps, ssgi-radius-fraction, "
-                             "ssgi-resolution)"))
+  for (auto& row : measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
+                                         "hemisphere and radiance over ssgi-samples, ssgi-radius-fraction, ssgi-blur, "
+                                         "ssgi-resolution; bitmask over ssgi-slices, ssgi-steps, ssgi-radius-fraction, "
+                                         "ssgi-resolution)"))
     rows.push_back(std::move(row));
   rows.push_back(bindOption<C>(
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},

@@ -1,7 +1,9 @@
 #include "cli_options.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <filesystem>
 #include <sstream>
 
 #include "bench_command.hpp"
@@ -168,9 +170,23 @@ std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) 
   using T = OptionType;
   using C = Command;
   return {
-      bindOption<C>(
+      actionOption<C>(
           {.name = "out", .type = T::Text, .help = "folder for the output files", .valueName = "DIR"},
-          [](auto& c) -> auto& { return c.outDir; }),
+          [](C& c, const OptionValue& v) {
+            const std::string& folder = std::get<std::string>(v);
+            // F3D's --output names an image; ours names a folder: x.png would become a folder called x.png.
+            std::string extension = std::filesystem::path(folder).extension().string();
+            for (char& letter : extension) letter = char(std::tolower(static_cast<unsigned char>(letter)));
+            for (std::string_view image : {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"})
+              if (extension == image && !std::filesystem::is_directory(folder))
+                throw SettingsError("--out " + folder +
+                                    ": --out is a folder (the images are written inside it as "
+                                    "lit.exr, preview.png, ...), and this names an image file; name a folder, e.g. "
+                                    "--out " +
+                                    std::filesystem::path(folder).replace_extension().string());
+            c.outDir = folder;
+          },
+          [](const C& c) { return OptionValue(c.outDir); }),
       actionOption<C>(
           {.name = "backend",
            .type = T::Choice,
@@ -206,9 +222,8 @@ std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) 
                       [](C& c, const OptionValue&) { c.context.errorPolicy = GlErrorPolicy::Throw; }),
       actionOption<C>({.name = "quiet", .type = T::Switch, .help = "print nothing but errors"},
                       [](C& c, const OptionValue&) { c.verbosity = Verbosity::Quiet; }),
-      actionOption<C>(
-          {.name = "verbose", .type = T::Switch, .help = verboseHelp},
-          [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
+      actionOption<C>({.name = "verbose", .type = T::Switch, .help = verboseHelp},
+                      [](C& c, const OptionValue&) { c.verbosity = Verbosity::Verbose; }),
       bindOption<C>(
           {.name = "help", .type = T::Switch, .help = "this help"}, [](auto& c) -> auto& { return c.help; }),
   };

@@ -128,7 +128,7 @@ std::string glErrorName(GLenum error) {
 
 struct Context::Impl {
   std::shared_ptr<detail::PlatformContext> platform;  // shared with tCurrentPlatform's weak pointers
-  GladGLContext gl{};  // this context's entry points
+  GladGLContext gl{};                                 // this context's entry points
   Backend backend = Backend::Auto;
   GlErrorPolicy errorPolicy = GlErrorPolicy::Throw;
   std::vector<std::string> attempts;
@@ -177,8 +177,9 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     std::string message =
         "no OpenGL 4.5 core context (backend " + std::string(backendName(options.backend)) + "); tried:";
     if (deviceAsked && !osmesaAllowed && options.backend == Backend::Auto)
-      attempts.push_back("OSMesa: not tried, a device was asked for (--device-fallback, device_fallback=True, or "
-                         "ContextOptions::deviceFallback to allow it)");
+      attempts.push_back(
+          "OSMesa: not tried, a device was asked for (--device-fallback, device_fallback=True, or "
+          "ContextOptions::deviceFallback to allow it)");
     for (const auto& attempt : attempts) message += "\n  " + attempt;
     throw ContextError(message);
   }
@@ -248,7 +249,6 @@ void Context::requireCurrent(std::string_view operation) const {
                        ") is not current on this thread; call Context::makeCurrent() on this thread first "
                        "(a context is current on one thread at a time)");
 }
-
 
 void Context::checkErrors(std::string_view operation) {
   requireCurrent(operation);

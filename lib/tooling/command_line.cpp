@@ -1,6 +1,7 @@
 #include "tooling/command_line.hpp"
 
 #include <string_view>
+#include <utility>
 
 #include "settings/option_binding.hpp"
 
@@ -50,6 +51,28 @@ bool splitFlag(const std::string& arg, std::string& name, std::optional<std::str
   name = arg.substr(2, equals == std::string::npos ? std::string::npos : equals - 2);
   if (equals != std::string::npos) inlineValue = arg.substr(equals + 1);
   return true;
+}
+
+std::string_view foreignFlagHint(std::string_view flagName) {
+  // F3D's flags (and the like) that have a headlight answer.
+  static constexpr std::pair<std::string_view, std::string_view> kHints[] = {
+      {"output", "headlight writes a folder of images: --out DIR (lit.exr, preview.png, ... inside it)"},
+      {"resolution", "use --width W --height H"},
+      {"hdri", "use --environment FILE (an equirectangular .hdr or .exr)"},
+      {"hdri-file", "use --environment FILE (an equirectangular .hdr or .exr)"},
+      {"ssao", "SSGI (its ambient occlusion included) is on by default; --no-ssgi turns it off"},
+      {"fxaa", "headlight has no anti-aliasing yet"},
+      {"camera-position", "an explicit camera is a job file's eye, target, up and fov (docs/BATCH.md)"},
+  };
+  for (const auto& [name, hint] : kHints)
+    if (name == flagName) return hint;
+  return {};
+}
+
+bool isBoolWord(std::string_view word) {
+  for (std::string_view value : {"on", "off", "true", "false", "yes", "no", "1", "0"})
+    if (word == value) return true;
+  return false;
 }
 
 std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& defaultValue) {

@@ -30,6 +30,13 @@ FlagMatch matchFlag(const OptionSpec& spec, std::string_view flagName);
 // Splits "--name=value" into name and value; false if `arg` is not a long flag.
 bool splitFlag(const std::string& arg, std::string& name, std::optional<std::string>& inlineValue);
 std::string helpLine(const OptionSpec& spec, const std::optional<OptionValue>& defaultValue);
+// A flag of another tool (F3D's: --output, --resolution, --hdri, ...) that a
+// user may type for ours: what to write instead; empty for any other name.
+std::string_view foreignFlagHint(std::string_view flagName);
+// "on", "off", "true", "false", "yes", "no", "1", "0": a Bool row's value
+// given as a separate word (--ssgi off), which would otherwise be taken for
+// a scene.
+bool isBoolWord(std::string_view word);
 }  // namespace detail
 
 // Sets a row from the command line: `text` parsed, or without text a
@@ -68,12 +75,22 @@ std::vector<std::string> parseCommandLine(const std::vector<std::string>& args, 
         found = &option;
         break;
       }
-    if (!found)
-      throw SettingsError("unknown option '--" + name + "' (see headlight " + std::string(command) + " --help)");
+    if (!found) {
+      const std::string_view hint = detail::foreignFlagHint(name);
+      throw SettingsError("unknown option '--" + name + "'" + (hint.empty() ? "" : ": " + std::string(hint)) +
+                          " (see headlight " + std::string(command) + " --help)");
+    }
     const OptionSpec& spec = found->spec;
     if (spec.type == OptionType::Switch || spec.type == OptionType::Bool) {
       if (inlineValue && (spec.type == OptionType::Switch || match.negated))
         throw SettingsError("--" + name + " takes no value");
+      // --ssgi off (F3D's habit) would render the scene "off" with SSGI on.
+      if (!inlineValue && i + 1 < args.size() && detail::isBoolWord(args[i + 1]))
+        throw SettingsError("--" + name + " " + args[i + 1] + ": --" + name + " takes no separate value; write " +
+                            (spec.type == OptionType::Bool
+                                 ? "--" + std::string(spec.name) + " or --no-" + std::string(spec.name) + " (or --" +
+                                       name + "=" + args[i + 1] + ")"
+                                 : "--" + name + " alone"));
       setFromCommandLine(*found, target, inlineValue, !match.negated);
       continue;
     }
