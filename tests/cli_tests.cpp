@@ -200,6 +200,22 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("reference on a terminal draws its progress with the time left" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE || !fs::exists("/usr/bin/script"))) {
+  const fs::path folder = freshFolder("reference-progress");
+  // script(1) gives the command a terminal: the bar is drawn only there (a log gets nothing extra).
+  const std::string command = quote(HEADLIGHT_EXE) + " reference builtin:cornell --width 48 --height 36 " +
+                              "--reference-samples 256 --out " + quote((folder / "out").string());
+  const Run run = headlight::test::runCommand("script -qec " + quote(command) + " /dev/null");
+  INFO(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("36/36") != std::string::npos);  // every row, counted
+  CHECK(run.output.find("ETA") != std::string::npos);
+  CHECK(run.output.find("tracing 256 rays/pixel") != std::string::npos);
+  CHECK(fs::exists(folder / "out" / "lit_ref.exr"));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("bench writes a CSV whose every row has a time and an error, and a chart" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
   const fs::path out = freshFolder("bench") / "out";

@@ -152,8 +152,8 @@ TEST_CASE("without Embree, traceReference refuses and names the build option" * 
 
 // ---- The CPU texture sampler (reference/texture_sampler.hpp) ---------------------
 
-TEST_CASE("reference: an open plane is unoccluded and receives nothing" *
-          doctest::test_suite("reference") * kNeedsEmbree) {
+TEST_CASE("reference: an open plane is unoccluded and receives nothing" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   Scene scene = emptyScene();
   add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
   const Frame frame = uniformFrame(4, 4, ShadingPoint{});
@@ -172,8 +172,26 @@ TEST_CASE("reference: an open plane is unoccluded and receives nothing" *
   CHECK(result.lit.at(0, 0, 3) == 1.0f);
 }
 
-TEST_CASE("reference: alphaMode MASK cut-outs are holes to the traced rays" *
+TEST_CASE("reference: a progress callback hears the rows handed out, ending at all of them, and changes nothing" *
           doctest::test_suite("reference") * kNeedsEmbree) {
+  Scene scene = emptyScene();
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f), glm::vec3(1.0f)));
+  const Frame frame = uniformFrame(8, 6, ShadingPoint{});
+  ReferenceSettings settings = referenceSettings(64, 1.0f);
+  settings.threads = 2;
+  std::vector<std::pair<int, int>> calls;
+  const ReferenceImages reported =
+      traceReference(scene, frame, settings, [&](int started, int rows) { calls.emplace_back(started, rows); });
+  REQUIRE(!calls.empty());
+  CHECK(calls.back() == std::pair(6, 6));  // the last call: every row
+  for (std::size_t i = 1; i < calls.size(); ++i) CHECK(calls[i].first >= calls[i - 1].first);
+  for (const auto& [started, rows] : calls) CHECK((rows == 6 && started >= 0 && started <= 6));
+  // The same images as without a callback (the random streams are per pixel).
+  CHECK(reported.ao.pixels == traceReference(scene, frame, settings).ao.pixels);
+}
+
+TEST_CASE("reference: alphaMode MASK cut-outs are holes to the traced rays" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   // A shading point on a floor under a 100-wide masked roof at height 1.
   auto roofed = [](float alpha, bool halfTexture) {
     Scene scene = emptyScene();
@@ -280,8 +298,8 @@ TEST_CASE("reference: a point exactly on a crease is half occluded" * doctest::t
   }
 }
 
-TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" *
-          doctest::test_suite("reference") * kNeedsEmbree) {
+TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   // A sphere of radius r centred h above the point subtends a cone of
   // half-angle asin(r / h) around the normal, whose cosine-weighted
   // fraction of the hemisphere is sin^2 = (r / h)^2. The 128 x 64 UV sphere
@@ -310,8 +328,8 @@ TEST_CASE("reference: a sphere above a plane blocks its cosine-weighted cap" *
   CHECK(std::abs(mean(outOfRange.ao, 1) - expected) < 4.0 * 2.0 * standardError + 5e-4);  // 1024 rays: twice the SE
 }
 
-TEST_CASE("reference: error falls as one over the square root of the samples" *
-          doctest::test_suite("reference") * kNeedsEmbree) {
+TEST_CASE("reference: error falls as one over the square root of the samples" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   // RMS of AO - 0.5 over 64 pixels x 2 seeds in the corner: 16 times the
   // rays should divide it by sqrt(16) = 4. With 128 pixels the RMS itself is
   // known to about 6%, so the ratio lands within 4 +- 1 nearly always.
@@ -404,8 +422,8 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   for (int c = 0; c < 3; ++c) CHECK(unshadowed.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
 }
 
-TEST_CASE("reference: a white surface under a uniform open sky reflects the sky" *
-          doctest::test_suite("reference") * kNeedsEmbree) {
+TEST_CASE("reference: a white surface under a uniform open sky reflects the sky" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   // The furnace test: albedo 1, metallic 0, nothing blocking, constant sky
   // radiance c x intensity. Diffuse (1 - specular albedo) c plus specular
   // (specular albedo) c is c, whatever the samples' estimate of the
@@ -424,8 +442,8 @@ TEST_CASE("reference: a white surface under a uniform open sky reflects the sky"
     CHECK(result.lit.at(0, 0, c) == doctest::Approx(2.0f * scene.sky.zenith[c]).epsilon(1e-4));
 }
 
-TEST_CASE("reference: background pixels show the sky through the pixel" *
-          doctest::test_suite("reference") * kNeedsEmbree) {
+TEST_CASE("reference: background pixels show the sky through the pixel" * doctest::test_suite("reference") *
+          kNeedsEmbree) {
   // Two rows, camera looking down -Z: the top row looks up, the bottom one
   // down, by half the vertical half-angle (rows are top first, as in Frame).
   Scene scene = emptyScene();

@@ -18,6 +18,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
+#include "progress.hpp"
 #include "tune_command.hpp"
 
 namespace {
@@ -69,8 +70,8 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
-  Scene scene = loadCommandScene(command.scene, command.sceneLoad, command.limits,
-                                 command.verbosity == cli::Verbosity::Quiet);
+  Scene scene =
+      loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == cli::Verbosity::Quiet);
   Context context(command.context);
   if (command.verbosity == cli::Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);
@@ -79,7 +80,13 @@ int runReference(const std::vector<std::string>& args) {
   const Frame frame = renderer.render(command.settings);
   ReferenceSettings settings = command.reference;
   settings.radius = *frame.settings.ssgi.radius;
-  const ReferenceImages reference = traceReference(renderer.scene(), frame, settings);
+  // Minutes at 640x480 and 4096 rays: a bar with the time left (on a terminal; issue 30).
+  cli::Progress progress(std::size_t(frame.position.height), command.verbosity != cli::Verbosity::Quiet, "rows");
+  const ReferenceImages reference = traceReference(renderer.scene(), frame, settings, [&](int rowsStarted, int rows) {
+    progress.update(std::size_t(rowsStarted), "tracing " + std::to_string(settings.samplesPerPixel) + " rays/pixel, " +
+                                                  std::to_string(rows) + " rows");
+  });
+  progress.finish();
   const ExrAttributes metadata{
       {"headlight:reference:samplesPerPixel", std::to_string(reference.samplesPerPixel)},
       {"headlight:reference:radiusWorld", std::to_string(settings.radius)},

@@ -49,7 +49,8 @@ std::span<const Option<ReferenceSettings>> referenceOptions() {
 
 bool referenceAvailable() { return false; }
 
-ReferenceImages traceReference(const Scene&, const Frame&, const ReferenceSettings&) {
+ReferenceImages traceReference(const Scene&, const Frame&, const ReferenceSettings&,
+                               const std::function<void(int, int)>&) {
   throw Error("headlight was built without Embree (meson -Dembree=enabled)");
 }
 
@@ -129,7 +130,8 @@ float rayEpsilon(const Scene& scene) {
 
 bool referenceAvailable() { return true; }
 
-ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings) {
+ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings,
+                               const std::function<void(int, int)>& progress) {
   validate(frame, settings);
   const auto start = std::chrono::steady_clock::now();
   const int width = frame.position.width, height = frame.position.height;
@@ -155,22 +157,22 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
   if (scene.environment) {
     environment::EquirectImage map{scene.environment->width, scene.environment->height, scene.environment->rgb};
     const float turn = lighting.environmentRotation * 3.14159265358979f / 180.0f;
-    environmentLight.emplace(EnvironmentLight{map, environment::EnvironmentSampler(map), std::cos(turn),
-                                              std::sin(turn), lighting.environmentBackground});
+    environmentLight.emplace(EnvironmentLight{map, environment::EnvironmentSampler(map), std::cos(turn), std::sin(turn),
+                                              lighting.environmentBackground});
   }
-  const TraceInputs inputs{scene,
-                           frame,
-                           settings,
-                           traced.scene.get(),
-                           traced.hasBlended ? traced.blended.get() : nullptr,
-                           traced.instances,
-                           rayEpsilon(scene),
-                           environmentLight ? lighting.environmentIntensity
-                                            : lighting.skyIntensity.value_or(scene.sky.intensity),
-                           std::max(kMinSpecularSamples, settings.samplesPerPixel / 4),
-                           environmentLight ? &*environmentLight : nullptr,
-                           std::any_of(scene.materials.begin(), scene.materials.end(),
-                                       [](const Material& material) { return material.transmissive(); })};
+  const TraceInputs inputs{
+      scene,
+      frame,
+      settings,
+      traced.scene.get(),
+      traced.hasBlended ? traced.blended.get() : nullptr,
+      traced.instances,
+      rayEpsilon(scene),
+      environmentLight ? lighting.environmentIntensity : lighting.skyIntensity.value_or(scene.sky.intensity),
+      std::max(kMinSpecularSamples, settings.samplesPerPixel / 4),
+      environmentLight ? &*environmentLight : nullptr,
+      std::any_of(scene.materials.begin(), scene.materials.end(),
+                  [](const Material& material) { return material.transmissive(); })};
   const Outputs outputs{images, aoStandardError, indirectStandardError};
 
   // Rows handed out one at a time: a row's cost varies with what it sees.
@@ -187,9 +189,25 @@ ReferenceImages traceReference(const Scene& scene, const Frame& frame, const Ref
     }
   };
   std::vector<std::thread> workers;
-  for (int i = 1; i < threads; ++i) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
+  if (!progress) {
+    for (int i = 1; i < threads; ++i) workers.emplace_back(work);
+    work();
+    for (std::thread& worker : workers) worker.join();
+  } else {
+    // Every thread a worker; this one reports the rows handed out until they all are.
+    std::atomic<int> running{threads};
+    for (int i = 0; i < threads; ++i)
+      workers.emplace_back([&] {
+        work();
+        --running;
+      });
+    while (running > 0) {
+      progress(std::min(int(nextRow), height), height);
+      for (int tick = 0; tick < 20 && running > 0; ++tick) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    for (std::thread& worker : workers) worker.join();
+    if (!failure) progress(height, height);
+  }
   if (failure) std::rethrow_exception(failure);
 
   // Reduced in pixel order, so the means are the same for any thread count.

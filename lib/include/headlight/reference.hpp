@@ -3,6 +3,7 @@
 // pixel-aligned with a rendered Frame: the shading points are the G-buffer's
 // positions and normals, so differences are the method's, not the
 // rasteriser's. docs/ACCURACY.md defines every quantity with formulas.
+#include <functional>
 #include <span>
 #include <string>
 
@@ -58,6 +59,10 @@ bool referenceAvailable();
 // the scene the frame was rendered from as the renderer holds it
 // (Renderer::scene(), which includes the default key light if it added one).
 // Throws SettingsError for bad settings, Error if Embree is missing or fails.
-ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings);
+// `progress`, if given, is called on the calling thread about five times a
+// second and once at the end with (rows started, rows): a 640x480 trace at
+// 4096 rays takes minutes (`headlight reference` draws it as a bar with ETA).
+ReferenceImages traceReference(const Scene& scene, const Frame& frame, const ReferenceSettings& settings,
+                               const std::function<void(int rowsStarted, int rows)>& progress = {});
 
 }  // namespace HEADLIGHT_PUBLIC
