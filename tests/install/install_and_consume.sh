@@ -7,7 +7,8 @@
 #     if any names an internal function or type (the CLI parser, bench rows,
 #     test hooks, GPU formats, locks);
 #  2. builds examples/embed.cpp with `pkg-config --cflags --libs headlight`
-#     and runs it (it renders builtin:cornell into memory and checks a pixel);
+#     and runs it (it renders builtin:cornell, then a textured glTF file from
+#     ../shared/gltf-conformance, into memory and checks their pixels);
 #  3. imports the Python module; 4. renders and diffs with the installed CLI.
 # Usage: install_and_consume.sh BUILD_DIR SOURCE_DIR PREFIX LIBDIR CXX...
 set -eu
@@ -53,9 +54,19 @@ if grep -n -w -E "$internal" "$include"/headlight/*.hpp || grep -n -F 'see headl
 fi
 echo "no public header names the CLI parser, bench rows, test hooks, GPU formats or locks"
 
-# 2. The example, built and run against the installed library.
+# 2. The example, built and run against the installed library: the built-in
+# scene, then a textured glTF file (a consumer once failed on any file:
+# libheadlight.so listed libdraco, which carries a tinygltf of its own,
+# before libtinygltf). The file is a shared conformance model; without
+# ../shared the case says it is skipped.
 "$@" -std=c++20 "$source/examples/embed.cpp" $flags -o "$dest/embed"
 LD_LIBRARY_PATH="$dest$libdir" "$dest/embed"
+model="$source/../shared/gltf-conformance/NormalTangentTest/glTF/NormalTangentTest.gltf"
+if [ -f "$model" ]; then
+  LD_LIBRARY_PATH="$dest$libdir" "$dest/embed" auto "$model"
+else
+  echo "SKIPPED: the glTF consumer case ($model is absent)"
+fi
 
 # 3. The Python module, where one was built: imported from where it was
 # installed, by the interpreter it was built for.
