@@ -132,6 +132,33 @@ TEST_CASE("--device N that does not exist is exit 1 naming the devices, even wit
   fs::remove_all(folder);
 }
 
+TEST_CASE("render --eye --target --up --fov places the camera; bad combinations are usage errors") {
+  const fs::path folder = freshFolder("cli-camera");
+  // The Cornell box's back wall is the plane z = -1: from (0, 1, 5) looking along -Z, a pixel above the
+  // boxes that sees it has depth 6 scene units (depth.Z is view-space depth, the same for every such pixel).
+  const Run run = runHeadlight(
+      "render builtin:cornell --eye 0,1,5 --target 0,1,0 --up 0,1,0 --fov 30 --width 33 "
+      "--height 33 --targets depth --quiet --out " +
+      quote((folder / "out").string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  OIIO::ImageBuf depth((folder / "out" / "depth.exr").string());
+  REQUIRE(depth.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+  float wall = 0.0f;
+  depth.getpixel(16, 8, &wall, 1);  // row 8 of 33 at 30 degrees: the back wall between the box tops and the ceiling
+  CHECK(wall == doctest::Approx(6.0f).epsilon(1e-3));
+  for (const std::string args : {"--eye 0,1,5", "--target 0,0,0", "--eye 0,1,5 --target 0,1,5", "--fov 30",
+                                 "--eye 0,1,5 --target 0,1,0 --up 0,0,-1", "--eye 1,2 --target 0,0,0",
+                                 "--eye 0,1,5 --target 0,1,0 --views 4 --orbit"}) {
+    const Run bad = runHeadlight("render builtin:cornell " + args + " --out " + quote((folder / "bad").string()));
+    INFO(args);
+    INFO(bad.output);
+    CHECK(bad.exitCode == 2);
+  }
+  CHECK_FALSE(fs::exists(folder / "bad"));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("F3D's habits are usage errors that name headlight's flag, and nothing is rendered") {
   const fs::path folder = freshFolder("f3d-habits");
   struct Habit {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -46,10 +47,49 @@ void parseShard(RenderCommand& c, const std::string& value) {
     throw SettingsError("--shard " + value + ": expected 0 <= I < N");
 }
 
+// "X,Y,Z" (three finite numbers) for --eye, --target and --up.
+glm::vec3 parsePoint(const std::string& flag, const std::string& value) {
+  glm::vec3 point;
+  std::size_t at = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = i < 2 ? value.find(',', at) : value.size();
+    const std::string part = value.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+    float number = 0.0f;
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), number);
+    if (comma == std::string::npos || part.empty() || error != std::errc() || end != part.data() + part.size() ||
+        !std::isfinite(number))
+      throw SettingsError("--" + flag + ": expected X,Y,Z (three finite numbers), got '" + value + "'");
+    point[i] = number;
+    at = comma + 1;
+  }
+  return point;
+}
+
 std::vector<Option<RenderCommand>> batchOptions() {
   using T = OptionType;
   using C = RenderCommand;
   return {
+      actionOption<C>({.name = "eye",
+                       .type = T::Text,
+                       .help = "an explicit camera's position (with --target; as a job file's \"eye\")",
+                       .valueName = "X,Y,Z"},
+                      [](C& c, const OptionValue& v) { c.eye = parsePoint("eye", text(v)); }),
+      actionOption<C>({.name = "target",
+                       .type = T::Text,
+                       .help = "the point an explicit camera looks at (with --eye)",
+                       .valueName = "X,Y,Z"},
+                      [](C& c, const OptionValue& v) { c.target = parsePoint("target", text(v)); }),
+      actionOption<C>({.name = "up",
+                       .type = T::Text,
+                       .help = "an explicit camera's up direction (default 0,1,0)",
+                       .valueName = "X,Y,Z"},
+                      [](C& c, const OptionValue& v) { c.up = parsePoint("up", text(v)); }),
+      actionOption<C>({.name = "fov",
+                       .type = T::Float,
+                       .help = "an explicit camera's vertical field of view in degrees (default 40)",
+                       .minimum = 0.01,
+                       .maximum = 179.99},
+                      [](C& c, const OptionValue& v) { c.fovDegrees = float(std::get<double>(v)); }),
       actionOption<C>({.name = "jobs",
                        .type = T::Text,
                        .help = "a job file: JSON Lines, one job per line (docs/BATCH.md); repeatable",
@@ -252,6 +292,21 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
                         ": needs --orbit (the only way to place several views)");
   if (command.orbit && command.views == 0) throw SettingsError("--orbit: needs --views N");
   if (command.orbit && command.camerasAll) throw SettingsError("--orbit and --cameras all: choose one");
+  if (command.eye.has_value() != command.target.has_value())
+    throw SettingsError(command.eye ? "--eye: needs --target X,Y,Z" : "--target: needs --eye X,Y,Z");
+  if (!command.eye && (command.up || command.fovDegrees))
+    throw SettingsError("--up and --fov: need --eye and --target");
+  if (command.eye) {
+    if (command.orbit || command.camerasAll || command.settings.camera)
+      throw SettingsError("--eye/--target and " +
+                          std::string(command.orbit        ? "--orbit"
+                                      : command.camerasAll ? "--cameras all"
+                                                           : "--camera") +
+                          ": choose one way to place the camera");
+    if (*command.eye == *command.target) throw SettingsError("--eye and --target are the same point");
+    if (glm::length(glm::cross(*command.target - *command.eye, command.up.value_or(glm::vec3(0, 1, 0)))) <= 0.0f)
+      throw SettingsError("--up is parallel to the view direction (from --eye to --target)");
+  }
   if (command.shardIndexOmitted && command.shardIndexEnv.empty())
     throw SettingsError("--shard /" + std::to_string(command.shardCount) +
                         ": no shard index; give --shard I/N or --shard-index-env VAR");

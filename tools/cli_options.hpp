@@ -5,6 +5,10 @@
 // to write, which backend, how chatty). Every row goes through the one
 // parser (parseCommandLine) and one help writer (optionHelp) of the support
 // library (lib/tooling/command_line.hpp).
+#include <optional>
+
+#include <glm/glm.hpp>
+
 #include <string>
 #include <vector>
 
@@ -29,7 +33,7 @@ enum class CommandKind { Render, Reference };
 struct RenderCommand {
   std::string scene = "builtin:cornell";  // file path or builtin:<name>
   std::string outDir = "out";
-  ContextOptions context;  // backend, --device; error policy from --strict
+  ContextOptions context;      // backend, --device; error policy from --strict
   SceneLoadOptions sceneLoad;  // --allow-external-paths, --strict-gltf, --scene
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
@@ -43,15 +47,19 @@ struct RenderCommand {
   int views = 0;                      // --views N: N views per scene (with --orbit)
   bool orbit = false;                 // --orbit: a turntable around the scene's bounds
   bool camerasAll = false;            // --cameras all: one job per camera of the scene
-  int shardIndex = 0;                 // --shard I/N: jobs k with k % N == I
+  // --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov DEG]: an explicit camera,
+  // as a job file's eye/target/up/fov (docs/BATCH.md).
+  std::optional<glm::vec3> eye, target, up;
+  std::optional<float> fovDegrees;
+  int shardIndex = 0;  // --shard I/N: jobs k with k % N == I
   int shardCount = 1;
   bool shardIndexOmitted = false;  // --shard /N: I must come from --shard-index-env
   std::string shardIndexEnv;       // --shard-index-env VAR: I read from $VAR when the batch starts
   bool wait = false;               // --wait: wait for another render's lock on an output folder
   bool force = false;              // --force: replace files with a target's name no Headlight set listed
-  bool resume = false;        // skip jobs whose complete frame.json records the same job hash
-  OutputOptions output;       // --targets, --exr-compression, --clamp-nonfinite
-  bool json = false;          // --json: one JSON summary on stdout instead of the summary lines
+  bool resume = false;             // skip jobs whose complete frame.json records the same job hash
+  OutputOptions output;            // --targets, --exr-compression, --clamp-nonfinite
+  bool json = false;               // --json: one JSON summary on stdout instead of the summary lines
 };
 
 // What --verbose adds, per command (the help says what that command prints).

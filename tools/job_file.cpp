@@ -14,10 +14,10 @@
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
-#include "output/fingerprint.hpp"
-#include "tooling/command_line.hpp"
 #include "output/bounded_read.hpp"
+#include "output/fingerprint.hpp"
 #include "scene/gltf_prescan.hpp"
+#include "tooling/command_line.hpp"
 
 namespace headlight::cli {
 namespace {
@@ -87,8 +87,8 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
                         detail::byteSizeText(detail::kMaxJobLineBytes) + " a job line may have");
   const json j = parseBounded(line);
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
-  static const char* kKeys[] = {"scene", "out", "camera", "eye",           "target",
-                                "up",    "fov", "size",   "settings_file", "settings", "material_variant"};
+  static const char* kKeys[] = {"scene", "out",  "camera",        "eye",      "target",          "up",
+                                "fov",   "size", "settings_file", "settings", "material_variant"};
   for (const auto& item : j.items()) {
     const std::string& key = item.key();  // a name, not a structured binding: lambdas capture it (clang 14)
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
@@ -234,6 +234,13 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
     base.scene = scene;
     base.settings = command.settings;
     base.origin = "command line: " + scene;
+    if (command.eye) {  // checked by parseRenderArgs: with --target, not with --orbit or --cameras
+      base.camera.kind = JobCamera::Kind::LookAt;
+      base.camera.eye = *command.eye;
+      base.camera.target = *command.target;
+      if (command.up) base.camera.up = *command.up;
+      if (command.fovDegrees) base.camera.fovDegrees = *command.fovDegrees;
+    }
     if (command.orbit) {
       for (int v = 0; v < command.views; ++v) {
         Job job = base;
