@@ -25,10 +25,12 @@
 #include "headlight/error.hpp"
 #include "headlight/finite.hpp"
 #include "headlight/output.hpp"
+#include "headlight/scene_loader.hpp"
 #include "output/atomic_file.hpp"
 #include "output/bounded_read.hpp"
 #include "output/fingerprint.hpp"
 #include "output/frame_set.hpp"
+#include "support/gl.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
 
@@ -559,4 +561,41 @@ TEST_CASE("a NUL in a settings file is named, not the end of the message") {
   RenderSettings settings;
   CHECK_THROWS_WITH_AS(applySettingsFileText(settings, std::string("ssgi-slices = 3\nssgi-st\0eps = 4\n", 32), "x"),
                        doctest::Contains("x:2: holds a NUL byte"), SettingsError);
+}
+
+TEST_CASE("frame.json's camera projects every geometry pixel's position onto that pixel, at its depth") {
+  const Frame frame = test::renderFresh(loadScene("builtin:cornell"), test::smallSettings(40, 30));
+  const test::TempFolder folder("camera-json");
+  writeFrame(frame, folder.path() / "out");
+  std::ifstream manifest(folder.path() / "out" / "frame.json");
+  const nlohmann::json camera = nlohmann::json::parse(manifest)["camera"];
+  REQUIRE(camera.contains("intrinsics"));
+  CHECK(camera["width"] == 40);
+  CHECK(camera["height"] == 30);
+  CHECK(camera["orthographic"] == false);
+  const auto worldToCamera = camera["world_to_camera"], cameraToWorld = camera["camera_to_world"];
+  const auto k = camera["intrinsics"];
+  int checked = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      if (frame.position.at(x, y, 3) != 1.0f) continue;
+      const double world[4] = {frame.position.at(x, y, 0), frame.position.at(x, y, 1), frame.position.at(x, y, 2), 1};
+      double cam[3] = {0, 0, 0};
+      for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 4; ++col) cam[row] += worldToCamera[row][col].get<double>() * world[col];
+      // OpenCV's axes: x right, y down, looking along +Z (the OpenGL camera's Y and Z negated).
+      const double zCv = -cam[2];
+      const double u = k[0][0].get<double>() * cam[0] / zCv + k[0][2].get<double>();
+      const double v = k[1][1].get<double>() * -cam[1] / zCv + k[1][2].get<double>();
+      CAPTURE(x);
+      CAPTURE(y);
+      CHECK(std::abs(u - (x + 0.5)) < 2e-3);  // pixel units
+      CHECK(std::abs(v - (y + 0.5)) < 2e-3);
+      CHECK(frame.depth.at(x, y, 0) == doctest::Approx(zCv).epsilon(1e-4));  // depth.Z: along the axis
+      ++checked;
+    }
+  CHECK(checked > 600);  // 960 of the 1200 pixels are the box
+  // camera_to_world is the inverse: it takes the camera's origin to the recorded position.
+  for (int row = 0; row < 3; ++row)
+    CHECK(cameraToWorld[row][3].get<double>() == doctest::Approx(camera["position"][row].get<double>()).epsilon(1e-5));
 }

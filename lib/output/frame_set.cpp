@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include "headlight/error.hpp"
@@ -49,6 +51,47 @@ json readManifestJson(const fs::path& path) {
   }
 }
 
+// A 4x4 matrix as rows (row-major, as a reader writes M[row][col]).
+json matrixRows(const glm::mat4& columnMajor) {
+  json rows = json::array();
+  for (int row = 0; row < 4; ++row)
+    rows.push_back({columnMajor[0][row], columnMajor[1][row], columnMajor[2][row], columnMajor[3][row]});
+  return rows;
+}
+
+// What a dataset needs of the camera (issue 30): the matrices, the lens as
+// pixel intrinsics and fields of view, the planes and the depth convention.
+json cameraJson(const Frame& frame) {
+  const CameraView& view = frame.view;
+  const int width = frame.settings.width, height = frame.settings.height;
+  json camera;
+  camera["convention"] = "OpenGL camera: right-handed, looks down -Z, +Y up; world +Y up";
+  camera["world_to_camera"] = matrixRows(view.view);
+  camera["camera_to_world"] = matrixRows(glm::inverse(view.view));
+  camera["projection"] = matrixRows(view.projection);  // camera -> clip, depth -1..1
+  camera["position"] = {view.position.x, view.position.y, view.position.z};
+  camera["width"] = width;
+  camera["height"] = height;
+  camera["near"] = view.nearPlane;
+  camera["far"] = view.farPlane;
+  camera["orthographic"] = view.orthographic;
+  if (!view.orthographic) {
+    // Pixel intrinsics in OpenCV's convention (x right, y down, the camera looking along +Z: the OpenGL
+    // camera with Y and Z negated); pixel (0, 0)'s centre is at (0.5, 0.5).
+    const double fx = double(view.projection[0][0]) * width / 2.0, fy = double(view.projection[1][1]) * height / 2.0;
+    camera["intrinsics"] = {{fx, 0.0, width / 2.0}, {0.0, fy, height / 2.0}, {0.0, 0.0, 1.0}};
+    camera["yfov_degrees"] = glm::degrees(2.0 * std::atan(1.0 / double(view.projection[1][1])));
+    camera["xfov_degrees"] = glm::degrees(2.0 * std::atan(1.0 / double(view.projection[0][0])));
+  } else {
+    camera["view_height"] = 2.0 / double(view.projection[1][1]);  // scene units the image spans vertically
+    camera["view_width"] = 2.0 / double(view.projection[0][0]);
+  }
+  camera["depth"] =
+      "depth.exr's depth.Z is view-space depth: the distance along the camera's viewing axis (-Z), in scene units, "
+      "not the distance to the eye; background pixels hold the far plane";
+  return camera;
+}
+
 json manifestJson(const Frame& frame, const OutputOptions& options, bool complete) {
   const std::map<std::string, std::string> settings = settingsAsText(frame.settings);
   std::string settingsText;
@@ -69,6 +112,7 @@ json manifestJson(const Frame& frame, const OutputOptions& options, bool complet
   for (const PassTime& pass : frame.timings)
     if (!pass.form.empty()) forms[pass.pass] = pass.form;
   j["forms"] = forms;
+  j["camera"] = cameraJson(frame);
   j["files"] = json::array();
   return j;
 }
