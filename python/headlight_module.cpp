@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "headlight/camera.hpp"
@@ -245,7 +246,7 @@ RenderSettings settingsFromKwargs(const py::kwargs& kwargs) {
   const auto rows = settingOptions();
   for (const auto& [key, value] : kwargs) {
     std::string name = key.cast<std::string>();
-    if (name == "preset" || isCameraKeyword(name)) continue;
+    if (name == "preset" || name == "targets" || isCameraKeyword(name)) continue;
     for (char& c : name)
       if (c == '_') c = '-';
     const Option<RenderSettings>* row = nullptr;
@@ -255,6 +256,7 @@ RenderSettings settingsFromKwargs(const py::kwargs& kwargs) {
       std::string known = "preset";
       for (const auto& option : rows) known += ", " + pythonName(option.spec.name);
       for (std::string_view keyword : kCameraKeywords) (known += ", ") += keyword;
+      known += ", targets";
       throw SettingsError("unknown setting '" + key.cast<std::string>() + "' (known: " + known + ")");
     }
     row->set(settings, parseOptionValue(row->spec, optionText(row->spec, value)));
@@ -556,18 +558,75 @@ PYBIND11_MODULE(headlight, m) {
           [](PyRenderer& self, const py::kwargs& kwargs) {
             const std::optional<Camera> camera = cameraFromKwargs(kwargs);
             RenderSettings settings = settingsFromKwargs(kwargs);
+            // targets=['depth', 'lit']: only these are read back, and passes only other targets need are skipped.
+            std::vector<std::string> targets;
+            if (kwargs.contains("targets") && !kwargs["targets"].is_none()) {
+              const py::object given = kwargs["targets"];
+              if (py::isinstance<py::str>(given) || !py::isinstance<py::sequence>(given))
+                badArgument("targets", "a list of target names", given);
+              for (const py::handle& item : given) {
+                if (!py::isinstance<py::str>(item)) badArgument("targets", "a list of target names", given);
+                const std::string name = item.cast<std::string>();
+                if (findFrameTarget(name) == nullptr) {
+                  std::string known;
+                  for (const FrameTarget& target : frameTargets())
+                    if (target.image) (known += known.empty() ? "" : ", ") += target.name;
+                  throw SettingsError("targets: unknown target '" + name + "' (known: " + known + ")", {"targets"});
+                }
+                targets.push_back(name);
+              }
+            }
             py::gil_scoped_release release;
-            return self.onThisThread(
-                [&] { return std::make_shared<Frame>(self.renderer->render(settings, camera ? &*camera : nullptr)); });
+            return self.onThisThread([&] {
+              return std::make_shared<Frame>(self.renderer->render(settings, camera ? &*camera : nullptr, targets));
+            });
           },
           "render(width=640, height=480, **settings, eye=None, target=None, up=(0, 1, 0), fov=40, ortho_size=None, "
-          "view=None) -> Frame. Settings are settingOptions() rows ('-' -> '_'), e.g. ssgi_samples=16, "
+          "view=None, targets=None) -> Frame. targets: the target names to read back (None: all; passes only "
+          "other targets need are skipped). Settings are settingOptions() rows ('-' -> '_'), e.g. ssgi_samples=16, "
           "ssgi_radius=None (auto), shadows=False, preset='fast'. An explicit camera: eye and target (and up), or "
           "view (4x4 world -> view matrix); with fov (vertical, degrees) or ortho_size (the view's height in world "
           "units, orthographic). Without one: the scene's camera (the camera setting), or one fitted to the bounds.")
       .def_property_readonly("backend",
                              [](PyRenderer& self) { return std::string(backendName(self.context->backend())); })
       .def_property_readonly("device", [](PyRenderer& self) { return self.context->description(); })
+      .def_property_readonly(
+          "bounds",
+          [](PyRenderer& self) {
+            const Bounds bounds = self.onThisThread([&] { return self.renderer->scene().worldBounds(); });
+            if (bounds.empty()) throw SettingsError("bounds: no scene (call set_scene first)");
+            return py::make_tuple(py::make_tuple(bounds.min.x, bounds.min.y, bounds.min.z),
+                                  py::make_tuple(bounds.max.x, bounds.max.y, bounds.max.z));
+          },
+          "the scene's world bounds, ((min x, y, z), (max x, y, z)): to frame a camera without a probe render")
+      .def(
+          "orbit",
+          [](PyRenderer& self, int views, int width, int height, double fov) {
+            if (views < 1) throw SettingsError("orbit: views must be at least 1, got " + std::to_string(views));
+            if (width < 1 || height < 1) throw SettingsError("orbit: width and height must be positive");
+            if (!(fov > 0.0 && fov < 180.0)) throw SettingsError("orbit: fov must be degrees in (0, 180)");
+            const Bounds bounds = self.onThisThread([&] { return self.renderer->scene().worldBounds(); });
+            if (bounds.empty()) throw SettingsError("orbit: no scene (call set_scene first)");
+            const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
+            py::list cameras;
+            for (int v = 0; v < views; ++v) {
+              // The CLI's --views N --orbit turntable (fitCamera turned about +Y).
+              const Camera camera = fitCamera(bounds, float(width) / float(height), glm::radians(float(fov)),
+                                              2.0f * glm::pi<float>() * float(v) / float(views));
+              const glm::vec3 eye(camera.worldFromCamera[3]);
+              const glm::vec3 up(camera.worldFromCamera[1]);
+              py::dict view;
+              view["eye"] = py::make_tuple(eye.x, eye.y, eye.z);
+              view["target"] = py::make_tuple(centre.x, centre.y, centre.z);
+              view["up"] = py::make_tuple(up.x, up.y, up.z);
+              view["fov"] = fov;
+              cameras.append(view);
+            }
+            return cameras;
+          },
+          py::arg("views"), py::arg("width") = 640, py::arg("height") = 480, py::arg("fov") = 40.0,
+          "orbit(views, width=640, height=480, fov=40) -> [dict(eye, target, up, fov)]: the turntable of "
+          "`headlight render --views N --orbit`, each view ready for render(**view, width=..., height=...)")
       .def_property_readonly("gl_renderer", [](PyRenderer& self) { return self.context->renderer(); });
 
   m.def(

@@ -390,3 +390,29 @@ if __name__ == "__main__":
         test()
         print("ok", name)
     print(len(tests), "passed")
+
+
+def test_targets_bounds_and_orbit():
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    # targets=: only these come back, and passes only others need are skipped.
+    depth_only = r.render(width=32, height=24, targets=["depth"])
+    assert list(depth_only) == ["depth"], list(depth_only)
+    assert "ssgi" not in depth_only.times and "composite" not in depth_only.times
+    expect(headlight.SettingsError, lambda: r.render(width=32, height=24, targets=["colour"]), "colour")
+    expect(headlight.SettingsError, lambda: r.render(width=32, height=24, targets="depth"), "targets")
+    # The scene's bounds, without a probe render: the Cornell box spans -1..1 in x and z, 0..2 in y.
+    (lo, hi) = r.bounds
+    assert all(abs(a - b) < 1e-5 for a, b in zip(lo, (-1, 0, -1))), lo
+    assert all(abs(a - b) < 1e-5 for a, b in zip(hi, (1, 2, 1))), hi
+    # The turntable of `render --views N --orbit`: each view looks at the centre from one distance.
+    views = r.orbit(4, width=32, height=24, fov=35)
+    assert len(views) == 4
+    distances = [sum((e - t) ** 2 for e, t in zip(v["eye"], v["target"])) ** 0.5 for v in views]
+    assert max(distances) - min(distances) < 1e-4 * max(distances), distances
+    assert all(v["target"] == views[0]["target"] and v["fov"] == 35 for v in views)
+    frame = r.render(width=32, height=24, **views[1])
+    assert frame["lit"].shape == (24, 32, 4)
+    expect(headlight.SettingsError, lambda: r.orbit(0), "views")
+    empty = osmesa_renderer()
+    expect(headlight.SettingsError, lambda: empty.bounds, "no scene")
