@@ -307,12 +307,17 @@ py::array_t<float> matrix(const glm::mat4& m) {
 
 // H x W x C float32 over the frame's own pixels: no copy; the array keeps
 // the frame alive through `owner`.
+// A read-only view of the frame's memory (the frame is shared: a write
+// would change what frame.write() saves): H x W x C, or H x W for a
+// one-channel target (depth).
 py::array imageArray(const ImageF& image, py::handle owner) {
-  const py::ssize_t c = image.channelCount();
-  return py::array_t<float>(
-      {py::ssize_t(image.height), py::ssize_t(image.width), c},
-      {py::ssize_t(sizeof(float)) * image.width * c, py::ssize_t(sizeof(float)) * c, py::ssize_t(sizeof(float))},
-      image.pixels.data(), owner);
+  const py::ssize_t c = image.channelCount(), h = image.height, w = image.width;
+  const py::ssize_t rowStride = py::ssize_t(sizeof(float)) * w * c, pixelStride = py::ssize_t(sizeof(float)) * c;
+  py::array array = c == 1 ? py::array_t<float>({h, w}, {rowStride, pixelStride}, image.pixels.data(), owner)
+                           : py::array_t<float>({h, w, c}, {rowStride, pixelStride, py::ssize_t(sizeof(float))},
+                                                image.pixels.data(), owner);
+  array.attr("setflags")(py::arg("write") = false);
+  return array;
 }
 
 }  // namespace

@@ -27,7 +27,9 @@ def test_render_gives_arrays_over_the_frames_memory():
     assert {"position", "normal", "albedo", "material", "depth", "lit"} <= set(targets)
     for name, array in targets.items():
         assert array.dtype == np.float32, name
-        assert array.shape == (48, 64, len(frame.channels[name])), name
+        channels = len(frame.channels[name])
+        assert array.shape == ((48, 64) if channels == 1 else (48, 64, channels)), name
+        assert not array.flags.writeable, name  # a view of the frame's memory: read-only
         assert not array.flags.owndata, name  # a view of the frame's pixels, no copy
     assert frame.channels["normal"] == ["normal.X", "normal.Y", "normal.Z"]
     lit = frame["lit"]
