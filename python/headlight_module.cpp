@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -310,6 +312,88 @@ py::array_t<float> matrix(const glm::mat4& m) {
 // A read-only view of the frame's memory (the frame is shared: a write
 // would change what frame.write() saves): H x W x C, or H x W for a
 // one-channel target (depth).
+// Frame's pickle state (multiprocessing pools return frames): every field,
+// images as bytes. Version first, so a future layout can refuse an old one.
+constexpr int kFrameStateVersion = 1;
+
+py::tuple matrixState(const glm::mat4& m) {
+  return py::make_tuple(py::bytes(reinterpret_cast<const char*>(&m[0][0]), sizeof(glm::mat4)));
+}
+
+glm::mat4 matrixFromState(const py::handle& state) {
+  const std::string bytes = state.cast<py::tuple>()[0].cast<std::string>();
+  if (bytes.size() != sizeof(glm::mat4)) throw SettingsError("Frame state: a matrix of the wrong size");
+  glm::mat4 m;
+  std::memcpy(&m[0][0], bytes.data(), sizeof(glm::mat4));
+  return m;
+}
+
+py::tuple frameState(const Frame& f) {
+  py::dict images;
+  for (const FrameTarget& target : frameTargets()) {
+    if (target.image == nullptr || (f.*target.image).empty()) continue;
+    const ImageF& image = f.*target.image;
+    images[py::str(std::string(target.name))] = py::make_tuple(
+        image.width, image.height, image.channels,
+        py::bytes(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(float)));
+  }
+  py::list timings, skipped;
+  for (const PassTime& t : f.timings) timings.append(py::make_tuple(t.pass, t.milliseconds, t.gpuMilliseconds, t.form));
+  for (const SkippedWork& s : f.skipped) skipped.append(py::make_tuple(s.work, s.reason));
+  const CameraView& v = f.view;
+  return py::make_tuple(
+      kFrameStateVersion, images, settingsAsText(f.settings),
+      py::make_tuple(matrixState(v.view), matrixState(v.projection),
+                     py::make_tuple(v.position.x, v.position.y, v.position.z), v.nearPlane, v.farPlane, v.orthographic),
+      timings, skipped, f.glRenderer, f.glVersion, f.backend, f.sceneSource, f.sceneHash, f.ignored);
+}
+
+std::shared_ptr<Frame> frameFromState(const py::tuple& state) {
+  if (state.size() != 12 || state[0].cast<int>() != kFrameStateVersion)
+    throw SettingsError("Frame state: not a headlight " + std::string(kVersion) + " frame");
+  auto f = std::make_shared<Frame>();
+  for (const auto& [name, value] : state[1].cast<py::dict>()) {
+    const FrameTarget* target = findFrameTarget(name.cast<std::string>());
+    if (target == nullptr || target->image == nullptr)
+      throw SettingsError("Frame state: unknown target " + name.cast<std::string>());
+    const py::tuple parts = value.cast<py::tuple>();
+    ImageF& image = (*f).*(target->image);
+    image.width = parts[0].cast<int>();
+    image.height = parts[1].cast<int>();
+    image.channels = parts[2].cast<std::vector<std::string>>();
+    const std::string bytes = parts[3].cast<std::string>();
+    const std::size_t count =
+        std::size_t(std::max(image.width, 0)) * std::size_t(std::max(image.height, 0)) * image.channels.size();
+    if (bytes.size() != count * sizeof(float))
+      throw SettingsError("Frame state: " + name.cast<std::string>() + "'s pixels do not fit its size");
+    image.pixels.resize(count);
+    std::memcpy(image.pixels.data(), bytes.data(), bytes.size());
+  }
+  applySettingsText(f->settings, state[2].cast<std::map<std::string, std::string>>());
+  const py::tuple view = state[3].cast<py::tuple>();
+  f->view.view = matrixFromState(view[0]);
+  f->view.projection = matrixFromState(view[1]);
+  const py::tuple position = view[2].cast<py::tuple>();
+  f->view.position = glm::vec3(position[0].cast<float>(), position[1].cast<float>(), position[2].cast<float>());
+  f->view.nearPlane = view[3].cast<float>();
+  f->view.farPlane = view[4].cast<float>();
+  f->view.orthographic = view[5].cast<bool>();
+  for (const py::handle& t : state[4].cast<py::list>()) {
+    const py::tuple time = t.cast<py::tuple>();
+    f->timings.push_back(
+        {time[0].cast<std::string>(), time[1].cast<double>(), time[2].cast<double>(), time[3].cast<std::string>()});
+  }
+  for (const py::handle& s : state[5].cast<py::list>())
+    f->skipped.push_back({s.cast<py::tuple>()[0].cast<std::string>(), s.cast<py::tuple>()[1].cast<std::string>()});
+  f->glRenderer = state[6].cast<std::string>();
+  f->glVersion = state[7].cast<std::string>();
+  f->backend = state[8].cast<std::string>();
+  f->sceneSource = state[9].cast<std::string>();
+  f->sceneHash = state[10].cast<std::string>();
+  f->ignored = state[11].cast<std::vector<std::string>>();
+  return f;
+}
+
 py::array imageArray(const ImageF& image, py::handle owner) {
   const py::ssize_t c = image.channelCount(), h = image.height, w = image.width;
   const py::ssize_t rowStride = py::ssize_t(sizeof(float)) * w * c, pixelStride = py::ssize_t(sizeof(float)) * c;
@@ -371,6 +455,9 @@ PYBIND11_MODULE(headlight, m) {
   py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame",
                                             "One render: every target as a numpy array (H x W x C float32, rows top "
                                             "first, sharing the frame's memory), the camera and the pass times.")
+      // Picklable, so a multiprocessing pool can return frames: every field, images as bytes.
+      .def(py::pickle([](const Frame& frame) { return frameState(frame); },
+                      [](const py::tuple& state) { return frameFromState(state); }))
       .def_property_readonly(
           "targets",
           [](py::object self) {

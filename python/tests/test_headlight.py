@@ -418,3 +418,25 @@ def test_targets_bounds_and_orbit():
     expect(headlight.SettingsError, lambda: r.orbit(0), "views")
     empty = osmesa_renderer()
     expect(headlight.SettingsError, lambda: empty.bounds, "no scene")
+
+
+def test_frames_pickle_for_multiprocessing():
+    import pickle
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    frame = r.render(width=32, height=24, fullscreen_form="compute")
+    copy = pickle.loads(pickle.dumps(frame))
+    assert list(copy) == list(frame)
+    for name in frame:
+        assert np.array_equal(copy[name], frame[name]), name
+        assert copy.channels[name] == frame.channels[name]
+    assert copy.settings == frame.settings and copy.forms == frame.forms and copy.times == frame.times
+    assert np.array_equal(copy.view, frame.view) and np.array_equal(copy.projection, frame.projection)
+    assert (copy.near, copy.far, copy.camera_position) == (frame.near, frame.far, frame.camera_position)
+    assert copy.gl_renderer == frame.gl_renderer and copy.scene_source == frame.scene_source
+    # A copy writes the same set as the original.
+    import tempfile, os
+    with tempfile.TemporaryDirectory() as folder:
+        written = copy.write(os.path.join(folder, "out"))
+        assert any(str(path).endswith("lit.exr") for path in written)
+    expect(headlight.SettingsError, lambda: headlight.Frame.__new__(headlight.Frame).__setstate__((99,)), "state")
