@@ -159,6 +159,48 @@ TEST_CASE("render --eye --target --up --fov places the camera; bad combinations 
   fs::remove_all(folder);
 }
 
+TEST_CASE("the thumbnailer entry's command writes a SIZE x SIZE PNG of a glTF file" *
+          doctest::skip(!fs::exists(fs::path(HEADLIGHT_SOURCE_DIR) / "../shared/gltf-conformance"))) {
+  const fs::path folder = freshFolder("thumbnailer");
+  // The command exactly as a file manager runs it: the entry's Exec line with %i, %o and %s filled in, the
+  // program found on PATH (as TryExec finds it).
+  std::ifstream entry(fs::path(HEADLIGHT_SOURCE_DIR) / "tools" / "headlight.thumbnailer");
+  std::string line, exec, mimeTypes;
+  while (std::getline(entry, line)) {
+    if (line.rfind("Exec=", 0) == 0) exec = line.substr(5);
+    if (line.rfind("MimeType=", 0) == 0) mimeTypes = line.substr(9);
+  }
+  REQUIRE(!exec.empty());
+  CHECK(mimeTypes.find("model/gltf-binary") != std::string::npos);
+  CHECK(mimeTypes.find("model/gltf+json") != std::string::npos);
+  const fs::path model =
+      fs::path(HEADLIGHT_SOURCE_DIR) / "../shared/gltf-conformance/NormalTangentTest/glTF/NormalTangentTest.gltf";
+  const fs::path png = folder / "thumbnail.png";
+  for (const auto& [code, value] :
+       {std::pair<std::string, std::string>{"%i", quote(model.string())}, {"%o", quote(png.string())}, {"%s", "128"}})
+    exec.replace(exec.find(code), 2, value);
+  const std::string path = "PATH=" + quote(fs::path(HEADLIGHT_THUMBNAILER_EXE).parent_path().string()) + ":$PATH ";
+  const Run run = headlight::test::runCommand(path + exec);
+  INFO(exec);
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  OIIO::ImageBuf thumbnail(png.string());
+  REQUIRE(thumbnail.read());
+  CHECK(thumbnail.spec().width == 128);
+  CHECK(thumbnail.spec().height == 128);
+  CHECK(thumbnail.spec().nchannels == 3);  // preview.png's 8-bit sRGB, the sky behind the model
+  const OIIO::ImageBufAlgo::PixelStats stats = OIIO::ImageBufAlgo::computePixelStats(thumbnail);
+  CHECK(stats.max[0] - stats.min[0] > 0.2f);  // a picture, not a flat fill
+  // A file it cannot read is exit 1 naming it, and no PNG.
+  const Run bad = headlight::test::runCommand(quote(HEADLIGHT_THUMBNAILER_EXE) + " /no/such.glb " +
+                                              quote((folder / "bad.png").string()) + " 128");
+  CHECK(bad.exitCode == 1);
+  CHECK(bad.output.find("/no/such.glb") != std::string::npos);
+  CHECK_FALSE(fs::exists(folder / "bad.png"));
+  CHECK(headlight::test::runCommand(quote(HEADLIGHT_THUMBNAILER_EXE) + " a b 0").exitCode == 2);
+  fs::remove_all(folder);
+}
+
 TEST_CASE("F3D's habits are usage errors that name headlight's flag, and nothing is rendered") {
   const fs::path folder = freshFolder("f3d-habits");
   struct Habit {

@@ -23,6 +23,10 @@ fs::path ownFolder() {
   Dl_info info{};
   if (dladdr(reinterpret_cast<const void*>(&ownFolder), &info) == 0 || !info.dli_fname) return {};
   std::error_code error;
+  // In the executable itself, dli_fname is its argv[0]: a bare name when it was found on PATH (a file
+  // manager running headlight-thumbnailer, or `headlight` installed elsewhere): the kernel knows the file.
+  if (std::string_view(info.dli_fname).find('/') == std::string_view::npos)
+    if (const fs::path exe = fs::read_symlink("/proc/self/exe", error); !error) return exe.parent_path();
   const fs::path self = fs::canonical(info.dli_fname, error);
   return error ? fs::path(info.dli_fname).parent_path() : self.parent_path();
 }

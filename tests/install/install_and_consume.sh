@@ -9,7 +9,8 @@
 #  2. builds examples/embed.cpp with `pkg-config --cflags --libs headlight`
 #     and runs it (it renders builtin:cornell, then a textured glTF file from
 #     ../shared/gltf-conformance, into memory and checks their pixels);
-#  3. imports the Python module; 4. renders and diffs with the installed CLI.
+#  3. imports the Python module; 4. renders and diffs with the installed CLI;
+#  5. finds the thumbnailer's freedesktop entry and runs the installed thumbnailer.
 # Usage: install_and_consume.sh BUILD_DIR SOURCE_DIR PREFIX LIBDIR CXX...
 set -eu
 build="$1"; source="$2"; prefix="$3"; libdir="$4"; shift 4
@@ -89,3 +90,11 @@ test -f "$dest$libdir/headlight/libheadlight-image-io.so" || { echo "no image mo
 "$bindir/headlight" render builtin:cornell --width 16 --height 16 --out "$dest/out" --quiet
 "$bindir/headlight" diff "$dest/out/lit.exr" "$dest/out/lit.exr" --quiet
 echo "installed CLI wrote $(ls "$dest/out" | wc -l) files and diffed one"
+
+# 5. The thumbnailer and its freedesktop entry, where file managers look for them.
+entry="$dest$prefix/share/thumbnailers/headlight.thumbnailer"
+test -f "$entry" || { echo "no thumbnailer entry at $entry"; exit 1; }
+grep -q '^Exec=headlight-thumbnailer %i %o %s$' "$entry" || { echo "$entry: unexpected Exec line"; exit 1; }
+"$bindir/headlight-thumbnailer" builtin:cornell "$dest/thumbnail.png" 64
+test -s "$dest/thumbnail.png" || { echo "the installed thumbnailer wrote no PNG"; exit 1; }
+echo "installed thumbnailer: $entry and a 64 px thumbnail"
