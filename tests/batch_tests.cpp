@@ -167,6 +167,16 @@ TEST_CASE("orbit cameras circle the bounds' centre at one distance, looking at i
   for (const glm::vec3& eye : eyes) CHECK(glm::length(eye) == doctest::Approx(glm::length(eyes[0])));
   CHECK(glm::length(eyes[0] - eyes[2]) > glm::length(eyes[0]));  // opposite sides
   CHECK_FALSE(JobCamera{}.build(scene, 1.0f));                   // the settings' camera
+  // --orbit-elevation and --orbit-distance: the eye that high above the centre, that much farther.
+  orbit.orbitIndex = 0;
+  orbit.orbitElevationDegrees = 60.0f;
+  orbit.orbitDistanceScale = 2.0f;
+  const glm::vec3 raised(orbit.build(scene, 1.0f)->worldFromCamera[3]);
+  CHECK(glm::length(raised) == doctest::Approx(2.0f * glm::length(eyes[0])));
+  CHECK(std::asin(raised.y / glm::length(raised)) == doctest::Approx(glm::radians(60.0f)));
+  CHECK(orbit.describe().find("elevation 60") != std::string::npos);
+  // The default's description (and so an orbit's --resume job hash) is what it was.
+  CHECK(JobCamera{.kind = JobCamera::Kind::Orbit}.describe() == "orbit 0/1 fov 40.000000");
 }
 
 TEST_CASE("a failed write names the system's reason") {

@@ -149,7 +149,7 @@ TEST_CASE("render --eye --target --up --fov places the camera; bad combinations 
   CHECK(wall == doctest::Approx(6.0f).epsilon(1e-3));
   for (const std::string args : {"--eye 0,1,5", "--target 0,0,0", "--eye 0,1,5 --target 0,1,5", "--fov 30",
                                  "--eye 0,1,5 --target 0,1,0 --up 0,0,-1", "--eye 1,2 --target 0,0,0",
-                                 "--eye 0,1,5 --target 0,1,0 --views 4 --orbit"}) {
+                                 "--eye 0,1,5 --target 0,1,0 --views 4 --orbit", "--orbit-elevation 30"}) {
     const Run bad = runHeadlight("render builtin:cornell " + args + " --out " + quote((folder / "bad").string()));
     INFO(args);
     INFO(bad.output);

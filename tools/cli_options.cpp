@@ -106,6 +106,18 @@ std::vector<Option<RenderCommand>> batchOptions() {
            .type = T::Switch,
            .help = "--views N cameras on a circle around the scene's bounds, looking at their centre"},
           [](auto& c) -> auto& { return c.orbit; }),
+      actionOption<C>({.name = "orbit-elevation",
+                       .type = T::Float,
+                       .help = "--orbit: degrees above the bounds' centre (default 14, a little from above)",
+                       .minimum = -89,
+                       .maximum = 89},
+                      [](C& c, const OptionValue& v) { c.orbitElevationDegrees = float(std::get<double>(v)); }),
+      actionOption<C>({.name = "orbit-distance",
+                       .type = T::Float,
+                       .help = "--orbit: times the distance that frames the bounds whole (default 1)",
+                       .minimum = 0.1,
+                       .maximum = 100},
+                      [](C& c, const OptionValue& v) { c.orbitDistanceScale = float(std::get<double>(v)); }),
       actionOption<C>(
           {.name = "cameras",
            .type = T::Choice,
@@ -291,6 +303,8 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
     throw SettingsError("--views " + std::to_string(command.views) +
                         ": needs --orbit (the only way to place several views)");
   if (command.orbit && command.views == 0) throw SettingsError("--orbit: needs --views N");
+  if (!command.orbit && (command.orbitElevationDegrees || command.orbitDistanceScale))
+    throw SettingsError("--orbit-elevation and --orbit-distance: need --views N --orbit");
   if (command.orbit && command.camerasAll) throw SettingsError("--orbit and --cameras all: choose one");
   if (command.eye.has_value() != command.target.has_value())
     throw SettingsError(command.eye ? "--eye: needs --target X,Y,Z" : "--target: needs --eye X,Y,Z");

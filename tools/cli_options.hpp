@@ -42,11 +42,13 @@ struct RenderCommand {
   ReferenceSettings reference;  // `reference` only
 
   // `render` only: batches (tools/batch.hpp, docs/BATCH.md).
-  std::vector<std::string> scenes;    // every SCENE given (empty: `scene`)
-  std::vector<std::string> jobFiles;  // --jobs FILE: JSON Lines, one job per line
-  int views = 0;                      // --views N: N views per scene (with --orbit)
-  bool orbit = false;                 // --orbit: a turntable around the scene's bounds
-  bool camerasAll = false;            // --cameras all: one job per camera of the scene
+  std::vector<std::string> scenes;             // every SCENE given (empty: `scene`)
+  std::vector<std::string> jobFiles;           // --jobs FILE: JSON Lines, one job per line
+  int views = 0;                               // --views N: N views per scene (with --orbit)
+  bool orbit = false;                          // --orbit: a turntable around the scene's bounds
+  std::optional<float> orbitElevationDegrees;  // --orbit-elevation DEG (default: fitCamera's 14)
+  std::optional<float> orbitDistanceScale;     // --orbit-distance F: times the framing distance
+  bool camerasAll = false;                     // --cameras all: one job per camera of the scene
   // --eye X,Y,Z --target X,Y,Z [--up X,Y,Z] [--fov DEG]: an explicit camera,
   // as a job file's eye/target/up/fov (docs/BATCH.md).
   std::optional<glm::vec3> eye, target, up;

@@ -167,9 +167,15 @@ std::string JobCamera::describe() const {
     case Kind::LookAt:
       return "eye " + vecText(eye) + " target " + vecText(target) + " up " + vecText(up) + " fov " +
              std::to_string(fovDegrees);
-    case Kind::Orbit:
-      return "orbit " + std::to_string(orbitIndex) + "/" + std::to_string(orbitViews) + " fov " +
-             std::to_string(fovDegrees);
+    case Kind::Orbit: {
+      std::string text = "orbit " + std::to_string(orbitIndex) + "/" + std::to_string(orbitViews) + " fov " +
+                         std::to_string(fovDegrees);
+      // Only when asked for: earlier orbits' job hashes (--resume) stay as they were.
+      if (orbitElevationDegrees != glm::degrees(kFitElevationRadians))
+        text += " elevation " + std::to_string(orbitElevationDegrees);
+      if (orbitDistanceScale != 1.0f) text += " distance " + std::to_string(orbitDistanceScale);
+      return text;
+    }
   }
   return "";
 }
@@ -185,7 +191,8 @@ std::optional<Camera> JobCamera::build(const Scene& scene, float aspect) const {
   }
   // The turntable: fitCamera's framing turned about +Y.
   const float azimuth = 2.0f * glm::pi<float>() * float(orbitIndex) / float(std::max(1, orbitViews));
-  camera = fitCamera(scene.worldBounds(), aspect, camera.yfov, azimuth);
+  camera = fitCamera(scene.worldBounds(), aspect, camera.yfov, azimuth, glm::radians(orbitElevationDegrees),
+                     orbitDistanceScale);
   camera.name = "orbit " + std::to_string(orbitIndex);
   return camera;
 }
@@ -247,6 +254,8 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
         job.camera.kind = JobCamera::Kind::Orbit;
         job.camera.orbitIndex = v;
         job.camera.orbitViews = command.views;
+        job.camera.orbitElevationDegrees = command.orbitElevationDegrees.value_or(job.camera.orbitElevationDegrees);
+        job.camera.orbitDistanceScale = command.orbitDistanceScale.value_or(1.0f);
         char name[32];
         std::snprintf(name, sizeof name, "view_%03d", v);
         job.outDir = (folder / name).string();

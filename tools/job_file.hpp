@@ -28,6 +28,9 @@ struct JobCamera {
   glm::vec3 eye{0.0f}, target{0.0f}, up{0.0f, 1.0f, 0.0f};
   float fovDegrees = 40.0f;  // vertical, LookAt and Orbit
   int orbitIndex = 0, orbitViews = 1;
+  // Orbit: degrees above the bounds' centre (fitCamera's 14.04 by default), and a multiple of the
+  // distance that frames the bounds whole.
+  float orbitElevationDegrees = glm::degrees(kFitElevationRadians), orbitDistanceScale = 1.0f;
 
   // Text that names the placement exactly (for the job hash and messages).
   std::string describe() const;

@@ -10,7 +10,8 @@ namespace headlight {
 // About 40 degrees, a normal lens.
 Camera fitCamera(const Bounds& bounds, float aspectRatio) { return fitCamera(bounds, aspectRatio, 0.7f, 0.0f); }
 
-Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians) {
+Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians,
+                 float elevationRadians, float distanceScale) {
   Camera camera;
   camera.name = "fitted";
   camera.yfov = yfovRadians;
@@ -18,10 +19,11 @@ Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, flo
   const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
   // The sphere fits the narrower of the two fields of view.
   const float halfFov = 0.5f * camera.yfov * std::min(1.0f, aspectRatio);
-  const float distance = radius / std::sin(halfFov);
-  // A little from above.
-  const glm::vec3 direction =
-      glm::normalize(glm::vec3(std::sin(azimuthRadians), 0.25f, std::cos(azimuthRadians)));
+  const float distance = distanceScale * radius / std::sin(halfFov);
+  // By default a little from above: (sin a, 1/4, cos a) normalised, as before elevation was a parameter
+  // (bit for bit: the goldens' fitted views); another elevation e rises tan(e) per unit across.
+  const float rise = elevationRadians == kFitElevationRadians ? 0.25f : std::tan(elevationRadians);
+  const glm::vec3 direction = glm::normalize(glm::vec3(std::sin(azimuthRadians), rise, std::cos(azimuthRadians)));
   camera.worldFromCamera = glm::inverse(glm::lookAt(center + direction * distance, center, glm::vec3(0, 1, 0)));
   return camera;
 }

@@ -416,6 +416,11 @@ def test_targets_bounds_and_orbit():
     frame = r.render(width=32, height=24, **views[1])
     assert frame["lit"].shape == (24, 32, 4)
     expect(headlight.SettingsError, lambda: r.orbit(0), "views")
+    high = r.orbit(1, width=32, height=24, fov=35, elevation=60, distance=2)[0]
+    offset = [e - t for e, t in zip(high["eye"], high["target"])]
+    length = sum(o * o for o in offset) ** 0.5
+    assert abs(offset[1] / length - np.sin(np.radians(60))) < 1e-4, offset
+    assert abs(length - 2 * distances[0]) < 1e-3 * length, (length, distances[0])
     empty = osmesa_renderer()
     expect(headlight.SettingsError, lambda: empty.bounds, "no scene")
 

@@ -22,8 +22,12 @@ struct CameraView {
 // from the front (+Z), a little above; used when a file has no camera.
 Camera fitCamera(const Bounds& bounds, float aspectRatio);
 // The same framing with a `yfovRadians` lens, turned by `azimuthRadians`
-// about +Y (0: fitCamera's view, from +Z): a turntable's views.
-Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians);
+// about +Y (0: fitCamera's view, from +Z): a turntable's views; raised by
+// `elevationRadians` above the bounds' centre (fitCamera's: atan(1/4), 14
+// degrees) and `distanceScale` times the distance that frames them whole.
+inline constexpr float kFitElevationRadians = 0.24497866f;  // atan(0.25)
+Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, float azimuthRadians,
+                 float elevationRadians = kFitElevationRadians, float distanceScale = 1.0f);
 
 // Near/far planes for looking at `bounds` from `worldFromCamera`: the range
 // of view depths of the box's corners, widened by 1% of its radius, clamped
