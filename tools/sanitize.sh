@@ -25,7 +25,7 @@ if [[ ! -f "$out/build.ninja" ]]; then
   meson setup "$out" -Dbuildtype=plain -Doptimization=0 -Ddebug=false -Dcpp_args=-g1 -Dc_args=-g1 \
     -Db_sanitize=address,undefined -Db_lundef=false -Dpython=disabled >/dev/null
 fi
-ninja -C "$out" headlight libheadlight-image-io.so tests/unit-tests tests/gl-tests tests/cli-tests tests/stability-tests tests/hostile-tests \
+ninja -C "$out" headlight headlight-thumbnailer libheadlight-image-io.so tests/unit-tests tests/gl-tests tests/cli-tests tests/stability-tests tests/hostile-tests \
   tests/libhostile-null-image-module.so tests/libhostile-wrong-image-module.so
 # intercept_tls_get_addr=0: up to GCC 13, ASan's __tls_get_addr interceptor
 # takes a dynamic TLS block that happens to sit at a certain page offset for
