@@ -693,12 +693,13 @@ PYBIND11_MODULE(headlight, m) {
           "the scene's world bounds, ((min x, y, z), (max x, y, z)): to frame a camera without a probe render")
       .def(
           "orbit",
-          [](PyRenderer& self, int views, int width, int height, double fov, double elevation, double distance) {
+          [](PyRenderer& self, int views, int width, int height, double fov, const py::object& elevation,
+             double distance) {
             if (views < 1) throw SettingsError("orbit: views must be at least 1, got " + std::to_string(views));
             if (width < 1 || height < 1) throw SettingsError("orbit: width and height must be positive");
             if (!(fov > 0.0 && fov < 180.0)) throw SettingsError("orbit: fov must be degrees in (0, 180)");
-            if (!(elevation >= -89.0 && elevation <= 89.0))
-              throw SettingsError("orbit: elevation must be degrees in -89..89");
+            if (!elevation.is_none() && !(elevation.cast<double>() >= -89.0 && elevation.cast<double>() <= 89.0))
+              throw SettingsError("orbit: elevation must be None or degrees in -89..89");
             if (!(distance >= 0.1 && distance <= 100.0)) throw SettingsError("orbit: distance must be in 0.1..100");
             const Bounds bounds = self.onThisThread([&] { return self.renderer->scene().worldBounds(); });
             if (bounds.empty()) throw SettingsError("orbit: no scene (call set_scene first)");
@@ -706,12 +707,10 @@ PYBIND11_MODULE(headlight, m) {
             py::list cameras;
             for (int v = 0; v < views; ++v) {
               // The CLI's --views N --orbit turntable (fitCamera turned about +Y).
-              const Camera camera = fitCamera(bounds, float(width) / float(height), glm::radians(float(fov)),
-                                              2.0f * glm::pi<float>() * float(v) / float(views),
-                                              float(elevation) == float(glm::degrees(kFitElevationRadians))
-                                                  ? kFitElevationRadians
-                                                  : glm::radians(float(elevation)),
-                                              float(distance));
+              const Camera camera = fitCamera(
+                  bounds, float(width) / float(height), glm::radians(float(fov)),
+                  2.0f * glm::pi<float>() * float(v) / float(views),
+                  elevation.is_none() ? kFitElevationRadians : glm::radians(elevation.cast<float>()), float(distance));
               const glm::vec3 eye(camera.worldFromCamera[3]);
               const glm::vec3 up(camera.worldFromCamera[1]);
               py::dict view;
@@ -724,8 +723,9 @@ PYBIND11_MODULE(headlight, m) {
             return cameras;
           },
           py::arg("views"), py::arg("width") = 640, py::arg("height") = 480, py::arg("fov") = 40.0,
-          py::arg("elevation") = double(glm::degrees(kFitElevationRadians)), py::arg("distance") = 1.0,
-          "orbit(views, width=640, height=480, fov=40, elevation=14.04, distance=1) -> [dict(eye, target, up, fov)]: "
+          py::arg("elevation") = py::none(), py::arg("distance") = 1.0,
+          "orbit(views, width=640, height=480, fov=40, elevation=None (14.04), distance=1) -> [dict(eye, target, up, "
+          "fov)]: "
           "the turntable of `headlight render --views N --orbit` (--orbit-elevation, --orbit-distance), each view "
           "ready for render(**view, width=..., height=...)")
       .def_property_readonly("gl_renderer", [](PyRenderer& self) { return self.context->renderer(); });

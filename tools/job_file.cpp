@@ -171,8 +171,7 @@ std::string JobCamera::describe() const {
       std::string text = "orbit " + std::to_string(orbitIndex) + "/" + std::to_string(orbitViews) + " fov " +
                          std::to_string(fovDegrees);
       // Only when asked for: earlier orbits' job hashes (--resume) stay as they were.
-      if (orbitElevationDegrees != glm::degrees(kFitElevationRadians))
-        text += " elevation " + std::to_string(orbitElevationDegrees);
+      if (orbitElevationDegrees) text += " elevation " + std::to_string(*orbitElevationDegrees);
       if (orbitDistanceScale != 1.0f) text += " distance " + std::to_string(orbitDistanceScale);
       return text;
     }
@@ -191,7 +190,8 @@ std::optional<Camera> JobCamera::build(const Scene& scene, float aspect) const {
   }
   // The turntable: fitCamera's framing turned about +Y.
   const float azimuth = 2.0f * glm::pi<float>() * float(orbitIndex) / float(std::max(1, orbitViews));
-  camera = fitCamera(scene.worldBounds(), aspect, camera.yfov, azimuth, glm::radians(orbitElevationDegrees),
+  camera = fitCamera(scene.worldBounds(), aspect, camera.yfov, azimuth,
+                     orbitElevationDegrees ? glm::radians(*orbitElevationDegrees) : kFitElevationRadians,
                      orbitDistanceScale);
   camera.name = "orbit " + std::to_string(orbitIndex);
   return camera;
@@ -254,7 +254,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
         job.camera.kind = JobCamera::Kind::Orbit;
         job.camera.orbitIndex = v;
         job.camera.orbitViews = command.views;
-        job.camera.orbitElevationDegrees = command.orbitElevationDegrees.value_or(job.camera.orbitElevationDegrees);
+        job.camera.orbitElevationDegrees = command.orbitElevationDegrees;
         job.camera.orbitDistanceScale = command.orbitDistanceScale.value_or(1.0f);
         char name[32];
         std::snprintf(name, sizeof name, "view_%03d", v);

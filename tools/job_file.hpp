@@ -30,7 +30,9 @@ struct JobCamera {
   int orbitIndex = 0, orbitViews = 1;
   // Orbit: degrees above the bounds' centre (fitCamera's 14.04 by default), and a multiple of the
   // distance that frames the bounds whole.
-  float orbitElevationDegrees = glm::degrees(kFitElevationRadians), orbitDistanceScale = 1.0f;
+  // (None: fitCamera's own, kFitElevationRadians, with no round trip through degrees.)
+  std::optional<float> orbitElevationDegrees;
+  float orbitDistanceScale = 1.0f;
 
   // Text that names the placement exactly (for the job hash and messages).
   std::string describe() const;

@@ -1,7 +1,6 @@
 #include "frame/frame_plan.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include "shared_layout.h"
 
@@ -23,12 +22,6 @@ std::span<const FullscreenPassRow> fullscreenPassRows() {
   };
   static_assert(std::size(kRows) == kFullscreenPassCount);
   return kRows;
-}
-
-const FullscreenPassRow& fullscreenPassRow(FullscreenPassId id) {
-  const FullscreenPassRow& row = fullscreenPassRows()[std::size_t(id)];
-  if (row.id != id) throw std::logic_error("fullscreenPassRows: rows out of FullscreenPassId order");
-  return row;
 }
 
 PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer) {

@@ -99,7 +99,6 @@ struct FullscreenPassRow {
 };
 // Every fullscreen pass, in FullscreenPassId order.
 std::span<const FullscreenPassRow> fullscreenPassRows();
-const FullscreenPassRow& fullscreenPassRow(FullscreenPassId id);
 
 // The forms of one frame's fullscreen passes, by FullscreenPassId.
 using PassForms = std::array<PassForm, kFullscreenPassCount>;
