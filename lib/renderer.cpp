@@ -1,9 +1,10 @@
-// The frame, top to bottom: shadows (once per scene and size) -> G-buffer ->
-// direct light -> SSGI (-> blur) -> composite -> transmission (scenes with
-// KHR_materials_transmission) -> blend (scenes with alphaMode BLEND) -> read
-// back. What runs, with
-// which shader variant and into which attachments, is the frame plan's
-// (frame/frame_plan.hpp); this file executes it. Each pass is timed between
+// The frame, top to bottom: shadows (once per scene and size) -> the ambient
+// tables (on demand) -> G-buffer -> the fullscreen passes the plan declared
+// (direct light -> SSGI (-> blur) -> composite; lib/passes/frame_passes.cpp)
+// -> transmission (scenes with KHR_materials_transmission) -> blend (scenes
+// with alphaMode BLEND) -> read back. What runs, with which shader variant
+// and into which attachments, is the frame plan's (frame/frame_plan.hpp);
+// this file executes it. Each pass is timed between
 // glFinish calls and checked for GL errors.
 #include "headlight/renderer.hpp"
 
@@ -26,14 +27,11 @@
 #include "headlight/targets.hpp"
 #include "image_io/environment_decode.hpp"
 #include "passes/blend.hpp"
-#include "passes/composite.hpp"
-#include "passes/direct_light.hpp"
 #include "passes/environment.hpp"
 #include "passes/frame_block.hpp"
+#include "passes/frame_pass.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/shadow.hpp"
-#include "passes/ssgi.hpp"
-#include "passes/ssgi_blur.hpp"
 #include "passes/transmission.hpp"
 #include "passes/virtual_lights.hpp"
 #include "scene/gpu_scene.hpp"
@@ -51,7 +49,7 @@ class PassTimer {
   explicit PassTimer(Context& context) : context_(context), query_(gl::Query::create(GL_TIME_ELAPSED)) {}
   // `form`: a fullscreen pass's, recorded with its time.
   template <class Work>
-  void run(const char* pass, Work&& work, std::optional<PassForm> form = std::nullopt) {
+  void run(std::string_view pass, Work&& work, std::optional<PassForm> form = std::nullopt) {
     glFinish();
     const auto start = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, query_.id());
@@ -59,7 +57,7 @@ class PassTimer {
     glEndQuery(GL_TIME_ELAPSED);
     glFinish();
     const auto end = std::chrono::steady_clock::now();
-    context_.checkErrors(pass);
+    context_.checkErrors(std::string(pass));
     const double wall = std::chrono::duration<double, std::milli>(end - start).count();
     // The query's work lies between the two glFinish calls, so it cannot take
     // longer than they are apart: a longer answer is the driver's, not the
@@ -67,7 +65,7 @@ class PassTimer {
     // start, ~2e6 ms), and is reported as unknown.
     double gpu = double(query_.result()) * 1e-6;
     if (gpu > wall * 1.5 + 1.0) gpu = -1;  // loose: the two clocks differ by a little on tiny passes
-    times_.push_back({pass, wall, gpu, form ? std::string(passFormName(*form)) : std::string()});
+    times_.push_back({std::string(pass), wall, gpu, form ? std::string(passFormName(*form)) : std::string()});
   }
   std::vector<PassTime> times() const { return times_; }
 
@@ -103,11 +101,10 @@ struct Renderer::Impl {
   ResourceLimits limits;
   std::uint64_t sceneBytes = 0;  // estimateSceneBytes of the current scene
   EnvironmentPass environment;
-  SsgiPass ssgi;
-  SsgiBlurPass ssgiBlur;
+  // The fullscreen passes' GL sides, by row (fullscreenPassRows()), made
+  // when a frame first runs them.
+  std::vector<std::unique_ptr<FramePass>> framePasses{fullscreenPassRows().size()};
   ShadowPass shadow;
-  DirectLightPass directLight;
-  CompositePass composite;
   BlendPass blend;
   TransmissionPass transmission;
   VirtualLightPass virtualLightPass;
@@ -129,10 +126,16 @@ struct Renderer::Impl {
   int virtualLightBudget = 0;
 
   // Per image size: the plan's attachments (attachmentRows()), by Attachment.
-  std::array<gl::Texture, kAttachmentCount> textures;
+  FrameTextures textures;
   int width = 0, height = 0;
 
   const gl::Texture& texture(Attachment id) const { return textures[std::size_t(id)]; }
+
+  FramePass& framePass(std::size_t row) {
+    std::unique_ptr<FramePass>& pass = framePasses[row];
+    if (!pass) pass = makeFramePass(row);
+    return *pass;
+  }
 
   // Allocates what the plan draws into and releases what it does not.
   void ensureAttachments(const FramePlan& plan, int imageWidth, int imageHeight) {
@@ -150,37 +153,11 @@ struct Renderer::Impl {
     }
   }
 
-  // The G-buffer's attachments as the passes after it read them.
-  GBuffer gbuffer() const {
-    return {texture(Attachment::GbufferPosition),
-            texture(Attachment::GbufferNormal),
-            texture(Attachment::GbufferAlbedo),
-            texture(Attachment::GbufferMaterial),
-            texture(Attachment::GbufferEmissive),
-            texture(Attachment::GbufferDepth),
-            width,
-            height};
-  }
-
   // What the G-buffer pass draws into: its colour attachments by location.
   GBufferTargets gbufferTargets(const GBufferVariant& variant) const {
     GBufferTargets targets{{}, &texture(Attachment::GbufferDepth), width, height};
     for (Attachment id : variant.colorAttachments) targets.colors.push_back(&texture(id));
     return targets;
-  }
-
-  // Each lobe attachment the G-buffer drew, on its row's unit, for the
-  // passes that light the G-buffer.
-  void bindLobeTargets(const GBufferVariant& variant) const {
-    for (Attachment id : variant.colorAttachments)
-      if (attachmentRow(id).lobe) texture(id).bind(attachmentRow(id).lobeUnit);
-  }
-
-  SsgiTextures ssgiOutput(bool raw) const {
-    return raw ? SsgiTextures{texture(Attachment::SsgiRaw), texture(Attachment::SsgiRawSky),
-                              texture(Attachment::SsgiRawSpecular)}
-               : SsgiTextures{texture(Attachment::Ssgi), texture(Attachment::SsgiSky),
-                              texture(Attachment::SsgiSpecular)};
   }
 
   // The light buffer: the scene's lights, each with its slot in the shadow
@@ -276,43 +253,6 @@ struct Renderer::Impl {
       image = attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
                   ? readViewDepth(*sources.front(), frame.view, channels.front())
                   : readColor(sources, channels);
-    }
-  }
-
-  void runSsgi(const FramePlan& plan, const RenderSettings& used, const PassForms& forms, PassTimer& timer) {
-    const SsgiStep& step = *plan.ssgi;
-    const GBuffer gb = gbuffer();
-    SsgiInputs inputs{gb, plan.allocates(Attachment::DirectDiffuse) ? &texture(Attachment::DirectDiffuse) : nullptr,
-                      used};
-    inputs.downsample = step.downsample;
-    inputs.farDownsample = step.farDownsample;
-    if (step.virtualLights > 0) {
-      inputs.virtualLights = &virtualLights;
-      inputs.shadows = &shadowMaps;
-    }
-    inputs.form = forms[std::size_t(FullscreenPassId::Ssgi)];
-    const SsgiTextures output = ssgiOutput(step.blur);
-    // Accumulated frames: a running mean of rotated slice sets.
-    timer.run(
-        "ssgi",
-        [&] {
-          for (int index = 0; index < step.frames; ++index) {
-            inputs.frameIndex = index;
-            if (step.frames > 1) inputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
-            ssgi.run(inputs, output);
-          }
-        },
-        inputs.form);
-    if (step.blur) {
-      const PassForm blurForm = forms[std::size_t(FullscreenPassId::SsgiBlur)];
-      timer.run(
-          "ssgi-blur",
-          [&] {
-            ssgiBlur.run({gb, ssgiOutput(true), *used.ssgi.radius, step.downsample, step.farDownsample,
-                          step.splitsFarField() ? &texture(Attachment::SsgiFarSky) : nullptr, blurForm},
-                         ssgiOutput(false));
-          },
-          blurForm);
     }
   }
 };
@@ -424,9 +364,9 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   impl.frameBlock.update(frameBlock);
   impl.frameBlock.bindUniform(gpu::FrameBlock::kBinding);
 
-  // How each fullscreen pass runs this frame (fragment or compute).
+  // How each fullscreen pass runs this frame (fragment or compute), by row.
   const PassForms forms = choosePassForms(used.fullscreenForm, impl.softwareRasterizer);
-  const auto formOf = [&](FullscreenPassId id) { return forms[std::size_t(id)]; };
+  const PassForm tableForm = forms[fullscreenPassIndex("sky")];
   PassTimer timer(impl.context);
   // Shadow maps are remade only when their size or what the directional
   // ones cover changes; with shadows off the lights read "no map".
@@ -435,42 +375,27 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
     timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize, frame.view); });
   if (plan.ssgi && plan.ssgi->virtualLights > 0 && impl.virtualLightBudget != plan.ssgi->virtualLights)
     timer.run("virtual-lights", [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
-  impl.bindLighting(used.lighting);
-  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
-  const GBuffer gbuffer = impl.gbuffer();
-  impl.bindLobeTargets(plan.gbuffer);
-  if (plan.direct) {
-    const DirectLightTargets direct{impl.texture(Attachment::DirectTowardEye),
-                                    plan.direct->diffuseTarget ? &impl.texture(Attachment::DirectDiffuse) : nullptr};
-    const PassForm form = formOf(FullscreenPassId::Direct);
-    timer.run(
-        "direct",
-        [&] {
-          impl.directLight.run({gbuffer, impl.shadowMaps}, direct, *plan.direct, form);
-        },
-        form);
-  }
-  if (plan.ssgi) impl.runSsgi(plan, used, forms, timer);
-  // The split-sum BRDF table once per renderer, before the first pass that
-  // reads it; the sky tables on the first frame that needs them (and again
-  // only when the sky's colours change).
+  // The split-sum BRDF table once per renderer, the sky tables on the first
+  // frame that needs them (and again only when the sky's colours change),
+  // the environment's once per map: ahead of the passes that read them.
   if ((plan.composite || plan.transmission || plan.blend) && !impl.environment.hasBrdfTable())
     timer.run(
-        "brdf-table", [&] { impl.environment.makeBrdfTable(formOf(FullscreenPassId::SkyTables)); },
-        formOf(FullscreenPassId::SkyTables));
+        "brdf-table", [&] { impl.environment.makeBrdfTable(tableForm); }, tableForm);
   if (plan.skyTables && !impl.environment.holds(impl.scene.sky))
     timer.run(
-        "sky", [&] { impl.environment.updateSky(impl.scene.sky, formOf(FullscreenPassId::SkyTables)); },
-        formOf(FullscreenPassId::SkyTables));
+        "sky", [&] { impl.environment.updateSky(impl.scene.sky, tableForm); }, tableForm);
   if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
     timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
-  if (plan.composite) {
-    const SsgiTextures ssgi = impl.ssgiOutput(false);
-    const CompositeInputs inputs{gbuffer, impl.texture(Attachment::DirectTowardEye),
-                                 plan.composite->ssgi ? &ssgi : nullptr, impl.environment.tables()};
-    const PassForm form = formOf(FullscreenPassId::Composite);
+  impl.bindLighting(used.lighting);
+  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
+  // The fullscreen passes, as the plan declared them: each binds what it
+  // reads and writes what it declared.
+  const FrameInputs inputs{plan, used, impl.shadowMaps, impl.environment.tables(), impl.virtualLights};
+  for (const PassDeclaration& pass : plan.passes) {
+    const PassForm form = forms[pass.row];
     timer.run(
-        "composite", [&] { impl.composite.run(inputs, impl.texture(Attachment::Lit), *plan.composite, form); }, form);
+        fullscreenPassRows()[pass.row].name,
+        [&] { runFramePass(impl.framePass(pass.row), pass, inputs, impl.textures, form); }, form);
   }
   if (plan.transmission) {
     const GBufferTargets gbufferTargets = impl.gbufferTargets(plan.gbuffer);

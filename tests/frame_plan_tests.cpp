@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/shapes.hpp"
 #include "headlight/targets.hpp"
+#include "support/plan_settings.hpp"
 
 namespace headlight {
 namespace {
@@ -41,8 +41,9 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), {});
   CHECK(plan.skipped.size() == 2);  // emissive: the scene has no emission; it has no KHR_materials_* lobe
   CHECK(skips(plan, "emissive", "no material emits"));
-  CHECK(skips(plan, "lobes", "no material uses specular (KHR_materials_specular, _ior), clearcoat, sheen, anisotropy, "
-                             "iridescence (no attachment, no shader code)"));
+  CHECK(skips(plan, "lobes",
+              "no material uses specular (KHR_materials_specular, _ior), clearcoat, sheen, anisotropy, "
+              "iridescence (no attachment, no shader code)"));
   CHECK(!skips(plan, "blend"));  // no BLEND material: no blend pass, and nothing to list
   CHECK(!plan.blend);
   CHECK(!plan.allocates(Attachment::BlendCoverage));
@@ -57,9 +58,8 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   CHECK(plan.skyTables);
   REQUIRE(plan.composite);
   CHECK(*plan.composite == CompositeVariant{true, true});
-  CHECK(plan.passNames() ==
-        std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi", "ssgi-blur", "sky",
-                                      "composite", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
+                                                          "ssgi", "ssgi-blur", "composite", "readback"});
   CHECK(!plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.allocates(Attachment::SsgiRaw));
   CHECK(plan.gbuffer.defines.empty());
@@ -77,8 +77,8 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   REQUIRE(plan.blend);
   CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
-  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi",
-                                                          "ssgi-blur", "sky", "composite", "blend", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
+                                                          "ssgi", "ssgi-blur", "composite", "blend", "readback"});
   CHECK(plan.allocates(Attachment::BlendCoverage));
   CHECK(plan.allocates(Attachment::Lit));
   const TargetRead* coverage = readOf(plan, "coverage");
@@ -158,8 +158,8 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
   settings.ssgi.blur = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.allocates(Attachment::SsgiRaw));
-  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "gbuffer", "direct", "ssgi", "sky",
-                                                         "composite", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
+                                                          "ssgi", "composite", "readback"});
   settings.ssgi.enabled = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.ssgi);
@@ -193,15 +193,17 @@ TEST_CASE("frame plan: every frame target is held by attachments, and the SSGI t
   for (const AttachmentRow& row : attachmentRows()) {
     if (!row.target) continue;
     const auto targets = frameTargets();
-    CHECK_MESSAGE(std::any_of(targets.begin(), targets.end(), [&](const FrameTarget& t) { return t.image == row.target; }),
-                  row.name);
+    CHECK_MESSAGE(
+        std::any_of(targets.begin(), targets.end(), [&](const FrameTarget& t) { return t.image == row.target; }),
+        row.name);
   }
   // Every target a frame can have is held by some attachment.
   for (const FrameTarget& target : frameTargets()) {
     if (!target.image) continue;
     const auto rows = attachmentRows();
-    CHECK_MESSAGE(std::any_of(rows.begin(), rows.end(), [&](const AttachmentRow& row) { return row.target == target.image; }),
-                  target.name);
+    CHECK_MESSAGE(
+        std::any_of(rows.begin(), rows.end(), [&](const AttachmentRow& row) { return row.target == target.image; }),
+        target.name);
   }
   // G-buffer locations are distinct.
   std::vector<int> locations;
@@ -246,6 +248,98 @@ TEST_CASE("frame plan: --verbose names the KHR_materials_* lobes a scene does no
   CHECK(!skips(plan, "lobes", "iridescence"));
   scene.lobes = lobeBit(Lobe::Count) - 1;
   CHECK(!skips(planFrame(scene, test::resolvedPlanSettings(), {}), "lobes"));
+}
+
+}  // namespace headlight
+
+namespace headlight {
+namespace {
+
+// Whether `plan` reads `id` back into a frame target.
+bool readBack(const FramePlan& plan, Attachment id) {
+  return std::any_of(plan.reads.begin(), plan.reads.end(), [&](const TargetRead& read) {
+    return std::find(read.sources.begin(), read.sources.end(), id) != read.sources.end();
+  });
+}
+
+}  // namespace
+
+TEST_CASE("frame plan: the fullscreen passes' declarations give the allocations, in an order that works") {
+  // Every combination of what decides them: method, blur, far field, virtual
+  // lights, scene features and targets asked for.
+  SceneSummary plain = litScene();
+  SceneSummary rich = litScene();
+  rich.emissive = rich.blended = rich.transmission = true;
+  rich.lobes = lobeBit(Lobe::Clearcoat) | lobeBit(Lobe::Sheen);
+  const std::vector<std::vector<std::string>> targetSets = {{}, {"lit"}, {"ssgi"}, {"depth"}, {"normal", "ssgi"}};
+  int plans = 0;
+  for (const SceneSummary& scene : {plain, rich})
+    for (SsgiMethod method : {SsgiMethod::Hemisphere, SsgiMethod::Radiance, SsgiMethod::Bitmask})
+      for (bool ssgi : {true, false})
+        for (bool blur : {true, false})
+          for (SsgiResolution far : {SsgiResolution::Full, SsgiResolution::Half})
+            for (int virtualLights : {0, 16})
+              for (const std::vector<std::string>& targets : targetSets) {
+                RenderSettings settings = test::resolvedPlanSettings();
+                settings.ssgi.method = method;
+                settings.ssgi.enabled = ssgi;
+                settings.ssgi.blur = blur;
+                settings.ssgi.farResolution = far;
+                settings.ssgi.virtualLightCount = virtualLights;
+                CAPTURE(int(method));
+                CAPTURE(ssgi);
+                CAPTURE(blur);
+                CAPTURE(int(far));
+                CAPTURE(virtualLights);
+                CAPTURE(targets.size());
+                const FramePlan plan = planFrame(scene, settings, targets);
+                ++plans;
+                // The fullscreen passes are the plan's, in row order, each once.
+                for (std::size_t i = 1; i < plan.passes.size(); ++i) CHECK(plan.passes[i - 1].row < plan.passes[i].row);
+                CHECK(plan.passes.size() == std::size_t(bool(plan.direct)) + std::size_t(bool(plan.ssgi)) +
+                                                std::size_t(plan.ssgi && plan.ssgi->blur) +
+                                                std::size_t(bool(plan.composite)));
+                // Allocated exactly: what the G-buffer, a declared pass or a forward pass writes.
+                for (const AttachmentRow& row : attachmentRows()) {
+                  CAPTURE(row.name);
+                  const bool gbuffer =
+                      row.id == Attachment::GbufferDepth ||
+                      std::find(plan.gbuffer.colorAttachments.begin(), plan.gbuffer.colorAttachments.end(), row.id) !=
+                          plan.gbuffer.colorAttachments.end();
+                  const bool declared =
+                      std::any_of(plan.passes.begin(), plan.passes.end(),
+                                  [&](const PassDeclaration& pass) { return pass.writesAttachment(row.id); });
+                  const bool forward = (row.id == Attachment::BlendCoverage && plan.blend) ||
+                                       (row.id == Attachment::Transmission && plan.transmission);
+                  CHECK(plan.allocates(row.id) == (gbuffer || declared || forward));
+                }
+                // No pass runs for nothing: each writes something a later pass
+                // reads or the frame reads back (lit: also what the forward passes draw over).
+                for (std::size_t i = 0; i < plan.passes.size(); ++i) {
+                  CAPTURE(fullscreenPassRows()[plan.passes[i].row].name);
+                  const bool consumed =
+                      std::any_of(plan.passes[i].writes.begin(), plan.passes[i].writes.end(), [&](Attachment id) {
+                        return readBack(plan, id) ||
+                               std::any_of(plan.passes.begin() + std::ptrdiff_t(i) + 1, plan.passes.end(),
+                                           [&](const PassDeclaration& later) { return later.readsAttachment(id); });
+                      });
+                  CHECK(consumed);
+                }
+              }
+  CHECK(plans == 2 * 3 * 2 * 2 * 2 * 2 * 5);
+}
+
+TEST_CASE("frame plan: a pass that reads what no earlier pass writes is refused, naming both") {
+  const FramePlan plan = planFrame(litScene(), test::resolvedPlanSettings(), {});
+  // The composite moved ahead of the direct light it reads.
+  const auto rows = fullscreenPassRows();
+  const FullscreenPassRow reordered[] = {rows[fullscreenPassIndex("composite")], rows[fullscreenPassIndex("direct")]};
+  CHECK_THROWS_WITH_AS(declareFullscreenPasses(plan, reordered),
+                       "composite reads direct.towardEye, which neither the G-buffer nor an earlier pass writes",
+                       std::logic_error);
+  // In the table's order the same plan declares all four.
+  CHECK(declareFullscreenPasses(plan, rows).size() == 4);
+  CHECK_THROWS_AS(fullscreenPassIndex("exposure"), std::out_of_range);
 }
 
 }  // namespace headlight

@@ -128,11 +128,11 @@ TEST_CASE("forms: auto runs each pass in its row's form on llvmpipe, and names t
   const PassForms forms = choosePassForms(std::nullopt, software);
   int checked = 0;
   for (const PassTime& time : frame.timings)
-    for (const FullscreenPassRow& row : fullscreenPassRows())
-      if (row.name == time.pass) {
+    for (std::size_t index = 0; index < fullscreenPassRows().size(); ++index)
+      if (const FullscreenPassRow& row = fullscreenPassRows()[index]; row.name == time.pass) {
         CAPTURE(time.pass);
-        CHECK(time.form == passFormName(forms[std::size_t(row.id)]));
-        CHECK(forms[std::size_t(row.id)] == (software ? row.softwareForm : PassForm::Compute));
+        CHECK(time.form == passFormName(forms[index]));
+        CHECK(forms[index] == (software ? row.softwareForm : PassForm::Compute));
         ++checked;
       }
   CHECK(checked >= 4);  // direct, ssgi, ssgi-blur, composite (and sky on a first frame)

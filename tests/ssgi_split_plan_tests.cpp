@@ -29,8 +29,8 @@ TEST_CASE("SSGI plan: by default the far field is its own pass at half resolutio
   CHECK(plan.divisorOf(Attachment::SsgiSky) == 1);
   CHECK(plan.allocates(Attachment::SsgiFarSky));
   // The far field's passes are timed with the SSGI pass and its blur.
-  CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "gbuffer", "direct", "ssgi", "ssgi-blur",
-                                                          "sky", "composite", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "sky", "gbuffer", "direct", "ssgi", "ssgi-blur",
+                                                          "composite", "readback"});
 }
 
 TEST_CASE("SSGI plan: the far field's divisor follows ssgi-far-resolution, never finer than ssgi-resolution") {

@@ -1,6 +1,7 @@
 #include "frame/frame_plan.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "shared_layout.h"
 
@@ -8,26 +9,24 @@ namespace headlight {
 
 std::string_view passFormName(PassForm form) { return form == PassForm::Compute ? "compute" : "fragment"; }
 
-std::span<const FullscreenPassRow> fullscreenPassRows() {
-  // softwareForm: the faster form on llvmpipe, wall time, tools/form_times.sh on cornell and spheres at
-  // 256x256 and 640x480 (docs/BENCHMARKS.md, "Fullscreen forms"): compute / fragment was 1.03-1.15 for
-  // direct, 0.98-1.53 for SSGI, 0.99-1.33 for the blur, 0.83-1.03 for the composite. The tables run once
-  // per renderer and were not told apart: fragment, as before.
-  static constexpr FullscreenPassRow kRows[] = {
-      {.id = FullscreenPassId::Direct, .name = "direct", .softwareForm = PassForm::Fragment},
-      {.id = FullscreenPassId::Ssgi, .name = "ssgi", .softwareForm = PassForm::Fragment},
-      {.id = FullscreenPassId::SsgiBlur, .name = "ssgi-blur", .softwareForm = PassForm::Fragment},
-      {.id = FullscreenPassId::Composite, .name = "composite", .softwareForm = PassForm::Compute},
-      {.id = FullscreenPassId::SkyTables, .name = "sky", .softwareForm = PassForm::Fragment},
-  };
-  static_assert(std::size(kRows) == kFullscreenPassCount);
-  return kRows;
+std::size_t fullscreenPassIndex(std::string_view name) {
+  const auto rows = fullscreenPassRows();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].name == name) return i;
+  throw std::out_of_range("no fullscreen pass named " + std::string(name));
+}
+
+bool PassDeclaration::readsAttachment(Attachment id) const {
+  return std::any_of(reads.begin(), reads.end(), [&](const PassRead& read) { return read.attachment == id; });
+}
+bool PassDeclaration::writesAttachment(Attachment id) const {
+  return std::find(writes.begin(), writes.end(), id) != writes.end();
 }
 
 PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer) {
-  PassForms forms{};
+  PassForms forms;
   for (const FullscreenPassRow& row : fullscreenPassRows()) {
-    PassForm& form = forms[std::size_t(row.id)];
+    PassForm& form = forms.emplace_back();
     if (setting)
       form = *setting == FullscreenForm::Compute ? PassForm::Compute : PassForm::Fragment;
     else
@@ -106,6 +105,110 @@ constexpr AttachmentRow kAttachmentRows[] = {
      S::Image, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
+
+// ---- Fullscreen passes: what each reads and writes -------------------------------
+
+// The reads of a pass that lights the G-buffer (direct light, composite):
+// its four fixed attachments and each lobe attachment the plan's G-buffer
+// draws, on the lobe's unit.
+std::vector<PassRead> gbufferSurfaceReads(const GBufferVariant& gbuffer) {
+  std::vector<PassRead> reads{{Attachment::GbufferPosition, gpu::kUnitGbufferPosition},
+                              {Attachment::GbufferNormal, gpu::kUnitGbufferNormal},
+                              {Attachment::GbufferAlbedo, gpu::kUnitGbufferAlbedo},
+                              {Attachment::GbufferMaterial, gpu::kUnitGbufferMaterial}};
+  for (Attachment id : gbuffer.colorAttachments)
+    if (attachmentRow(id).lobe) reads.push_back({id, attachmentRow(id).lobeUnit});
+  return reads;
+}
+
+// lib/passes/direct_light.hpp: the G-buffer's surface and its emission;
+// toward the eye, and the diffuse radiance for the SSGI methods that gather it.
+std::optional<PassDeclaration> declareDirectLight(const FramePlan& plan) {
+  if (!plan.direct) return std::nullopt;
+  PassDeclaration pass;
+  pass.reads = gbufferSurfaceReads(plan.gbuffer);
+  if (plan.direct->emissive) pass.reads.push_back({Attachment::GbufferEmissive, gpu::kUnitGbufferEmissive});
+  pass.writes = {Attachment::DirectTowardEye};
+  if (plan.direct->diffuseTarget) pass.writes.push_back(Attachment::DirectDiffuse);
+  return pass;
+}
+
+// lib/passes/ssgi.hpp: the G-buffer's surface as the method reads it
+// (position for the kernels, depth for the bitmask), direct.diffuse for the
+// methods that gather it, the emission for the bitmask's virtual lights; the
+// raw SSGI when the blur follows, else the blurred textures directly.
+std::optional<PassDeclaration> declareSsgi(const FramePlan& plan) {
+  if (!plan.ssgi) return std::nullopt;
+  const SsgiMethodTraits& method = *plan.ssgi->method;
+  PassDeclaration pass;
+  if (method.program == SsgiProgram::Bitmask) {
+    pass.reads = {{Attachment::GbufferDepth, gpu::kUnitGbufferDepth},
+                  {Attachment::GbufferNormal, gpu::kUnitGbufferNormal},
+                  {Attachment::GbufferAlbedo, gpu::kUnitGbufferAlbedo},
+                  {Attachment::GbufferMaterial, gpu::kUnitGbufferMaterial}};
+    const auto& colors = plan.gbuffer.colorAttachments;
+    if (plan.ssgi->virtualLights > 0 &&
+        std::find(colors.begin(), colors.end(), Attachment::GbufferEmissive) != colors.end())
+      pass.reads.push_back({Attachment::GbufferEmissive, gpu::kUnitGbufferEmissive});
+  } else {
+    pass.reads = {{Attachment::GbufferPosition, gpu::kUnitGbufferPosition},
+                  {Attachment::GbufferNormal, gpu::kUnitGbufferNormal},
+                  {Attachment::GbufferAlbedo, gpu::kUnitGbufferAlbedo}};
+    if (method.readsDirectDiffuse) pass.reads.push_back({Attachment::GbufferMaterial, gpu::kUnitGbufferMaterial});
+  }
+  if (method.readsDirectDiffuse) pass.reads.push_back({Attachment::DirectDiffuse, gpu::kUnitDirectDiffuse});
+  if (plan.ssgi->blur)
+    pass.writes = {Attachment::SsgiRaw, Attachment::SsgiRawSky, Attachment::SsgiRawSpecular};
+  else
+    pass.writes = {Attachment::Ssgi, Attachment::SsgiSky, Attachment::SsgiSpecular};
+  return pass;
+}
+
+// lib/passes/ssgi_blur.hpp: position, normal and the raw SSGI; the blurred
+// SSGI, and with a coarser far field ssgi.farSky and the raw sky it blurs in
+// place.
+std::optional<PassDeclaration> declareSsgiBlur(const FramePlan& plan) {
+  if (!plan.ssgi || !plan.ssgi->blur) return std::nullopt;
+  PassDeclaration pass;
+  pass.reads = {{Attachment::GbufferPosition, gpu::kUnitGbufferPosition},
+                {Attachment::GbufferNormal, gpu::kUnitGbufferNormal},
+                {Attachment::SsgiRaw, gpu::kUnitSsgi},
+                {Attachment::SsgiRawSky, gpu::kUnitSsgiSky},
+                {Attachment::SsgiRawSpecular, gpu::kUnitSsgiSpecular}};
+  pass.writes = {Attachment::Ssgi, Attachment::SsgiSky, Attachment::SsgiSpecular};
+  if (plan.ssgi->splitsFarField())
+    pass.writes.insert(pass.writes.end(), {Attachment::SsgiFarSky, Attachment::SsgiRawSky});
+  return pass;
+}
+
+// lib/passes/composite.hpp: the G-buffer's surface, the direct light and
+// (with SSGI) the blurred SSGI; lit.
+std::optional<PassDeclaration> declareComposite(const FramePlan& plan) {
+  if (!plan.composite) return std::nullopt;
+  PassDeclaration pass;
+  pass.reads = gbufferSurfaceReads(plan.gbuffer);
+  pass.reads.push_back({Attachment::DirectTowardEye, gpu::kUnitDirect});
+  if (plan.composite->ssgi)
+    pass.reads.insert(pass.reads.end(), {{Attachment::Ssgi, gpu::kUnitSsgi},
+                                         {Attachment::SsgiSky, gpu::kUnitSsgiSky},
+                                         {Attachment::SsgiSpecular, gpu::kUnitSsgiSpecular}});
+  pass.writes = {Attachment::Lit};
+  return pass;
+}
+
+// softwareForm: the faster form on llvmpipe, wall time, tools/form_times.sh on cornell and spheres at
+// 256x256 and 640x480 (docs/BENCHMARKS.md, "Fullscreen forms"): compute / fragment was 1.03-1.15 for
+// direct, 0.98-1.53 for SSGI, 0.99-1.33 for the blur, 0.83-1.03 for the composite. The tables run once
+// per renderer and were not told apart: fragment, as before.
+const FullscreenPassRow kFullscreenPassRows[] = {
+    {"direct", PassForm::Fragment, declareDirectLight},
+    {"ssgi", PassForm::Fragment, declareSsgi},
+    {"ssgi-blur", PassForm::Fragment, declareSsgiBlur},
+    {"composite", PassForm::Compute, declareComposite},
+    // The BRDF, sky and environment tables (EnvironmentPass): made on demand
+    // ahead of the frame's passes, not attachments of it.
+    {"sky", PassForm::Fragment},
+};
 
 // ---- What a frame skips ------------------------------------------------------------
 
@@ -195,27 +298,14 @@ struct TargetWanted {
   bool named(std::string_view name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
 };
 
-// The attachments the planned passes draw into.
+// The attachments the planned passes draw into: the G-buffer's, what the
+// fullscreen passes declare they write, and the forward passes' targets.
 void planAttachments(FramePlan& plan) {
   auto allocate = [&](Attachment id) { plan.allocate[std::size_t(id)] = true; };
   for (Attachment id : plan.gbuffer.colorAttachments) allocate(id);
   allocate(Attachment::GbufferDepth);
-  if (plan.direct) {
-    allocate(Attachment::DirectTowardEye);
-    if (plan.direct->diffuseTarget) allocate(Attachment::DirectDiffuse);
-  }
-  if (plan.ssgi) {
-    allocate(Attachment::Ssgi);
-    allocate(Attachment::SsgiSky);
-    allocate(Attachment::SsgiSpecular);
-    if (plan.ssgi->blur) {
-      allocate(Attachment::SsgiRaw);
-      allocate(Attachment::SsgiRawSky);
-      allocate(Attachment::SsgiRawSpecular);
-      if (plan.ssgi->splitsFarField()) allocate(Attachment::SsgiFarSky);
-    }
-  }
-  if (plan.composite) allocate(Attachment::Lit);
+  for (const PassDeclaration& pass : plan.passes)
+    for (Attachment id : pass.writes) allocate(id);
   if (plan.blend) allocate(Attachment::BlendCoverage);
   if (plan.transmission) allocate(Attachment::Transmission);
 }
@@ -263,6 +353,28 @@ void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& 
 }
 
 }  // namespace
+
+std::span<const FullscreenPassRow> fullscreenPassRows() { return kFullscreenPassRows; }
+
+std::vector<PassDeclaration> declareFullscreenPasses(const FramePlan& plan, std::span<const FullscreenPassRow> rows) {
+  std::vector<PassDeclaration> passes;
+  std::vector<Attachment> written(plan.gbuffer.colorAttachments);
+  written.push_back(Attachment::GbufferDepth);
+  for (std::size_t index = 0; index < rows.size(); ++index) {
+    if (!rows[index].declare) continue;
+    std::optional<PassDeclaration> pass = rows[index].declare(plan);
+    if (!pass) continue;
+    pass->row = index;
+    for (const PassRead& read : pass->reads)
+      if (std::find(written.begin(), written.end(), read.attachment) == written.end())
+        throw std::logic_error(std::string(rows[index].name) + " reads " +
+                               std::string(attachmentRow(read.attachment).name) +
+                               ", which neither the G-buffer nor an earlier pass writes");
+    written.insert(written.end(), pass->writes.begin(), pass->writes.end());
+    passes.push_back(std::move(*pass));
+  }
+  return passes;
+}
 
 SceneSummary summarizeScene(const Scene& scene) {
   SceneSummary summary;
@@ -350,13 +462,11 @@ std::vector<std::string_view> FramePlan::passNames() const {
   std::vector<std::string_view> names;
   if (shadows) names.push_back("shadows");
   if (ssgi && ssgi->virtualLights > 0) names.push_back("virtual-lights");  // made once per scene
-  names.push_back("gbuffer");
-  if (direct) names.push_back("direct");
-  if (ssgi) names.push_back("ssgi");
-  if (ssgi && ssgi->blur) names.push_back("ssgi-blur");
+  // The tables, made on demand ahead of the passes that read them.
   if (skyTables) names.push_back("sky");
   if (environmentTables) names.push_back("environment");
-  if (composite) names.push_back("composite");
+  names.push_back("gbuffer");
+  for (const PassDeclaration& pass : passes) names.push_back(fullscreenPassRows()[pass.row].name);
   if (transmission) names.push_back("transmission");
   if (blend) names.push_back("blend");
   names.push_back("readback");
@@ -422,6 +532,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     plan.blend =
         BlendVariant{plan.shadows && scene.planarShadowCasters > 0, plan.shadows && scene.cubeShadowCasters > 0,
                      skips.runs(Work::Sky), plan.environmentTables, scene.lobes};
+  plan.passes = declareFullscreenPasses(plan, fullscreenPassRows());
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

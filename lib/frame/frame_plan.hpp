@@ -11,6 +11,7 @@
 // method is one row of the method table.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -86,28 +87,6 @@ const SsgiMethodTraits& ssgiMethodTraits(SsgiMethod method);
 // fragment shader or a compute dispatch.
 enum class PassForm { Fragment, Compute };
 std::string_view passFormName(PassForm form);  // "fragment", "compute"
-
-enum class FullscreenPassId { Direct, Ssgi, SsgiBlur, Composite, SkyTables, Count };
-inline constexpr std::size_t kFullscreenPassCount = std::size_t(FullscreenPassId::Count);
-
-struct FullscreenPassRow {
-  FullscreenPassId id;
-  std::string_view name;  // its PassTime::pass
-  // Auto's form on a software rasteriser: the faster one measured on
-  // llvmpipe (docs/BENCHMARKS.md, "Fullscreen forms").
-  PassForm softwareForm;
-};
-// Every fullscreen pass, in FullscreenPassId order.
-std::span<const FullscreenPassRow> fullscreenPassRows();
-
-// The forms of one frame's fullscreen passes, by FullscreenPassId.
-using PassForms = std::array<PassForm, kFullscreenPassCount>;
-// What `setting` runs each pass as: fragment or compute as asked; auto:
-// compute on a hardware GPU, the row's measured form on a software
-// rasteriser.
-PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer);
-// GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, swrast, SwiftShader).
-bool isSoftwareRasterizer(std::string_view glRenderer);
 
 // ---- Attachments -------------------------------------------------------------
 
@@ -259,6 +238,72 @@ struct TargetRead {
   std::vector<std::string> channels;
 };
 
+// ---- Fullscreen passes: what each declares ---------------------------------
+
+// An attachment a pass reads, bound on texture unit `unit` (gpu::kUnit*, the
+// binding its body's sampler declares) before the pass runs.
+struct PassRead {
+  Attachment attachment;
+  int unit;
+  auto operator<=>(const PassRead&) const = default;
+};
+
+// What one frame's run of a fullscreen pass reads and writes. The plan
+// allocates what the frame's passes write; the runner binds what a pass
+// reads and hands it only those attachments (PassAttachments,
+// lib/passes/frame_pass.hpp). Every read is the G-buffer's or written by an
+// earlier pass of the frame (checked by planFrame).
+struct PassDeclaration {
+  std::size_t row = 0;  // its FullscreenPassRow (fullscreenPassRows())
+  std::vector<PassRead> reads;
+  std::vector<Attachment> writes;
+  bool readsAttachment(Attachment id) const;
+  bool writesAttachment(Attachment id) const;
+};
+
+struct FramePlan;
+
+// One fullscreen pass: its name, the form auto picks for it on a software
+// rasteriser (measured), and what it reads and writes in a plan. Its GL side
+// is its FramePass (lib/passes/frame_passes.cpp makes it), or, for a pass
+// with no GL code of its own, its body run as it is (GenericFramePass,
+// lib/passes/frame_pass.hpp) with the row's defines and outputs. Adding such
+// a pass is its body in glsl/ and one row (lib/frame/frame_plan.cpp).
+struct FullscreenPassRow {
+  std::string_view name;  // its PassTime::pass
+  // Auto's form on a software rasteriser: the faster one measured on
+  // llvmpipe (docs/BENCHMARKS.md, "Fullscreen forms").
+  PassForm softwareForm;
+  // What the pass reads and writes in a frame planned so far (the passes
+  // before it declared); none: it does not run in that frame. Null for a
+  // pass that is not one of the frame's (the sky tables, made on demand).
+  std::optional<PassDeclaration> (*declare)(const FramePlan& plan) = nullptr;
+  // A pass without GL code of its own: its body (glsl/), its #defines in a
+  // plan (null: none) and the PassOutputs member each declared write takes,
+  // in order.
+  std::string_view body = {};
+  std::vector<std::string> (*defines)(const FramePlan& plan) = nullptr;
+  std::span<const std::string_view> outputs = {};
+};
+// Every fullscreen pass, in frame order.
+std::span<const FullscreenPassRow> fullscreenPassRows();
+// What `rows` declare for `plan` (its variants decided), in row order, each
+// with its row index. Throws std::logic_error naming the pass and the
+// attachment when a pass reads what neither the G-buffer nor an earlier
+// pass writes.
+std::vector<PassDeclaration> declareFullscreenPasses(const FramePlan& plan, std::span<const FullscreenPassRow> rows);
+// The row named `name`; throws std::out_of_range for none.
+std::size_t fullscreenPassIndex(std::string_view name);
+
+// The forms of one frame's fullscreen passes, by row.
+using PassForms = std::vector<PassForm>;
+// What `setting` runs each pass as: fragment or compute as asked; auto:
+// compute on a hardware GPU, the row's measured form on a software
+// rasteriser.
+PassForms choosePassForms(std::optional<FullscreenForm> setting, bool softwareRasterizer);
+// GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, swrast, SwiftShader).
+bool isSoftwareRasterizer(std::string_view glRenderer);
+
 struct FramePlan {
   // Passes in frame order; a pass that does not run has no value.
   bool dropShadowMaps = false;  // shadows are off: the kept maps are released
@@ -272,6 +317,9 @@ struct FramePlan {
   // with an environment map, which then replaces the sky's tables.
   bool environmentTables = false;
   std::optional<CompositeVariant> composite;
+  // The fullscreen passes that run after the G-buffer, in frame order, as
+  // their rows declared them for this plan (direct, ssgi, ssgi-blur, composite).
+  std::vector<PassDeclaration> passes;
   std::optional<TransmissionVariant> transmission;  // after the composite, before the blend pass
   std::optional<BlendVariant> blend;                // after the composite, over lit
 

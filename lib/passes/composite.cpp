@@ -5,7 +5,7 @@
 namespace headlight {
 
 CompositePass::CompositePass()
-    : FullscreenPass("composite.glsl", [](const Variant& variant) {
+    : FullscreenPass("composite.glsl", [](const CompositeVariant& variant) {
         std::vector<std::string> defines;
         if (variant.ssgi) defines.emplace_back("HAS_SSGI");
         if (variant.sky) defines.emplace_back("HAS_SKY");
@@ -14,20 +14,10 @@ CompositePass::CompositePass()
         return defines;
       }) {}
 
-void CompositePass::run(const CompositeInputs& inputs, const gl::Texture& output, const Variant& variant,
-                        PassForm form) {
-  inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
-  inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  inputs.gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
-  inputs.gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-  inputs.direct.bind(gpu::kUnitDirect);
-  if (variant.ssgi) {
-    inputs.ssgi->occlusion.bind(gpu::kUnitSsgi);
-    inputs.ssgi->sky.bind(gpu::kUnitSsgiSky);
-    inputs.ssgi->specular.bind(gpu::kUnitSsgiSpecular);
-  }
+void CompositePass::execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) {
+  const CompositeVariant& variant = *inputs.plan.composite;
   bindAmbientTables(inputs.environment, variant.sky, variant.environment);
-  const PassOutput outputs[] = {{"radiance", &output}};
+  const PassOutput outputs[] = {{"radiance", &attachments.write(Attachment::Lit)}};
   FullscreenPass::run("composite", variant, form, outputs);
 }
 

@@ -5,7 +5,7 @@
 namespace headlight {
 
 DirectLightPass::DirectLightPass()
-    : FullscreenPass("direct_light.glsl", [](const Variant& variant) {
+    : FullscreenPass("direct_light.glsl", [](const DirectLightVariant& variant) {
         std::vector<std::string> defines;
         if (variant.emissive) defines.emplace_back("HAS_EMISSIVE");
         if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
@@ -15,18 +15,13 @@ DirectLightPass::DirectLightPass()
         return defines;
       }) {}
 
-void DirectLightPass::run(const DirectLightInputs& inputs, const DirectLightTargets& targets, const Variant& variant,
-                          PassForm form) {
-  const GBuffer& gbuffer = inputs.gbuffer;
-  const ShadowMaps& shadows = inputs.shadows;
-  gbuffer.position.bind(gpu::kUnitGbufferPosition);
-  gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
-  gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-  if (variant.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
-  if (variant.planarShadows) shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (variant.cubeShadows) shadows.cube.bind(gpu::kUnitShadowMapsCube);
-  const PassOutput outputs[] = {{"towardEye", &targets.towardEye}, {"diffuse", targets.diffuse}};
+void DirectLightPass::execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) {
+  const DirectLightVariant& variant = *inputs.plan.direct;
+  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
+  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  const PassOutput outputs[] = {
+      {"towardEye", &attachments.write(Attachment::DirectTowardEye)},
+      {"diffuse", variant.diffuseTarget ? &attachments.write(Attachment::DirectDiffuse) : nullptr}};
   FullscreenPass::run("direct light", variant, form, std::span(outputs, variant.diffuseTarget ? 2 : 1));
 }
 

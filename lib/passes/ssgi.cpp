@@ -1,5 +1,6 @@
 #include "passes/ssgi.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -66,6 +67,29 @@ void SsgiPass::updateKernel(int sampleCount, unsigned seed) {
   kernelSeed_ = seed;
 }
 
+void SsgiPass::execute(const FrameInputs& frame, const PassAttachments& attachments, PassForm form) {
+  const SsgiStep& step = *frame.plan.ssgi;
+  SsgiInputs inputs{frame.settings};
+  inputs.downsample = step.downsample;
+  inputs.farDownsample = step.farDownsample;
+  if (step.virtualLights > 0) {
+    inputs.virtualLights = &frame.virtualLights;
+    inputs.shadows = &frame.shadows;
+    inputs.emissive = attachments.declaresRead(Attachment::GbufferEmissive);
+  }
+  inputs.form = form;
+  const SsgiTextures output =
+      step.blur ? SsgiTextures{attachments.write(Attachment::SsgiRaw), attachments.write(Attachment::SsgiRawSky),
+                               attachments.write(Attachment::SsgiRawSpecular)}
+                : SsgiTextures{attachments.write(Attachment::Ssgi), attachments.write(Attachment::SsgiSky),
+                               attachments.write(Attachment::SsgiSpecular)};
+  for (int index = 0; index < step.frames; ++index) {
+    inputs.frameIndex = index;
+    if (step.frames > 1) inputs.accumulateWeight = index == 0 ? 0.0f : 1.0f / float(index + 1);
+    run(inputs, output);
+  }
+}
+
 void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   const SsgiSettings& settings = inputs.settings.ssgi;
   const SsgiMethodTraits& method = ssgiMethodTraits(settings.method);
@@ -79,17 +103,7 @@ void SsgiPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
   block_.downsample = inputs.downsample;
   blockBuffer_.update(block_);
   blockBuffer_.bindUniform(gpu::SsgiBlock::kBinding);
-
-  const GBuffer& gbuffer = inputs.gbuffer;
-  gbuffer.position.bind(gpu::kUnitGbufferPosition);
-  gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
   noise_.bind(gpu::kUnitSsgiNoise);
-  if (method.readsDirectDiffuse) {
-    if (inputs.directDiffuse == nullptr) throw GlError("SSGI radiance method: no direct-light diffuse target");
-    gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-    inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
-  }
   const PassOutput outputs[] = {{"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
   FullscreenPass::run("SSGI", settings.method, inputs.form, outputs, inputs.accumulateWeight);
 }

@@ -15,6 +15,7 @@
 
 #include "gl/objects.hpp"
 #include "headlight/settings.hpp"
+#include "passes/frame_pass.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/shadow.hpp"
@@ -34,15 +35,14 @@ std::vector<glm::vec3> makeSsgiKernel(int sampleCount, unsigned seed);
 // normal, tiled every 4x4 pixels.
 std::array<glm::vec2, 16> makeSsgiNoise(unsigned seed);
 
-// Everything one SSGI frame reads. The settings are the frame's resolved
-// ones (Renderer::resolve: no "auto" left); each method's pass fills its
-// block from them directly, so a setting that reaches a shader is its
-// settings row, its block field and the shader, with no copy in between.
+// Everything one SSGI frame reads besides its declared attachments. The
+// settings are the frame's resolved ones (Renderer::resolve: no "auto"
+// left); each method's pass fills its block from them directly, so a setting
+// that reaches a shader is its settings row, its block field and the
+// shader, with no copy in between.
 struct SsgiInputs {
-  const GBuffer& gbuffer;            // depth, normal, albedo, material; position for the kernel methods
-  const gl::Texture* directDiffuse;  // DirectLightTargets::diffuse: required by the methods that gather direct light
-  const RenderSettings& settings;    // resolved: the block members that carry settings are filled from it
-  int downsample = 1;                // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
+  const RenderSettings& settings;  // resolved: the block members that carry settings are filled from it
+  int downsample = 1;              // 1, 2 or 4: the output is the G-buffer's size / downsample, rounded up
   // The bitmask method's far field (SsgiTextures::sky): above `downsample`,
   // its own pass at this divisor (SsgiStep::farDownsample); else `downsample`.
   int farDownsample = 1;
@@ -50,6 +50,7 @@ struct SsgiInputs {
   // (VirtualLightPass), or null: from what its marches find.
   const VirtualLights* virtualLights = nullptr;
   const ShadowMaps* shadows = nullptr;  // the lights' maps: what hides a virtual light near its light
+  bool emissive = false;                // the G-buffer has emission (bound): what glows beyond R with virtual lights
   int frameIndex = 0;                   // rotates the slices and step jitter between accumulated frames
   // Accumulated frames (SsgiStep::frames > 1): 0 overwrites the output, w
   // blends in as (1 - w) output + w result; none: a single frame.
@@ -58,15 +59,18 @@ struct SsgiInputs {
 };
 
 // Variants: one per kernel method (glsl/ssgi.glsl); the bitmask method is
-// its own pass (glsl/ssgi_bitmask.glsl). Programs are built on first use.
-class SsgiPass : public FullscreenPass<SsgiMethod> {
+// its own program (glsl/ssgi_bitmask.glsl). Programs are built on first use.
+// Accumulated frames (SsgiStep::frames) are a running mean of rotated slice
+// sets, in the entry.
+class SsgiPass final : public FramePass, FullscreenPass<SsgiMethod> {
  public:
   SsgiPass();
-  // Reads `inputs` and the frame block; writes `output` (the size
-  // SsgiInputs::downsample says).
-  void run(const SsgiInputs& inputs, const SsgiTextures& output);
+  // The frame block must be bound.
+  void execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) override;
 
  private:
+  // Writes `output` (the size SsgiInputs::downsample says).
+  void run(const SsgiInputs& inputs, const SsgiTextures& output);
   void updateKernel(int sampleCount, unsigned seed);
   gpu::SsgiBlock block_{};  // the CPU copy: the kernel (and sampleCount) changes rarely, the rest every frame
   gl::Buffer blockBuffer_;

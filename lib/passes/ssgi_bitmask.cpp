@@ -18,18 +18,11 @@ SsgiBitmaskPass::SsgiBitmaskPass()
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
 
 void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) {
-  if (inputs.directDiffuse == nullptr) throw GlError("SSGI bitmask method: no direct-light diffuse target");
   gpu::SsgiBitmaskBlock block{};
   fillSettingFields(block, inputs.settings);
   block.downsample = inputs.downsample;
   // The seed and the frame index together turn the slices and the step jitter.
   block.rotationIndex = int(inputs.settings.ssgi.seed % 65536u) + inputs.frameIndex;
-  const GBuffer& gbuffer = inputs.gbuffer;
-  gbuffer.depth.bind(gpu::kUnitGbufferDepth);
-  gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  gbuffer.albedo.bind(gpu::kUnitGbufferAlbedo);
-  gbuffer.material.bind(gpu::kUnitGbufferMaterial);
-  inputs.directDiffuse->bind(gpu::kUnitDirectDiffuse);
   block.farLightSource = gpu::kFarLightDirect;
   SsgiBitmaskVariant variant;
   if (inputs.virtualLights) {
@@ -37,8 +30,7 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
     // add what glows there.
     block.virtualLightCount = inputs.virtualLights->count;
     inputs.virtualLights->buffer.bindStorage(gpu::VirtualLightBuffer::kBinding);
-    block.farLightSource = gbuffer.emissive ? gpu::kFarLightEmission : gpu::kFarLightNone;
-    if (gbuffer.emissive) gbuffer.emissive.bind(gpu::kUnitGbufferEmissive);
+    block.farLightSource = inputs.emissive ? gpu::kFarLightEmission : gpu::kFarLightNone;
     // The lights' shadow maps: a virtual light near its light is hidden
     // where the light is.
     if (inputs.shadows) {

@@ -24,6 +24,17 @@ SsgiBlurPass::SsgiBlurPass()
     : FullscreenPass("ssgi_blur.glsl", [](const std::monostate&) { return std::vector<std::string>{}; }),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBlurBlock))) {}
 
+void SsgiBlurPass::execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) {
+  const SsgiStep& step = *inputs.plan.ssgi;
+  const SsgiTextures raw{attachments.read(Attachment::SsgiRaw), attachments.read(Attachment::SsgiRawSky),
+                         attachments.read(Attachment::SsgiRawSpecular)};
+  const SsgiTextures blurred{attachments.write(Attachment::Ssgi), attachments.write(Attachment::SsgiSky),
+                             attachments.write(Attachment::SsgiSpecular)};
+  run({raw, *inputs.settings.ssgi.radius, step.downsample, step.farDownsample,
+       step.splitsFarField() ? &attachments.write(Attachment::SsgiFarSky) : nullptr, form},
+      blurred);
+}
+
 void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output) {
   gpu::SsgiBlurBlock block{};
   block.ssgiRadiusWorld = inputs.ssgiRadiusWorld;
@@ -31,17 +42,14 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   block.skyDownsample = inputs.ssgiDownsample;
   block.outputDownsample = 1;
   block.skyTapRadius = kTapRadius;
-  inputs.gbuffer.position.bind(gpu::kUnitGbufferPosition);
-  inputs.gbuffer.normal.bind(gpu::kUnitGbufferNormal);
-  inputs.rawSsgi.occlusion.bind(gpu::kUnitSsgi);
   if (inputs.skyDownsample > inputs.ssgiDownsample) {
     if (inputs.farSky == nullptr) throw GlError("SSGI blur: a coarser sky and no target to blur it in");
     blurFarField(block, inputs);
     block.skyDownsample = inputs.skyDownsample;
     block.skyTapRadius = kUpsampleTapRadius;
   }
+  // Bound by the runner, but the far field's line blur rebinds the unit.
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
-  inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
   const PassOutput outputs[] = {{"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
   draw(block, inputs.form, outputs);
 }

@@ -8,18 +8,19 @@
 // blurred at its own resolution (a wider window there, along rows into
 // `farSky`, then along columns back), then upsampled from a 3x3 window of it
 // with the same kind of weights. Body: glsl/ssgi_blur.glsl, in either form.
+#include <optional>
 #include <variant>
 
+#include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
+#include "passes/frame_pass.hpp"
 #include "passes/fullscreen.hpp"
-#include "passes/gbuffer.hpp"
 #include "passes/ssgi_textures.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
 
 struct SsgiBlurInputs {
-  const GBuffer& gbuffer;        // position, normal
   SsgiTextures rawSsgi;          // the SSGI pass's output, at 1/ssgiDownsample of the G-buffer's size per side
   float ssgiRadiusWorld = 0.0f;  // the SSGI radius: depth differences are judged against it
   int ssgiDownsample = 1;        // 1, 2 or 4
@@ -30,13 +31,15 @@ struct SsgiBlurInputs {
   PassForm form = PassForm::Fragment;
 };
 
-class SsgiBlurPass : FullscreenPass<std::monostate> {
+class SsgiBlurPass final : public FramePass, FullscreenPass<std::monostate> {
  public:
   SsgiBlurPass();
-  // The frame block must be bound. `output` has the G-buffer's size.
-  void run(const SsgiBlurInputs& inputs, const SsgiTextures& output);
+  // The frame block must be bound.
+  void execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) override;
 
  private:
+  // `output` has the G-buffer's size.
+  void run(const SsgiBlurInputs& inputs, const SsgiTextures& output);
   void blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurInputs& inputs);
   void draw(const gpu::SsgiBlurBlock& block, PassForm form, std::span<const PassOutput> outputs);
 
