@@ -116,7 +116,11 @@ std::vector<LinkedProgram> linkAll() {
   std::vector<LinkedProgram> programs;
   for (const ProgramSource& source : programSources())
     programs.push_back({std::string(source.files.back()), detail::buildProgram(source.files, source.defines)});
-  for (const PassSource& source : passSources())
+  std::vector<PassSource> sources = passSources();
+  // The rows whose pass has no GL code of its own: linked as their rows name them.
+  for (const FullscreenPassRow& row : fullscreenPassRows())
+    if (!row.body.empty()) sources.push_back({row.body, {row.outputs.begin(), row.outputs.end()}, {}});
+  for (const PassSource& source : sources)
     for (PassForm form : {PassForm::Fragment, PassForm::Compute})
       programs.push_back(
           {std::string(source.body) + " (" + std::string(passFormName(form)) + ")", passProgram(source, form, true)});
