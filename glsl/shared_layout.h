@@ -95,7 +95,8 @@ using mat4 = glm::mat4;
   X(kUnitPassAccumulated0, 43)            \
   X(kUnitPassAccumulated1, 44)            \
   X(kUnitPassAccumulated2, 45)            \
-  X(kUnitPassAccumulated3, 46)
+  X(kUnitPassAccumulated3, 46)            \
+  X(kUnitSsgiSurface, 47)
 
 // Image units (X(name, unit)), for image load/store: a fullscreen pass's
 // compute form writes its outputs 0..3 to these (glsl/fullscreen_entry.comp).

@@ -33,6 +33,8 @@ layout(binding = kUnitGbufferAlbedo) uniform sampler2D gbufferAlbedo;
 layout(binding = kUnitGbufferMaterial) uniform sampler2D gbufferMaterial;
 layout(binding = kUnitDirectDiffuse) uniform sampler2D directDiffuse;
 layout(binding = kUnitGbufferEmissive) uniform sampler2D gbufferEmissive;
+// Depth and view normal in one texel (glsl/ssgi_surface.glsl): a march step's one fetch.
+layout(binding = kUnitSsgiSurface) uniform sampler2D ssgiSurface;
 
 struct PassOutputs {
   vec4 nearField;  // AO and indirect light within R (SsgiTextures::occlusion)
@@ -86,9 +88,10 @@ int marchPoint(vec2 samplePoint, vec3 position, out MarchPoint point) {
   if (any(lessThan(samplePoint, vec2(0.0))) || any(greaterThanEqual(samplePoint, frame.viewport.xy)))
     return kMarchOffScreen;
   point.pixel = ivec2(samplePoint);
-  const float sampleDepth = texelFetch(gbufferDepth, point.pixel, 0).r;
+  const vec4 surface = texelFetch(ssgiSurface, point.pixel, 0);
+  const float sampleDepth = surface.r;
   if (sampleDepth >= 1.0) return kMarchSkip;  // background never occludes
-  point.normal = mat3(frame.view) * texelFetch(gbufferNormal, point.pixel, 0).xyz;
+  point.normal = surface.gba;
   bool known;
   const vec3 front = surfaceOnRay(samplePoint, point.pixel, sampleDepth, point.normal, known);
   if (!known) return kMarchSkip;

@@ -59,7 +59,8 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   REQUIRE(plan.composite);
   CHECK(*plan.composite == CompositeVariant{true, true});
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
-                                                          "ssgi", "ssgi-blur", "composite", "readback"});
+                                                          "ssgi-surface", "ssgi", "ssgi-blur", "composite",
+                                                          "readback"});
   CHECK(!plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.allocates(Attachment::SsgiRaw));
   CHECK(plan.gbuffer.defines.empty());
@@ -78,7 +79,8 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
-                                                          "ssgi", "ssgi-blur", "composite", "blend", "readback"});
+                                                          "ssgi-surface", "ssgi", "ssgi-blur", "composite", "blend",
+                                                          "readback"});
   CHECK(plan.allocates(Attachment::BlendCoverage));
   CHECK(plan.allocates(Attachment::Lit));
   const TargetRead* coverage = readOf(plan, "coverage");
@@ -159,7 +161,7 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.allocates(Attachment::SsgiRaw));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
-                                                          "ssgi", "composite", "readback"});
+                                                          "ssgi-surface", "ssgi", "composite", "readback"});
   settings.ssgi.enabled = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.ssgi);
@@ -296,8 +298,10 @@ TEST_CASE("frame plan: the fullscreen passes' declarations give the allocations,
                 ++plans;
                 // The fullscreen passes are the plan's, in row order, each once.
                 for (std::size_t i = 1; i < plan.passes.size(); ++i) CHECK(plan.passes[i - 1].row < plan.passes[i].row);
+                // (The bitmask's marches read the packed surface, a pass of its own.)
+                const bool bitmask = plan.ssgi && plan.ssgi->method->program == SsgiProgram::Bitmask;
                 CHECK(plan.passes.size() == std::size_t(bool(plan.direct)) + std::size_t(bool(plan.ssgi)) +
-                                                std::size_t(plan.ssgi && plan.ssgi->blur) +
+                                                std::size_t(bitmask) + std::size_t(plan.ssgi && plan.ssgi->blur) +
                                                 std::size_t(bool(plan.composite)));
                 // Allocated exactly: what the G-buffer, a declared pass or a forward pass writes.
                 for (const AttachmentRow& row : attachmentRows()) {
@@ -337,8 +341,8 @@ TEST_CASE("frame plan: a pass that reads what no earlier pass writes is refused,
   CHECK_THROWS_WITH_AS(declareFullscreenPasses(plan, reordered),
                        "composite reads direct.towardEye, which neither the G-buffer nor an earlier pass writes",
                        std::logic_error);
-  // In the table's order the same plan declares all four.
-  CHECK(declareFullscreenPasses(plan, rows).size() == 4);
+  // In the table's order the same plan declares all five (direct, ssgi-surface, ssgi, ssgi-blur, composite).
+  CHECK(declareFullscreenPasses(plan, rows).size() == 5);
   CHECK_THROWS_AS(fullscreenPassIndex("exposure"), std::out_of_range);
 }
 

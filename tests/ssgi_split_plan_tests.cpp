@@ -29,8 +29,8 @@ TEST_CASE("SSGI plan: by default the far field is its own pass at half resolutio
   CHECK(plan.divisorOf(Attachment::SsgiSky) == 1);
   CHECK(plan.allocates(Attachment::SsgiFarSky));
   // The far field's passes are timed with the SSGI pass and its blur.
-  CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "sky", "gbuffer", "direct", "ssgi", "ssgi-blur",
-                                                          "composite", "readback"});
+  CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "sky", "gbuffer", "direct", "ssgi-surface",
+                                                          "ssgi", "ssgi-blur", "composite", "readback"});
 }
 
 TEST_CASE("SSGI plan: the far field's divisor follows ssgi-far-resolution, never finer than ssgi-resolution") {
@@ -38,11 +38,11 @@ TEST_CASE("SSGI plan: the far field's divisor follows ssgi-far-resolution, never
     SsgiResolution near, far;
     int nearDivisor, farDivisor;
   };
-  for (const Case c : {Case{SsgiResolution::Full, SsgiResolution::Quarter, 1, 4},
-                       Case{SsgiResolution::Half, SsgiResolution::Quarter, 2, 4},
-                       Case{SsgiResolution::Half, SsgiResolution::Half, 2, 2},
-                       Case{SsgiResolution::Half, SsgiResolution::Full, 2, 2},
-                       Case{SsgiResolution::Full, SsgiResolution::Full, 1, 1}}) {
+  for (const Case c :
+       {Case{SsgiResolution::Full, SsgiResolution::Quarter, 1, 4},
+        Case{SsgiResolution::Half, SsgiResolution::Quarter, 2, 4},
+        Case{SsgiResolution::Half, SsgiResolution::Half, 2, 2}, Case{SsgiResolution::Half, SsgiResolution::Full, 2, 2},
+        Case{SsgiResolution::Full, SsgiResolution::Full, 1, 1}}) {
     CAPTURE(int(c.near));
     CAPTURE(int(c.far));
     RenderSettings settings = test::resolvedPlanSettings();

@@ -103,6 +103,8 @@ constexpr AttachmentRow kAttachmentRows[] = {
      S::Image, &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
     {Attachment::GbufferClearcoatLobe, "gbuffer.clearcoatLobe", F::Rgba16F, kAssignedLocation, "CLEARCOAT_TARGET",
      S::Image, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
+    // float32: the depth buffer's value exactly, and the view normal as the marches computed it.
+    {Attachment::SsgiSurface, "ssgi.surface", F::Rgba32F, -1, "", S::Image},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -133,6 +135,15 @@ std::optional<PassDeclaration> declareDirectLight(const FramePlan& plan) {
   return pass;
 }
 
+// glsl/ssgi_surface.glsl, for the bitmask method's marches: depth and normal packed.
+std::optional<PassDeclaration> declareSsgiSurface(const FramePlan& plan) {
+  if (!plan.ssgi || plan.ssgi->method->program != SsgiProgram::Bitmask) return std::nullopt;
+  return PassDeclaration{.reads = {{Attachment::GbufferDepth, gpu::kUnitGbufferDepth},
+                                   {Attachment::GbufferNormal, gpu::kUnitGbufferNormal}},
+                         .writes = {Attachment::SsgiSurface}};
+}
+constexpr std::string_view kSsgiSurfaceOutputs[] = {"surface"};
+
 // lib/passes/ssgi.hpp: the G-buffer's surface as the method reads it
 // (position for the kernels, depth for the bitmask), direct.diffuse for the
 // methods that gather it, the emission for the bitmask's virtual lights; the
@@ -145,7 +156,8 @@ std::optional<PassDeclaration> declareSsgi(const FramePlan& plan) {
     pass.reads = {{Attachment::GbufferDepth, gpu::kUnitGbufferDepth},
                   {Attachment::GbufferNormal, gpu::kUnitGbufferNormal},
                   {Attachment::GbufferAlbedo, gpu::kUnitGbufferAlbedo},
-                  {Attachment::GbufferMaterial, gpu::kUnitGbufferMaterial}};
+                  {Attachment::GbufferMaterial, gpu::kUnitGbufferMaterial},
+                  {Attachment::SsgiSurface, gpu::kUnitSsgiSurface}};
     const auto& colors = plan.gbuffer.colorAttachments;
     if (plan.ssgi->virtualLights > 0 &&
         std::find(colors.begin(), colors.end(), Attachment::GbufferEmissive) != colors.end())
@@ -202,6 +214,7 @@ std::optional<PassDeclaration> declareComposite(const FramePlan& plan) {
 // per renderer and were not told apart: fragment, as before.
 const FullscreenPassRow kFullscreenPassRows[] = {
     {"direct", PassForm::Fragment, declareDirectLight},
+    {"ssgi-surface", PassForm::Fragment, declareSsgiSurface, "ssgi_surface.glsl", nullptr, kSsgiSurfaceOutputs},
     {"ssgi", PassForm::Fragment, declareSsgi},
     {"ssgi-blur", PassForm::Fragment, declareSsgiBlur},
     {"composite", PassForm::Compute, declareComposite},

@@ -126,6 +126,7 @@ enum class Attachment {
   GbufferIridescence,
   GbufferSpecularLobe,   // Lobe::Specular: dielectric F0 colour, specular weight
   GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
+  SsgiSurface,           // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
