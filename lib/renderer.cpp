@@ -13,6 +13,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <optional>
 #include <span>
 #include <vector>
@@ -40,40 +41,78 @@
 namespace headlight {
 namespace {
 
-// Runs GL work between two glFinish calls, so the wall time is the GPU's
+// Times each pass and reports its GL errors by name. Synchronous (render()):
+// each pass runs between two glFinish calls, so its wall time is the GPU's
 // plus the CPU side that llvmpipe also spends (and a first frame's shader
-// compiles), and inside a GL_TIME_ELAPSED query, which times the GPU's own
-// work as the GPU sees it; reports the pass's GL errors by name.
+// compiles), and inside a GL_TIME_ELAPSED query read at once. Pipelined
+// (submit()): no glFinish, so the GPU runs on while the CPU queues the next
+// pass or frame; the wall time is the CPU's queueing, and the queries are
+// read when the frame is collected.
 class PassTimer {
  public:
-  explicit PassTimer(Context& context) : context_(context), query_(gl::Query::create(GL_TIME_ELAPSED)) {}
+  PassTimer(Context& context, bool synchronous) : context_(context), synchronous_(synchronous) {}
   // `form`: a fullscreen pass's, recorded with its time.
   template <class Work>
   void run(std::string_view pass, Work&& work, std::optional<PassForm> form = std::nullopt) {
-    glFinish();
+    if (synchronous_) glFinish();
+    gl::Query query = gl::Query::create(GL_TIME_ELAPSED);
     const auto start = std::chrono::steady_clock::now();
-    glBeginQuery(GL_TIME_ELAPSED, query_.id());
+    glBeginQuery(GL_TIME_ELAPSED, query.id());
     work();
     glEndQuery(GL_TIME_ELAPSED);
-    glFinish();
+    if (synchronous_) glFinish();
     const auto end = std::chrono::steady_clock::now();
     context_.checkErrors(std::string(pass));
     const double wall = std::chrono::duration<double, std::milli>(end - start).count();
-    // The query's work lies between the two glFinish calls, so it cannot take
-    // longer than they are apart: a longer answer is the driver's, not the
-    // GPU's (llvmpipe answers a context's first query with its clock since
-    // start, ~2e6 ms), and is reported as unknown.
-    double gpu = double(query_.result()) * 1e-6;
-    if (gpu > wall * 1.5 + 1.0) gpu = -1;  // loose: the two clocks differ by a little on tiny passes
-    times_.push_back({std::string(pass), wall, gpu, form ? std::string(passFormName(*form)) : std::string()});
+    times_.push_back({std::string(pass), wall, -1, form ? std::string(passFormName(*form)) : std::string()});
+    queries_.push_back(std::move(query));
+    if (synchronous_) resolve(times_.size() - 1, wall * 1.5 + 1.0);
   }
-  std::vector<PassTime> times() const { return times_; }
+  // Records `pass` as taking `milliseconds` of wall time, with no GPU time (the readback's wait).
+  void record(std::string_view pass, double milliseconds) {
+    times_.push_back({std::string(pass), milliseconds, -1, {}});
+    queries_.emplace_back();
+  }
+  // The pipelined passes' GPU times, once the frame's work is done; none
+  // may exceed `frameMilliseconds`, the wall time from submission to collection.
+  std::vector<PassTime> collect(double frameMilliseconds) {
+    if (!synchronous_)
+      for (std::size_t i = 0; i < times_.size(); ++i) resolve(i, frameMilliseconds);
+    return times_;
+  }
 
  private:
+  // The query's work lies within `bound` (the wall time around it), so a
+  // longer answer is the driver's, not the GPU's (llvmpipe answers a
+  // context's first query with its clock since start, ~2e6 ms), and is
+  // reported as unknown. Loose: the two clocks differ by a little on tiny passes.
+  void resolve(std::size_t index, double bound) {
+    if (!queries_[index]) return;
+    const double gpu = double(queries_[index].result()) * 1e-6;
+    times_[index].gpuMilliseconds = gpu > bound ? -1 : gpu;
+    queries_[index] = gl::Query();
+  }
+
   Context& context_;
-  gl::Query query_;  // one at a time: passes are not nested
+  const bool synchronous_;
   std::vector<PassTime> times_;
+  std::vector<gl::Query> queries_;  // by times_ index; empty once read
 };
+
+// A frame between submit() and collect(): everything but its targets' pixels
+// and its GPU times, which the GPU is still producing.
+struct PendingFrame {
+  Frame frame;
+  std::vector<std::pair<ImageF Frame::*, PendingImage>> images;  // the targets read back
+  std::unique_ptr<PassTimer> timer;
+  gl::Fence fence;             // after the last copy
+  double readbackQueueMs = 0;  // the CPU's time queueing the copies
+  std::chrono::steady_clock::time_point submitted;
+};
+
+// The most frames submitted and not yet collected: enough for frame N+1's
+// GPU work to overlap frame N's readback, and a bound on the pixel buffers held.
+constexpr std::size_t kMaxPendingFrames = 2;
 
 // A scene with no light of its own gets one sun from above, in front and to
 // the left of the fitted camera's side (+Z), of about pi lux, so a white
@@ -234,14 +273,15 @@ struct Renderer::Impl {
     return fitted;
   }
 
-  // Reads each planned target from its attachments (depth as view depth; a
-  // target with no source as zeros of the image's size).
-  void readTargets(const FramePlan& plan, Frame& frame) const {
+  // Starts reading each planned target from its attachments (depth as view
+  // depth); a target with no source is zeros of the image's size at once.
+  void startReads(const FramePlan& plan, PendingFrame& pending) const {
+    Frame& frame = pending.frame;
     for (const TargetRead& read : plan.reads) {
       const FrameTarget& target = *read.target;
-      ImageF& image = frame.*target.image;
       const std::vector<std::string>& channels = read.channels;
       if (read.sources.empty()) {
+        ImageF& image = frame.*target.image;
         image.width = width;
         image.height = height;
         image.channels = channels;
@@ -250,11 +290,21 @@ struct Renderer::Impl {
       }
       std::vector<const gl::Texture*> sources;
       for (Attachment id : read.sources) sources.push_back(&texture(id));
-      image = attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
-                  ? readViewDepth(*sources.front(), frame.view, channels.front())
-                  : readColor(sources, channels);
+      pending.images.emplace_back(target.image,
+                                  attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
+                                      ? PendingImage::viewDepth(*sources.front(), frame.view, channels.front())
+                                      : PendingImage::color(sources, channels));
     }
   }
+
+  // Queues one frame: its passes, then the copies of its targets.
+  PendingFrame submitFrame(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets,
+                           bool synchronous);
+  // Waits for a submitted frame's copies and finishes it.
+  Frame collectFrame(PendingFrame pending);
+
+  // Frames submitted and not yet collected, oldest first.
+  std::deque<PendingFrame> pending;
 };
 
 // Every entry point checks that its context is current on the calling thread:
@@ -339,13 +389,14 @@ RenderSettings Renderer::resolve(const RenderSettings& settings) const {
   return resolveSettings(settings, impl_->scene);
 }
 
-Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
-  Impl& impl = *impl_;
-  impl.context.requireCurrent("Renderer::render");
-  auto lock = detail::ContextAccess::lockBackend(impl.context);
+PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const Camera* camera,
+                                         std::span<const std::string> targets, bool synchronous) {
+  Impl& impl = *this;
   if (!impl.gpuScene || !impl.gbufferPass) throw SettingsError("Renderer::render: no scene (call setScene first)");
-  Frame frame;
-  frame.settings = resolve(settings);
+  PendingFrame pending;
+  pending.submitted = std::chrono::steady_clock::now();
+  Frame& frame = pending.frame;
+  frame.settings = resolveSettings(settings, impl.scene);
   const RenderSettings& used = frame.settings;
   // Before any target of this size is allocated.
   // A scene that transmits also holds lit's mip-mapped copy and the transmission target.
@@ -367,7 +418,8 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   // How each fullscreen pass runs this frame (fragment or compute), by row.
   const PassForms forms = choosePassForms(used.fullscreenForm, impl.softwareRasterizer);
   const PassForm tableForm = forms[fullscreenPassIndex("sky")];
-  PassTimer timer(impl.context);
+  pending.timer = std::make_unique<PassTimer>(impl.context, synchronous);
+  PassTimer& timer = *pending.timer;
   // Shadow maps are remade only when their size or what the directional
   // ones cover changes; with shadows off the lights read "no map".
   if (plan.dropShadowMaps) impl.dropShadows();
@@ -412,10 +464,17 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
                                impl.height};
     timer.run("blend", [&] { impl.blend.run(inputs, targets, *plan.blend); });
   }
-  timer.run("readback", [&] { impl.readTargets(plan, frame); });
+  // The copies are queued behind the passes; the pixels come back in
+  // collectFrame, whose "readback" time includes this queueing.
+  const auto readStart = std::chrono::steady_clock::now();
+  impl.startReads(plan, pending);
+  impl.context.checkErrors("readback");
+  pending.readbackQueueMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count();
+  pending.fence = gl::Fence::insert();
+  glFlush();  // the GPU starts on this frame while the CPU goes on
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
-  frame.timings = timer.times();
   frame.glRenderer = impl.context.renderer();
   frame.glVersion = impl.context.version();
   frame.backend = std::string(backendName(impl.context.backend())) + ": " + impl.context.description();
@@ -423,7 +482,50 @@ Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std
   frame.sceneHash = impl.scene.sourceHash;
   for (const IgnoredFeature& feature : impl.scene.ignored) frame.ignored.push_back(feature.describe());
   frame.ignored.insert(frame.ignored.end(), plan.unrendered.begin(), plan.unrendered.end());
-  return frame;
+  return pending;
 }
+
+Frame Renderer::Impl::collectFrame(PendingFrame pending) {
+  const auto start = std::chrono::steady_clock::now();
+  pending.fence.wait();
+  for (auto& [member, image] : pending.images) pending.frame.*member = image.finish();
+  context.checkErrors("readback");
+  const auto end = std::chrono::steady_clock::now();
+  pending.timer->record("readback",
+                        pending.readbackQueueMs + std::chrono::duration<double, std::milli>(end - start).count());
+  pending.frame.timings =
+      pending.timer->collect(std::chrono::duration<double, std::milli>(end - pending.submitted).count());
+  return std::move(pending.frame);
+}
+
+Frame Renderer::render(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
+  Impl& impl = *impl_;
+  impl.context.requireCurrent("Renderer::render");
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
+  return impl.collectFrame(impl.submitFrame(settings, camera, targets, true));
+}
+
+void Renderer::submit(const RenderSettings& settings, const Camera* camera, std::span<const std::string> targets) {
+  Impl& impl = *impl_;
+  impl.context.requireCurrent("Renderer::submit");
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
+  if (impl.pending.size() >= kMaxPendingFrames)
+    throw SettingsError("Renderer::submit: " + std::to_string(impl.pending.size()) +
+                        " frames are submitted and not collected (at most " + std::to_string(kMaxPendingFrames) +
+                        "): collect() first");
+  impl.pending.push_back(impl.submitFrame(settings, camera, targets, false));
+}
+
+Frame Renderer::collect() {
+  Impl& impl = *impl_;
+  impl.context.requireCurrent("Renderer::collect");
+  auto lock = detail::ContextAccess::lockBackend(impl.context);
+  if (impl.pending.empty()) throw SettingsError("Renderer::collect: no frame submitted");
+  PendingFrame oldest = std::move(impl.pending.front());
+  impl.pending.pop_front();
+  return impl.collectFrame(std::move(oldest));
+}
+
+std::size_t Renderer::submitted() const { return impl_->pending.size(); }
 
 }  // namespace headlight

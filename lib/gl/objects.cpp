@@ -80,6 +80,41 @@ Buffer Buffer::create(std::size_t bytes, const void* data) {
   return buffer;
 }
 
+Buffer Buffer::createReadback(std::size_t bytes) {
+  Buffer buffer;
+  buffer.adopt(createOne(glCreateBuffers));
+  buffer.size_ = bytes;
+  glNamedBufferStorage(buffer.id(), GLsizeiptr(bytes), nullptr, GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
+  return buffer;
+}
+
+void Buffer::read(void* data, std::size_t bytes, std::size_t offset) const {
+  glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
+}
+
+Fence Fence::insert() {
+  Fence fence;
+  fence.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  return fence;
+}
+
+void Fence::wait() const {
+  if (!sync_) return;
+  // Flushes first, so a fence never waits on commands still in the client's queue.
+  GLbitfield flags = GL_SYNC_FLUSH_COMMANDS_BIT;
+  while (true) {
+    const GLenum status = glClientWaitSync(sync_, flags, 1'000'000'000);  // 1 s a try
+    if (status == GL_ALREADY_SIGNALED || status == GL_CONDITION_SATISFIED || status == GL_WAIT_FAILED) return;
+    flags = 0;
+  }
+}
+
+void Fence::reset() {
+  // As the named objects: none deleted on a thread without a current context.
+  if (sync_ && haveCurrent()) glDeleteSync(sync_);
+  sync_ = nullptr;
+}
+
 void Buffer::update(const void* data, std::size_t bytes, std::size_t offset) const {
   glNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
 }

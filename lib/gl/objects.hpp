@@ -100,6 +100,11 @@ class Buffer : public Name<deleteBuffer> {
   // Immutable storage of `bytes` (glNamedBufferStorage), updatable with
   // update(); data may be null.
   static Buffer create(std::size_t bytes, const void* data = nullptr);
+  // Storage the GPU writes and the CPU reads back (glGetNamedBufferSubData):
+  // a pixel pack buffer.
+  static Buffer createReadback(std::size_t bytes);
+  // Copies `bytes` from `offset` into `data`; waits for the commands that write it.
+  void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
   template <class T>
   static Buffer create(std::span<const T> items) {
     return create(items.size_bytes(), items.data());
@@ -151,6 +156,30 @@ class Sampler : public Name<deleteSampler> {
 };
 
 // A query object of one target (GL_TIME_ELAPSED for the passes' GPU time).
+// A fence after the commands issued so far (glFenceSync); move-only.
+class Fence {
+ public:
+  Fence() = default;
+  static Fence insert();
+  Fence(Fence&& other) noexcept : sync_(std::exchange(other.sync_, nullptr)) {}
+  Fence& operator=(Fence&& other) noexcept {
+    if (this != &other) {
+      reset();
+      sync_ = std::exchange(other.sync_, nullptr);
+    }
+    return *this;
+  }
+  Fence(const Fence&) = delete;
+  Fence& operator=(const Fence&) = delete;
+  ~Fence() { reset(); }
+  // Blocks until the GPU has passed the fence (none: at once).
+  void wait() const;
+
+ private:
+  void reset();
+  GLsync sync_ = nullptr;
+};
+
 class Query : public Name<deleteQuery> {
  public:
   Query() = default;  // owns nothing

@@ -20,56 +20,84 @@ void flipRows(std::vector<float>& pixels, int width, int height, int channels) {
                      pixels.begin() + std::ptrdiff_t(std::size_t(height - 1 - y) * row));
 }
 
-std::vector<float> readRgba(const gl::Texture& texture) {
-  std::vector<float> rgba(std::size_t(texture.width()) * std::size_t(texture.height()) * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(texture.id(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
-  return rgba;
-}
-
 }  // namespace
 
-ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels) {
+PixelRead::PixelRead(const gl::Texture& texture, GLenum format, int components)
+    : width_(texture.width()), height_(texture.height()), internalFormat_(texture.internalFormat()) {
+  const std::size_t bytes = std::size_t(width_) * std::size_t(height_) * std::size_t(components) * sizeof(float);
+  buffer_ = gl::Buffer::createReadback(bytes);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer_.id());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(bytes), nullptr);  // into the buffer, offset 0
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+}
+
+std::vector<float> PixelRead::finish() const {
+  std::vector<float> pixels(buffer_.size() / sizeof(float));
+  buffer_.read(pixels.data(), buffer_.size());
+  return pixels;
+}
+
+PendingImage PendingImage::color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels) {
+  if (textures.size() * 4 < channels.size() || textures.empty())
+    throw GlError("readColor: " + std::to_string(channels.size()) + " channels need " +
+                  std::to_string((channels.size() + 3) / 4) + " textures, got " + std::to_string(textures.size()));
+  PendingImage image;
+  for (std::size_t k = 0; k < textures.size(); ++k) {
+    const gl::Texture& texture = *textures[k];
+    if (texture.width() != textures.front()->width() || texture.height() != textures.front()->height())
+      throw GlError("readColor: texture " + std::to_string(k) + " is " + std::to_string(texture.width()) + "x" +
+                    std::to_string(texture.height()) + ", texture 0 is " + std::to_string(textures.front()->width()) +
+                    "x" + std::to_string(textures.front()->height()));
+    if (k * 4 < channels.size()) image.parts_.emplace_back(texture, GL_RGBA, 4);
+  }
+  image.channels_ = std::move(channels);
+  return image;
+}
+
+PendingImage PendingImage::viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel) {
+  PendingImage image;
+  image.parts_.emplace_back(depth, GL_DEPTH_COMPONENT, 1);
+  image.channels_ = {std::move(channel)};
+  image.depthView_ = view;
+  return image;
+}
+
+ImageF PendingImage::finish() const {
   ImageF image;
-  image.width = texture.width();
-  image.height = texture.height();
-  const std::size_t count = channels.size();
-  image.channels = std::move(channels);
-  std::vector<float> rgba = readRgba(texture);
-  // GL returns the stored (encoded) values of an sRGB texture: decode here.
-  if (texture.internalFormat() == GL_SRGB8_ALPHA8)
-    for (std::size_t i = 0; i < rgba.size(); ++i)
-      if (i % 4 != 3) rgba[i] = srgbToLinear(rgba[i]);
-  image.pixels.resize(std::size_t(image.width) * std::size_t(image.height) * count);
-  for (std::size_t p = 0, n = std::size_t(image.width) * std::size_t(image.height); p < n; ++p)
-    for (std::size_t c = 0; c < count; ++c) image.pixels[p * count + c] = rgba[p * 4 + c];
+  image.width = parts_.front().width();
+  image.height = parts_.front().height();
+  image.channels = channels_;
+  const std::size_t count = channels_.size(), pixels = std::size_t(image.width) * std::size_t(image.height);
+  if (depthView_) {
+    image.pixels = parts_.front().finish();
+    const glm::dvec4 k = viewZCoefficients(*depthView_);
+    for (float& d : image.pixels) d = float(-HL_VIEW_Z_FROM_NDC_DEPTH(2.0 * double(d) - 1.0, k));
+    flipRows(image.pixels, image.width, image.height, 1);
+    return image;
+  }
+  image.pixels.resize(pixels * count);
+  for (std::size_t k = 0; k < parts_.size(); ++k) {
+    std::vector<float> rgba = parts_[k].finish();
+    // GL returns the stored (encoded) values of an sRGB texture: decode here.
+    if (parts_[k].internalFormat() == GL_SRGB8_ALPHA8)
+      for (std::size_t i = 0; i < rgba.size(); ++i)
+        if (i % 4 != 3) rgba[i] = srgbToLinear(rgba[i]);
+    const std::size_t first = k * 4, last = std::min(count, first + 4);
+    for (std::size_t p = 0; p < pixels; ++p)
+      for (std::size_t c = first; c < last; ++c) image.pixels[p * count + c] = rgba[p * 4 + c - first];
+  }
   flipRows(image.pixels, image.width, image.height, int(count));
   return image;
 }
 
+ImageF readColor(const gl::Texture& texture, std::vector<std::string> channels) {
+  const gl::Texture* textures[] = {&texture};
+  return PendingImage::color(textures, std::move(channels)).finish();
+}
+
 ImageF readColor(std::span<const gl::Texture* const> textures, const std::vector<std::string>& channels) {
-  if (textures.size() * 4 < channels.size() || textures.empty())
-    throw GlError("readColor: " + std::to_string(channels.size()) + " channels need " +
-                  std::to_string((channels.size() + 3) / 4) + " textures, got " + std::to_string(textures.size()));
-  ImageF image;
-  image.width = textures.front()->width();
-  image.height = textures.front()->height();
-  image.channels = channels;
-  const std::size_t count = channels.size(), pixels = std::size_t(image.width) * std::size_t(image.height);
-  image.pixels.resize(pixels * count);
-  for (std::size_t k = 0; k * 4 < count; ++k) {
-    const std::size_t first = k * 4, last = std::min(count, first + 4);
-    const ImageF part =
-        readColor(*textures[k], {channels.begin() + std::ptrdiff_t(first), channels.begin() + std::ptrdiff_t(last)});
-    if (part.width != image.width || part.height != image.height)
-      throw GlError("readColor: texture " + std::to_string(k) + " is " + std::to_string(part.width) + "x" +
-                    std::to_string(part.height) + ", texture 0 is " + std::to_string(image.width) + "x" +
-                    std::to_string(image.height));
-    for (std::size_t p = 0; p < pixels; ++p)
-      for (std::size_t c = first; c < last; ++c)
-        image.pixels[p * count + c] = part.pixels[p * (last - first) + c - first];
-  }
-  return image;
+  return PendingImage::color(textures, channels).finish();
 }
 
 glm::dvec4 viewZCoefficients(const CameraView& view) {
@@ -82,18 +110,7 @@ glm::dvec4 viewZCoefficients(const CameraView& view) {
 }
 
 ImageF readViewDepth(const gl::Texture& depth, const CameraView& view, std::string channel) {
-  ImageF image;
-  image.width = depth.width();
-  image.height = depth.height();
-  image.channels = {std::move(channel)};
-  image.pixels.resize(std::size_t(image.width) * std::size_t(image.height));
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glGetTextureImage(depth.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, GLsizei(image.pixels.size() * sizeof(float)),
-                    image.pixels.data());
-  const glm::dvec4 k = viewZCoefficients(view);
-  for (float& d : image.pixels) d = float(-HL_VIEW_Z_FROM_NDC_DEPTH(2.0 * double(d) - 1.0, k));
-  flipRows(image.pixels, image.width, image.height, 1);
-  return image;
+  return PendingImage::viewDepth(depth, view, std::move(channel)).finish();
 }
 
 }  // namespace headlight

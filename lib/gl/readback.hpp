@@ -1,6 +1,7 @@
 #pragma once
 // GPU targets to ImageF: rows flipped from GL's bottom-up order to image
 // order (top row first), and depth turned into view-space depth.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,6 +12,43 @@
 #include "headlight/frame.hpp"
 
 namespace headlight {
+
+// A texture's level 0 on its way back as floats: the GPU copies it into a
+// pixel buffer in command order (after what drew it, before what draws into
+// it next), so the texture may be drawn into again at once; finish() waits
+// for the copy alone.
+class PixelRead {
+ public:
+  // Queues the copy of `texture` as `format` (GL_RGBA or GL_DEPTH_COMPONENT),
+  // `components` floats a pixel.
+  PixelRead(const gl::Texture& texture, GLenum format, int components);
+  std::vector<float> finish() const;  // rows bottom-up, as GL has them
+  int width() const { return width_; }
+  int height() const { return height_; }
+  GLenum internalFormat() const { return internalFormat_; }
+
+ private:
+  gl::Buffer buffer_;
+  int width_ = 0, height_ = 0;
+  GLenum internalFormat_ = 0;
+};
+
+// An image being read back: a target held in several textures of one size
+// (headlight/targets.hpp: channels 4k..4k+3 in textures[k]), or a depth
+// texture as view depth. Started when its frame's passes are queued,
+// finished when the frame is collected (Renderer::submit, collect).
+class PendingImage {
+ public:
+  static PendingImage color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels);
+  // Window depth turned into the distance along the view direction (view-space -z).
+  static PendingImage viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel);
+  ImageF finish() const;
+
+ private:
+  std::vector<PixelRead> parts_;
+  std::vector<std::string> channels_;
+  std::optional<CameraView> depthView_;  // a depth read: the view it converts with
+};
 
 // Reads the first channels.size() components of a colour texture as floats.
 // sRGB textures come back decoded to linear.

@@ -50,6 +50,21 @@ class Renderer {
   Frame render(const RenderSettings& settings, const Camera* camera = nullptr,
                std::span<const std::string> targets = {});
 
+  // Pipelined rendering of many views: submit() queues one frame (its
+  // passes, then the copy of its targets into pixel buffers) and returns
+  // without waiting for the GPU; collect() returns the oldest submitted
+  // frame, waiting only for its copies. Submit frame N+1 before collecting
+  // frame N and the GPU draws N+1 while N's pixels come back. At most two
+  // frames are submitted and not collected (SettingsError beyond). A
+  // submitted frame's pass times are the CPU's queueing (no glFinish between
+  // passes; GPU times from timer queries); render() is submit + collect with
+  // every pass bounded by glFinish. A frame's scene is the one set when it
+  // was submitted. Errors are thrown by the call that meets them.
+  void submit(const RenderSettings& settings, const Camera* camera = nullptr,
+              std::span<const std::string> targets = {});
+  Frame collect();
+  std::size_t submitted() const;  // frames submitted and not yet collected
+
   // The settings render() would use: auto radius, bias and shadow-map size
   // resolved from the scene and image size.
   RenderSettings resolve(const RenderSettings& settings) const;
