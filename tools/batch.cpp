@@ -322,6 +322,52 @@ int runRenderBatch(const RenderCommand& command) {
     if (pendingWrite.valid()) pendingWrite.get();
   };
 
+  // The job submitted to the renderer and not yet collected: frame N+1 is
+  // submitted before frame N is collected (Renderer::submit), so the GPU
+  // draws one while the other's pixels come back.
+  struct InFlight {
+    std::size_t index;
+    std::shared_ptr<detail::OutputFolderLock> folderLock;
+    double submitMs;
+  };
+  std::optional<InFlight> inFlight;
+  auto collectInFlight = [&] {
+    if (!inFlight) return;
+    const InFlight job = std::move(*inFlight);
+    inFlight.reset();
+    const std::size_t i = job.index;
+    try {
+      const auto collectStart = std::chrono::steady_clock::now();
+      auto frame = std::make_shared<Frame>(renderer->collect());
+      results[i].renderMs = job.submitMs + millisecondsSince(collectStart);
+      results[i].passes = frame->timings;
+      results[i].peakRssKb = peakRssKb();
+      if (verbose) printFrameDetails(*frame);
+      waitForWrite();
+      OutputOptions output = command.output;
+      output.jobHash = jobHash(jobs[i], command.output, command.sceneLoad.environment);
+      output.waitForFolder = command.wait;
+      pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock = job.folderLock] {
+        const auto writeStart = std::chrono::steady_clock::now();
+        try {
+          results[i].files = writeFrame(*frame, jobs[i].outDir, output);
+          results[i].status = JobResult::Status::Rendered;
+        } catch (const std::exception& error) {
+          results[i].status = JobResult::Status::Failed;
+          results[i].error = commandLineMessage(error);
+        }
+        results[i].writeMs = millisecondsSince(writeStart);
+        report(i);
+      });
+    } catch (const ContextError&) {
+      throw;
+    } catch (const std::exception& error) {
+      results[i].status = JobResult::Status::Failed;
+      results[i].error = commandLineMessage(error);
+      report(i);
+    }
+  };
+
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const Job& job = jobs[i];
     JobResult& result = results[i];
@@ -361,29 +407,13 @@ int runRenderBatch(const RenderCommand& command) {
       auto folderLock = std::make_shared<detail::OutputFolderLock>(job.outDir, command.wait);
       const std::optional<Camera> camera =
           job.camera.build(scene, float(job.settings.width) / float(job.settings.height));
-      const auto renderStart = std::chrono::steady_clock::now();
-      auto frame = std::make_shared<Frame>(renderer->render(job.settings, camera ? &*camera : nullptr, renderTargets));
-      result.renderMs = millisecondsSince(renderStart);
-      result.passes = frame->timings;
-      result.peakRssKb = peakRssKb();
-      if (verbose) printFrameDetails(*frame);
+      const auto submitStart = std::chrono::steady_clock::now();
+      renderer->submit(job.settings, camera ? &*camera : nullptr, renderTargets);
       cache.release(job);
-      waitForWrite();
-      OutputOptions output = command.output;
-      output.jobHash = jobHash(job, command.output, command.sceneLoad.environment);
-      output.waitForFolder = command.wait;
-      pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock] {
-        const auto writeStart = std::chrono::steady_clock::now();
-        try {
-          results[i].files = writeFrame(*frame, jobs[i].outDir, output);
-          results[i].status = JobResult::Status::Rendered;
-        } catch (const std::exception& error) {
-          results[i].status = JobResult::Status::Failed;
-          results[i].error = commandLineMessage(error);
-        }
-        results[i].writeMs = millisecondsSince(writeStart);
-        report(i);
-      });
+      // The previous job's pixels come back while the GPU draws this one.
+      InFlight submitted{i, std::move(folderLock), millisecondsSince(submitStart)};
+      collectInFlight();
+      inFlight = std::move(submitted);
     } catch (const ContextError&) {
       throw;  // no job can render without a context: the batch stops
     } catch (const std::exception& error) {
@@ -394,6 +424,7 @@ int runRenderBatch(const RenderCommand& command) {
       report(i);
     }
   }
+  collectInFlight();
   waitForWrite();
   progress.update(jobs.size(), "done");
   progress.finish();
