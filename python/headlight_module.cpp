@@ -578,6 +578,35 @@ PYBIND11_MODULE(headlight, m) {
           py::arg("folder"),
           "writes <folder>/<target>.exr and preview.png as `headlight render` does; returns the paths");
 
+  // render()'s and submit()'s keywords: the settings, an explicit camera and the targets to read back.
+  struct RenderRequest {
+    RenderSettings settings;
+    std::optional<Camera> camera;
+    std::vector<std::string> targets;  // targets=['depth', 'lit']: passes only other targets need are skipped
+  };
+  static const auto renderRequest = [](const py::kwargs& kwargs) {
+    RenderRequest request;
+    request.camera = cameraFromKwargs(kwargs);
+    request.settings = settingsFromKwargs(kwargs);
+    if (kwargs.contains("targets") && !kwargs["targets"].is_none()) {
+      const py::object given = kwargs["targets"];
+      if (py::isinstance<py::str>(given) || !py::isinstance<py::sequence>(given))
+        badArgument("targets", "a list of target names", given);
+      for (const py::handle& item : given) {
+        if (!py::isinstance<py::str>(item)) badArgument("targets", "a list of target names", given);
+        const std::string name = item.cast<std::string>();
+        if (findFrameTarget(name) == nullptr) {
+          std::string known;
+          for (const FrameTarget& target : frameTargets())
+            if (target.image) (known += known.empty() ? "" : ", ") += target.name;
+          throw SettingsError("targets: unknown target '" + name + "' (known: " + known + ")", {"targets"});
+        }
+        request.targets.push_back(name);
+      }
+    }
+    return request;
+  };
+
   py::class_<PyRenderer>(m, "Renderer",
                          "A GL context and a renderer. Usable from any thread, one call at a time (the context is "
                          "made current on the calling thread for each call); calls release the GIL.")
@@ -648,29 +677,11 @@ PYBIND11_MODULE(headlight, m) {
       .def(
           "render",
           [](PyRenderer& self, const py::kwargs& kwargs) {
-            const std::optional<Camera> camera = cameraFromKwargs(kwargs);
-            RenderSettings settings = settingsFromKwargs(kwargs);
-            // targets=['depth', 'lit']: only these are read back, and passes only other targets need are skipped.
-            std::vector<std::string> targets;
-            if (kwargs.contains("targets") && !kwargs["targets"].is_none()) {
-              const py::object given = kwargs["targets"];
-              if (py::isinstance<py::str>(given) || !py::isinstance<py::sequence>(given))
-                badArgument("targets", "a list of target names", given);
-              for (const py::handle& item : given) {
-                if (!py::isinstance<py::str>(item)) badArgument("targets", "a list of target names", given);
-                const std::string name = item.cast<std::string>();
-                if (findFrameTarget(name) == nullptr) {
-                  std::string known;
-                  for (const FrameTarget& target : frameTargets())
-                    if (target.image) (known += known.empty() ? "" : ", ") += target.name;
-                  throw SettingsError("targets: unknown target '" + name + "' (known: " + known + ")", {"targets"});
-                }
-                targets.push_back(name);
-              }
-            }
+            const RenderRequest request = renderRequest(kwargs);
             py::gil_scoped_release release;
             return self.onThisThread([&] {
-              return std::make_shared<Frame>(self.renderer->render(settings, camera ? &*camera : nullptr, targets));
+              return std::make_shared<Frame>(self.renderer->render(
+                  request.settings, request.camera ? &*request.camera : nullptr, request.targets));
             });
           },
           "render(width=640, height=480, **settings, eye=None, target=None, up=(0, 1, 0), fov=40, ortho_size=None, "
@@ -679,6 +690,25 @@ PYBIND11_MODULE(headlight, m) {
           "ssgi_radius=None (auto), shadows=False, preset='fast'. An explicit camera: eye and target (and up), or "
           "view (4x4 world -> view matrix); with fov (vertical, degrees) or ortho_size (the view's height in world "
           "units, orthographic). Without one: the scene's camera (the camera setting), or one fitted to the bounds.")
+      .def(
+          "submit",
+          [](PyRenderer& self, const py::kwargs& kwargs) {
+            const RenderRequest request = renderRequest(kwargs);
+            py::gil_scoped_release release;
+            self.onThisThread([&] {
+              self.renderer->submit(request.settings, request.camera ? &*request.camera : nullptr, request.targets);
+            });
+          },
+          "submit(**render's arguments): queues a frame and returns without waiting for it; collect() gives it. "
+          "Submit the next view before collecting this one and the GPU draws one while the other comes back "
+          "(at most two submitted and not collected). Pass times are then the CPU's; gpu_times the GPU's.")
+      .def(
+          "collect",
+          [](PyRenderer& self) {
+            py::gil_scoped_release release;
+            return self.onThisThread([&] { return std::make_shared<Frame>(self.renderer->collect()); });
+          },
+          "collect() -> Frame: the oldest submitted frame (SettingsError when none is)")
       .def_property_readonly("backend",
                              [](PyRenderer& self) { return std::string(backendName(self.context->backend())); })
       .def_property_readonly("device", [](PyRenderer& self) { return self.context->description(); })

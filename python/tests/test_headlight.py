@@ -386,14 +386,6 @@ def test_set_scene_material_variant_picks_the_variants_materials():
     assert green[1] > 0.9 and green[0] < 0.1
 
 
-if __name__ == "__main__":
-    tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
-    for name, test in tests:
-        test()
-        print("ok", name)
-    print(len(tests), "passed")
-
-
 def test_targets_bounds_and_orbit():
     r = osmesa_renderer()
     r.set_scene("builtin:cornell")
@@ -445,3 +437,36 @@ def test_frames_pickle_for_multiprocessing():
         written = copy.write(os.path.join(folder, "out"))
         assert any(str(path).endswith("lit.exr") for path in written)
     expect(headlight.SettingsError, lambda: headlight.Frame.__new__(headlight.Frame).__setstate__((99,)), "state")
+
+
+def test_submit_and_collect_pipeline_views_and_give_renders_frames():
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    views = r.orbit(3, width=64, height=48)
+    expected = [r.render(**SMALL, **view) for view in views]
+    r.submit(**SMALL, **views[0])
+    r.submit(**SMALL, **views[1])
+    try:
+        r.submit(**SMALL, **views[2])
+        raise AssertionError("a third frame in flight was accepted")
+    except headlight.SettingsError as error:
+        assert "at most 2" in str(error)
+    frames = [r.collect()]
+    r.submit(**SMALL, **views[2])
+    frames += [r.collect(), r.collect()]
+    for got, want in zip(frames, expected):
+        for name in want.targets:
+            assert np.array_equal(got[name], want[name]), name
+    try:
+        r.collect()
+        raise AssertionError("collect() with nothing submitted returned")
+    except headlight.SettingsError as error:
+        assert "no frame submitted" in str(error)
+
+
+if __name__ == "__main__":
+    tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
+    for name, test in tests:
+        test()
+        print("ok", name)
+    print(len(tests), "passed")
