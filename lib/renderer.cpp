@@ -55,7 +55,8 @@ class PassTimer {
   template <class Work>
   void run(std::string_view pass, Work&& work, std::optional<PassForm> form = std::nullopt) {
     if (synchronous_) glFinish();
-    gl::Query query = gl::Query::create(GL_TIME_ELAPSED);
+    // Synchronous: one query, read at once; pipelined: one a pass, read at collection.
+    gl::Query query = synchronous_ && reusable_ ? std::move(reusable_) : gl::Query::create(GL_TIME_ELAPSED);
     const auto start = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, query.id());
     work();
@@ -90,13 +91,14 @@ class PassTimer {
     if (!queries_[index]) return;
     const double gpu = double(queries_[index].result()) * 1e-6;
     times_[index].gpuMilliseconds = gpu > bound ? -1 : gpu;
-    queries_[index] = gl::Query();
+    reusable_ = std::move(queries_[index]);
   }
 
   Context& context_;
   const bool synchronous_;
   std::vector<PassTime> times_;
   std::vector<gl::Query> queries_;  // by times_ index; empty once read
+  gl::Query reusable_;              // a read query, for the next pass
 };
 
 // A frame between submit() and collect(): everything but its targets' pixels
@@ -290,10 +292,12 @@ struct Renderer::Impl {
       }
       std::vector<const gl::Texture*> sources;
       for (Attachment id : read.sources) sources.push_back(&texture(id));
+      // Through pixel buffers on a GPU; directly on a software rasteriser, which copies at the call anyway.
+      const ReadPath path = softwareRasterizer ? ReadPath::Direct : ReadPath::PixelBuffer;
       pending.images.emplace_back(target.image,
                                   attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
-                                      ? PendingImage::viewDepth(*sources.front(), frame.view, channels.front())
-                                      : PendingImage::color(sources, channels));
+                                      ? PendingImage::viewDepth(*sources.front(), frame.view, channels.front(), path)
+                                      : PendingImage::color(sources, channels, path));
     }
   }
 
@@ -471,8 +475,10 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   impl.context.checkErrors("readback");
   pending.readbackQueueMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count();
-  pending.fence = gl::Fence::insert();
-  glFlush();  // the GPU starts on this frame while the CPU goes on
+  if (!synchronous) {
+    pending.fence = gl::Fence::insert();
+    glFlush();  // the GPU starts on this frame while the CPU goes on
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
   frame.glRenderer = impl.context.renderer();
@@ -513,7 +519,11 @@ void Renderer::submit(const RenderSettings& settings, const Camera* camera, std:
     throw SettingsError("Renderer::submit: " + std::to_string(impl.pending.size()) +
                         " frames are submitted and not collected (at most " + std::to_string(kMaxPendingFrames) +
                         "): collect() first");
-  impl.pending.push_back(impl.submitFrame(settings, camera, targets, false));
+  // On a software rasteriser the passes stay bounded by glFinish: llvmpipe
+  // renders on the CPU's cores, which the next frame's queueing would only
+  // contend for (a batch of 20 views at 640x480 took 1.06-1.26x as long
+  // without; docs/BENCHMARKS.md, "Readback and pipelined frames").
+  impl.pending.push_back(impl.submitFrame(settings, camera, targets, impl.softwareRasterizer));
 }
 
 Frame Renderer::collect() {

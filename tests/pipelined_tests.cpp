@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <glad/gl.h>
+
+#include "gl/objects.hpp"
+#include "gl/readback.hpp"
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
 #include "headlight/frame.hpp"
@@ -95,6 +99,51 @@ TEST_CASE("pipelined: a frame submitted before setScene is the old scene's, with
   CHECK(fresh.sceneSource == spheres.source);
   checkSameTargets(old, expected);
   CHECK(fresh.lit.pixels != old.lit.pixels);
+}
+
+}  // namespace headlight
+
+namespace headlight {
+
+TEST_CASE("pipelined: a target read through a pixel buffer is the target read directly") {
+  // llvmpipe reads directly (it copies at the call either way); a GPU through
+  // pixel buffers: both paths must give the same image, whichever runs here.
+  const Scene scene = makeBuiltinScene("spheres");
+  Renderer renderer(test::sharedContext());
+  renderer.setScene(scene);
+  const RenderSettings settings = test::smallSettings(40, 30);
+  const Frame frame = renderer.render(settings);
+  // The frame's float images, uploaded into textures of the attachments' formats, read back both ways.
+  struct Case {
+    GLenum format;
+    const ImageF* image;
+  };
+  for (const Case& c : {Case{GL_RGBA32F, &frame.position}, Case{GL_RGBA16F, &frame.normal},
+                        Case{GL_SRGB8_ALPHA8, &frame.albedo}, Case{GL_RGBA8, &frame.material}}) {
+    CAPTURE(c.format);
+    const ImageF& image = *c.image;
+    gl::Texture texture = gl::Texture::create2D(c.format, image.width, image.height);
+    std::vector<float> rgba(std::size_t(image.width) * std::size_t(image.height) * 4, 1.0f);
+    for (std::size_t p = 0; p < rgba.size() / 4; ++p)
+      for (int ch = 0; ch < image.channelCount(); ++ch)
+        rgba[p * 4 + std::size_t(ch)] = image.pixels[p * std::size_t(image.channelCount()) + std::size_t(ch)];
+    glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT, rgba.data());
+    const gl::Texture* textures[] = {&texture};
+    const ImageF direct = PendingImage::color(textures, image.channels, ReadPath::Direct).finish();
+    const ImageF buffered = PendingImage::color(textures, image.channels, ReadPath::PixelBuffer).finish();
+    CHECK(direct.width == buffered.width);
+    CHECK(direct.channels == buffered.channels);
+    CHECK(direct.pixels == buffered.pixels);
+    CHECK(!direct.pixels.empty());
+  }
+  gl::Texture depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, 8, 4);
+  std::vector<float> depths(32);
+  for (std::size_t i = 0; i < depths.size(); ++i) depths[i] = float(i) / 32.0f;
+  glTextureSubImage2D(depth.id(), 0, 0, 0, 8, 4, GL_DEPTH_COMPONENT, GL_FLOAT, depths.data());
+  const ImageF direct = PendingImage::viewDepth(depth, frame.view, "depth.Z", ReadPath::Direct).finish();
+  const ImageF buffered = PendingImage::viewDepth(depth, frame.view, "depth.Z", ReadPath::PixelBuffer).finish();
+  CHECK(direct.pixels == buffered.pixels);
+  CHECK(direct.pixels.front() != direct.pixels.back());
 }
 
 }  // namespace headlight

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "frame/frame_plan.hpp"
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
@@ -296,6 +297,7 @@ int runRenderBatch(const RenderCommand& command) {
   std::optional<Context> context;
   std::optional<Renderer> renderer;
   std::string currentScene, rendererName;
+  bool softwareRasterizer = false;  // llvmpipe and the like: no frame submitted ahead
   const std::vector<std::string> renderTargets = renderTargetsFor(command.output);
 
   Progress progress(jobs.size(), !quiet && !command.json, "views");
@@ -393,6 +395,7 @@ int runRenderBatch(const RenderCommand& command) {
         renderer.emplace(*context);
         renderer->setLimits(command.limits);
         rendererName = context->renderer();
+        softwareRasterizer = isSoftwareRasterizer(rendererName);
         // OpenImageIO loads on the other core while this one compiles
         // shaders and renders.
         preloadImageIo();
@@ -410,10 +413,14 @@ int runRenderBatch(const RenderCommand& command) {
       const auto submitStart = std::chrono::steady_clock::now();
       renderer->submit(job.settings, camera ? &*camera : nullptr, renderTargets);
       cache.release(job);
-      // The previous job's pixels come back while the GPU draws this one.
+      // On a GPU the previous job's pixels come back while the GPU draws
+      // this one. On a software rasteriser each job is collected at once:
+      // there the CPU renders, and submitting ahead made a batch slower
+      // (docs/BENCHMARKS.md, "Readback and pipelined frames").
       InFlight submitted{i, std::move(folderLock), millisecondsSince(submitStart)};
       collectInFlight();
       inFlight = std::move(submitted);
+      if (softwareRasterizer) collectInFlight();
     } catch (const ContextError&) {
       throw;  // no job can render without a context: the batch stops
     } catch (const std::exception& error) {

@@ -22,23 +22,30 @@ void flipRows(std::vector<float>& pixels, int width, int height, int channels) {
 
 }  // namespace
 
-PixelRead::PixelRead(const gl::Texture& texture, GLenum format, int components)
+PixelRead::PixelRead(const gl::Texture& texture, GLenum format, int components, ReadPath path)
     : width_(texture.width()), height_(texture.height()), internalFormat_(texture.internalFormat()) {
   const std::size_t bytes = std::size_t(width_) * std::size_t(height_) * std::size_t(components) * sizeof(float);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  if (path == ReadPath::Direct) {
+    pixels_.resize(bytes / sizeof(float));
+    glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(bytes), pixels_.data());
+    return;
+  }
   buffer_ = gl::Buffer::createReadback(bytes);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer_.id());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(texture.id(), 0, format, GL_FLOAT, GLsizei(bytes), nullptr);  // into the buffer, offset 0
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
 }
 
-std::vector<float> PixelRead::finish() const {
+std::vector<float> PixelRead::take() {
+  if (!buffer_) return std::move(pixels_);
   std::vector<float> pixels(buffer_.size() / sizeof(float));
   buffer_.read(pixels.data(), buffer_.size());
   return pixels;
 }
 
-PendingImage PendingImage::color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels) {
+PendingImage PendingImage::color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels,
+                                 ReadPath path) {
   if (textures.size() * 4 < channels.size() || textures.empty())
     throw GlError("readColor: " + std::to_string(channels.size()) + " channels need " +
                   std::to_string((channels.size() + 3) / 4) + " textures, got " + std::to_string(textures.size()));
@@ -49,28 +56,29 @@ PendingImage PendingImage::color(std::span<const gl::Texture* const> textures, s
       throw GlError("readColor: texture " + std::to_string(k) + " is " + std::to_string(texture.width()) + "x" +
                     std::to_string(texture.height()) + ", texture 0 is " + std::to_string(textures.front()->width()) +
                     "x" + std::to_string(textures.front()->height()));
-    if (k * 4 < channels.size()) image.parts_.emplace_back(texture, GL_RGBA, 4);
+    if (k * 4 < channels.size()) image.parts_.emplace_back(texture, GL_RGBA, 4, path);
   }
   image.channels_ = std::move(channels);
   return image;
 }
 
-PendingImage PendingImage::viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel) {
+PendingImage PendingImage::viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel,
+                                     ReadPath path) {
   PendingImage image;
-  image.parts_.emplace_back(depth, GL_DEPTH_COMPONENT, 1);
+  image.parts_.emplace_back(depth, GL_DEPTH_COMPONENT, 1, path);
   image.channels_ = {std::move(channel)};
   image.depthView_ = view;
   return image;
 }
 
-ImageF PendingImage::finish() const {
+ImageF PendingImage::finish() {
   ImageF image;
   image.width = parts_.front().width();
   image.height = parts_.front().height();
   image.channels = channels_;
   const std::size_t count = channels_.size(), pixels = std::size_t(image.width) * std::size_t(image.height);
   if (depthView_) {
-    image.pixels = parts_.front().finish();
+    image.pixels = parts_.front().take();
     const glm::dvec4 k = viewZCoefficients(*depthView_);
     for (float& d : image.pixels) d = float(-HL_VIEW_Z_FROM_NDC_DEPTH(2.0 * double(d) - 1.0, k));
     flipRows(image.pixels, image.width, image.height, 1);
@@ -78,7 +86,7 @@ ImageF PendingImage::finish() const {
   }
   image.pixels.resize(pixels * count);
   for (std::size_t k = 0; k < parts_.size(); ++k) {
-    std::vector<float> rgba = parts_[k].finish();
+    std::vector<float> rgba = parts_[k].take();
     // GL returns the stored (encoded) values of an sRGB texture: decode here.
     if (parts_[k].internalFormat() == GL_SRGB8_ALPHA8)
       for (std::size_t i = 0; i < rgba.size(); ++i)

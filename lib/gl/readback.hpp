@@ -13,22 +13,30 @@
 
 namespace headlight {
 
-// A texture's level 0 on its way back as floats: the GPU copies it into a
-// pixel buffer in command order (after what drew it, before what draws into
-// it next), so the texture may be drawn into again at once; finish() waits
-// for the copy alone.
+// How a texture's pixels come back. Through a pixel buffer the GPU copies
+// them in command order (after what drew them, before what draws into the
+// texture next) and the CPU waits for the copy alone when it reads them: the
+// frame's GPU work and the copy overlap the CPU's next steps. Direct, they
+// are read into client memory at once. A software rasteriser copies on the
+// CPU at the call either way, and the pixel buffer only adds a copy there
+// (docs/BENCHMARKS.md, "Readback and pipelined frames").
+enum class ReadPath { PixelBuffer, Direct };
+
+// A texture's level 0 on its way back as floats.
 class PixelRead {
  public:
-  // Queues the copy of `texture` as `format` (GL_RGBA or GL_DEPTH_COMPONENT),
+  // Starts reading `texture` as `format` (GL_RGBA or GL_DEPTH_COMPONENT),
   // `components` floats a pixel.
-  PixelRead(const gl::Texture& texture, GLenum format, int components);
-  std::vector<float> finish() const;  // rows bottom-up, as GL has them
+  PixelRead(const gl::Texture& texture, GLenum format, int components, ReadPath path);
+  // The pixels, rows bottom-up as GL has them; once.
+  std::vector<float> take();
   int width() const { return width_; }
   int height() const { return height_; }
   GLenum internalFormat() const { return internalFormat_; }
 
  private:
-  gl::Buffer buffer_;
+  gl::Buffer buffer_;          // ReadPath::PixelBuffer
+  std::vector<float> pixels_;  // ReadPath::Direct
   int width_ = 0, height_ = 0;
   GLenum internalFormat_ = 0;
 };
@@ -39,10 +47,12 @@ class PixelRead {
 // finished when the frame is collected (Renderer::submit, collect).
 class PendingImage {
  public:
-  static PendingImage color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels);
+  static PendingImage color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels,
+                            ReadPath path = ReadPath::Direct);
   // Window depth turned into the distance along the view direction (view-space -z).
-  static PendingImage viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel);
-  ImageF finish() const;
+  static PendingImage viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel,
+                                ReadPath path = ReadPath::Direct);
+  ImageF finish();  // once
 
  private:
   std::vector<PixelRead> parts_;

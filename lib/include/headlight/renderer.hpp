@@ -58,7 +58,8 @@ class Renderer {
   // frames are submitted and not collected (SettingsError beyond). A
   // submitted frame's pass times are the CPU's queueing (no glFinish between
   // passes; GPU times from timer queries); render() is submit + collect with
-  // every pass bounded by glFinish. A frame's scene is the one set when it
+  // every pass bounded by glFinish, and so is submit() on a software
+  // rasteriser (llvmpipe), where the CPU renders and nothing overlaps. A frame's scene is the one set when it
   // was submitted. Errors are thrown by the call that meets them.
   void submit(const RenderSettings& settings, const Camera* camera = nullptr,
               std::span<const std::string> targets = {});
