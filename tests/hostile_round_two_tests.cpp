@@ -309,7 +309,7 @@ TEST_SUITE("hostile") {
   TEST_CASE("bench and tune: an empty --resolutions and a sweep product past the bound are usage errors") {
     ProcessResult run = runHeadlight("bench --resolutions ''");
     CHECK(run.exitCode == 2);
-    CHECK(run.output.find("--resolutions: expected WxH,..., got an empty list") != std::string::npos);
+    CHECK(run.output.find("--resolutions: expected WxH,..., got an empty value") != std::string::npos);
     std::string sweeps;
     for (const char* name : {"ssgi-samples", "ssgi-slices", "ssgi-steps", "exposure", "ssgi-seed"}) {
       sweeps += std::string(" --sweep ") + name + "=";
@@ -323,5 +323,34 @@ TEST_SUITE("hostile") {
         runHeadlight("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
     CHECK(run.exitCode != 0);
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));  // refused, not enumerated
+  }
+}
+
+TEST_SUITE("hostile") {
+  // Issue 32, "accepted though invalid": each was exit 0 and did something else than asked.
+  TEST_CASE("an empty text value, a stray comma and a spaced shard are usage errors naming the flag") {
+    const fs::path out = fs::temp_directory_path() / "headlight-hostile-empty-values";
+    fs::remove_all(out);
+    const struct {
+      std::string arguments, message;
+    } cases[] = {
+        {"render --environment '' --out " + quote(out), "--environment: expected FILE, got an empty value"},
+        {"render --scene '' --out " + quote(out), "--scene: expected N|NAME, got an empty value"},
+        {"render --material-variant '' --out " + quote(out), "--material-variant: expected NAME, got an empty value"},
+        {"render --targets lit, --out " + quote(out), "--targets 'lit,': an empty item (a stray ','?)"},
+        {"render --views 2 --orbit --shard ' 1/ 2' --out " + quote(out),
+         "--shard: expected I/N (shard I of N, counting from 0), got ' 1/ 2'"},
+        {"render --views 2 --orbit --shard +1/2 --out " + quote(out),
+         "--shard: expected I/N (shard I of N, counting from 0), got '+1/2'"},
+        {"bench --no-reference --resolutions 64x48,", "--resolutions '64x48,': an empty item (a stray ','?)"},
+        {"bench --no-reference --sweep ssgi-samples=4,,8", "--sweep ssgi-samples '4,,8': an empty item"},
+    };
+    for (const auto& c : cases) {
+      CAPTURE(c.arguments);
+      const ProcessResult run = runHeadlight(c.arguments);
+      CHECK(run.exitCode == 2);
+      CHECK(run.output.find(c.message) != std::string::npos);
+    }
+    CHECK(!fs::exists(out));  // nothing written
   }
 }

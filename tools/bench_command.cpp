@@ -27,14 +27,6 @@ std::string_view benchChartScript();  // tools/bench_chart.py, embedded at build
 namespace headlight::cli {
 namespace {
 
-std::vector<std::string> splitList(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, separator);)
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
-
 std::pair<int, int> parseResolution(const std::string& text) {
   const auto x = text.find('x');
   if (x == std::string::npos) throw SettingsError("--resolutions: expected WIDTHxHEIGHT, got '" + text + "'");
@@ -54,10 +46,9 @@ std::vector<Option<BenchCommand>> benchOptions() {
                                   .valueName = "WxH,..."},
                                  [](C& c, const OptionValue& v) {
                                    c.resolutions.clear();
-                                   for (const auto& item : splitList(std::get<std::string>(v), ','))
+                                   // An empty list is refused before this (setFromCommandLine).
+                                   for (const auto& item : detail::splitList("resolutions", std::get<std::string>(v)))
                                      c.resolutions.push_back(parseResolution(item));
-                                   if (c.resolutions.empty())
-                                     throw SettingsError("--resolutions: expected WxH,..., got an empty list");
                                  }));
   for (auto& row : measurementOptions<C>("sweep a render setting over values; repeat for a cartesian product (default: "
                                          "hemisphere and radiance over ssgi-samples, ssgi-radius-fraction, ssgi-blur, "
@@ -95,7 +86,7 @@ SettingSweep parseSweep(const std::string& text) {
     throw SettingsError("--sweep: expected NAME=V1,V2,... (NAME a render setting), got '" + text + "'");
   SettingSweep sweep{text.substr(0, equals), {}};
   const Option<RenderSettings>& row = findOption(settingOptions(), sweep.name);
-  for (const std::string& value : splitList(text.substr(equals + 1), ','))
+  for (const std::string& value : detail::splitList("sweep " + sweep.name, text.substr(equals + 1)))
     sweep.values.push_back(parseOptionValue(row.spec, value));
   if (sweep.values.empty()) throw SettingsError("--sweep " + sweep.name + ": no values");
   return sweep;

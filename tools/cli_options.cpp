@@ -21,14 +21,6 @@ std::string text(const OptionValue& value) { return std::get<std::string>(value)
 
 constexpr std::string_view kCameraModes[] = {"one", "all"};
 
-std::vector<std::string> splitCommas(const std::string& list) {
-  std::vector<std::string> items;
-  std::stringstream stream(list);
-  for (std::string item; std::getline(stream, item, ',');)
-    if (!item.empty()) items.push_back(item);
-  return items;
-}
-
 // "I/N": shard I of N, 0 <= I < N.
 void parseShard(RenderCommand& c, const std::string& value) {
   const auto slash = value.find('/');
@@ -36,6 +28,11 @@ void parseShard(RenderCommand& c, const std::string& value) {
     std::size_t usedIndex = 0, usedCount = 0;
     if (slash == std::string::npos) throw std::invalid_argument("no slash");
     const std::string index = value.substr(0, slash), count = value.substr(slash + 1);
+    // Digits only: std::stoi would skip a leading space or sign (" 1/ 2", "+1/2").
+    auto digits = [](const std::string& part) {
+      return std::all_of(part.begin(), part.end(), [](unsigned char ch) { return std::isdigit(ch); });
+    };
+    if (!digits(index) || !digits(count) || count.empty()) throw std::invalid_argument("not digits");
     c.shardIndexOmitted = index.empty();
     c.shardIndex = index.empty() ? 0 : std::stoi(index, &usedIndex);
     c.shardCount = std::stoi(count, &usedCount);
@@ -163,7 +160,7 @@ std::vector<Option<RenderCommand>> batchOptions() {
                                "passes only other targets need are skipped",
                        .valueName = "LIST"},
                       [](C& c, const OptionValue& v) {
-                        c.output.targets = splitCommas(text(v));
+                        c.output.targets = detail::splitList("targets", text(v));
                         const auto names = outputTargetNames();
                         for (const std::string& name : c.output.targets)
                           if (std::find(names.begin(), names.end(), name) == names.end())

@@ -69,6 +69,21 @@ std::string_view foreignFlagHint(std::string_view flagName) {
   return {};
 }
 
+std::vector<std::string> splitList(std::string_view flag, const std::string& list, char separator) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = list.find(separator, start);
+    std::string item = list.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    if (item.empty())
+      throw SettingsError("--" + std::string(flag) + " '" + list + "': an empty item (a stray '" +
+                          std::string(1, separator) + "'?)");
+    items.push_back(std::move(item));
+    if (end == std::string::npos) return items;
+    start = end + 1;
+  }
+}
+
 bool isBoolWord(std::string_view word) {
   for (std::string_view value : {"on", "off", "true", "false", "yes", "no", "1", "0"})
     if (word == value) return true;

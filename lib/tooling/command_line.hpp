@@ -37,13 +37,22 @@ std::string_view foreignFlagHint(std::string_view flagName);
 // given as a separate word (--ssgi off), which would otherwise be taken for
 // a scene.
 bool isBoolWord(std::string_view word);
+// "a,b,c" split at `separator`; an empty item (a stray, doubled or trailing
+// separator) is a SettingsError naming `flag` and the list: it is a typo, not
+// a request for fewer items.
+std::vector<std::string> splitList(std::string_view flag, const std::string& list, char separator = ',');
 }  // namespace detail
 
 // Sets a row from the command line: `text` parsed, or without text a
-// switch's `flagValue`. A SettingsError names the flag, not the setting.
+// switch's `flagValue`. A SettingsError names the flag, not the setting. An
+// empty text value (`--environment ""`, an unset shell variable) is refused:
+// on a command line it is a mistake, never a request for the default.
 template <class Target>
 void setFromCommandLine(const Option<Target>& option, Target& target, const std::optional<std::string>& text,
                         bool flagValue) {
+  if (text && text->empty() && option.spec.type == OptionType::Text)
+    throw SettingsError("--" + std::string(option.spec.name) + ": expected " + optionValueName(option.spec) +
+                        ", got an empty value");
   try {
     option.set(target, text ? parseOptionValue(option.spec, *text) : OptionValue(flagValue));
   } catch (const SettingsError& error) {
