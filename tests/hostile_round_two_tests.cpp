@@ -328,7 +328,9 @@ TEST_SUITE("hostile") {
 
 TEST_SUITE("hostile") {
   // Issue 32, "accepted though invalid": each was exit 0 and did something else than asked.
-  TEST_CASE("an empty text value, a stray comma and a spaced shard are usage errors naming the flag") {
+  TEST_CASE(
+      "an empty text value, a stray comma, a spaced shard and a glTF choice on a built-in scene are usage "
+      "errors naming the flag") {
     const fs::path out = fs::temp_directory_path() / "headlight-hostile-empty-values";
     fs::remove_all(out);
     const struct {
@@ -344,6 +346,11 @@ TEST_SUITE("hostile") {
          "--shard: expected I/N (shard I of N, counting from 0), got '+1/2'"},
         {"bench --no-reference --resolutions 64x48,", "--resolutions '64x48,': an empty item (a stray ','?)"},
         {"bench --no-reference --sweep ssgi-samples=4,,8", "--sweep ssgi-samples '4,,8': an empty item"},
+        // A glTF file's choices asked of a built-in scene.
+        {"render builtin:cornell --scene 1 --out " + quote(out),
+         "--scene 1: builtin:cornell is built in, not a glTF file with scenes to choose from"},
+        {"render builtin:spheres --material-variant v --out " + quote(out),
+         "--material-variant v: builtin:spheres is a built-in scene and has no KHR_materials_variants variants"},
     };
     for (const auto& c : cases) {
       CAPTURE(c.arguments);

@@ -19,8 +19,8 @@
 
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
-#include "output/fingerprint.hpp"
 #include "headlight/scene_loader.hpp"
+#include "output/fingerprint.hpp"
 #include "scene/gltf_draco.hpp"
 #include "scene/gltf_features.hpp"
 #include "scene/gltf_files.hpp"
@@ -83,7 +83,7 @@ class GltfReader {
   // rendered extensions' (absent ones are not present()).
   static std::vector<const TextureRef*> sampledTextures(const Material& m) {
     std::vector<const TextureRef*> refs{&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
-                                       &m.occlusionTexture, &m.emissiveTexture};
+                                        &m.occlusionTexture, &m.emissiveTexture};
     if (m.specular) refs.insert(refs.end(), {&m.specular->specularTexture, &m.specular->specularColorTexture});
     if (m.clearcoat)
       refs.insert(refs.end(), {&m.clearcoat->clearcoatTexture, &m.clearcoat->clearcoatRoughnessTexture,
@@ -122,7 +122,6 @@ class GltfReader {
     int material;
   };
 
-
   PlacedPrimitive addPrimitive(int meshIndex, int primitiveIndex, const gltf::Pose& pose, int skin) {
     const tinygltf::Primitive& source =
         model_.meshes[static_cast<std::size_t>(meshIndex)].primitives[static_cast<std::size_t>(primitiveIndex)];
@@ -156,7 +155,8 @@ class GltfReader {
       const Material& material = scene_.materials[static_cast<std::size_t>(source.material)];
       if (material.normalTexture.present()) generateTangents(primitive, material.normalTexture);
       // KHR_materials_anisotropy's direction is in the same tangent space.
-      else if (material.anisotropy) generateTangents(primitive);
+      else if (material.anisotropy)
+        generateTangents(primitive);
     }
     // A textured material samples UVs; without the set it names it samples
     // (0, 0), which is glTF's answer too, so the shader always has texcoords
@@ -213,8 +213,9 @@ class GltfReader {
       const std::uint64_t added = static_cast<std::uint64_t>(placedPrimitives.size()) * placements.size();
       if (scene_.instances.size() + added > static_cast<std::uint64_t>(limits_.maxInstances)) {
         source_.failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
-                          std::to_string(scene_.instances.size() + added) + ", more than max-instances " +
-                          std::to_string(limits_.maxInstances) + "; raise max-instances", "max-instances");
+                              std::to_string(scene_.instances.size() + added) + ", more than max-instances " +
+                              std::to_string(limits_.maxInstances) + "; raise max-instances",
+                          "max-instances");
       }
       for (const glm::mat4& placement : placements) {
         const glm::mat4 worldFromLocal = worldFromMesh * placement;
@@ -271,7 +272,8 @@ int sceneIndex(const gltf::Source& source, const std::string& chosen) {
       names += (i == 0 ? "" : ", ") + std::to_string(i) + (scenes[i].name.empty() ? "" : " '" + scenes[i].name + "'");
     }
     source.fail("scene " + chosen + ": the file has " + gltf::countOf(scenes.size(), "scene") +
-                (names.empty() ? "" : " (" + names + ")"), {"scene"});
+                    (names.empty() ? "" : " (" + names + ")"),
+                {"scene"});
   }
   return index;
 }
@@ -320,17 +322,27 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
   const std::uint64_t sceneBytes = estimateSceneBytes(scene);
   if (sceneBytes > maxMemoryBytes(limits)) {
     throw LimitError(file + ": the scene needs about " + std::to_string(sceneBytes >> 20) +
-                     " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(limits) >> 20) +
-                     " MiB); raise max-memory",
+                         " MiB, more than max-memory allows (" + std::to_string(maxMemoryBytes(limits) >> 20) +
+                         " MiB); raise max-memory",
                      {"max-memory"});
   }
   return scene;
 }
 
 Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options, const ResourceLimits& limits) {
-  Scene scene = nameOrPath.rfind(kBuiltinPrefix, 0) == 0
-                    ? makeBuiltinScene(std::string_view(nameOrPath).substr(kBuiltinPrefix.size()))
-                    : loadGltf(nameOrPath, options, limits);
+  const bool builtin = nameOrPath.rfind(kBuiltinPrefix, 0) == 0;
+  // A glTF file's choices asked of a built-in scene would be ignored: the
+  // caller meant another input.
+  if (builtin && !options.gltfScene.empty())
+    throw SettingsError(
+        "scene " + options.gltfScene + ": " + nameOrPath + " is built in, not a glTF file with scenes to choose from",
+        {"scene"});
+  if (builtin && !options.materialVariant.empty())
+    throw SettingsError("material-variant " + options.materialVariant + ": " + nameOrPath +
+                            " is a built-in scene and has no KHR_materials_variants variants",
+                        {"material-variant"});
+  Scene scene = builtin ? makeBuiltinScene(std::string_view(nameOrPath).substr(kBuiltinPrefix.size()))
+                        : loadGltf(nameOrPath, options, limits);
   if (!options.environment.empty()) scene.environment = loadEnvironmentMap(options.environment, limits);
   return scene;
 }
