@@ -109,7 +109,15 @@ std::string optionText(const OptionSpec& spec, const py::handle& value) {
 
 // A str argument, or a SettingsError naming `what` and the type given.
 std::string textArgument(const py::handle& value, std::string_view what, std::string_view expected) {
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::str>(value)) {
+    std::string text = value.cast<std::string>();
+    // No C++ API or file system takes a NUL inside a name, and a message
+    // built from it would end there ("builtin:cornell\0x" reported as "builtin:cornell").
+    if (text.find('\0') != std::string::npos)
+      throw SettingsError(std::string(what) + ": " + py::repr(value).cast<std::string>() + " contains a NUL character",
+                          {std::string(what)});
+    return text;
+  }
   throw SettingsError(std::string(what) + ": expected " + std::string(expected) + ", got " + typeName(value) + " " +
                           py::repr(value).cast<std::string>(),
                       {std::string(what)});
@@ -118,7 +126,8 @@ std::string textArgument(const py::handle& value, std::string_view what, std::st
 // A path: str or os.PathLike.
 std::string pathArgument(const py::handle& value, std::string_view what) {
   static const py::object pathLike = py::module_::import("os").attr("PathLike");
-  if (py::isinstance(value, pathLike)) return py::str(py::module_::import("os").attr("fspath")(value));
+  if (py::isinstance(value, pathLike))
+    return textArgument(py::str(py::module_::import("os").attr("fspath")(value)), what, "a path (str or os.PathLike)");
   return textArgument(value, what, "a path (str or os.PathLike)");
 }
 

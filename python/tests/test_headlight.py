@@ -464,6 +464,17 @@ def test_submit_and_collect_pipeline_views_and_give_renders_frames():
         assert "no frame submitted" in str(error)
 
 
+
+
+def test_a_nul_in_a_name_is_refused_and_named_whole():
+    r = osmesa_renderer()
+    try:
+        r.set_scene("builtin:cornell\x00x")
+        raise AssertionError("a scene name with a NUL was accepted")
+    except headlight.SettingsError as error:
+        assert "'builtin:cornell\\x00x' contains a NUL character" in str(error)
+
+
 if __name__ == "__main__":
     tests = [(name, f) for name, f in sorted(globals().items()) if name.startswith("test_")]
     for name, test in tests:
