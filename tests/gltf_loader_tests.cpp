@@ -16,12 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "gltf_test_files.hpp"
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "scene/gltf_common.hpp"
 #include "support/assets.hpp"
 #include "support/encoding.hpp"
-#include "gltf_test_files.hpp"
 #include "support/temp_folder.hpp"
 
 namespace fs = std::filesystem;
@@ -312,3 +313,11 @@ TEST_CASE("glTF errors name the file, the element and the problem") {
 }
 
 // ---- Never silent: features that are not rendered are named ----------------
+
+TEST_CASE("counted nouns in messages: vertices and indices, not vertexs") {
+  using headlight::gltf::countOf;
+  CHECK(countOf(1, "vertex") == "1 vertex");
+  CHECK(countOf(3, "vertex") == "3 vertices");
+  CHECK(countOf(0, "index") == "0 indices");
+  CHECK(countOf(2, "node") == "2 nodes");
+}

@@ -39,8 +39,9 @@ json triangleWith(const json& extensions) {
              {"min", {0, 0, 0}},
              {"max", {1, 1, 0}}}}},
           {"images",
-           {{{"uri", "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP4z8DwHwAFAAH/"
-                     "iZk9HQAAAABJRU5ErkJggg=="}}}},
+           {{{"uri",
+              "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP4z8DwHwAFAAH/"
+              "iZk9HQAAAABJRU5ErkJggg=="}}}},
           {"textures", {{{"source", 0}}}},
           {"materials", {{{"name", "Layered"}, {"extensions", extensions}}}},
           {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"material", 0}}}}}}},
@@ -67,21 +68,27 @@ std::string loadError(const test::TempFolder& folder, const json& extensions) {
 TEST_CASE("material extensions: every one is read with its values, textures and transforms") {
   test::TempFolder folder;
   const json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
-  const Scene scene = load(folder, {
-      {"KHR_materials_ior", {{"ior", 1.33}}},
-      {"KHR_materials_specular",
-       {{"specularFactor", 0.5}, {"specularColorFactor", {1, 0.5, 2}}, {"specularColorTexture", {{"index", 0}}}}},
-      {"KHR_materials_clearcoat",
-       {{"clearcoatFactor", 1},
-        {"clearcoatRoughnessFactor", 0.25},
-        {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}, {"extensions", transform}}}}},
-      {"KHR_materials_sheen", {{"sheenColorFactor", {0.1, 0.2, 0.3}}, {"sheenRoughnessFactor", 0.7}}},
-      {"KHR_materials_iridescence",
-       {{"iridescenceFactor", 1}, {"iridescenceThicknessMaximum", 800}, {"iridescenceThicknessTexture", {{"index", 0}}}}},
-      {"KHR_materials_anisotropy", {{"anisotropyStrength", 0.6}, {"anisotropyRotation", -1.5}}},
-      {"KHR_materials_transmission", {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}, {"texCoord", 1}}}}},
-      {"KHR_materials_volume", {{"thicknessFactor", 0.2}, {"attenuationDistance", 0.5}, {"attenuationColor", {0.2, 0.4, 1}}}},
-  });
+  const Scene scene = load(
+      folder,
+      {
+          {"KHR_materials_ior", {{"ior", 1.33}}},
+          {"KHR_materials_specular",
+           {{"specularFactor", 0.5}, {"specularColorFactor", {1, 0.5, 2}}, {"specularColorTexture", {{"index", 0}}}}},
+          {"KHR_materials_clearcoat",
+           {{"clearcoatFactor", 1},
+            {"clearcoatRoughnessFactor", 0.25},
+            {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}, {"extensions", transform}}}}},
+          {"KHR_materials_sheen", {{"sheenColorFactor", {0.1, 0.2, 0.3}}, {"sheenRoughnessFactor", 0.7}}},
+          {"KHR_materials_iridescence",
+           {{"iridescenceFactor", 1},
+            {"iridescenceThicknessMaximum", 800},
+            {"iridescenceThicknessTexture", {{"index", 0}}}}},
+          {"KHR_materials_anisotropy", {{"anisotropyStrength", 0.6}, {"anisotropyRotation", -1.5}}},
+          {"KHR_materials_transmission",
+           {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}, {"texCoord", 1}}}}},
+          {"KHR_materials_volume",
+           {{"thicknessFactor", 0.2}, {"attenuationDistance", 0.5}, {"attenuationColor", {0.2, 0.4, 1}}}},
+      });
   REQUIRE(scene.materials.size() == 1);
   const Material& m = scene.materials[0];
   CHECK(m.ior == doctest::Approx(1.33));
@@ -118,8 +125,8 @@ TEST_CASE("material extensions: every one is read with its values, textures and 
                           lobeBit(Lobe::Anisotropy) | lobeBit(Lobe::Iridescence)));
   CHECK(summary.transmission);
   CHECK(lobeDefines(summary.lobes) == std::vector<std::string>{"HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE",
-                                                              "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE",
-                                                              "HAS_IRIDESCENCE_LOBE"});
+                                                               "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE",
+                                                               "HAS_IRIDESCENCE_LOBE"});
 }
 
 TEST_CASE("material extensions: an empty extension object takes the specification's defaults") {
@@ -196,6 +203,9 @@ TEST_CASE("material extensions: out-of-range, non-finite and malformed values ar
        "KHR_materials_iridescence iridescenceThicknessMinimum is -10, expected a number >= 0"},
       {{{"KHR_materials_anisotropy", {{"anisotropyStrength", 2}}}},
        "KHR_materials_anisotropy anisotropyStrength is 2, expected a number in 0..1"},
+      // Any finite value is allowed; past float's range is not, and the message says so (not ">= -inf").
+      {{{"KHR_materials_anisotropy", {{"anisotropyRotation", 1e300}}}},
+       "KHR_materials_anisotropy anisotropyRotation is 1e+300, expected a number that is finite in float"},
       {{{"KHR_materials_transmission", {{"transmissionFactor", -0.1}}}},
        "KHR_materials_transmission transmissionFactor is -0.1, expected a number in 0..1"},
       {{{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 7}}}}}},

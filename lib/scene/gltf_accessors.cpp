@@ -7,6 +7,10 @@
 namespace headlight::gltf {
 
 std::string countOf(std::size_t count, const char* noun) {
+  const std::string_view word(noun);
+  // "vertex" -> "vertices", "index" -> "indices"; the rest take an s.
+  if (count != 1 && word.size() >= 2 && word.substr(word.size() - 2) == "ex")
+    return std::to_string(count) + " " + std::string(word.substr(0, word.size() - 2)) + "ices";
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }
 
@@ -254,7 +258,8 @@ CheckedAccessor AccessorReader::check(int accessorIndex, const std::string& user
 
 std::uint32_t AccessorReader::sparseTarget(const CheckedAccessor& accessor, std::size_t k) const {
   const std::size_t indexSize = componentSize(accessor.sparseIndexComponentType);
-  const std::uint32_t target = readIndexValue(accessor.sparseIndices + k * indexSize, accessor.sparseIndexComponentType);
+  const std::uint32_t target =
+      readIndexValue(accessor.sparseIndices + k * indexSize, accessor.sparseIndexComponentType);
   if (target >= accessor.count) {
     source_.fail("accessor " + std::to_string(accessor.index) + " sparse index " + std::to_string(k) + " is " +
                  std::to_string(target) + ", expected < count " + std::to_string(accessor.count));
@@ -288,7 +293,8 @@ std::vector<glm::mat4> AccessorReader::readMatrices(const CheckedAccessor& acces
   std::vector<glm::mat4> matrices(accessor.count, glm::mat4(0.0f));
   if (accessor.data != nullptr) {
     for (std::size_t element = 0; element < accessor.count; ++element) {
-      decodeFloats(accessor.data + element * accessor.stride, accessor.componentType, false, 16, &matrices[element][0][0]);
+      decodeFloats(accessor.data + element * accessor.stride, accessor.componentType, false, 16,
+                   &matrices[element][0][0]);
     }
   }
   for (std::size_t k = 0; k < accessor.sparseCount; ++k) {

@@ -15,7 +15,7 @@
 
 namespace headlight::gltf {
 
-std::string countOf(std::size_t count, const char* noun);  // "1 node", "3 nodes"
+std::string countOf(std::size_t count, const char* noun);  // "1 node", "3 nodes", "2 vertices"
 std::string componentTypeName(int componentType);          // "UNSIGNED_SHORT"
 std::string typeName(int type);                            // "VEC3"
 std::string modeName(int mode);                            // "TRIANGLE_STRIP"

@@ -20,11 +20,14 @@ struct Range {
   bool minExcluded = false;
   bool zeroToo = false;  // 0 is allowed besides the range (glTF's ior)
   bool holds(double value) const {
-    return std::isfinite(value) && ((zeroToo && value == 0.0) || ((minExcluded ? value > min : value >= min) && value <= max));
+    return std::isfinite(value) &&
+           ((zeroToo && value == 0.0) || ((minExcluded ? value > min : value >= min) && value <= max));
   }
   std::string text() const {
     std::ostringstream out;
-    if (max == kInfinity) {
+    if (min == -kInfinity && max == kInfinity) {
+      out << "that is finite in float";  // not ">= -inf"
+    } else if (max == kInfinity) {
       out << (minExcluded ? "> " : ">= ") << min << (zeroToo ? " or 0" : "");
     } else {
       out << "in " << min << ".." << max;
