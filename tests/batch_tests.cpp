@@ -431,6 +431,27 @@ TEST_CASE("job lines: deep JSON, a long line and echoed input are bounded, each 
   CHECK(nested.at(0).error.find("expected a string, number or boolean") != std::string::npos);
 }
 
+TEST_CASE("job lines: a key given twice and a size missing a number are refused, naming them (issue 32)") {
+  const std::string text = R"({"scene": "builtin:cornell", "out": "a", "out": "b"})"
+                           "\n"
+                           R"({"scene": "builtin:cornell", "out": "c", "settings": {"ssgi": "off", "ssgi": "on"}})"
+                           "\n"
+                           R"({"scene": "builtin:cornell", "out": "d", "size": "64x"})"
+                           "\n"
+                           R"({"scene": "builtin:cornell", "out": "e", "size": "x48"})"
+                           "\n"
+                           R"({"scene": "builtin:cornell", "out": "f", "settings": {"ssgi": "off"}, "size": "64x48"})"
+                           "\n";
+  const std::vector<Job> jobs = parseJobLines(text, "jobs.jsonl", RenderSettings{});
+  REQUIRE(jobs.size() == 5);
+  CHECK(jobs[0].error.find("the key \"out\" appears twice in one object") != std::string::npos);
+  CHECK(jobs[1].error.find("the key \"ssgi\" appears twice in one object") != std::string::npos);
+  CHECK(jobs[2].error.find("\"size\": expected \"WIDTHxHEIGHT\", got \"64x\"") != std::string::npos);
+  CHECK(jobs[3].error.find("\"size\": expected \"WIDTHxHEIGHT\", got \"x48\"") != std::string::npos);
+  CHECK(jobs[4].error.empty());  // the same keys once each are fine
+  CHECK(jobs[4].settings.width == 64);
+}
+
 TEST_CASE("job files and settings files: only regular files, within their size limits") {
   test::TempFolder folder("bounded-reads");
   CHECK_THROWS_WITH_AS(readJobFile(folder.path(), {}), doctest::Contains("is a folder, expected a regular file"),

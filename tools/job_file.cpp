@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "headlight/error.hpp"
@@ -63,12 +64,20 @@ std::string sceneStem(const std::string& scene) {
 // The line parsed, refusing nesting deeper than a scene's JSON may have
 // (gltf::kMaxJsonDepth) as the parser meets it: nlohmann's parser does not
 // recurse, but dump() and error texts over a deeper value would.
+// A key given twice in one object is refused too: JSON parsers disagree on
+// which one wins, so the line does not say what it asks for.
 json parseBounded(const std::string& line) {
-  const json::parser_callback_t depthCheck = [](int depth, json::parse_event_t event, json&) {
+  std::vector<std::set<std::string>> keysByObject;  // the objects open at this point, innermost last
+  const json::parser_callback_t depthCheck = [&keysByObject](int depth, json::parse_event_t event, json& parsed) {
     if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
         depth >= gltf::kMaxJsonDepth)
       throw SettingsError("JSON nests deeper than " + std::to_string(gltf::kMaxJsonDepth) +
                           " levels (the limit for scenes too)");
+    if (event == json::parse_event_t::object_start) keysByObject.emplace_back();
+    if (event == json::parse_event_t::object_end && !keysByObject.empty()) keysByObject.pop_back();
+    if (event == json::parse_event_t::key && !keysByObject.empty() && parsed.is_string() &&
+        !keysByObject.back().insert(parsed.get<std::string>()).second)
+      throw SettingsError("the key \"" + excerpt(parsed.get<std::string>()) + "\" appears twice in one object");
     return true;
   };
   try {
@@ -127,7 +136,9 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
   if (j.contains("size")) {
     const std::string size = j["size"].is_string() ? j["size"].get<std::string>() : "";
     const auto x = size.find('x');
-    if (x == std::string::npos) throw SettingsError("\"size\": expected \"WIDTHxHEIGHT\", got " + shown(j["size"]));
+    // Both numbers present: "64x" would otherwise be reported against the height setting.
+    if (x == std::string::npos || x == 0 || x + 1 == size.size())
+      throw SettingsError("\"size\": expected \"WIDTHxHEIGHT\", got " + shown(j["size"]));
     settings["width"] = size.substr(0, x);
     settings["height"] = size.substr(x + 1);
   }
