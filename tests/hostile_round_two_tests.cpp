@@ -359,5 +359,17 @@ TEST_SUITE("hostile") {
       CHECK(run.output.find(c.message) != std::string::npos);
     }
     CHECK(!fs::exists(out));  // nothing written
+    // A bench --out that cannot be a folder is refused before any measurement, in those words.
+    const fs::path file = fs::temp_directory_path() / "headlight-hostile-bench-out-file";
+    std::ofstream(file) << "a file\n";
+    const auto start = std::chrono::steady_clock::now();
+    const ProcessResult bench = runHeadlight("bench --no-reference --out " + quote(file));
+    CHECK(bench.exitCode == 1);
+    CHECK(bench.output.find(file.string() + ": cannot create the output folder: " + file.string() +
+                            " is not a folder") != std::string::npos);
+    CHECK(runHeadlight("bench --no-reference --out " + quote(file / "sub")).output.find(" is not a folder") !=
+          std::string::npos);
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
+    fs::remove(file);
   }
 }

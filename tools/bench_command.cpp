@@ -374,6 +374,21 @@ int runBenchCommand(const std::vector<std::string>& args) {
   }
   if (command.traceReference && !referenceAvailable())
     throw Error("headlight bench needs the reference: this build has no Embree (--no-reference times only)");
+  // Before any measurement, without making anything yet (a refused scene
+  // leaves no folder): an --out that cannot become a folder must not cost
+  // the whole run. The nearest part of the path that exists must be a folder.
+  const std::filesystem::path out(command.outDir);
+  std::error_code statusError;
+  for (std::filesystem::path part = out; !part.empty(); part = part.parent_path()) {
+    const std::filesystem::file_status status = std::filesystem::status(part, statusError);
+    if (!std::filesystem::exists(status)) {
+      if (part == part.parent_path()) break;
+      continue;
+    }
+    if (!std::filesystem::is_directory(status))
+      throw IoError(out.string() + ": cannot create the output folder: " + part.string() + " is not a folder");
+    break;
+  }
   std::optional<Context> context;  // made once the first scene has loaded: a refused scene needs no GL
   std::optional<Renderer> renderer;
   std::vector<BenchRow> rows;
@@ -402,8 +417,9 @@ int runBenchCommand(const std::vector<std::string>& args) {
   progress.finish();
   markParetoFronts(rows);
 
-  const std::filesystem::path out(command.outDir);
-  std::filesystem::create_directories(out);
+  std::error_code folderError;
+  std::filesystem::create_directories(out, folderError);
+  if (folderError) throw IoError(out.string() + ": cannot create the output folder: " + folderError.message());
   writeBenchCsv(rows, out / "bench.csv");
   writeBenchJson(rows, joinArgs(args), out / "bench.json");
   if (!quiet) std::cout << (out / "bench.csv").string() << "\n" << (out / "bench.json").string() << "\n";
