@@ -214,7 +214,9 @@ std::optional<PassDeclaration> declareComposite(const FramePlan& plan) {
 // per renderer and were not told apart: fragment, as before.
 const FullscreenPassRow kFullscreenPassRows[] = {
     {"direct", PassForm::Fragment, declareDirectLight},
-    {"ssgi-surface", PassForm::Fragment, declareSsgiSurface, "ssgi_surface.glsl", nullptr, kSsgiSurfaceOutputs},
+    // ssgi-surface: compute 5.5-7.9 ms against fragment 11.9-13.0 at cornell 640x480, 3.3-5.0 against 8.8-14.8
+    // at spheres 256x256 (--verbose, three cold runs each; one compute outlier of 31 ms, a first run's JIT).
+    {"ssgi-surface", PassForm::Compute, declareSsgiSurface, "ssgi_surface.glsl", nullptr, kSsgiSurfaceOutputs},
     {"ssgi", PassForm::Fragment, declareSsgi},
     {"ssgi-blur", PassForm::Fragment, declareSsgiBlur},
     {"composite", PassForm::Compute, declareComposite},
