@@ -277,7 +277,7 @@ struct Renderer::Impl {
 
   // Starts reading each planned target from its attachments (depth as view
   // depth); a target with no source is zeros of the image's size at once.
-  void startReads(const FramePlan& plan, PendingFrame& pending) const {
+  void startReads(const FramePlan& plan, PendingFrame& pending) {
     Frame& frame = pending.frame;
     for (const TargetRead& read : plan.reads) {
       const FrameTarget& target = *read.target;
@@ -294,10 +294,10 @@ struct Renderer::Impl {
       for (Attachment id : read.sources) sources.push_back(&texture(id));
       // Through pixel buffers on a GPU; directly on a software rasteriser, which copies at the call anyway.
       const ReadPath path = softwareRasterizer ? ReadPath::Direct : ReadPath::PixelBuffer;
-      pending.images.emplace_back(target.image,
-                                  attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
-                                      ? PendingImage::viewDepth(*sources.front(), frame.view, channels.front(), path)
-                                      : PendingImage::color(sources, channels, path));
+      pending.images.emplace_back(target.image, attachmentRow(read.sources.front()).format == GpuFormat::Depth32F
+                                                    ? PendingImage::viewDepth(*sources.front(), frame.view,
+                                                                              channels.front(), path, &readbackBuffers)
+                                                    : PendingImage::color(sources, channels, path, &readbackBuffers));
     }
   }
 
@@ -307,6 +307,8 @@ struct Renderer::Impl {
   // Waits for a submitted frame's copies and finishes it.
   Frame collectFrame(PendingFrame pending);
 
+  // Pixel buffers for the next frame's copies (GPU path; the direct path needs none).
+  ReadbackBuffers readbackBuffers;
   // Frames submitted and not yet collected, oldest first.
   std::deque<PendingFrame> pending;
 };
@@ -495,6 +497,7 @@ Frame Renderer::Impl::collectFrame(PendingFrame pending) {
   const auto start = std::chrono::steady_clock::now();
   pending.fence.wait();
   for (auto& [member, image] : pending.images) pending.frame.*member = image.finish();
+  readbackBuffers.trim();
   context.checkErrors("readback");
   const auto end = std::chrono::steady_clock::now();
   pending.timer->record("readback",

@@ -4,11 +4,13 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <glad/gl.h>
 
+#include "color/srgb.hpp"
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
 #include "headlight/camera.hpp"
@@ -135,6 +137,23 @@ TEST_CASE("pipelined: a target read through a pixel buffer is the target read di
     CHECK(direct.channels == buffered.channels);
     CHECK(direct.pixels == buffered.pixels);
     CHECK(!direct.pixels.empty());
+    // The upload took the image's top row as GL's bottom one: read back, each row comes back flipped.
+    const std::size_t row = std::size_t(image.width) * std::size_t(image.channelCount());
+    double largest = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (std::size_t i = 0; i < row; ++i) {
+        const float read = direct.pixels[std::size_t(y) * row + i];
+        float expected = image.pixels[std::size_t(image.height - 1 - y) * row + i];
+        // An upload stores the value as it is (no encoding); the read decodes the stored 8-bit code, alpha aside.
+        if (c.format == GL_SRGB8_ALPHA8 && i % std::size_t(image.channelCount()) != 3)
+          expected = srgbToLinear(std::round(std::clamp(expected, 0.0f, 1.0f) * 255.0f) / 255.0f);
+        largest = std::max(largest, double(std::abs(read - expected)));
+      }
+    // Exact where the format holds a float; half-float rounding of normals for RGBA16F; half an 8-bit step for RGBA8.
+    CHECK(largest <= (c.format == GL_RGBA32F   ? 0.0
+                      : c.format == GL_RGBA16F ? 1e-3
+                      : c.format == GL_RGBA8   ? 0.5 / 255.0 + 1e-6
+                                               : 1e-6));
   }
   gl::Texture depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, 8, 4);
   std::vector<float> depths(32);
@@ -144,6 +163,42 @@ TEST_CASE("pipelined: a target read through a pixel buffer is the target read di
   const ImageF buffered = PendingImage::viewDepth(depth, frame.view, "depth.Z", ReadPath::PixelBuffer).finish();
   CHECK(direct.pixels == buffered.pixels);
   CHECK(direct.pixels.front() != direct.pixels.back());
+}
+
+TEST_CASE("pixel buffers are kept from one frame's readback for the next, one frame's worth") {
+  test::sharedContext();  // current on this thread
+  gl::Texture small = gl::Texture::create2D(GL_RGBA16F, 8, 4);
+  gl::Texture large = gl::Texture::create2D(GL_RGBA16F, 16, 8);
+  const std::vector<float> ones(16 * 8 * 4, 1.0f);
+  glTextureSubImage2D(small.id(), 0, 0, 0, 8, 4, GL_RGBA, GL_FLOAT, ones.data());
+  glTextureSubImage2D(large.id(), 0, 0, 0, 16, 8, GL_RGBA, GL_FLOAT, ones.data());
+  const std::vector<std::string> channels{"R", "G", "B", "A"};
+  ReadbackBuffers buffers;
+  const gl::Texture* smallOnly[] = {&small};
+  const gl::Texture* largeOnly[] = {&large};
+  // Half-float textures travel as halves (transferType).
+  const std::size_t smallBytes = 8 * 4 * 4 * 2, largeBytes = 16 * 8 * 4 * 2;
+  PendingImage first = PendingImage::color(smallOnly, channels, ReadPath::PixelBuffer, &buffers);
+  CHECK(buffers.keptBytes() == 0);  // in flight
+  CHECK(first.finish().pixels == std::vector<float>(8 * 4 * 4, 1.0f));
+  buffers.trim();
+  CHECK(buffers.keptBytes() == smallBytes);
+  // The next frame of the same size takes the kept buffer and gives it back.
+  PendingImage second = PendingImage::color(smallOnly, channels, ReadPath::PixelBuffer, &buffers);
+  CHECK(buffers.keptBytes() == 0);
+  CHECK(second.finish().pixels == std::vector<float>(8 * 4 * 4, 1.0f));
+  buffers.trim();
+  CHECK(buffers.keptBytes() == smallBytes);
+  // A frame of another size makes its own; the trim after it drops the old size's.
+  PendingImage third = PendingImage::color(largeOnly, channels, ReadPath::PixelBuffer, &buffers);
+  CHECK(buffers.keptBytes() == smallBytes);
+  CHECK(third.finish().pixels == std::vector<float>(16 * 8 * 4, 1.0f));
+  buffers.trim();
+  CHECK(buffers.keptBytes() == largeBytes);
+  // The direct path takes none.
+  PendingImage direct = PendingImage::color(largeOnly, channels, ReadPath::Direct, &buffers);
+  CHECK(buffers.keptBytes() == largeBytes);
+  CHECK(direct.finish().pixels.size() == 16 * 8 * 4);
 }
 
 }  // namespace headlight

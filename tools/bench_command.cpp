@@ -199,11 +199,18 @@ struct FrameTimes {
 };
 
 // Times one configuration: `warmup` frames, then `repetitions` timed ones.
+// These read back the lit image alone (the passes are the same: every other
+// target is an input of lit's). Reading every target back took an H200 ~400
+// ms a 1920x1080 frame against ~12 ms of passes, and the GPU, idle that long,
+// fell from 1980 to 345 MHz within 4 s: the frames timed after were ~5x
+// slower than the same passes on a busy GPU (docs/BENCHMARKS.md, "Session
+// 14"). The frame the errors are measured on, untimed, has every target.
 Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOptions& options, FrameTimes& times) {
-  for (int i = 0; i < options.warmup; ++i) renderer.render(config.settings);
+  const std::string timedTargets[] = {"lit"};
+  for (int i = 0; i < options.warmup; ++i) renderer.render(config.settings, nullptr, timedTargets);
   Frame frame;
   for (int i = 0; i < options.repetitions; ++i) {
-    frame = renderer.render(config.settings);
+    frame = renderer.render(config.settings, nullptr, timedTargets);
     times.frame.push_back(frameMilliseconds(frame, false));
     times.ssgi.push_back(ssgiMilliseconds(frame, false));
     times.frameGpu.push_back(frameMilliseconds(frame, true));
@@ -213,7 +220,7 @@ Frame timeFrames(Renderer& renderer, const BenchConfig& config, const MeasureOpt
       if (time.gpuMilliseconds >= 0) times.passGpu[time.pass].push_back(time.gpuMilliseconds);
     }
   }
-  return frame;
+  return options.traceReference ? renderer.render(config.settings) : frame;
 }
 
 std::string formsText(const Frame& frame) {

@@ -92,6 +92,10 @@ void Buffer::read(void* data, std::size_t bytes, std::size_t offset) const {
   glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
 }
 
+const void* Buffer::mapRead() const { return glMapNamedBufferRange(id(), 0, GLsizeiptr(size_), GL_MAP_READ_BIT); }
+
+void Buffer::unmap() const { glUnmapNamedBuffer(id()); }
+
 Fence Fence::insert() {
   Fence fence;
   fence.sync_ = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);

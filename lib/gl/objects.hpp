@@ -105,6 +105,11 @@ class Buffer : public Name<deleteBuffer> {
   static Buffer createReadback(std::size_t bytes);
   // Copies `bytes` from `offset` into `data`; waits for the commands that write it.
   void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
+  // The whole storage mapped for reading (a createReadback buffer), without
+  // the copy read() makes; waits for the commands that write it. Valid until
+  // unmap().
+  const void* mapRead() const;
+  void unmap() const;
   template <class T>
   static Buffer create(std::span<const T> items) {
     return create(items.size_bytes(), items.data());

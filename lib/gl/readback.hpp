@@ -22,42 +22,87 @@ namespace headlight {
 // (docs/BENCHMARKS.md, "Readback and pipelined frames").
 enum class ReadPath { PixelBuffer, Direct };
 
-// A texture's level 0 on its way back as floats.
+// Pixel buffers kept from one frame's readback for the next. A buffer of
+// read-back storage is pinned client memory the driver maps into the GPU's
+// view: making and freeing one per target per frame cost more than the copy
+// (on an H200 under gVisor a 1920x1080 frame's readback took ~480 ms, most of
+// it fresh pages; docs/BENCHMARKS.md, "Session 14"). A renderer keeps one
+// frame's worth: Renderer::submit holds at most two frames in flight, and each
+// collect hands its buffers back for the frame after next.
+class ReadbackBuffers {
+ public:
+  // A kept buffer of exactly `bytes`, else a new one.
+  gl::Buffer acquire(std::size_t bytes);
+  void release(gl::Buffer buffer);
+  // Keeps no more than the bytes released since the last trim (the frame just
+  // collected), dropping the oldest: a change of size or targets frees the rest.
+  void trim();
+  std::size_t keptBytes() const;
+
+ private:
+  std::vector<gl::Buffer> kept_;  // oldest first
+  std::size_t releasedSinceTrim_ = 0;
+};
+
+// How a texture's components travel: in the type it stores them in (a
+// half-float texture as halves, an 8-bit one as bytes), converted to float on
+// the CPU while the image is assembled. Asked for as floats, a driver converts
+// them itself: on an H200 queueing a 1080x1080 frame's copies took ~48 ms
+// of the CPU's time, and the copies carried 2-4x the bytes.
+enum class ComponentType { Float, Half, Unorm8 };
+ComponentType transferType(GLenum internalFormat);
+
+// A texture's level 0 on its way back.
 class PixelRead {
  public:
   // Starts reading `texture` as `format` (GL_RGBA or GL_DEPTH_COMPONENT),
-  // `components` floats a pixel.
-  PixelRead(const gl::Texture& texture, GLenum format, int components, ReadPath path);
-  // The pixels, rows bottom-up as GL has them; once.
-  std::vector<float> take();
+  // `components` a pixel; through a pixel buffer from `buffers` when given.
+  PixelRead(const gl::Texture& texture, GLenum format, int components, ReadPath path,
+            ReadbackBuffers* buffers = nullptr);
+  PixelRead(PixelRead&&) noexcept;
+  PixelRead& operator=(PixelRead&&) noexcept;
+  ~PixelRead();
+  // The stored components, rows bottom-up as GL has them: the pixel buffer
+  // mapped (the wait for its copy), valid until release().
+  const void* data();
+  // Unmaps and hands the pixel buffer back to `buffers` (dropped without).
+  void release(ReadbackBuffers* buffers);
   int width() const { return width_; }
   int height() const { return height_; }
   GLenum internalFormat() const { return internalFormat_; }
+  ComponentType type() const { return type_; }
 
  private:
-  gl::Buffer buffer_;          // ReadPath::PixelBuffer
-  std::vector<float> pixels_;  // ReadPath::Direct
+  gl::Buffer buffer_;  // ReadPath::PixelBuffer
+  const void* mapped_ = nullptr;
+  std::vector<unsigned char> bytes_;  // ReadPath::Direct
   int width_ = 0, height_ = 0;
   GLenum internalFormat_ = 0;
+  ComponentType type_ = ComponentType::Float;
 };
 
 // An image being read back: a target held in several textures of one size
 // (headlight/targets.hpp: channels 4k..4k+3 in textures[k]), or a depth
 // texture as view depth. Started when its frame's passes are queued,
-// finished when the frame is collected (Renderer::submit, collect).
+// finished when the frame is collected (Renderer::submit, collect). Pixel
+// buffers come from and go back to `buffers` where one is given.
 class PendingImage {
  public:
   static PendingImage color(std::span<const gl::Texture* const> textures, std::vector<std::string> channels,
-                            ReadPath path = ReadPath::Direct);
+                            ReadPath path = ReadPath::Direct, ReadbackBuffers* buffers = nullptr);
   // Window depth turned into the distance along the view direction (view-space -z).
   static PendingImage viewDepth(const gl::Texture& depth, const CameraView& view, std::string channel,
-                                ReadPath path = ReadPath::Direct);
-  ImageF finish();  // once
+                                ReadPath path = ReadPath::Direct, ReadbackBuffers* buffers = nullptr);
+  // The image, each texture's pixels visited once: rows flipped, channels
+  // interleaved, sRGB decoded, depth converted in one pass into the image's
+  // own storage. Once.
+  ImageF finish();
 
  private:
   std::vector<PixelRead> parts_;
   std::vector<std::string> channels_;
   std::optional<CameraView> depthView_;  // a depth read: the view it converts with
+  ReadbackBuffers* buffers_ = nullptr;
 };
 
 // Reads the first channels.size() components of a colour texture as floats.
