@@ -8,20 +8,30 @@
 // long run of renders.
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
+#include "headlight/frame.hpp"
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 
 using namespace headlight;
 
 namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+  return values[values.size() / 2];
+}
 
 double rssMiB() {
   std::ifstream statm("/proc/self/statm");
@@ -73,8 +83,13 @@ int main(int argc, char** argv) try {
   renderer.setScene(scene);
   double warm = 0;
   const int warmUp = std::min(100, renders);
+  std::vector<double> frameMs, readbackMs;  // each render's wall time, and its readback's
   for (int i = 1; i <= renders; ++i) {
-    renderer.render(settings);
+    const auto start = std::chrono::steady_clock::now();
+    const Frame frame = renderer.render(settings);
+    frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    for (const PassTime& time : frame.timings)
+      if (time.pass == "readback") readbackMs.push_back(time.milliseconds);
     if (i == warmUp) warm = rssMiB();
     if (i == 1 || i == warmUp || i % 1000 == 0) std::printf("render %6d: RSS %.1f MiB\n", i, rssMiB());
   }
@@ -82,6 +97,9 @@ int main(int argc, char** argv) try {
   std::printf("one renderer: %d renders at %dx%d, RSS %.1f MiB after %d, %.1f MiB after %d (%+.1f %%) on %s, %s\n",
               renders, size, size, warm, warmUp, rssMiB(), renders, growth, context.description().c_str(),
               context.renderer().c_str());
+  // Every target read back each render: the readback's share of a render (docs/BENCHMARKS.md, "Session 14").
+  std::printf("one renderer: median render %.1f ms, of which readback %.1f ms (every target)\n", median(frameMs),
+              median(readbackMs));
   return growth > 5.0 ? 1 : 0;
 } catch (const Error& error) {
   std::cerr << "headlight-soak: " << error.what() << "\n";
