@@ -30,20 +30,42 @@ TEST_SUITE("hostile") {
                   {"material 0 KHR_materials_ior ior is 0.5", "expected a number >= 1 or 0"});
     expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_volume", {{"thicknessFactor", -3}}}})),
                   {"KHR_materials_volume thicknessFactor is -3", "expected a number >= 0"});
-    expectRefused(
-        writeGltf(folder, withMaterialExtensions({{"KHR_materials_volume", {{"attenuationDistance", -1}}}})),
-        {"KHR_materials_volume attenuationDistance is -1", "expected a number > 0"});
+    expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_volume", {{"attenuationDistance", -1}}}})),
+                  {"KHR_materials_volume attenuationDistance is -1", "expected a number > 0"});
     expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_sheen", {{"sheenColorFactor", {1, 1}}}}})),
                   {"KHR_materials_sheen sheenColorFactor is not 3 numbers"});
-    expectRefused(
-        writeGltf(folder, withMaterialExtensions({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1e40}}}})),
-        {"KHR_materials_clearcoat clearcoatFactor is 1e+40"});
+    expectRefused(writeGltf(folder, withMaterialExtensions({{"KHR_materials_clearcoat", {{"clearcoatFactor", 1e40}}}})),
+                  {"KHR_materials_clearcoat clearcoatFactor is 1e+40"});
+  }
+
+  TEST_CASE("extension integers outside 32 bits refuse the file, naming the value as written (issue 32)") {
+    // The glTF parser keeps JSON integers as int: these read as 1 and as -2147483648 before the check.
+    TempFolder folder("hostile-extension-integers");
+    expectRefused(writeGltf(folder, withMaterialExtensions(
+                                        {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4294967297}}}})),
+                  {"materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength is 4294967297",
+                   "outside -2147483648..2147483647", "4294967297.0"});
+    json transformed = withMaterialExtensions(json::object());
+    transformed["materials"][0]["pbrMetallicRoughness"] = {
+        {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 2147483648}}}}}}}};
+    expectRefused(writeGltf(folder, transformed, "texcoord.gltf"), {"KHR_texture_transform.texCoord is 2147483648"});
+    json below = withMaterialExtensions({{"KHR_materials_volume", {{"thicknessFactor", -2147483649}}}});
+    expectRefused(writeGltf(folder, below, "below.gltf"), {"thicknessFactor is -2147483649"});
+    // Extras are the file's own: not read, not checked.
+    json extras = withMaterialExtensions(json::object());
+    extras["materials"][0]["extras"] = {{"extensions", {{"counter", 4294967297}}}};
+    const auto scene = writeGltf(folder, extras, "extras.gltf");
+    const ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
   }
 
   TEST_CASE("material extensions: valid values at the ends of their ranges render") {
     TempFolder folder("hostile-material-extensions-valid");
-    const auto scene = writeGltf(folder, withMaterialExtensions({{"KHR_materials_ior", {{"ior", 0}}},
-                                                               {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}));
+    const auto scene =
+        writeGltf(folder, withMaterialExtensions({{"KHR_materials_ior", {{"ior", 0}}},
+                                                  {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}));
     const auto out = folder.path() / "out";
     const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
     INFO(run.output);

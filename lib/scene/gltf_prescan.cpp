@@ -109,6 +109,7 @@ class StructureCheck {
     forEach(root, "cameras", "camera", nothingMore);
     forEach(root, "skins", "skin", nothingMore);
     forEach(root, "animations", "animation", nothingMore);
+    checkExtensionIntegers(root, "", false);
   }
 
  private:
@@ -157,6 +158,34 @@ class StructureCheck {
       numberArray(*pbr, "baseColorFactor", name + " pbrMetallicRoughness");
     }
     numberArray(material, "emissiveFactor", name);
+  }
+
+  // tinygltf keeps a JSON integer as an int, so one outside 32 bits wraps
+  // (an emissiveStrength of 4294967297 was read as 1, an index of 2147483648
+  // as -2147483648). The core's integers are range-checked above by name;
+  // the extensions' are checked here wherever they are, so that no extension
+  // reader ever sees a wrapped value. A real number so large keeps its value
+  // written with a decimal point (tinygltf reads that as a double). Extras
+  // are the file's own data, not read.
+  void checkExtensionIntegers(const json& value, const std::string& path, bool inExtensions) {
+    if (value.is_object()) {
+      for (const auto& [key, member] : value.items())
+        if (key != "extras")
+          checkExtensionIntegers(member, path.empty() ? key : path + "." + key, inExtensions || key == "extensions");
+    } else if (value.is_array()) {
+      for (std::size_t index = 0; index < value.size(); ++index)
+        checkExtensionIntegers(value[index], path + "[" + std::to_string(index) + "]", inExtensions);
+    } else if (inExtensions && (value.is_number_integer() || value.is_number_unsigned())) {
+      const bool fits = value.is_number_unsigned()
+                            ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<std::int32_t>::max())
+                            : value.get<std::int64_t>() >= std::numeric_limits<std::int32_t>::min() &&
+                                  value.get<std::int64_t>() <= std::numeric_limits<std::int32_t>::max();
+      if (!fits)
+        fail(file_, path + " is " + value.dump() +
+                        ", an integer outside -2147483648..2147483647, which the glTF parser would wrap (a real "
+                        "number this large is read as such written with a decimal point: " +
+                        value.dump() + ".0)");
+    }
   }
 
   // An optional member that must be an object; nullptr where absent.
