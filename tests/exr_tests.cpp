@@ -117,7 +117,8 @@ TEST_CASE("writes are atomic: no temporary file stays, and a failed write leaves
   fs::remove_all(folder);
 }
 
-TEST_CASE("writeFrame holds the folder's lock: a folder locked elsewhere is refused, one this process holds is shared") {
+TEST_CASE(
+    "writeFrame holds the folder's lock: a folder locked elsewhere is refused, one this process holds is shared") {
   const Frame& frame = cornellFrame();
   const fs::path folder = test::freshFolder("exr_lock");
   OutputOptions options;
@@ -134,6 +135,18 @@ TEST_CASE("writeFrame holds the folder's lock: a folder locked elsewhere is refu
       CHECK(std::string(error.what()).find(folder.string()) != std::string::npos);
       CHECK(std::string(error.what()).find("wait for it") != std::string::npos);
       CHECK(error.settings() == std::vector<std::string>{"wait"});
+    }
+    // Waited for, the folder is given up after waitForFolderSeconds, naming the holder's lock.
+    OutputOptions waiting = options;
+    waiting.waitForFolder = true;
+    waiting.waitForFolderSeconds = 0.2;
+    try {
+      writeFrame(frame, folder, waiting);
+      FAIL("a locked folder was written");
+    } catch (const IoError& error) {
+      CHECK(std::string(error.what()).find("still holds the folder's lock after 0.2 s of waiting") !=
+            std::string::npos);
+      CHECK(error.settings() == std::vector<std::string>{"wait-timeout"});
     }
     CHECK(!fs::exists(folder / "lit.exr"));
     ::close(fd);

@@ -39,6 +39,15 @@ using json = nlohmann::ordered_json;
 
 // ---- running -----------------------------------------------------------------
 
+// With --wait, says once whom a render waits for before it waits (unless --quiet).
+std::function<void(const std::string&)> waitingNote(const RenderCommand& command, const fs::path& folder) {
+  if (command.verbosity == Verbosity::Quiet) return {};
+  return [folder, seconds = command.waitSeconds](const std::string& holder) {
+    std::cerr << "headlight: " << folder.string() << ": waiting for " << holder
+              << " to release the folder's lock (at most " << seconds << " s: --wait-timeout)\n";
+  };
+}
+
 struct JobResult {
   enum class Status { Rendered, Skipped, Failed } status = Status::Failed;
   std::string error;
@@ -255,7 +264,7 @@ int runSingleRender(const RenderCommand& command) {
   renderer.setScene(std::move(scene));
   // Held from before the render until the set is written: a second render
   // into this folder waits (--wait) or stops here.
-  const detail::OutputFolderLock lock(job.outDir, command.wait);
+  const detail::OutputFolderLock lock(job.outDir, command.wait, command.waitSeconds, waitingNote(command, job.outDir));
   const std::optional<Camera> camera =
       job.camera.build(renderer.scene(), float(job.settings.width) / float(job.settings.height));
   const Frame frame = renderer.render(job.settings, camera ? &*camera : nullptr, renderTargetsFor(command.output));
@@ -263,6 +272,7 @@ int runSingleRender(const RenderCommand& command) {
   OutputOptions output = command.output;
   output.jobHash = jobHash(job, command.output, command.sceneLoad.environment);
   output.waitForFolder = command.wait;
+  output.waitForFolderSeconds = command.waitSeconds;
   const std::vector<WrittenFile> files = writeFrame(frame, job.outDir, output);
   if (command.verbosity != Verbosity::Quiet)
     for (const WrittenFile& file : files) std::cout << file.summary << "\n";
@@ -349,6 +359,7 @@ int runRenderBatch(const RenderCommand& command) {
       OutputOptions output = command.output;
       output.jobHash = jobHash(jobs[i], command.output, command.sceneLoad.environment);
       output.waitForFolder = command.wait;
+      output.waitForFolderSeconds = command.waitSeconds;
       pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock = job.folderLock] {
         const auto writeStart = std::chrono::steady_clock::now();
         try {
@@ -407,7 +418,8 @@ int runRenderBatch(const RenderCommand& command) {
         currentScene = sceneKey(job);
       }
       // Held from before the render until the writer thread has written the set.
-      auto folderLock = std::make_shared<detail::OutputFolderLock>(job.outDir, command.wait);
+      auto folderLock = std::make_shared<detail::OutputFolderLock>(job.outDir, command.wait, command.waitSeconds,
+                                                                   waitingNote(command, job.outDir));
       const std::optional<Camera> camera =
           job.camera.build(scene, float(job.settings.width) / float(job.settings.height));
       const auto submitStart = std::chrono::steady_clock::now();

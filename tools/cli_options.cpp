@@ -143,6 +143,13 @@ std::vector<Option<RenderCommand>> batchOptions() {
            .type = T::Switch,
            .help = "when another render holds an output folder's lock, wait for it (default: fail at once)"},
           [](auto& c) -> auto& { return c.wait; }),
+      actionOption<C>({.name = "wait-timeout",
+                       .type = T::Float,
+                       .help = "--wait: give up after this many seconds, naming the process that holds the folder "
+                               "(default 600)",
+                       .minimum = 0,
+                       .maximum = 1e7},
+                      [](C& c, const OptionValue& v) { c.waitSeconds = std::get<double>(v); }),
       bindOption<C>(
           {.name = "force",
            .type = T::Switch,

@@ -58,6 +58,7 @@ struct RenderCommand {
   bool shardIndexOmitted = false;  // --shard /N: I must come from --shard-index-env
   std::string shardIndexEnv;       // --shard-index-env VAR: I read from $VAR when the batch starts
   bool wait = false;               // --wait: wait for another render's lock on an output folder
+  double waitSeconds = 600.0;      // --wait-timeout: how long (detail::kDefaultWaitSeconds)
   bool force = false;              // --force: replace files with a target's name no Headlight set listed
   bool resume = false;             // skip jobs whose complete frame.json records the same job hash
   OutputOptions output;            // --targets, --exr-compression, --clamp-nonfinite

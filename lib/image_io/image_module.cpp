@@ -120,7 +120,7 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::p
                                     const OutputOptions& options) {
   // Taken on this side of the module: the lock's per-process count must be
   // the one the CLI's own lock (held from before the render) added to.
-  const detail::OutputFolderLock lock(outDir, options.waitForFolder);
+  const detail::OutputFolderLock lock(outDir, options.waitForFolder, options.waitForFolderSeconds);
   return imageModule().writeFrame(frame, outDir, options);
 }
 

@@ -27,8 +27,9 @@ namespace headlight::detail {
 
 // Bumped whenever the table or a type crossing it changes: a module from
 // another build is refused, not called.
-// 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder
-inline constexpr std::uint32_t kImageModuleAbi = 4;
+// 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder;
+// 5: OutputOptions::waitForFolderSeconds
+inline constexpr std::uint32_t kImageModuleAbi = 5;
 
 struct ImageModuleTable {
   std::uint32_t abi;

@@ -14,16 +14,30 @@
 // through; the flock is dropped with the last one. Two threads of one
 // process writing one folder at once are therefore not kept apart.
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace headlight::detail {
 
+// How long a render waits for another's folder unless told: a holder that
+// stopped (a suspended job, a stuck mount, `flock` in a shell) is not
+// waited for forever.
+inline constexpr double kDefaultWaitSeconds = 600.0;
+
+// Who holds the flock on the folder `fd` is open on, from /proc/locks: "process
+// 1234 (headlight)"; "another process" where the table cannot tell.
+std::string folderLockHolder(int fd);
+
 class OutputFolderLock {
  public:
   // Creates `folder` if needed and takes the lock. With `wait` false, a
-  // folder another process holds is an IoError at once, naming the folder
-  // and the `wait` setting; with `wait` true, blocks until it is free.
-  OutputFolderLock(const std::filesystem::path& folder, bool wait);
+  // folder another process holds is an IoError at once, naming the folder,
+  // the process that holds it and the `wait` setting; with `wait` true, it
+  // waits up to `waitSeconds` for the folder, calling `waiting` once with
+  // the holder's description first, and is then an IoError naming the
+  // holder and the time waited.
+  OutputFolderLock(const std::filesystem::path& folder, bool wait, double waitSeconds = kDefaultWaitSeconds,
+                   const std::function<void(const std::string& holder)>& waiting = {});
   // Drops the lock; a folder this lock created and nothing was written
   // into (the render failed) is removed again, as if never touched.
   ~OutputFolderLock();

@@ -58,8 +58,10 @@ struct OutputOptions {
   std::string jobHash;
   // The folder is locked while the set is written (flock on the folder, as
   // the CLI's renders do): a folder another process is writing is an
-  // IoError at once, or, with this set, waited for.
+  // IoError at once naming that process, or, with this set, waited for up
+  // to waitForFolderSeconds (then an IoError naming it).
   bool waitForFolder = false;
+  double waitForFolderSeconds = 600.0;
 };
 
 // The names OutputOptions::targets accepts: every frame target and "preview".
@@ -142,4 +144,4 @@ struct FrameSetCheck {
 // Checks a folder against its frame.json (reading every listed file to hash it).
 FrameSetCheck checkFrameSet(const std::filesystem::path& folder);
 
-}  // namespace headlight
+}  // namespace HEADLIGHT_PUBLIC
