@@ -268,8 +268,8 @@ TEST_SUITE("hostile") {
     const std::string warning = "warning: " + scene.string() +
                                 ": KHR_materials_dispersion on 2 materials (first: material 0 'Cloth') is not rendered";
     const fs::path out = folder.path() / "out";
-    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " +
-                                           quote(out));
+    const ProcessResult run =
+        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " + quote(out));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     const auto first = run.output.find(warning);
@@ -294,7 +294,9 @@ TEST_SUITE("hostile") {
     const Scene scene = loadGltf(path);
     REQUIRE(scene.instances.size() == 4);
     CHECK(scene.ignored.empty());
-    auto positions = [&](std::size_t instance) { return scene.primitives[scene.instances[instance].primitive].positions; };
+    auto positions = [&](std::size_t instance) {
+      return scene.primitives[scene.instances[instance].primitive].positions;
+    };
     auto near = [](const std::vector<glm::vec3>& actual, const std::vector<glm::vec3>& expected) {
       if (actual.size() != expected.size()) return false;
       for (std::size_t v = 0; v < actual.size(); ++v)
@@ -316,6 +318,32 @@ TEST_SUITE("hostile") {
         runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
+  }
+
+  // Issue 32: each joint's world transform is composed once, not up its
+  // whole chain again (a 20,000-joint chain took 12.5 s, 100,000 past 120 s).
+  TEST_CASE("a skin whose 50,000 joints are one chain loads within the hostile budget, each joint placed") {
+    TempFolder folder("hostile");
+    json document = hostile::posedScene();
+    constexpr int kChain = 50000, kFirst = 4;
+    for (int i = 0; i < kChain; ++i) {
+      json node = {{"translation", {0.0001, 0, 0}}};
+      if (i + 1 < kChain) node["children"] = {kFirst + i + 1};
+      document["nodes"].push_back(node);
+    }
+    document["scenes"][0]["nodes"].push_back(kFirst);
+    // Joint 0, the one every vertex follows, is the chain's deepest node: 50,000 x 0.0001 along x.
+    json joints = json::array();
+    for (int i = kChain - 1; i >= 0; --i) joints.push_back(kFirst + i);
+    document["skins"][0] = {{"joints", joints}};  // no inverse bind matrices: identity
+    const fs::path path = writeGltf(folder, document, "chain.gltf");
+    const auto start = std::chrono::steady_clock::now();
+    const Scene scene = loadGltf(path);
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));  // the hostile budget
+    const auto& positions = scene.primitives[scene.instances[1].primitive].positions;
+    REQUIRE(positions.size() == 3);
+    const glm::vec3 expected[] = {{4, -1, 0}, {6, -1, 0}, {5, 1, 0}};
+    for (std::size_t v = 0; v < 3; ++v) CHECK(glm::length(positions[v] - expected[v]) < 1e-4f);
   }
 
   TEST_CASE("bad skins, morph targets and instancing attributes are refused, naming the element") {
@@ -360,8 +388,9 @@ TEST_SUITE("hostile") {
     {
       json document = hostile::posedScene();
       document["nodes"][3]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["SCALE"] = 0;  // 3 elements
-      expectRefused(writeGltf(folder, document, "instances.gltf"),
-                    {"node 3 EXT_mesh_gpu_instancing SCALE accessor 0 has 3 elements, but the other attributes have 2"});
+      expectRefused(
+          writeGltf(folder, document, "instances.gltf"),
+          {"node 3 EXT_mesh_gpu_instancing SCALE accessor 0 has 3 elements, but the other attributes have 2"});
     }
   }
 

@@ -43,6 +43,9 @@ class NodeWalk {
 
   const Source& source_;
   std::vector<int> parentOf_;
+  // worldTransform's composed transforms, by node, once each.
+  mutable std::vector<glm::dmat4> world_;
+  mutable std::vector<bool> worldKnown_;
 };
 
 // KHR_lights_punctual's lights, wherever this tinygltf version put them.
