@@ -346,6 +346,18 @@ TEST_SUITE("hostile") {
     for (std::size_t v = 0; v < 3; ++v) CHECK(glm::length(positions[v] - expected[v]) < 1e-4f);
   }
 
+  TEST_CASE("instancing's count meets max-instances before any placement is read (issue 32)") {
+    TempFolder folder("hostile");
+    json document = hostile::posedScene();
+    // Two billion placements of zeros (no bufferView): 24 GB of translations had they been read first.
+    document["accessors"].push_back({{"componentType", 5126}, {"type", "VEC3"}, {"count", 2000000000}});
+    document["nodes"][3]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]["TRANSLATION"] =
+        document["accessors"].size() - 1;
+    const fs::path path = writeGltf(folder, document, "placements.gltf");
+    CHECK_THROWS_WITH_AS(loadGltf(path), doctest::Contains("as instance 2000000002, more than max-instances 1000000"),
+                         LimitError);
+  }
+
   TEST_CASE("bad skins, morph targets and instancing attributes are refused, naming the element") {
     TempFolder folder("hostile");
     {

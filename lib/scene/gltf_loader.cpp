@@ -206,17 +206,22 @@ class GltfReader {
       const std::vector<PlacedPrimitive>& placedPrimitives = meshPrimitives(node.mesh, nodeIndex);
       // A skinned mesh is posed in world space: glTF ignores its node's transform.
       const glm::mat4 worldFromMesh = node.skin >= 0 ? glm::mat4(1.0f) : worldFromNode;
-      std::vector<glm::mat4> placements = gltf::instanceTransforms(geometry_.accessors(), source_, nodeIndex);
+      // Checked before the placements are read (instanceTransforms calls it with each attribute's count).
+      const auto checkInstances = [&](std::size_t placementCount) {
+        const std::uint64_t added = static_cast<std::uint64_t>(placedPrimitives.size()) * placementCount;
+        if (scene_.instances.size() + added > static_cast<std::uint64_t>(limits_.maxInstances)) {
+          source_.failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
+                                std::to_string(scene_.instances.size() + added) + ", more than max-instances " +
+                                std::to_string(limits_.maxInstances) + "; raise max-instances",
+                            "max-instances");
+        }
+      };
+      std::vector<glm::mat4> placements =
+          gltf::instanceTransforms(geometry_.accessors(), source_, nodeIndex, checkInstances);
       if (placements.empty()) {
         placements.push_back(glm::mat4(1.0f));
       }
-      const std::uint64_t added = static_cast<std::uint64_t>(placedPrimitives.size()) * placements.size();
-      if (scene_.instances.size() + added > static_cast<std::uint64_t>(limits_.maxInstances)) {
-        source_.failLimit(nodeName + " places mesh " + std::to_string(node.mesh) + " as instance " +
-                              std::to_string(scene_.instances.size() + added) + ", more than max-instances " +
-                              std::to_string(limits_.maxInstances) + "; raise max-instances",
-                          "max-instances");
-      }
+      checkInstances(placements.size());
       for (const glm::mat4& placement : placements) {
         const glm::mat4 worldFromLocal = worldFromMesh * placement;
         for (int column = 0; column < 4; ++column) {

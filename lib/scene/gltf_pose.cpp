@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <span>
 #include <type_traits>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include "scene/gltf_geometry.hpp"
 
@@ -46,8 +46,8 @@ std::vector<float> morphWeights(const Source& source, int nodeIndex, int meshInd
   bool any = false;
   for (std::size_t k = 0; k < weights.size(); ++k) {
     if (!std::isfinite(weights[k])) {
-      source.fail((fromNode ? "node " + std::to_string(nodeIndex) : "mesh " + std::to_string(meshIndex)) +
-                  " weight " + std::to_string(k) + " is not finite");
+      source.fail((fromNode ? "node " + std::to_string(nodeIndex) : "mesh " + std::to_string(meshIndex)) + " weight " +
+                  std::to_string(k) + " is not finite");
     }
     result.push_back(static_cast<float>(weights[k]));
     any = any || weights[k] != 0.0;
@@ -73,23 +73,24 @@ void applyMorphTargets(const AccessorReader& accessors, const tinygltf::Primitiv
     const auto& target = source.targets[k];
     const std::string name = primitiveName + " target " + std::to_string(k);
     if (const int deltas = targetAccessor(target, "POSITION"); deltas >= 0) {
-      const auto values = accessors.readAttribute<3>(deltas, name + " POSITION", kPositionDeltaFormats, vertexCount,
-                                                     positionAccessor);
+      const auto values =
+          accessors.readAttribute<3>(deltas, name + " POSITION", kPositionDeltaFormats, vertexCount, positionAccessor);
       requireFinite(file, values, name + " POSITION accessor " + std::to_string(deltas));
       for (std::size_t v = 0; v < vertexCount; ++v) primitive.positions[v] += weight * values[v];
     }
     if (const int deltas = targetAccessor(target, "NORMAL"); deltas >= 0 && !primitive.normals.empty()) {
-      const auto values = accessors.readAttribute<3>(deltas, name + " NORMAL", kDirectionDeltaFormats, vertexCount,
-                                                     positionAccessor);
+      const auto values =
+          accessors.readAttribute<3>(deltas, name + " NORMAL", kDirectionDeltaFormats, vertexCount, positionAccessor);
       requireFinite(file, values, name + " NORMAL accessor " + std::to_string(deltas));
       for (std::size_t v = 0; v < vertexCount; ++v) primitive.normals[v] += weight * values[v];
     }
     if (const int deltas = targetAccessor(target, "TANGENT"); deltas >= 0 && !primitive.tangents.empty()) {
-      const auto values = accessors.readAttribute<3>(deltas, name + " TANGENT", kDirectionDeltaFormats, vertexCount,
-                                                     positionAccessor);
+      const auto values =
+          accessors.readAttribute<3>(deltas, name + " TANGENT", kDirectionDeltaFormats, vertexCount, positionAccessor);
       requireFinite(file, values, name + " TANGENT accessor " + std::to_string(deltas));
       for (std::size_t v = 0; v < vertexCount; ++v) {
-        primitive.tangents[v] = glm::vec4(glm::vec3(primitive.tangents[v]) + weight * values[v], primitive.tangents[v].w);
+        primitive.tangents[v] =
+            glm::vec4(glm::vec3(primitive.tangents[v]) + weight * values[v], primitive.tangents[v].w);
       }
     }
   }
@@ -109,7 +110,8 @@ std::vector<glm::mat4> jointMatrices(const AccessorReader& accessors, const Node
   }
   std::vector<glm::mat4> inverseBind(skin.joints.size(), glm::mat4(1.0f));  // glTF: identity when absent
   if (skin.inverseBindMatrices >= 0) {
-    const CheckedAccessor accessor = accessors.check(skin.inverseBindMatrices, name + " inverseBindMatrices", kMatrixFormats);
+    const CheckedAccessor accessor =
+        accessors.check(skin.inverseBindMatrices, name + " inverseBindMatrices", kMatrixFormats);
     if (accessor.count != skin.joints.size()) {
       source.fail(name + " inverseBindMatrices accessor " + std::to_string(skin.inverseBindMatrices) + " has " +
                   countOf(accessor.count, "matrix") + ", but the skin has " + countOf(skin.joints.size(), "joint"));
@@ -186,7 +188,8 @@ void applySkin(const AccessorReader& accessors, const tinygltf::Primitive& sourc
   }
 }
 
-std::vector<glm::mat4> instanceTransforms(const AccessorReader& accessors, const Source& source, int nodeIndex) {
+std::vector<glm::mat4> instanceTransforms(const AccessorReader& accessors, const Source& source, int nodeIndex,
+                                          const std::function<void(std::size_t count)>& checkCount) {
   const tinygltf::Node& node = source.model.nodes[static_cast<std::size_t>(nodeIndex)];
   const auto extension = node.extensions.find("EXT_mesh_gpu_instancing");
   if (extension == node.extensions.end() || !extension->second.Has("attributes")) {
@@ -211,6 +214,7 @@ std::vector<glm::mat4> instanceTransforms(const AccessorReader& accessors, const
                     countOf(checked.count, "element") + ", but the other attributes have " + std::to_string(count));
       }
       count = checked.count;
+      checkCount(count);
       values = accessors.readFloats<N>(checked);
       requireFinite(source, values, name + " " + attribute + " accessor " + std::to_string(accessor));
     }
