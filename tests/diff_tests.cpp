@@ -167,6 +167,37 @@ TEST_CASE("diff: structural mismatches and file errors are statuses that name th
   fs::remove_all(folder);
 }
 
+TEST_CASE("diff: HDR-FLIP's exposures are counted before the first, and a pair needing more than allowed is refused" *
+          doctest::test_suite("diff")) {
+  // Issue 32: a denormal median under one pixel at 1e38 asked for ~260 whole FLIPs (~95 s at its size).
+  const fs::path folder = test::freshFolder("diff_flip_exposures");
+  TestImage extreme = gradient(16, 16, {"R", "G", "B"});
+  for (float& value : extreme.pixels) value = 1e-40f;  // a denormal: the median
+  extreme.at(3, 4, 0) = extreme.at(3, 4, 1) = extreme.at(3, 4, 2) = 1e38f;
+  write(folder / "lit.exr", extreme);
+  const DiffResult refused = diffImages(folder / "lit.exr", folder / "lit.exr");
+  CHECK(refused.status == DiffStatus::FileError);
+  CHECK(contains(refused.problem, "more than --max-flip-exposures 64 allows"));
+  CHECK(contains(refused.problem, "HDR-FLIP would evaluate 2"));  // 259 or so
+  const Cli cli = runCli({(folder / "lit.exr").string(), (folder / "lit.exr").string()});
+  CHECK(cli.exitCode == 4);
+  CHECK(contains(cli.out, "--max-flip-exposures"));
+  // An ordinary HDR image is far inside the bound; raised, the extreme pair is compared.
+  write(folder / "ordinary.exr", gradient(16, 16, {"R", "G", "B"}));
+  const DiffResult ordinary = diffImages(folder / "ordinary.exr", folder / "ordinary.exr", [] {
+    DiffOptions options;
+    options.metric = DiffMetric::Flip;
+    return options;
+  }());
+  CHECK(ordinary.status == DiffStatus::Pass);
+  REQUIRE(ordinary.flip.has_value());
+  CHECK(ordinary.flip->exposureCount <= 8);
+  DiffOptions raised;
+  raised.maxFlipExposures = 1000;
+  CHECK(diffImages(folder / "lit.exr", folder / "lit.exr", raised).status == DiffStatus::Pass);
+  fs::remove_all(folder);
+}
+
 TEST_CASE("diff: normals are compared by angle, not per component" * doctest::test_suite("diff")) {
   const fs::path folder = test::freshFolder("diff_normals");
   const TestImage reference = normals();
@@ -338,4 +369,3 @@ TEST_CASE("diff: --json prints one object with the numbers and thresholds used" 
   CHECK(j["channels"][1]["psnr"].is_null());  // identical channel: PSNR inf
   fs::remove_all(folder);
 }
-

@@ -131,6 +131,13 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
                         else
                           c.options.maxMemoryMiB.reset();  // auto
                       }),
+      actionOption<C>({.name = "max-flip-exposures",
+                       .type = T::Int,
+                       .help = "HDR-FLIP: most exposures evaluated (one a stop from A's brightest luminance to its "
+                               "median, each a whole FLIP); a pair needing more is refused [default: 64]",
+                       .minimum = 2,
+                       .maximum = 100000},
+                      [](C& c, const OptionValue& v) { c.options.maxFlipExposures = int(std::get<std::int64_t>(v)); }),
       bindOption<C>(
           {.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
           [](auto& c) -> auto& { return c.json; }),

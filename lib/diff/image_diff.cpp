@@ -96,7 +96,6 @@ OIIO::ImageBuf pickChannels(const OIIO::ImageBuf& image, const std::vector<std::
   return OIIO::ImageBufAlgo::channels(image, int(names.size()), order, {}, names);
 }
 
-
 // A one-channel float image named `name` holding `values`.
 OIIO::ImageBuf singleChannel(const OIIO::ROI& roi, const std::string& name, const float* values) {
   OIIO::ImageSpec spec(roi.width(), roi.height(), 1, OIIO::TypeDesc::FLOAT);
@@ -173,8 +172,13 @@ struct MetricImages {
 // FLIP of the R, G, B channels as channel "flip" of EA (EB zero), then the
 // other channels (coverage) as they are, compared absolutely. HDR-FLIP takes
 // its exposures from A, the reference; LDR-FLIP decodes sRGB first.
+// A pair whose HDR-FLIP would need more exposures than DiffOptions::maxFlipExposures.
+struct TooManyExposures {
+  std::string problem;
+};
+
 MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::vector<std::string>& channels,
-                        const std::vector<int>& rgb, bool ldr, DiffResult& result) {
+                        const std::vector<int>& rgb, bool ldr, int maxExposures, DiffResult& result) {
   namespace iba = OIIO::ImageBufAlgo;
   const OIIO::ROI roi = a.roi();
   const std::size_t count = roi.npixels();
@@ -195,7 +199,16 @@ MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const 
     for (float& v : rgbB) v = srgbToLinear(v);
     flipped = flip::ldrFlip(viewA, viewB, details.pixelsPerDegree);
   } else {
-    flipped = flip::hdrFlip(viewA, viewB, details.pixelsPerDegree);
+    const flip::ExposureRange exposures = flip::hdrExposureRange(viewA);
+    if (exposures.count > maxExposures) {
+      char span[96];
+      std::snprintf(span, sizeof span, "exposures 2^%.1f to 2^%.1f", exposures.start, exposures.stop);
+      throw TooManyExposures{"HDR-FLIP would evaluate " + std::to_string(exposures.count) +
+                             " exposures, one a stop from A's brightest luminance to its median (" + span +
+                             "), more than --max-flip-exposures " + std::to_string(maxExposures) +
+                             " allows; raise --max-flip-exposures to compare them (each is a whole FLIP of the image)"};
+    }
+    flipped = flip::hdrFlip(viewA, viewB, exposures, details.pixelsPerDegree);
     details.startExposure = flipped.startExposure;
     details.stopExposure = flipped.stopExposure;
     details.exposureCount = flipped.exposureCount;
@@ -223,7 +236,7 @@ MetricImages flipImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const 
 }
 
 MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, const std::vector<std::string>& channels,
-                          bool integerPixels, DiffResult& result) {
+                          bool integerPixels, int maxFlipExposures, DiffResult& result) {
   namespace iba = OIIO::ImageBufAlgo;
   MetricImages m;
   const int n = int(channels.size());
@@ -258,7 +271,7 @@ MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
       break;
     }
     case DiffMetric::Flip:
-      m = flipImages(a, b, channels, rgbChannels(channels), integerPixels, result);
+      m = flipImages(a, b, channels, rgbChannels(channels), integerPixels, maxFlipExposures, result);
       break;
   }
   checkOk(m.a, "metric (A)");
@@ -432,7 +445,14 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
     return c < s.nancount.size() ? std::uint64_t(s.nancount[c] + s.infcount[c]) : 0;
   };
 
-  const MetricImages m = metricImages(selA, selB, channels, integerA && integerB, result);
+  MetricImages m;
+  try {
+    m = metricImages(selA, selB, channels, integerA && integerB, options.maxFlipExposures, result);
+  } catch (const TooManyExposures& refused) {
+    result.status = DiffStatus::FileError;
+    result.problem = a.string() + " and " + b.string() + ": " + refused.problem;
+    return result;
+  }
   const float fail = float(result.thresholds.fail), warn = float(result.thresholds.warn);
   const iba::CompareResults all = iba::compare(m.a, m.b, fail, warn);
   result.maxError = all.maxerror;

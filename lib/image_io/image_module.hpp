@@ -28,7 +28,7 @@ namespace headlight::detail {
 // Bumped whenever the table or a type crossing it changes: a module from
 // another build is refused, not called.
 // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder;
-// 5: OutputOptions::waitForFolderSeconds
+// 5: OutputOptions::waitForFolderSeconds, DiffOptions::maxFlipExposures
 inline constexpr std::uint32_t kImageModuleAbi = 5;
 
 struct ImageModuleTable {

@@ -78,6 +78,11 @@ struct DiffOptions {
   // for the comparison), checked on their declared sizes before any pixel
   // is decoded; nullopt: half of physical memory (the CLI's --max-memory).
   std::optional<std::int64_t> maxMemoryMiB;
+  // HDR-FLIP evaluates FLIP once per exposure, one a stop from A's brightest
+  // pixel to its median: a pair needing more is refused before the first (a
+  // denormal median under a pixel at FLT_MAX asked for 277, ~95 s of work).
+  // The CLI's --max-flip-exposures.
+  int maxFlipExposures = 64;
 };
 
 // The metric the row of `target` and the options give.
