@@ -88,8 +88,11 @@ constexpr AttachmentRow kAttachmentRows[] = {
     // The specular sky visibility (ssgi channel 8) and, internal, its weight.
     {Attachment::SsgiSpecular, "ssgi.specular", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
     {Attachment::Lit, "lit", F::Rgba16F, -1, "", S::Image, &Frame::lit, true},
-    // Half float: alpha products are smooth; 11 bits hold them to ~5e-4.
-    {Attachment::BlendCoverage, "blend.coverage", F::Rgba16F, -1, "", S::Image, &Frame::coverage},
+    // Float: coverage accumulates a + (1 - a) c over every layer, and in
+    // half float it stopped once a layer's share fell under half a step near
+    // 1 (0.976 after ~200 layers of alpha 0.03, where 0.9999 is due; issue
+    // 32). The file keeps half: 0..1 to ~5e-4.
+    {Attachment::BlendCoverage, "blend.coverage", F::Rgba32F, -1, "", S::Image, &Frame::coverage},
     // Half float: a throughput 0..1 and a path length in world units.
     {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", S::Image, &Frame::transmission},
     // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
