@@ -22,8 +22,8 @@ namespace {
 // A Radiance .hdr header declaring width x height, followed by `texels`
 // flat RGBE texels of radiance 1 (fewer than declared: a truncated file).
 fs::path hdrDeclaring(const TempFolder& folder, const std::string& name, long width, long height, long texels) {
-  std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " +
-                      std::to_string(width) + "\n";
+  std::string bytes =
+      "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " + std::to_string(width) + "\n";
   for (long i = 0; i < texels; ++i) bytes += std::string("\x80\x80\x80\x81", 4);
   return folder.write(name, bytes);
 }
@@ -82,5 +82,20 @@ TEST_CASE("hostile environment maps: a good one renders, and lit's background is
   CAPTURE(run.output);
   CHECK(run.exitCode == 0);
   CHECK(run.output.find("pass environment") != std::string::npos);
+  CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
+}
+
+TEST_CASE("hostile environment maps: texels brighter than half floats hold light the scene in float (issue 32)") {
+  // 100,000 everywhere: past half's 65504, it was inf on the GPU and NaN in lit even with radiance-precision float.
+  const TempFolder folder("hostile-environment");
+  const fs::path map =
+      writeEnvironmentMap(folder.path() / "bright.hdr", 64, 32, [](int, int) { return glm::vec3(100000.0f); });
+  const ProcessResult run = runHeadlight(
+      "render builtin:spheres --width 32 --height 24 --radiance-precision float "
+      "--environment " +
+      shellQuote(map.string()) + " --out " + shellQuote((folder.path() / "out").string()));
+  CAPTURE(run.output);
+  CHECK(run.exitCode == 0);
+  CHECK(run.output.find("non-finite 0") != std::string::npos);
   CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
 }

@@ -1,5 +1,9 @@
 #include "passes/environment.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <span>
+
 #include "environment/environment_prefilter.hpp"
 #include "shared_layout.h"
 
@@ -50,8 +54,17 @@ void setEquirectSampling(const gl::Texture& texture) {
   glTextureParameteri(texture.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
+// Half float where it holds the map, else float: a texel above half's
+// largest value (65504; the sun in an unclipped HDRI is brighter) became inf
+// in a half texture and NaN in what it lit, whatever radiance-precision
+// asked for (issue 32).
+GLenum equirectFormat(std::span<const float> values) {
+  const bool fitsHalf = std::all_of(values.begin(), values.end(), [](float v) { return std::abs(v) <= 65504.0f; });
+  return fitsHalf ? GL_RGBA16F : GL_RGBA32F;
+}
+
 gl::Texture uploadEquirect(const environment::EquirectImage& image) {
-  gl::Texture texture = gl::Texture::create2D(GL_RGBA16F, image.width, image.height);
+  gl::Texture texture = gl::Texture::create2D(equirectFormat(image.rgb), image.width, image.height);
   glTextureSubImage2D(texture.id(), 0, 0, 0, image.width, image.height, GL_RGB, GL_FLOAT, image.rgb.data());
   setEquirectSampling(texture);
   return texture;
@@ -63,8 +76,11 @@ void EnvironmentPass::updateEnvironment(const EnvironmentMap& map) {
   if (holdsEnvironment(map)) return;
   const environment::EnvironmentTables prefiltered = environment::prefilterEnvironment(map);
   const environment::EquirectImage& level0 = prefiltered.specular.front();
-  tables_.environmentSpecular =
-      gl::Texture::create2DArray(GL_RGBA16F, level0.width, level0.height, int(prefiltered.specular.size()));
+  bool specularFitsHalf = true;
+  for (const environment::EquirectImage& level : prefiltered.specular)
+    specularFitsHalf = specularFitsHalf && equirectFormat(level.rgb) == GL_RGBA16F;
+  tables_.environmentSpecular = gl::Texture::create2DArray(specularFitsHalf ? GL_RGBA16F : GL_RGBA32F, level0.width,
+                                                           level0.height, int(prefiltered.specular.size()));
   for (std::size_t layer = 0; layer < prefiltered.specular.size(); ++layer)
     glTextureSubImage3D(tables_.environmentSpecular.id(), 0, 0, 0, GLint(layer), level0.width, level0.height, 1, GL_RGB,
                         GL_FLOAT, prefiltered.specular[layer].rgb.data());
