@@ -27,6 +27,7 @@
 #include "headlight/finite.hpp"
 #include "headlight/limits.hpp"
 #include "headlight/output.hpp"
+#include "headlight/reference.hpp"
 #include "headlight/scene_loader.hpp"
 #include "hostile_cli.hpp"
 #include "hostile_inputs.hpp"
@@ -124,6 +125,34 @@ TEST_SUITE("hostile") {
     CHECK(run.exitCode == 0);
     CHECK(std::chrono::steady_clock::now() - start >= std::chrono::seconds(1));
     CHECK(checkFrameSet(out).state == FrameSetState::Complete);
+  }
+
+  TEST_CASE("reference keeps render's folder rules: one writer at a time, never the scene's folder (issue 32)" *
+            doctest::skip(!referenceAvailable())) {
+    TempFolder folder("hostile");
+    const fs::path out = folder.path() / "rq";
+    fs::create_directories(out);
+    const int fd = ::open(out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // another reference, mid-trace
+    REQUIRE(fd >= 0);
+    REQUIRE(::flock(fd, LOCK_EX) == 0);
+    const std::string reference =
+        "reference builtin:cornell --width 16 --height 12 --reference-samples 4 --out " + quote(out);
+    ProcessResult run = runHeadlight(reference);
+    INFO(run.output);
+    CHECK(run.exitCode == 1);
+    CHECK(run.output.find("holds this folder's lock") != std::string::npos);
+    CHECK(fs::is_empty(out));
+    ::close(fd);
+    run = runHeadlight(reference);
+    CHECK(run.exitCode == 0);
+    CHECK(fs::exists(out / "lit_ref.exr"));
+    // The scene's own folder is refused, as render refuses it.
+    const fs::path scene = writeGltf(folder, hostile::triangleScene(), "scenes/triangle.gltf");
+    run = runHeadlight("reference " + quote(scene) + " --width 16 --height 12 --reference-samples 4 --out " +
+                       quote(scene.parent_path()));
+    CHECK(run.exitCode == 1);
+    CHECK(run.output.find("holds the scene") != std::string::npos);
+    CHECK(!fs::exists(scene.parent_path() / "lit_ref.exr"));
   }
 
   TEST_CASE("two job lines with one output folder are refused before anything renders") {

@@ -18,6 +18,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
+#include "output/folder_lock.hpp"
 #include "progress.hpp"
 #include "tune_command.hpp"
 
@@ -70,6 +71,15 @@ int runReference(const std::vector<std::string>& args) {
     return kExitOk;
   }
   if (!referenceAvailable()) throw Error("this headlight was built without Embree (meson -Dembree=enabled)");
+  // The folder rules render keeps (issue 32): never the scene's own folder,
+  // and one writer at a time, held from before the trace until the files
+  // are written (a second reference into it is refused, naming the holder).
+  cli::Job folderJob;
+  folderJob.scene = command.scene;
+  folderJob.outDir = command.outDir;
+  if (const std::string refusal = cli::outputFolderRefusal(folderJob, /*force=*/true); !refusal.empty())
+    throw IoError(refusal);
+  const detail::OutputFolderLock lock(command.outDir, command.wait, command.waitSeconds);
   Scene scene =
       loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == cli::Verbosity::Quiet);
   Context context(command.context);
@@ -96,10 +106,7 @@ int runReference(const std::vector<std::string>& args) {
       {"headlight:reference:aoMaxStandardError", std::to_string(reference.aoMaxStandardError)},
       {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},
       {"headlight:reference:seconds", std::to_string(reference.seconds)}};
-  const std::filesystem::path out(command.outDir);
-  std::error_code error;
-  std::filesystem::create_directories(out, error);
-  if (error) throw IoError(out.string() + ": cannot create the output folder: " + error.message());
+  const std::filesystem::path out(command.outDir);  // made by the lock
   const WrittenFile files[] = {writeExr(frame, reference.ao, out / "ao_ref.exr", true, metadata),
                                writeExr(frame, reference.indirect, out / "indirect_ref.exr", true, metadata),
                                writeExr(frame, reference.lit, out / "lit_ref.exr", true, metadata)};
