@@ -413,4 +413,27 @@ TEST_SUITE("hostile") {
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
     fs::remove(file);
   }
+
+  TEST_CASE("bench keeps render's folder rules: one writer at a time, never a scene's folder (issue 32)") {
+    TempFolder folder("hostile");
+    const fs::path out = folder.path() / "bq";
+    fs::create_directories(out);
+    const int fd = ::open(out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // another bench, mid-run
+    REQUIRE(fd >= 0);
+    REQUIRE(::flock(fd, LOCK_EX) == 0);
+    const auto start = std::chrono::steady_clock::now();
+    ProcessResult run = runHeadlight("bench builtin:cornell --no-reference --resolutions 16x12 --out " + quote(out));
+    INFO(run.output);
+    CHECK(run.exitCode == 1);
+    CHECK(run.output.find("holds this folder's lock") != std::string::npos);
+    CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));  // refused before measuring
+    CHECK(fs::is_empty(out));
+    ::close(fd);
+    const fs::path scene = writeGltf(folder, hostile::triangleScene(), "scenes/triangle.gltf");
+    run = runHeadlight("bench " + quote(scene) + " --no-reference --resolutions 16x12 --out " +
+                       quote(scene.parent_path()));
+    CHECK(run.exitCode == 1);
+    CHECK(run.output.find("holds the scene") != std::string::npos);
+    CHECK(!fs::exists(scene.parent_path() / "bench.csv"));
+  }
 }

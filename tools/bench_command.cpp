@@ -1,5 +1,8 @@
 #include "bench_command.hpp"
 
+#include "batch.hpp"
+#include "output/folder_lock.hpp"
+
 #include <unistd.h>
 
 #include <charconv>
@@ -396,6 +399,17 @@ int runBenchCommand(const std::vector<std::string>& args) {
       throw IoError(out.string() + ": cannot create the output folder: " + part.string() + " is not a folder");
     break;
   }
+  // Render's folder rules (issue 32): never a scene's own folder, and one
+  // writer at a time from before the first measurement (the lock makes the
+  // folder, and removes it again if the run fails before writing into it).
+  for (const std::string& sceneName : command.scenes) {
+    Job folderJob;
+    folderJob.scene = sceneName;
+    folderJob.outDir = command.outDir;
+    if (const std::string refusal = outputFolderRefusal(folderJob, /*force=*/true); !refusal.empty())
+      throw IoError(refusal);
+  }
+  const detail::OutputFolderLock lock(out, false);
   std::optional<Context> context;  // made once the first scene has loaded: a refused scene needs no GL
   std::optional<Renderer> renderer;
   std::vector<BenchRow> rows;
