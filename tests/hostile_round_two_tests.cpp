@@ -32,6 +32,7 @@
 #include "hostile_cli.hpp"
 #include "hostile_inputs.hpp"
 #include "support/encoding.hpp"
+#include "support/environment_maps.hpp"
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
 
@@ -412,6 +413,26 @@ TEST_SUITE("hostile") {
           std::string::npos);
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
     fs::remove(file);
+  }
+
+  TEST_CASE("tune refuses an --out that is one of its inputs: the environment map or a settings file (issue 32)") {
+    TempFolder folder("hostile");
+    const fs::path settings = folder.write("start.settings", "ssgi-steps = 8\n");
+    const fs::path map = writeEnvironmentMap(folder.path() / "sky.hdr", 16, 8, uniformRadiance);
+    const std::uintmax_t mapBytes = fs::file_size(map);
+    ProcessResult run = runHeadlight("tune --max-flip 0.5 --settings " + quote(settings) + " --out " + quote(settings));
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find("is the --settings file the run starts from") != std::string::npos);
+    // The map by its own name (an image's: refused as such), and through a link without an image's name.
+    run = runHeadlight("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(map));
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find("names an image file, but tune writes a settings file") != std::string::npos);
+    const fs::path link = folder.path() / "sky-link";
+    fs::create_symlink(map, link);
+    run = runHeadlight("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(link));
+    CHECK(run.exitCode == 2);
+    CHECK(run.output.find("is the --environment map the run reads") != std::string::npos);
+    CHECK(fs::file_size(map) == mapBytes);  // untouched
   }
 
   TEST_CASE("bench keeps render's folder rules: one writer at a time, never a scene's folder (issue 32)") {

@@ -1,6 +1,7 @@
 #include "tune_command.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -24,6 +25,18 @@ std::vector<Option<TuneCommand>> tuneOptions() {
     if (row.spec.name == "out") {
       row.spec.help = "the settings file to write (render --settings FILE reads it)";
       row.spec.valueName = "FILE";
+      // A file, not render's folder: an image's name is refused in tune's words.
+      row.set = [](C& c, const OptionValue& v) {
+        const std::string& file = std::get<std::string>(v);
+        std::string extension = std::filesystem::path(file).extension().string();
+        for (char& letter : extension) letter = char(std::tolower(static_cast<unsigned char>(letter)));
+        for (std::string_view image : {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"})
+          if (extension == image)
+            throw SettingsError("--out " + file +
+                                ": names an image file, but tune writes a settings file (`name = "
+                                "value` lines); name it e.g. headlight.settings");
+        c.outDir = file;
+      };
     }
   rows.push_back(bindOption<C>(
       {.name = "max-ao-error",
@@ -47,7 +60,13 @@ std::vector<Option<TuneCommand>> tuneOptions() {
     rows.push_back(std::move(row));
   for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
   for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
-  rows.push_back(settingsFileOption<C>(&C::base));
+  // render's --settings row, also remembering the file (checkTuneOut).
+  Option<C> settings = settingsFileOption<C>(&C::base);
+  settings.set = [apply = settings.set](C& c, const OptionValue& v) {
+    apply(c, v);
+    c.settingsFiles.push_back(std::get<std::string>(v));
+  };
+  rows.push_back(std::move(settings));
   for (auto& row : liftOptions(settingOptions(), &C::base)) rows.push_back(std::move(row));
   return rows;
 }
@@ -78,6 +97,17 @@ void checkTuneOut(const TuneCommand& command) {
     throw SettingsError("--out " + out.string() + ": is " + kind + ", expected the settings file to write");
   if (command.scene.rfind("builtin:", 0) != 0 && fs::exists(out, error) && fs::equivalent(out, command.scene, error))
     throw SettingsError("--out " + out.string() + ": is the scene being tuned; write the settings elsewhere");
+  // Nor an input of the run (issue 32: the environment map was replaced by a settings file, exit 0).
+  const auto isInput = [&](const std::string& input) {
+    return !input.empty() && fs::exists(out, error) && fs::equivalent(out, input, error);
+  };
+  if (isInput(command.sceneLoad.environment))
+    throw SettingsError("--out " + out.string() +
+                        ": is the --environment map the run reads; write the settings elsewhere");
+  for (const std::string& settings : command.settingsFiles)
+    if (isInput(settings))
+      throw SettingsError("--out " + out.string() + ": is the --settings file the run starts from (" + settings +
+                          "); write the tuned settings elsewhere");
 }
 
 }  // namespace
@@ -146,7 +176,8 @@ int runTuneCommand(const std::vector<std::string>& args) {
   }
   checkTuneOut(command);
   if (!referenceAvailable()) throw Error("headlight tune needs the reference: this build has no Embree");
-  Scene scene = loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
+  Scene scene =
+      loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == Verbosity::Quiet);
   Context context(command.context);
   if (command.verbosity == Verbosity::Verbose) std::cerr << verboseHeader(context, scene);
   Renderer renderer(context);

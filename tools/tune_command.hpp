@@ -31,7 +31,8 @@ struct TuneCommand {
   bool help = false;
   ContextOptions context;
   SceneLoadOptions sceneLoad;  // as render's (sceneInputOptions): --allow-external-paths, --strict-gltf, --scene
-  ResourceLimits limits;            // --max-memory, --max-instances, --max-triangles, --max-texels
+  std::vector<std::string> settingsFiles;  // every --settings FILE read: --out may not be one of them
+  ResourceLimits limits;                   // --max-memory, --max-instances, --max-triangles, --max-texels
 
   // 128 x 128: each configuration's frames take tens of milliseconds on
   // llvmpipe, and the reference a few seconds (docs/BENCHMARKS.md, "tune").
