@@ -221,6 +221,14 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
 
 }  // namespace
 
+bool namesImageFile(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& letter : extension) letter = char(std::tolower(static_cast<unsigned char>(letter)));
+  for (std::string_view image : {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"})
+    if (extension == image) return true;
+  return false;
+}
+
 template <class Command>
 std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) {
   using T = OptionType;
@@ -231,15 +239,12 @@ std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp) 
           [](C& c, const OptionValue& v) {
             const std::string& folder = std::get<std::string>(v);
             // F3D's --output names an image; ours names a folder: x.png would become a folder called x.png.
-            std::string extension = std::filesystem::path(folder).extension().string();
-            for (char& letter : extension) letter = char(std::tolower(static_cast<unsigned char>(letter)));
-            for (std::string_view image : {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"})
-              if (extension == image && !std::filesystem::is_directory(folder))
-                throw SettingsError("--out " + folder +
-                                    ": --out is a folder (the images are written inside it as "
-                                    "lit.exr, preview.png, ...), and this names an image file; name a folder, e.g. "
-                                    "--out " +
-                                    std::filesystem::path(folder).replace_extension().string());
+            if (namesImageFile(folder) && !std::filesystem::is_directory(folder))
+              throw SettingsError("--out " + folder +
+                                  ": --out is a folder (the images are written inside it as "
+                                  "lit.exr, preview.png, ...), and this names an image file; name a folder, e.g. "
+                                  "--out " +
+                                  std::filesystem::path(folder).replace_extension().string());
             c.outDir = folder;
           },
           [](const C& c) { return OptionValue(c.outDir); }),

@@ -5,6 +5,7 @@
 // to write, which backend, how chatty). Every row goes through the one
 // parser (parseCommandLine) and one help writer (optionHelp) of the support
 // library (lib/tooling/command_line.hpp).
+#include <filesystem>
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -75,6 +76,10 @@ inline constexpr std::string_view kVerboseHelpTune =
 // The CLI's own rows shared by every command that renders (out, backend,
 // device, strict, quiet, verbose, help). `Command` is any struct with
 // outDir, context, verbosity and help members.
+// True when `path` ends in an image file's extension (.png, .exr, .hdr, ...,
+// any case): what --out must not name (render's is a folder, tune's a settings file).
+bool namesImageFile(const std::filesystem::path& path);
+
 template <class Command>
 std::vector<Option<Command>> commonCommandOptions(std::string_view verboseHelp);
 

@@ -1,7 +1,6 @@
 #include "tune_command.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -28,13 +27,10 @@ std::vector<Option<TuneCommand>> tuneOptions() {
       // A file, not render's folder: an image's name is refused in tune's words.
       row.set = [](C& c, const OptionValue& v) {
         const std::string& file = std::get<std::string>(v);
-        std::string extension = std::filesystem::path(file).extension().string();
-        for (char& letter : extension) letter = char(std::tolower(static_cast<unsigned char>(letter)));
-        for (std::string_view image : {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr", ".webp"})
-          if (extension == image)
-            throw SettingsError("--out " + file +
-                                ": names an image file, but tune writes a settings file (`name = "
-                                "value` lines); name it e.g. headlight.settings");
+        if (namesImageFile(file))
+          throw SettingsError("--out " + file +
+                              ": names an image file, but tune writes a settings file (`name = "
+                              "value` lines); name it e.g. headlight.settings");
         c.outDir = file;
       };
     }
