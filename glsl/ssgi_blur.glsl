@@ -22,7 +22,8 @@ struct PassOutputs {
   vec4 nearField;  // the AO and light within R (SsgiTextures::occlusion)
   vec4 sky;
   vec4 specular;
-  vec4 skyLine;  // skyOnly: the raw sky blurred along one axis at its own resolution
+  vec4 skyLine;       // skyOnly: the raw sky blurred along one axis at its own resolution
+  vec4 specularLine;  // skyOnly: the raw specular so blurred, its three channels as the raw ones
 };
 
 // A 7x7 window with Gaussian weights (sigma 2 pixels): it spans about two
@@ -34,10 +35,25 @@ struct PassOutputs {
 // 3x3 upsample of a sky already blurred at its own resolution. The radii
 // are lib/passes/ssgi_blur.cpp's.
 const int kTapRadius = 3;
+// The far field's line blur takes the specular visibility over 3 of its
+// texels, not the sky's 15: a wider window smeared a mirror's reflected
+// occluders across it (the reference's specular.Y on builtin:spheres, RMSE
+// 0.095 / 0.100 / 0.107 at radius 1 / 2 / 3) for less grain (0.041 / 0.043
+// / 0.055 on the mirror row, with the lobe no narrower than two sectors).
+const int kSpecularLineRadius = 1;
 
 // View-space z of a world point: the view matrix's third row.
 float viewDepth(vec3 world) {
   return dot(vec4(frame.view[0][2], frame.view[1][2], frame.view[2][2], frame.view[3][2]), vec4(world, 1.0));
+}
+
+// The specular visibility, weight and bend (specularOutput's channels) of a
+// window's sum from filterWindow with `weightSum` the window's weights, or
+// `fallback` where no tap's slices saw the lobe.
+vec4 specularMean(vec4 specularSum, float weightSum, vec4 fallback) {
+  return specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(weightSum, 1e-4),
+                                     specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
+                              : fallback;
 }
 
 // The pixel the weights are judged against.
@@ -54,10 +70,11 @@ struct Centre {
 // weights when `withSecond`, and the specular visibility (on `first`'s grid)
 // of the taps within `specularRadius` (-1: none) into `specularSum`:
 // visibility and weight weighted by the blur's weight times the texel's own
-// (its G), the bend by that times the visibility, as the pass weighs them.
+// (its G), the bend by that times the visibility, as the pass weighs them,
+// and in w the blur's weights of those taps.
 void filterWindow(sampler2D first, sampler2D second, bool withSecond, int specularRadius, int divisor, ivec2 radius,
                   ivec2 rawCentre, vec2 centreOnRaw, Centre centre, inout vec4 sum, inout vec4 secondSum,
-                  inout vec3 specularSum, inout float weightSum) {
+                  inout vec4 specularSum, inout float weightSum) {
   // A quarter of the SSGI radius: neighbours on the same surface differ by
   // far less, across a silhouette by more.
   const float depthScale = 0.25 * blur.ssgiRadiusWorld;
@@ -84,7 +101,7 @@ void filterWindow(sampler2D first, sampler2D second, bool withSecond, int specul
       if (withSecond) secondSum += texelFetch(second, rawNeighbour, 0) * weight;
       if (abs(dx) <= specularRadius && abs(dy) <= specularRadius) {
         const vec3 specular = texelFetch(rawSpecular, rawNeighbour, 0).rgb;
-        specularSum += vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight);
+        specularSum += vec4(vec3(specular.r, 1.0, specular.r * specular.b) * (specular.g * weight), weight);
       }
       weightSum += weight;
     }
@@ -98,21 +115,23 @@ PassOutputs shadePixel(ivec2 outputPixel) {
   const vec4 centrePosition = texelFetch(gbufferPosition, pixel, 0);
   PassOutputs o;
   if (centrePosition.a == 0.0) {  // background: open, no light, as the SSGI pass leaves it
-    o.nearField = o.sky = o.specular = o.skyLine = vec4(1.0, 0.0, 0.0, 0.0);
+    o.nearField = o.sky = o.specular = o.skyLine = o.specularLine = vec4(1.0, 0.0, 0.0, 0.0);
     return o;
   }
   const Centre centre = Centre(pixel, texelFetch(gbufferNormal, pixel, 0).xyz, viewDepth(centrePosition.xyz));
   const int skyDivisor = blur.skyDownsample;
   const ivec2 rawSkyCentre = min(pixel / skyDivisor, textureSize(rawSky, 0) - 1);
   vec4 skySum = vec4(0.0), unused = vec4(0.0);
-  vec3 specularSum = vec3(0.0), noSpecular = vec3(0.0);
+  vec4 specularSum = vec4(0.0), noSpecular = vec4(0.0);  // noSpecular: a window's specular not wanted
   float skyWeightSum = 0.0;
   if (blur.skyOnly != 0) {
     const ivec2 axis = ivec2(blur.skyAxisX, blur.skyAxisY);
     const ivec2 radius = blur.skyTapRadius * (axis == ivec2(0) ? ivec2(1) : axis);
-    filterWindow(rawSky, rawSky, false, -1, skyDivisor, radius, rawSkyCentre, vec2(rawSkyCentre), centre, skySum,
-                 unused, noSpecular, skyWeightSum);
+    vec4 specularLineSum = vec4(0.0);
+    filterWindow(rawSky, rawSky, false, kSpecularLineRadius, skyDivisor, radius, rawSkyCentre, vec2(rawSkyCentre),
+                 centre, skySum, unused, specularLineSum, skyWeightSum);
     o.skyLine = skyWeightSum > 1e-4 ? skySum / skyWeightSum : texelFetch(rawSky, rawSkyCentre, 0);
+    o.specularLine = specularMean(specularLineSum, specularLineSum.w, texelFetch(rawSpecular, rawSkyCentre, 0));
     return o;
   }
   const int divisor = blur.ssgiDownsample;
@@ -144,9 +163,7 @@ PassOutputs shadePixel(ivec2 outputPixel) {
   if (skyDivisor != divisor) o.sky.x *= o.nearField.x;
   // Where no neighbour's slices saw the lobe, the sky visibility stands in.
   const float specularWeights = skyDivisor == divisor ? weightSum : skyWeightSum;
-  o.specular = specularSum.y > 1e-4 ? vec4(specularSum.x / specularSum.y, specularSum.y / max(specularWeights, 1e-4),
-                                           specularSum.x > 1e-6 ? specularSum.z / specularSum.x : 0.0, 0.0)
-                                    : vec4(o.sky.r, 0.0, 0.0, 0.0);
+  o.specular = specularMean(specularSum, specularWeights, vec4(o.sky.r, 0.0, 0.0, 0.0));
   o.skyLine = o.sky;
   return o;
 }

@@ -83,6 +83,7 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {Attachment::SsgiFarSky, "ssgi.farSky", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
     // Written with the sky (the far field's pass): its lobe reaches past R.
     {Attachment::SsgiRawSpecular, "ssgi.rawSpecular", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
+    {Attachment::SsgiFarSpecular, "ssgi.farSpecular", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
     {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", S::Image, &Frame::ssgi, true},
     {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
     // The specular sky visibility (ssgi channel 8) and, internal, its weight.
@@ -180,8 +181,8 @@ std::optional<PassDeclaration> declareSsgi(const FramePlan& plan) {
 }
 
 // lib/passes/ssgi_blur.hpp: position, normal and the raw SSGI; the blurred
-// SSGI, and with a coarser far field ssgi.farSky and the raw sky it blurs in
-// place.
+// SSGI, and with a coarser far field ssgi.farSky and ssgi.farSpecular and the
+// raw sky and specular it blurs in place.
 std::optional<PassDeclaration> declareSsgiBlur(const FramePlan& plan) {
   if (!plan.ssgi || !plan.ssgi->blur) return std::nullopt;
   PassDeclaration pass;
@@ -192,7 +193,8 @@ std::optional<PassDeclaration> declareSsgiBlur(const FramePlan& plan) {
                 {Attachment::SsgiRawSpecular, gpu::kUnitSsgiSpecular}};
   pass.writes = {Attachment::Ssgi, Attachment::SsgiSky, Attachment::SsgiSpecular};
   if (plan.ssgi->splitsFarField())
-    pass.writes.insert(pass.writes.end(), {Attachment::SsgiFarSky, Attachment::SsgiRawSky});
+    pass.writes.insert(pass.writes.end(), {Attachment::SsgiFarSky, Attachment::SsgiRawSky, Attachment::SsgiFarSpecular,
+                                           Attachment::SsgiRawSpecular});
   return pass;
 }
 

@@ -116,6 +116,7 @@ enum class Attachment {
   SsgiRawSky,       // at the far field's resolution (SsgiStep::farDownsample)
   SsgiFarSky,       // the far field blurred at its own resolution, before the upsample; only when it has its own pass
   SsgiRawSpecular,  // at the far field's resolution, as the sky
+  SsgiFarSpecular,  // the specular visibility blurred along rows at the far field's resolution, as SsgiFarSky
   Ssgi,             // after the blur: what the composite reads and ssgi.exr holds
   SsgiSky,
   SsgiSpecular,  // the specular lobe's sky visibility (R) and its weight (G, internal)

@@ -31,7 +31,8 @@ void SsgiBlurPass::execute(const FrameInputs& inputs, const PassAttachments& att
   const SsgiTextures blurred{attachments.write(Attachment::Ssgi), attachments.write(Attachment::SsgiSky),
                              attachments.write(Attachment::SsgiSpecular)};
   run({raw, *inputs.settings.ssgi.radius, step.downsample, step.farDownsample,
-       step.splitsFarField() ? &attachments.write(Attachment::SsgiFarSky) : nullptr, form},
+       step.splitsFarField() ? &attachments.write(Attachment::SsgiFarSky) : nullptr,
+       step.splitsFarField() ? &attachments.write(Attachment::SsgiFarSpecular) : nullptr, form},
       blurred);
 }
 
@@ -43,19 +44,25 @@ void SsgiBlurPass::run(const SsgiBlurInputs& inputs, const SsgiTextures& output)
   block.outputDownsample = 1;
   block.skyTapRadius = kTapRadius;
   if (inputs.skyDownsample > inputs.ssgiDownsample) {
-    if (inputs.farSky == nullptr) throw GlError("SSGI blur: a coarser sky and no target to blur it in");
+    if (inputs.farSky == nullptr || inputs.farSpecular == nullptr)
+      throw GlError("SSGI blur: a coarser sky and no target to blur it in");
     blurFarField(block, inputs);
     block.skyDownsample = inputs.skyDownsample;
     block.skyTapRadius = kUpsampleTapRadius;
   }
-  // Bound by the runner, but the far field's line blur rebinds the unit.
+  // Bound by the runner, but the far field's line blur rebinds the units.
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
+  inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
   const PassOutput outputs[] = {{"nearField", &output.occlusion}, {"sky", &output.sky}, {"specular", &output.specular}};
   draw(block, inputs.form, outputs);
 }
 
-// The raw sky along rows into farSky, then farSky along columns back into
-// the raw sky (its raw values are not read again).
+// The raw sky and specular along rows into farSky and farSpecular, then
+// those along columns back into the raw ones (their raw values are not read
+// again). The specular needs the wide window as much as the sky: a polished
+// metal's lobe is read by one slice of a pixel and the steps' jitter decides
+// where a reflected occluder's edge falls, and the 3x3 upsample alone left
+// that grain on mirrors (issue 33).
 void SsgiBlurPass::blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurInputs& inputs) {
   gpu::SsgiBlurBlock line = block;
   line.skyDownsample = line.outputDownsample = inputs.skyDownsample;
@@ -63,12 +70,14 @@ void SsgiBlurPass::blurFarField(const gpu::SsgiBlurBlock& block, const SsgiBlurI
   line.skyTapRadius = kFarTapRadius;
   line.skyAxisX = 1;
   inputs.rawSsgi.sky.bind(gpu::kUnitSsgiSky);
-  const PassOutput rows[] = {{"skyLine", inputs.farSky}};
+  inputs.rawSsgi.specular.bind(gpu::kUnitSsgiSpecular);
+  const PassOutput rows[] = {{"skyLine", inputs.farSky}, {"specularLine", inputs.farSpecular}};
   draw(line, inputs.form, rows);
   line.skyAxisX = 0;
   line.skyAxisY = 1;
   inputs.farSky->bind(gpu::kUnitSsgiSky);
-  const PassOutput columns[] = {{"skyLine", &inputs.rawSsgi.sky}};
+  inputs.farSpecular->bind(gpu::kUnitSsgiSpecular);
+  const PassOutput columns[] = {{"skyLine", &inputs.rawSsgi.sky}, {"specularLine", &inputs.rawSsgi.specular}};
   draw(line, inputs.form, columns);
 }
 

@@ -5,9 +5,10 @@
 // Below full resolution it is also the upsample, with the same weights.
 // Input and output: SsgiTextures (both filtered with the same weights). A
 // raw sky coarser than the raw SSGI (the bitmask method's far-field pass) is
-// blurred at its own resolution (a wider window there, along rows into
-// `farSky`, then along columns back), then upsampled from a 3x3 window of it
-// with the same kind of weights. Body: glsl/ssgi_blur.glsl, in either form.
+// blurred at its own resolution with the specular visibility it carries (a
+// wider window there, along rows into `farSky` and `farSpecular`, then along
+// columns back), then both are upsampled from a 3x3 window of it with the
+// same kind of weights. Body: glsl/ssgi_blur.glsl, in either form.
 #include <optional>
 #include <variant>
 
@@ -26,8 +27,9 @@ struct SsgiBlurInputs {
   int ssgiDownsample = 1;        // 1, 2 or 4
   int skyDownsample = 1;         // rawSsgi.sky's divisor: ssgiDownsample, or above it with `farSky`
   // rawSsgi.sky's size, for the far field's blur along rows (skyDownsample >
-  // ssgiDownsample); that blur overwrites rawSsgi.sky.
+  // ssgiDownsample); that blur overwrites rawSsgi.sky and rawSsgi.specular.
   const gl::Texture* farSky = nullptr;
+  const gl::Texture* farSpecular = nullptr;
   PassForm form = PassForm::Fragment;
 };
 
