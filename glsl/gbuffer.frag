@@ -149,6 +149,16 @@ mat3 tangentFrame(vec3 normal, vec2 normalUv) {
   return mat3(tangent * invmax, bitangent * invmax, normal);
 #endif
 }
+
+// A normal texture's tangent-space normal taken to world space by `frame`,
+// unit; `unmapped` where it has no direction. A texel at the encoding's
+// middle (0.5, 0.5, 0.5: unused atlas space, or a mip level averaging
+// opposite normals) is the zero vector, and normalize(0) is NaN: one such
+// pixel made ToyCar's lit.exr unwritable at 320x240 (issue 34).
+vec3 mappedNormal(mat3 frame, vec3 tangentNormal, vec3 unmapped) {
+  const vec3 mapped = frame * tangentNormal;
+  return dot(mapped, mapped) > 1e-24 ? normalize(mapped) : unmapped;
+}
 #endif
 #ifdef HAS_SPECULAR_LOBE
 #include "lobe_specular_material.glsl"
@@ -204,7 +214,7 @@ void main() {
   const vec2 normalUv = textureUv(NORMAL_SET, material.normalTransformU, material.normalTransformV);
   vec3 tangentNormal = texture(normalTexture, normalUv).xyz * 2.0 - 1.0;  // the texture is 0..1 encoded
   tangentNormal.xy *= material.factors.z;
-  normal = normalize(tangentFrame(normal, normalUv) * tangentNormal);
+  normal = mappedNormal(tangentFrame(normal, normalUv), tangentNormal, normal);
 #endif
 
 #if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)

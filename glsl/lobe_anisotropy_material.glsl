@@ -22,7 +22,10 @@ vec4 anisotropyMaterial(vec3 shadingNormal) {
   uv = textureUv(ANISOTROPY_SET, material.anisotropyTransformU, material.anisotropyTransformV);
 #endif
   // The frame first: its derivatives need every fragment of the quad.
-  const vec3 geometricNormal = normalize(vWorldNormal) * (gl_FrontFacing ? 1.0 : -1.0);
+  // (Points and lines without a normal have none: the shading normal stands in.)
+  const vec3 geometricNormal = dot(vWorldNormal, vWorldNormal) > 1e-24
+                                   ? normalize(vWorldNormal) * (gl_FrontFacing ? 1.0 : -1.0)
+                                   : shadingNormal;
   const mat3 tangentToWorld = tangentFrame(geometricNormal, uv);
   vec3 texel = vec3(1.0, 0.5, 1.0);  // direction (1, 0), full strength
 #ifdef HAS_ANISOTROPY_TEXTURE

@@ -59,7 +59,7 @@ vec4 clearcoatLobeOfMaterial(vec3 geometricNormal) {
       textureUv(CLEARCOAT_NORMAL_SET, material.clearcoatNormalTransformU, material.clearcoatNormalTransformV);
   vec3 tangentNormal = texture(clearcoatNormalTexture, normalUv).xyz * 2.0 - 1.0;  // 0..1 encoded
   tangentNormal.xy *= material.clearcoatFactors.z;
-  normal = normalize(tangentFrame(geometricNormal, normalUv) * tangentNormal);
+  normal = mappedNormal(tangentFrame(geometricNormal, normalUv), tangentNormal, geometricNormal);
 #endif
   return vec4(clamp(factor, 0.0, 1.0), clamp(roughness, 0.0, 1.0), octahedralEncode(normal));
 }
