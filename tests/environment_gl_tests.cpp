@@ -29,11 +29,7 @@ Scene whiteSphere(std::shared_ptr<const EnvironmentMap> environment) {
   Scene scene;
   scene.source = "test:environment-sphere";
   addInstance(scene, makeUvSphere(1.0f, 96, 48), addMaterial(scene, makeMaterial(glm::vec3(1.0f), 1.0f, 0.0f)));
-  Light dark;
-  dark.type = Light::Type::Directional;
-  dark.intensity = 0.0f;
-  dark.castsShadows = false;
-  scene.lights.push_back(dark);
+  scene.lights.push_back(darkLight());
   scene.environment = std::move(environment);
   return scene;
 }
@@ -162,11 +158,7 @@ TEST_CASE("environment: SSGI's sky visibility occludes the map's light") {
   const int white = addMaterial(scene, makeMaterial(glm::vec3(1.0f), 1.0f, 0.0f));
   addInstance(scene, makeFloor(4.0f), white);
   addInstance(scene, makeBox(glm::vec3(1.0f, 2.0f, 1.0f)), white, glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}));
-  Light dark;
-  dark.type = Light::Type::Directional;
-  dark.intensity = 0.0f;
-  dark.castsShadows = false;
-  scene.lights.push_back(dark);
+  scene.lights.push_back(darkLight());
   scene.cameras.push_back(makeLookAtCamera({0.0f, 4.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, 0.9f));
   scene.environment =
       loadEnvironmentMap(writeEnvironmentMap(folder.path() / "uniform.exr", 64, 32, uniformRadiance));

@@ -97,11 +97,7 @@ Scene mirrorRowScene(std::shared_ptr<const EnvironmentMap> environment) {
   addInstance(scene, makeFloor(20.0f), addMaterial(scene, makeMaterial(glm::vec3(0.8f), 0.9f)));
   const int mirror = addMaterial(scene, makeMaterial(glm::vec3(0.95f), 0.05f, 1.0f));
   for (float x : {-1.2f, 0.0f, 1.2f}) addInstance(scene, makeUvSphere(0.5f, 64, 32), mirror, moved({x, 0.5f, 0.0f}));
-  Light dark;
-  dark.type = Light::Type::Directional;
-  dark.intensity = 0.0f;
-  dark.castsShadows = false;
-  scene.lights.push_back(dark);
+  scene.lights.push_back(darkLight());
   scene.environment = std::move(environment);
   scene.cameras.push_back(makeLookAtCamera({0.0f, 1.4f, 3.6f}, {0.0f, 0.5f, 0.0f}, 0.8f));
   return scene;

@@ -12,6 +12,8 @@
 
 #include <glm/glm.hpp>
 
+#include "headlight/scene.hpp"
+
 namespace headlight::test {
 
 // Writes a width x height RGB float image (EXR, or HDR by the extension)
@@ -38,6 +40,16 @@ inline glm::vec3 horizonSplitRadiance(int, int y) { return y < 16 ? glm::vec3(1.
 constexpr int kBrightTexelX = 40, kBrightTexelY = 10;
 inline glm::vec3 brightTexelRadiance(int x, int y) {
   return x == kBrightTexelX && y == kBrightTexelY ? glm::vec3(1000.0f) : glm::vec3(0.0f);
+}
+
+// A directional light of intensity 0 that casts no shadow: a scene with it
+// has no default key light, so only the ambient term (the map) lights it.
+inline Light darkLight() {
+  Light dark;
+  dark.type = Light::Type::Directional;
+  dark.intensity = 0.0f;
+  dark.castsShadows = false;
+  return dark;
 }
 
 }  // namespace headlight::test
