@@ -187,7 +187,8 @@ TEST_CASE("bitmask SSGI specular visibility: a mirror ball is closed toward the 
   CAPTURE(diffuseTowardFloor);
   // A reflection 17 degrees or more below the horizon meets the floor: 0
   // in truth. These reflections start near the ball's foot, where the floor
-  // they meet is a thin sliver on screen that few steps hit; measured 0.61.
+  // they meet is a thin sliver on screen that few steps hit; measured 0.68
+  // (0.61 before the lobe floor of two sectors, issue 33).
   CHECK(towardFloor < 0.7);
   // The diffuse sky visibility there, which occluded the specular before,
   // is far more open (the ball's upper hemisphere sees the sky): measured
@@ -215,7 +216,8 @@ TEST_CASE("bitmask SSGI specular visibility against the reference's specular.Y o
   CAPTURE(specular.rmse);
   CAPTURE(sky.rmse);
   CAPTURE(specular.referenceMean);
-  // Measured 0.091 against the sky visibility's 0.131 (128x128, 256 rays):
+  // Measured 0.096 (0.099 before issue 33's lobe floor) against the sky
+  // visibility's 0.131 (128x128, 256 rays):
   // 0.11 leaves room for another rasteriser's silhouettes; the ratio fails
   // an estimate no better than the diffuse visibility it replaced.
   CHECK(specular.rmse < 0.11);
