@@ -657,10 +657,22 @@ PYBIND11_MODULE(headlight, m) {
       .def(
           "set_scene",
           [](PyRenderer& self, const py::object& scene, const py::object& allowExternalPaths,
-             const py::object& environment, const std::string& materialVariant, const py::kwargs& kwargs) {
+             const py::object& environment, const std::string& materialVariant, const py::object& animation,
+             const py::object& time, const py::kwargs& kwargs) {
             SceneLoadOptions options;
             if (!environment.is_none()) options.environment = pathArgument(environment, "environment");
             options.materialVariant = materialVariant;
+            // The rows' own parsing: an index or a name; seconds, checked in range.
+            const auto& rows = sceneLoadOptions();
+            if (!animation.is_none())
+              findOption(rows, "animation")
+                  .set(options,
+                       parseOptionValue(findOption(rows, "animation").spec, py::str(animation).cast<std::string>()));
+            if (!time.is_none()) {
+              if (!py::isinstance<py::int_>(time) && !py::isinstance<py::float_>(time))
+                throw SettingsError("time: expected seconds, got " + py::repr(time).cast<std::string>(), {"time"});
+              findOption(rows, "time").set(options, OptionValue(time.cast<double>()));
+            }
             if (!py::isinstance<py::bool_>(allowExternalPaths))
               throw SettingsError("allow_external_paths: expected True or False, got " +
                                       py::repr(allowExternalPaths).cast<std::string>(),
@@ -676,11 +688,14 @@ PYBIND11_MODULE(headlight, m) {
             });
           },
           py::arg("scene"), py::arg("allow_external_paths") = false, py::arg("environment") = py::none(),
-          py::arg("material_variant") = "",
-          "set_scene(scene, allow_external_paths=False, environment=None, material_variant='', **limits): a glTF "
+          py::arg("material_variant") = "", py::arg("animation") = py::none(), py::arg("time") = py::none(),
+          "set_scene(scene, allow_external_paths=False, environment=None, material_variant='', animation=None, "
+          "time=None, **limits): a glTF "
           "file (.gltf/.glb) or 'builtin:cornell' / 'builtin:spheres'; environment: an equirectangular .hdr/.exr that "
           "replaces the sky (render's environment_intensity, environment_rotation, environment_background apply); "
-          "material_variant: a KHR_materials_variants name ('': the file's default materials); limits are "
+          "material_variant: a KHR_materials_variants name ('': the file's default materials); animation: an "
+          "animation's index or name to pose the file by at time seconds (time alone: animation 0; neither: the "
+          "static pose); limits are "
           "limitOptions() rows ('-' -> '_'): max_memory (MiB), max_instances, "
           "max_triangles, max_texels; over one: LimitError")
       .def(

@@ -2,6 +2,8 @@
 // line, --resume, --targets, --json, and `headlight diff` on an incomplete set.
 #include <doctest/doctest.h>
 
+#include <OpenImageIO/imagebuf.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -114,4 +116,88 @@ TEST_CASE("a light colour that would make the frame non-finite is refused before
     CHECK(run.output.find("so that float rendering stays finite") != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
+}
+
+namespace {
+
+// A triangle at x in [-1, 1] whose node slides from x + 1 to x + 5 over
+// 1 s (animation 0, "Slide"; it starts away from the static pose, so
+// unplayed it is named), its data inline.
+std::string slidingTriangleGltf() {
+  // Positions (-1,-1,0) (1,-1,0) (0,1,0); times 0 and 1; translations (1,0,0) and (5,0,0).
+  const float data[] = {-1, -1, 0, 1, -1, 0, 0, 1, 0, 0, 1, 1, 0, 0, 5, 0, 0};
+  std::vector<unsigned char> bytes(sizeof data);
+  std::memcpy(bytes.data(), data, sizeof data);
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("buffers":[{"byteLength":68,"uri":"data:application/octet-stream;base64,)" +
+         headlight::test::base64(bytes) +
+         R"("}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":8},)"
+         R"({"buffer":0,"byteOffset":44,"byteLength":24}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"type":"VEC3","count":3,"min":[-1,-1,0],"max":[1,1,0]},)"
+         R"({"bufferView":1,"componentType":5126,"type":"SCALAR","count":2,"min":[0],"max":[1]},)"
+         R"({"bufferView":2,"componentType":5126,"type":"VEC3","count":2}],)"
+         R"("animations":[{"name":"Slide","channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],)"
+         R"("samplers":[{"input":1,"output":2}]}]})";
+}
+
+}  // namespace
+
+TEST_CASE(
+    "--animation and --time pose the file; a job file's \"animation\" and \"time\" pose its job; --resume "
+    "tells poses apart") {
+  headlight::test::TempFolder folder("animation_cli");
+  const fs::path scene = folder.write("slide.gltf", slidingTriangleGltf());
+  const std::string view = " --width 48 --height 32 --eye 3,0,12 --target 3,0,0 --targets position --strict --out ";
+  // The mean world x over the covered pixels of a set's position.exr.
+  auto meanX = [](const fs::path& out) {
+    OIIO::ImageBuf position((out / "position.exr").string());
+    REQUIRE(position.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    const int a = position.spec().channelindex("A"), x = position.spec().channelindex("position.X");
+    REQUIRE(a >= 0);
+    REQUIRE(x >= 0);
+    double sum = 0;
+    int count = 0;
+    for (int py = 0; py < position.spec().height; ++py)
+      for (int px = 0; px < position.spec().width; ++px)
+        if (position.getchannel(px, py, 0, a) > 0.5f) {
+          sum += position.getchannel(px, py, 0, x);
+          ++count;
+        }
+    REQUIRE(count > 0);
+    return sum / count;
+  };
+  const fs::path still = folder.path() / "still", half = folder.path() / "half";
+  Run run = runHeadlight("render " + quote(scene.string()) + view + quote(still.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(run.output.find("is not played (the static pose is drawn; --animation N|NAME --time SECONDS") !=
+        std::string::npos);
+  run = runHeadlight("render " + quote(scene.string()) + " --animation Slide --time 0.5" + view + quote(half.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(run.output.find("warning") == std::string::npos);
+  CHECK(meanX(half) - meanX(still) == doctest::Approx(3.0).epsilon(0.02));
+  // --resume: the same pose is skipped, another time is rendered.
+  run = runHeadlight("render " + quote(scene.string()) + " --animation Slide --time 0.5 --resume" + view +
+                     quote(half.string()));
+  INFO(run.output);
+  CHECK(run.output.find("skipped") != std::string::npos);
+  run = runHeadlight("render " + quote(scene.string()) + " --animation Slide --time 1 --resume --force" + view +
+                     quote(half.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(meanX(half) - meanX(still) == doctest::Approx(5.0).epsilon(0.02));
+  // Job files: a time alone plays animation 0; an unknown name fails its job, naming the animations.
+  const fs::path a = folder.path() / "a", b = folder.path() / "b";
+  const fs::path jobs =
+      folder.write("jobs.jsonl", R"({"scene": ")" + scene.string() + R"(", "out": ")" + a.string() +
+                                     R"(", "size": "48x32", "eye": [3, 0, 12], "target": [3, 0, 0], "time": 0.25})" +
+                                     "\n" + R"({"scene": ")" + scene.string() + R"(", "out": ")" + b.string() +
+                                     R"(", "size": "48x32", "animation": "Run"})" + "\n");
+  run = runHeadlight("render --jobs " + quote(jobs.string()) + " --targets position");
+  INFO(run.output);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("animation 'Run' is not in the file: its animations are 0 'Slide'") != std::string::npos);
+  CHECK(meanX(a) - meanX(still) == doctest::Approx(2.0).epsilon(0.02));
 }

@@ -236,6 +236,16 @@ TEST_CASE("job hash: changes with the settings, camera and targets, not with the
   OutputOptions litOnly;
   litOnly.targets = {"lit"};
   CHECK(jobHash(job, litOnly) != hash);
+  // The pose: an animation and its time (a set posed at 1 s is not one at 2 s).
+  other = job;
+  other.animation = "0";
+  const std::string animated = jobHash(other, {});
+  CHECK(animated != hash);
+  other.animationTime = 1.0f;
+  const std::string atOne = jobHash(other, {});
+  other.animationTime = 2.0f;
+  CHECK(atOne != animated);
+  CHECK(jobHash(other, {}) != atOne);
 }
 
 TEST_CASE("frame sets: frame.json lists each file; a changed or missing file, or a pending write, is incomplete") {

@@ -9,13 +9,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
+#include <functional>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
@@ -59,7 +62,7 @@ bool nonZero(const json& weights) {
 // models' animations are plain float accessors; anything else fails.
 std::vector<float> readFloatElements(const fs::path& folder, const json& document, int index, std::size_t first,
                                      std::size_t count) {
-  static const std::map<std::string, std::size_t> kComponents{{"SCALAR", 1}, {"VEC3", 3}, {"VEC4", 4}};
+  static const std::map<std::string, std::size_t> kComponents{{"SCALAR", 1}, {"VEC3", 3}, {"VEC4", 4}, {"MAT4", 16}};
   const json& accessor = document["accessors"][index];
   REQUIRE(accessor["componentType"].get<int>() == 5126);
   REQUIRE(!accessor.contains("sparse"));
@@ -311,7 +314,9 @@ TEST_CASE("conformance: only SimpleMorph's animation starts away from the pose, 
   // SimpleSkin's rotation and RecursiveSkeletons' 840 rotations start at
   // their nodes' rotations (the generic case above reads that from the files).
   const std::map<std::string, std::string> kExpected{
-      {"SimpleMorph", "1 animation (first: animation 0) is not played (the static pose is drawn)"},
+      {"SimpleMorph",
+       "1 animation (first: animation 0) is not played (the static pose is drawn; --animation N|NAME --time SECONDS "
+       "poses the file by one)"},
       {"SimpleSkin", ""},
       {"RecursiveSkeletons", ""}};
   for (const auto& [model, expected] : kExpected) {
@@ -372,4 +377,134 @@ TEST_CASE("conformance: generated tangents match the MikkTSpace tangents NormalT
   CHECK(compared > 1000);
   CHECK(sameSign >= compared * 99 / 100);
   CHECK(close >= compared * 95 / 100);
+}
+
+// ---- Animations played at a chosen time (issue 34, item 4) -------------------
+
+namespace {
+
+// A LINEAR sampler's output at `time`, read from the file here: the two
+// keyframes around it (the first / last outside), `width` floats each,
+// mixed by `mix(a, b, s)`.
+std::vector<float> sampleLinear(
+    const std::string& model, const json& document, const json& sampler, float time, std::size_t width,
+    const std::function<std::vector<float>(const std::vector<float>&, const std::vector<float>&, float)>& mix) {
+  const fs::path folder = modelPath(model).parent_path();
+  const int input = sampler["input"].get<int>(), output = sampler["output"].get<int>();
+  const std::size_t count = document["accessors"][input]["count"].get<std::size_t>();
+  const std::vector<float> times = readFloatElements(folder, document, input, 0, count);
+  const std::size_t elements = width / (document["accessors"][output]["type"] == "VEC4" ? 4 : 1);
+  auto value = [&](std::size_t k) { return readFloatElements(folder, document, output, k * elements, elements); };
+  if (time <= times.front()) return value(0);
+  if (time >= times.back()) return value(count - 1);
+  std::size_t k = 0;
+  while (times[k + 1] <= time) ++k;
+  return mix(value(k), value(k + 1), (time - times[k]) / (times[k + 1] - times[k]));
+}
+
+SceneLoadOptions atTime(float time) {
+  SceneLoadOptions options;
+  options.animation = "0";
+  options.animationTime = time;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("conformance: SimpleMorph played at 1.5 s has the weights its keyframes give then" *
+          doctest::skip(!haveConformance())) {
+  const json document = readJson(modelPath("SimpleMorph"));
+  const json& primitive = document["meshes"][0]["primitives"][0];
+  const std::vector<float> weights =
+      sampleLinear("SimpleMorph", document, document["animations"][0]["samplers"][0], 1.5f, 2,
+                   [](const std::vector<float>& a, const std::vector<float>& b, float s) {
+                     return std::vector<float>{a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])};
+                   });
+  std::vector<glm::vec3> expected = readVec3("SimpleMorph", document, primitive["attributes"]["POSITION"]);
+  for (std::size_t target = 0; target < 2; ++target) {
+    const std::vector<glm::vec3> deltas = readVec3("SimpleMorph", document, primitive["targets"][target]["POSITION"]);
+    for (std::size_t v = 0; v < expected.size(); ++v) expected[v] += weights[target] * deltas[v];
+  }
+  const Scene scene = loadGltf(modelPath("SimpleMorph"), atTime(1.5f));
+  const std::vector<glm::vec3>& positions = scene.primitives.at(0).positions;
+  REQUIRE(positions.size() == expected.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    CAPTURE(v);
+    CHECK(glm::length(positions[v] - expected[v]) < 1e-5f);
+  }
+  CHECK(weights != std::vector<float>{0.5f, 0.5f});  // not the static pose's
+  CHECK(scene.ignored.empty());                      // the animation is played, so not named
+}
+
+TEST_CASE("conformance: SimpleSkin played at 1.25 s bends by its joint's rotation then" *
+          doctest::skip(!haveConformance())) {
+  const json document = readJson(modelPath("SimpleSkin"));
+  const fs::path folder = modelPath("SimpleSkin").parent_path();
+  // Joint 1 (node 2, under node 1 at the origin) sits at y = 1 and turns by
+  // the animated rotation; joint 0 (node 1) stays. v' = sum_j w_j world_j IBM_j v.
+  const std::vector<float> q = sampleLinear("SimpleSkin", document, document["animations"][0]["samplers"][0], 1.25f, 4,
+                                            [](const std::vector<float>& a, const std::vector<float>& b, float s) {
+                                              glm::quat qa(a[3], a[0], a[1], a[2]), qb(b[3], b[0], b[1], b[2]);
+                                              if (glm::dot(qa, qb) < 0.0f) qb = -qb;
+                                              const glm::quat r = glm::normalize(glm::slerp(qa, qb, s));
+                                              return std::vector<float>{r.x, r.y, r.z, r.w};
+                                            });
+  const glm::mat4 world[2] = {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), {0.0f, 1.0f, 0.0f}) *
+                                                   glm::mat4_cast(glm::quat(q[3], q[0], q[1], q[2]))};
+  const json& attributes = document["meshes"][0]["primitives"][0]["attributes"];
+  const std::vector<glm::vec3> bind = readVec3("SimpleSkin", document, attributes["POSITION"]);
+  const std::vector<float> weights = readFloatElements(folder, document, attributes["WEIGHTS_0"], 0, bind.size());
+  const std::vector<float> inverseBind =
+      readFloatElements(folder, document, document["skins"][0]["inverseBindMatrices"], 0, 2);
+  // JOINTS_0: unsigned shorts, four a vertex, at the view's stride.
+  const json& jointsAccessor = document["accessors"][attributes["JOINTS_0"].get<int>()];
+  REQUIRE(jointsAccessor["componentType"].get<int>() == 5123);
+  const json& view = document["bufferViews"][jointsAccessor["bufferView"].get<int>()];
+  std::ifstream file(folder / document["buffers"][view["buffer"].get<int>()]["uri"].get<std::string>(),
+                     std::ios::binary);
+  std::vector<std::uint16_t> joints(bind.size() * 4);
+  for (std::size_t v = 0; v < bind.size(); ++v) {
+    file.seekg(static_cast<std::streamoff>(view.value("byteOffset", std::size_t(0)) +
+                                           jointsAccessor.value("byteOffset", std::size_t(0)) +
+                                           v * view.value("byteStride", std::size_t(8))));
+    file.read(reinterpret_cast<char*>(&joints[v * 4]), 8);
+  }
+  REQUIRE(file.good());
+  const Scene scene = loadGltf(modelPath("SimpleSkin"), atTime(1.25f));
+  const std::vector<glm::vec3>& positions = scene.primitives.at(0).positions;
+  REQUIRE(positions.size() == bind.size());
+  bool bent = false;
+  for (std::size_t v = 0; v < bind.size(); ++v) {
+    glm::vec4 expected(0.0f);
+    for (int k = 0; k < 4; ++k) {
+      const std::uint16_t j = joints[v * 4 + std::size_t(k)];
+      REQUIRE(j < 2);
+      glm::mat4 ibm;
+      for (int e = 0; e < 16; ++e) ibm[e / 4][e % 4] = inverseBind[std::size_t(j) * 16 + std::size_t(e)];
+      expected += weights[v * 4 + std::size_t(k)] * (world[j] * ibm * glm::vec4(bind[v], 1.0f));
+    }
+    CAPTURE(v);
+    CHECK(glm::length(positions[v] - glm::vec3(expected)) < 1e-5f);
+    bent = bent || glm::length(positions[v] - bind[v]) > 0.05f;
+  }
+  CHECK(bent);
+}
+
+TEST_CASE("conformance: RecursiveSkeletons played at 0 s is its static pose, at 1 s another" *
+          doctest::skip(!haveConformance())) {
+  const Scene still = loadGltf(modelPath("RecursiveSkeletons"));
+  const Scene start = loadGltf(modelPath("RecursiveSkeletons"), atTime(0.0f));
+  const Scene moved = loadGltf(modelPath("RecursiveSkeletons"), atTime(1.0f));
+  REQUIRE(start.primitives.size() == still.primitives.size());
+  REQUIRE(moved.primitives.size() == still.primitives.size());
+  float startDifference = 0.0f, movedDifference = 0.0f;
+  for (std::size_t p = 0; p < still.primitives.size(); ++p)
+    for (std::size_t v = 0; v < still.primitives[p].positions.size(); ++v) {
+      startDifference =
+          std::max(startDifference, glm::length(start.primitives[p].positions[v] - still.primitives[p].positions[v]));
+      movedDifference =
+          std::max(movedDifference, glm::length(moved.primitives[p].positions[v] - still.primitives[p].positions[v]));
+    }
+  CHECK(startDifference < 1e-4f);  // its 840 rotations start at the nodes' own
+  CHECK(movedDifference > 0.01f);
 }

@@ -91,7 +91,9 @@ std::string namedAnimations(const fs::path& path) {
   return "";
 }
 
-const std::string kNamedZero = "1 animation (first: animation 0 'A') is not played (the static pose is drawn)";
+const std::string kNamedZero =
+    "1 animation (first: animation 0 'A') is not played (the static pose is drawn; --animation N|NAME --time SECONDS "
+    "poses the file by one)";
 
 // A translation animation of node 0 (translation 1 2 3) whose first two
 // keyframes are `first` and 4 5 6.
@@ -124,7 +126,8 @@ TEST_CASE("glTF animation: only the animations that leave the pose are counted")
                     animation("Shrinks", "scale", 5) + "]";
   TempFolder folder;
   CHECK(namedAnimations(file.write(folder)) ==
-        "2 animations (first: animation 1 'Moves') are not played (the static pose is drawn)");
+        "2 animations (first: animation 1 'Moves') are not played (the static pose is drawn; --animation N|NAME "
+        "--time SECONDS poses the file by one)");
 }
 
 TEST_CASE("glTF animation: rotations compare as rotations (q and -q are one), quantized ones within half a step") {
@@ -249,5 +252,164 @@ TEST_CASE("glTF animation: a sparse output of a huge count is read at its first 
   const auto start = std::chrono::steady_clock::now();
   CHECK(sparseNamed(1.0f).empty());
   CHECK(sparseNamed(5.0f) == kNamedZero);
+  CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
+}
+
+// ---- Playing an animation at a chosen time (issue 34, item 4) ----------------
+
+namespace {
+
+// The triangle's file with one animation "A" of `path` from `keys` (output
+// accessor 3 of `count` elements of `type`), loaded posed at `time`.
+Scene posedTriangle(const std::string& path, std::initializer_list<float> keys, std::size_t count, const char* type,
+                    float time, const std::string& interpolation = "LINEAR", const std::string& node = "",
+                    const std::string& primitive = "") {
+  AnimatedTriangle file;
+  file.node = R"("mesh":0)" + node;
+  file.primitive = primitive;
+  append<float>(file.data, keys);
+  file.accessors = accessor(8, count, type);
+  file.animations = "[" + animation("A", path, 3, interpolation) + "]";
+  TempFolder folder;
+  SceneLoadOptions options;
+  options.animation = "A";
+  options.animationTime = time;
+  return loadGltf(file.write(folder), options);
+}
+
+glm::vec3 translationOf(const Scene& scene) { return glm::vec3(scene.instances.at(0).worldFromLocal[3]); }
+
+}  // namespace
+
+TEST_CASE("glTF animation played: LINEAR and STEP translations at, between, before and after the keyframes") {
+  // Times 0 and 1; translation (0, 0, 0) -> (4, 8, 12).
+  const std::initializer_list<float> keys{0, 0, 0, 4, 8, 12};
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", 0.25f)), {1, 2, 3}));
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", 1.0f)), {4, 8, 12}));
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", -3.0f)), {0, 0, 0}));    // the first holds
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", 100.0f)), {4, 8, 12}));  // the last holds
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", 0.75f, "STEP")), {0, 0, 0}));
+  CHECK(near(translationOf(posedTriangle("translation", keys, 2, "VEC3", 1.0f, "STEP")), {4, 8, 12}));
+  // The played animation is not named as not played.
+  const Scene scene = posedTriangle("translation", keys, 2, "VEC3", 0.5f);
+  CHECK(std::none_of(scene.ignored.begin(), scene.ignored.end(),
+                     [](const IgnoredFeature& f) { return f.feature == "animation"; }));
+  REQUIRE(scene.animations.size() == 1);
+  CHECK(scene.animations[0].name == "A");
+}
+
+TEST_CASE("glTF animation played: CUBICSPLINE is the Hermite spline of the tangents scaled by the interval") {
+  // (in-tangent, value, out-tangent) per keyframe. Value 0 -> 1 with both
+  // tangents 1 (the interval is 1) is the straight line: x(s) = s.
+  const float line = translationOf(posedTriangle("translation", {0, 0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0},
+                                                 6, "VEC3", 0.25f, "CUBICSPLINE"))
+                         .x;
+  CHECK(line == doctest::Approx(0.25f).epsilon(1e-6));
+  // Zero tangents: smoothstep, 3 s^2 - 2 s^3 = 0.15625 at s = 0.25.
+  const float eased = translationOf(posedTriangle("translation", {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0},
+                                                  6, "VEC3", 0.25f, "CUBICSPLINE"))
+                          .x;
+  CHECK(eased == doctest::Approx(0.15625f).epsilon(1e-6));
+  // At a keyframe, its value (the middle of the three).
+  CHECK(near(translationOf(posedTriangle("translation", {9, 9, 9, 1, 2, 3, 9, 9, 9, 9, 9, 9, 4, 5, 6, 9, 9, 9}, 6,
+                                         "VEC3", 0.0f, "CUBICSPLINE")),
+             {1, 2, 3}));
+}
+
+TEST_CASE("glTF animation played: rotations slerp the short way round") {
+  // Identity -> 90 degrees about +Y, halfway: 45 degrees. The second
+  // keyframe negated is the same rotation and must give the same pose.
+  const float s = std::sqrt(0.5f);
+  for (const float sign : {1.0f, -1.0f}) {
+    const Scene scene = posedTriangle("rotation", {0, 0, 0, 1, 0, sign * s, 0, sign * s}, 2, "VEC4", 0.5f);
+    const glm::mat4& m = scene.instances.at(0).worldFromLocal;
+    CAPTURE(sign);
+    // The local +X axis turned 45 degrees about +Y: (cos 45, 0, -sin 45).
+    CHECK(near(glm::vec3(m[0]), {s, 0.0f, -s}, 1e-5f));
+  }
+}
+
+TEST_CASE("glTF animation played: morph weights pose the mesh") {
+  // Two targets whose POSITION deltas are the positions themselves
+  // (accessor 0): weights (0, 0) -> (1, 0.5); at t = 0.5, (0.5, 0.25), so
+  // every vertex is scaled by 1.75.
+  const Scene still = posedTriangle("weights", {0, 0, 1, 0.5f}, 4, "SCALAR", 0.0f, "LINEAR", "",
+                                    R"(,"targets":[{"POSITION":0},{"POSITION":0}])");
+  const Scene posed = posedTriangle("weights", {0, 0, 1, 0.5f}, 4, "SCALAR", 0.5f, "LINEAR", "",
+                                    R"(,"targets":[{"POSITION":0},{"POSITION":0}])");
+  const auto& before = still.primitives.at(0).positions;
+  const auto& after = posed.primitives.at(0).positions;
+  REQUIRE(before.size() == after.size());
+  for (std::size_t i = 0; i < before.size(); ++i) CHECK(near(after[i], before[i] * 1.75f));
+}
+
+TEST_CASE(
+    "glTF animation played: a name or index the file lacks, a time without animations, and bad keyframes "
+    "are refused naming them") {
+  AnimatedTriangle file;
+  file.node = R"("mesh":0)";
+  append<float>(file.data, {0, 0, 0, 4, 8, 12});
+  file.accessors = accessor(8, 2, "VEC3");
+  file.animations = "[" + animation("Walk", "translation", 3) + "]";
+  TempFolder folder;
+  const fs::path path = file.write(folder);
+  SceneLoadOptions options;
+  options.animation = "Run";
+  CHECK(loadError(path, options).find("animation 'Run' is not in the file: its animations are 0 'Walk'") !=
+        std::string::npos);
+  options.animation = "1";
+  CHECK(loadError(path, options).find("animation '1' is not in the file") != std::string::npos);
+  options.animation = "0";
+  CHECK(loadError(path, options).empty());
+  // A time alone plays animation 0.
+  options.animation.clear();
+  options.animationTime = 0.5f;
+  CHECK(near(translationOf(loadGltf(path, options)), {2, 4, 6}));
+  // Keyframe times 1 and 1 (glTF wants them increasing): up to the first
+  // the first holds, after the last the last; no time falls between them.
+  std::vector<unsigned char> bytes;
+  append<float>(bytes, {1.0f, 1.0f, 0, 0, 0, 4, 8, 12});
+  folder.write("anim.bin", bytes);
+  options.animationTime = 1.0f;
+  CHECK(near(translationOf(loadGltf(path, options)), {0, 0, 0}));
+  options.animationTime = 1.5f;
+  CHECK(near(translationOf(loadGltf(path, options)), {4, 8, 12}));
+  // A NaN time is refused by the setting's row (a finite number); here,
+  // times that are not finite are named.
+  bytes.clear();
+  append<float>(bytes, {0.0f, std::numeric_limits<float>::infinity(), 0, 0, 0, 4, 8, 12});
+  folder.write("anim.bin", bytes);
+  options.animationTime = 0.5f;
+  CHECK(loadError(path, options).find("animation 0 'Walk' channel 0: keyframe time 1 is not finite") !=
+        std::string::npos);
+  SceneLoadOptions none;
+  none.animationTime = 1.0f;
+  TempFolder plain;
+  CHECK(loadError(writeTriangleGltf(plain), none).find("time: the file has no animations") != std::string::npos);
+}
+
+TEST_CASE("glTF animation played: keyframes of a huge sparse count are found by a bounded search") {
+  // Times and output have no bufferView and claim 4 * 10^9 elements: times
+  // all 0 but the last (10 s), output all 0 but the last (8, 0, 0). At 5 s
+  // the search narrows to the last interval in ~32 reads of one element,
+  // halfway along it: (4, 0, 0). Reading either accessor whole would need 16-48 GB.
+  AnimatedTriangle file;
+  file.node = R"("mesh":0)";
+  append<std::uint32_t>(file.data, {3999999999u});
+  append<float>(file.data, {10.0f});
+  append<std::uint32_t>(file.data, {3999999999u});
+  append<float>(file.data, {8.0f, 0.0f, 0.0f});
+  file.accessors = R"(,{"componentType":5126,"count":4000000000,"type":"SCALAR","sparse":{"count":1,
+      "indices":{"bufferView":2,"byteOffset":8,"componentType":5125},"values":{"bufferView":2,"byteOffset":12}}},
+    {"componentType":5126,"count":4000000000,"type":"VEC3","sparse":{"count":1,
+      "indices":{"bufferView":2,"byteOffset":16,"componentType":5125},"values":{"bufferView":2,"byteOffset":20}}})";
+  file.animations = R"([{"name":"A","channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],
+                         "samplers":[{"input":3,"output":4}]}])";
+  TempFolder folder;
+  SceneLoadOptions options;
+  options.animation = "A";
+  options.animationTime = 5.0f;
+  const auto start = std::chrono::steady_clock::now();
+  CHECK(near(translationOf(loadGltf(file.write(folder), options)), {4, 0, 0}));
   CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(10));
 }

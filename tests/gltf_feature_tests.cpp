@@ -67,7 +67,8 @@ TEST_CASE("glTF: each feature that is not rendered is named once, with a count a
   std::vector<std::string> lines;
   for (const IgnoredFeature& feature : scene.ignored) lines.push_back(feature.describe());
   const std::vector<std::string> expected{
-      "2 animations (first: animation 0 'Walk') are not played (the static pose is drawn)",
+      "2 animations (first: animation 0 'Walk') are not played (the static pose is drawn; --animation N|NAME "
+      "--time SECONDS poses the file by one)",
       "KHR_materials_dispersion on 2 materials (first: material 1 'Cloth') is not rendered",
       "KHR_xmp (listed in extensionsUsed) is not rendered",
   };

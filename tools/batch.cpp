@@ -63,15 +63,22 @@ long peakRssKb() {
   return usage.ru_maxrss;  // kilobytes on Linux
 }
 
-// The command's scene-load options with the job's material_variant.
+// The command's scene-load options with the job's material_variant, animation and time.
 SceneLoadOptions loadOptionsFor(const Job& job, SceneLoadOptions options) {
   if (job.materialVariant) options.materialVariant = *job.materialVariant;
+  if (job.animation) options.animation = *job.animation;
+  if (job.animationTime) options.animationTime = *job.animationTime;
   return options;
 }
 
-// A scene as loaded for a job: its name, and the job's variant when it sets one.
+// A scene as loaded for a job: its name, and the job's variant, animation
+// and time when it sets them.
 std::string sceneKey(const Job& job) {
-  return job.materialVariant ? job.scene + "\n#material-variant=" + *job.materialVariant : job.scene;
+  std::string key = job.scene;
+  if (job.materialVariant) key += "\n#material-variant=" + *job.materialVariant;
+  if (job.animation) key += "\n#animation=" + *job.animation;
+  if (job.animationTime) key += "\n#time=" + std::to_string(*job.animationTime);
+  return key;
 }
 
 // Scenes stay loaded while a later job of this shard uses them.

@@ -15,6 +15,7 @@
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
+#include "headlight/scene_loader.hpp"
 #include "output/bounded_read.hpp"
 #include "output/fingerprint.hpp"
 #include "scene/gltf_prescan.hpp"
@@ -96,14 +97,15 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
                         detail::byteSizeText(detail::kMaxJobLineBytes) + " a job line may have");
   const json j = parseBounded(line);
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
-  static const char* kKeys[] = {"scene", "out",  "camera",        "eye",      "target",          "up",
-                                "fov",   "size", "settings_file", "settings", "material_variant"};
+  static const char* kKeys[] = {"scene", "out",  "camera",        "eye",      "target",           "up",
+                                "fov",   "size", "settings_file", "settings", "material_variant", "animation",
+                                "time"};
   for (const auto& item : j.items()) {
     const std::string& key = item.key();  // a name, not a structured binding: lambdas capture it (clang 14)
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
       throw SettingsError("unknown key \"" + excerpt(key) +
                           "\" (known: scene, out, camera, eye, target, up, fov, size, settings_file, settings, "
-                          "material_variant)");
+                          "material_variant, animation, time)");
   }
   if (!j.contains("scene") || !j["scene"].is_string() || j["scene"].get<std::string>().empty())
     throw SettingsError("\"scene\": expected a file path or builtin:NAME");
@@ -115,6 +117,24 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
     if (!j["material_variant"].is_string() || j["material_variant"].get<std::string>().empty())
       throw SettingsError("\"material_variant\": expected the name of one of the scene's KHR_materials_variants");
     job.materialVariant = j["material_variant"].get<std::string>();
+  }
+  if (j.contains("animation")) {
+    // An index as a number or text, or a name.
+    if (j["animation"].is_number_unsigned())
+      job.animation = std::to_string(j["animation"].get<std::uint64_t>());
+    else if (j["animation"].is_string() && !j["animation"].get<std::string>().empty())
+      job.animation = j["animation"].get<std::string>();
+    else
+      throw SettingsError("\"animation\": expected the index or name of one of the scene's animations, got " +
+                          shown(j["animation"]));
+  }
+  if (j.contains("time")) {
+    const OptionSpec& spec = findOption(sceneLoadOptions(), "time").spec;
+    if (!j["time"].is_number())
+      throw SettingsError("\"time\": expected seconds into the animation, got " + shown(j["time"]));
+    const OptionValue value = j["time"].get<double>();
+    checkOptionValue(spec, value);
+    job.animationTime = float(std::get<double>(value));
   }
   for (const std::string* path : {&job.scene, &job.outDir})
     if (path->find('\0') != std::string::npos)
@@ -302,6 +322,12 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
   }
   for (const std::string& file : command.jobFiles)
     for (Job& job : readJobFile(file, command.settings)) jobs.push_back(std::move(job));
+  // The command's --animation and --time are every job's unless it sets its
+  // own: the job's hash (--resume) and the scene cache then tell poses apart.
+  for (Job& job : jobs) {
+    if (!job.animation && !command.sceneLoad.animation.empty()) job.animation = command.sceneLoad.animation;
+    if (!job.animationTime && command.sceneLoad.animationTime) job.animationTime = command.sceneLoad.animationTime;
+  }
   return jobs;
 }
 
@@ -362,6 +388,8 @@ std::string jobHash(const Job& job, const OutputOptions& output, const std::stri
   for (const auto& [name, value] : settingsAsText(job.settings)) text += name + "=" + value + "\n";
   text += "camera=" + job.camera.describe() + "\n";
   if (job.materialVariant) text += "material-variant=" + *job.materialVariant + "\n";
+  if (job.animation) text += "animation=" + *job.animation + "\n";
+  if (job.animationTime) text += "time=" + std::to_string(*job.animationTime) + "\n";
   text += "targets=";
   for (const std::string& target : output.targets) text += target + ",";
   text += "\nnonfinite=" + std::string(output.nonFinite == NonFinitePolicy::Clamp ? "clamp" : "error") + "\n";

@@ -46,6 +46,11 @@ struct Job {
   // "material_variant": the glTF KHR_materials_variants variant, over the
   // command's --material-variant (SceneLoadOptions::materialVariant).
   std::optional<std::string> materialVariant;
+  // "animation" and "time": the animation to pose the scene by and when,
+  // over the command's --animation and --time (SceneLoadOptions::animation,
+  // animationTime).
+  std::optional<std::string> animation;
+  std::optional<float> animationTime;
   JobCamera camera;
   RenderSettings settings;
   std::string outDir;

@@ -1,10 +1,12 @@
 #pragma once
-// Whether an animation starts away from the static pose. Animations are not
-// played: Headlight draws the pose the nodes describe. An animation whose
+// An animation played at a chosen time (--animation, --time), and whether
+// one that is not played starts away from the static pose. Unless one is
+// chosen, Headlight draws the pose the nodes describe. An animation whose
 // first keyframe is that pose leaves a still frame right (it is the frame a
 // player shows at time 0), so only one that starts elsewhere is named
 // (gltf_features.cpp, findAnimations).
 #include <cstddef>
+#include <string>
 
 #include "scene/gltf_common.hpp"
 
@@ -22,5 +24,26 @@ namespace headlight::gltf {
 // the static pose, and refusing would turn a file that draws right into an
 // error; naming it keeps the file from being silently different.
 bool animationLeavesStaticPose(const tinygltf::Model& model, std::size_t animationIndex);
+
+// The animation `chosen` names: an index, else a name. A SceneError names
+// the file's animations when none matches.
+int findAnimation(const Source& source, const std::string& chosen);
+
+// Poses the model at `time` seconds of animation `animationIndex` (glTF 2.0
+// §3.11): each channel's sampled value replaces its node's translation,
+// rotation, scale or morph weights, so the static pose the loader then
+// builds (world transforms, skins, morph targets) is the animated one.
+// Before the first keyframe the first value holds, after the last the last;
+// STEP holds a keyframe's value, LINEAR interpolates (rotations by slerp the
+// short way), CUBICSPLINE is the cubic Hermite spline of the in- and
+// out-tangents scaled by the keyframe interval. Only the keyframes the time
+// falls between are read (a binary search over the times, one element
+// each): memory does not grow with an accessor's count. A channel whose
+// node has a matrix, an unknown path or interpolation, times that do not
+// increase, a non-finite value or a count that disagrees is a SceneError
+// naming the animation, the channel and the problem. Channels with an
+// extension's target (no node) are skipped: the extension is named as not
+// rendered.
+void applyAnimation(tinygltf::Model& model, const Source& source, int animationIndex, double time);
 
 }  // namespace headlight::gltf

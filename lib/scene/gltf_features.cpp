@@ -133,7 +133,7 @@ std::array<std::pair<int, int>, 5> textureCoordinates(const tinygltf::Material& 
 
 // ---- Detectors: one per feature that is not rendered -------------------------
 
-void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
+void findSecondaryTexcoords(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     for (const auto& [texture, texCoord] : textureCoordinates(model.materials[index])) {
       // TEXCOORD_0 and TEXCOORD_1 are rendered (kTexcoordSets); further sets are not.
@@ -146,7 +146,7 @@ void findSecondaryTexcoords(const tinygltf::Model& model, Tally& tally) {
   }
 }
 
-void findVertexColors(const tinygltf::Model& model, Tally& tally) {
+void findVertexColors(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
   for (std::size_t mesh = 0; mesh < model.meshes.size(); ++mesh) {
     for (std::size_t primitive = 0; primitive < model.meshes[mesh].primitives.size(); ++primitive) {
       for (const auto& [attribute, accessor] : model.meshes[mesh].primitives[primitive].attributes) {
@@ -160,12 +160,14 @@ void findVertexColors(const tinygltf::Model& model, Tally& tally) {
 }
 
 // Only animations that start away from the static pose change what a still
-// frame should show (gltf_animation_pose.hpp).
-void findAnimations(const tinygltf::Model& model, Tally& tally) {
+// frame should show (gltf_animation_pose.hpp); the one played is not named.
+void findAnimations(const tinygltf::Model& model, int playedAnimation, Tally& tally) {
   for (std::size_t index = 0; index < model.animations.size(); ++index) {
-    if (!animationLeavesStaticPose(model, index)) continue;
+    if (int(index) == playedAnimation || !animationLeavesStaticPose(model, index)) continue;
     tally.add("animation", "animation", named("animation", index, model.animations[index].name),
-              "is not played (the static pose is drawn)");
+              playedAnimation < 0 ? "is not played (the static pose is drawn; --animation N|NAME --time SECONDS "
+                                    "poses the file by one)"
+                                  : "is not played (--animation plays one at a time)");
   }
 }
 
@@ -180,7 +182,7 @@ void addExtensions(const tinygltf::ExtensionMap& extensions, const char* noun, c
 
 // Extensions where elements carry them: materials (and their texture
 // references), primitives, nodes, textures, cameras.
-void findElementExtensions(const tinygltf::Model& model, Tally& tally) {
+void findElementExtensions(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     const tinygltf::Material& material = model.materials[index];
     const std::string element = named("material", index, material.name);
@@ -214,7 +216,7 @@ void findElementExtensions(const tinygltf::Model& model, Tally& tally) {
 
 // What extensionsUsed lists that no element above carries (extensions
 // inside other extensions, KHR_xmp, unknown ones).
-void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
+void findListedExtensions(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
   for (const std::string& name : model.extensionsUsed) {
     if (!extensionRendered(name) && !tally.has(name)) {
       tally.add(name, "", "listed in extensionsUsed");
@@ -226,7 +228,7 @@ void findListedExtensions(const tinygltf::Model& model, Tally& tally) {
 // transmission pass does not draw (Material::transmissive): alphaMode BLEND
 // ones (the blend pass draws them, without it) and unlit ones (the
 // specification excludes the pair; unlit wins).
-void findUndrawnTransmission(const tinygltf::Model& model, Tally& tally) {
+void findUndrawnTransmission(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
   for (std::size_t index = 0; index < model.materials.size(); ++index) {
     const tinygltf::Material& material = model.materials[index];
     if (material.extensions.count("KHR_materials_transmission") == 0) continue;
@@ -237,7 +239,8 @@ void findUndrawnTransmission(const tinygltf::Model& model, Tally& tally) {
 }
 
 // The table: remove a row when its feature becomes rendered.
-constexpr void (*kDetectors[])(const tinygltf::Model&, Tally&){
+// `playedAnimation` is the animation the file is posed by (-1: none).
+constexpr void (*kDetectors[])(const tinygltf::Model&, int playedAnimation, Tally&){
     findSecondaryTexcoords, findVertexColors,     findAnimations,
     findElementExtensions,  findListedExtensions, findUndrawnTransmission,
 };
@@ -257,10 +260,10 @@ std::string usersOf(const tinygltf::Model& model, const std::string& extension) 
 
 bool extensionRendered(const std::string& name) { return listed(kRenderedExtensions, name) || decoderBuilt(name); }
 
-std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model) {
+std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model, int playedAnimation) {
   Tally tally;
   for (auto detect : kDetectors) {
-    detect(model, tally);
+    detect(model, playedAnimation, tally);
   }
   return tally.take();
 }

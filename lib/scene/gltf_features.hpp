@@ -14,7 +14,8 @@ namespace headlight::gltf {
 
 // Every feature `model` uses that is not rendered, once each, in the order
 // of the detector table.
-std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model);
+// `playedAnimation`: the animation the file is posed by (--animation), not named; -1: none.
+std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model, int playedAnimation = -1);
 
 // Throws SceneError naming every required extension that is neither
 // rendered nor safe to draw without (the geometry would be wrong or absent).

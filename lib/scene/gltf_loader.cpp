@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -21,6 +22,7 @@
 #include "headlight/limits.hpp"
 #include "headlight/scene_loader.hpp"
 #include "output/fingerprint.hpp"
+#include "scene/gltf_animation_pose.hpp"
 #include "scene/gltf_draco.hpp"
 #include "scene/gltf_features.hpp"
 #include "scene/gltf_files.hpp"
@@ -312,7 +314,24 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
   gltf::decodeDracoPrimitives(model, source, limits);
   gltf::resolveTextureSources(model, source);
   scene.materialVariants = gltf::applyMaterialVariant(model, source, options.materialVariant);
-  scene.ignored = gltf::findIgnoredFeatures(model);
+  for (const tinygltf::Animation& animation : model.animations) {
+    Scene::Animation summary{animation.name, 0.0f};
+    for (const tinygltf::AnimationSampler& sampler : animation.samplers)
+      if (sampler.input >= 0 && std::size_t(sampler.input) < model.accessors.size() &&
+          !model.accessors[std::size_t(sampler.input)].maxValues.empty() &&
+          std::isfinite(model.accessors[std::size_t(sampler.input)].maxValues[0]))
+        summary.end = std::max(summary.end, float(model.accessors[std::size_t(sampler.input)].maxValues[0]));
+    scene.animations.push_back(summary);
+  }
+  int playedAnimation = -1;
+  if (!options.animation.empty() || options.animationTime) {
+    if (model.animations.empty())
+      source.fail(std::string(options.animation.empty() ? "time" : "animation") + ": the file has no animations",
+                  {options.animation.empty() ? "time" : "animation"});
+    playedAnimation = options.animation.empty() ? 0 : gltf::findAnimation(source, options.animation);
+    gltf::applyAnimation(model, source, playedAnimation, options.animationTime.value_or(0.0f));
+  }
+  scene.ignored = gltf::findIgnoredFeatures(model, playedAnimation);
   if (options.strictGltf && !scene.ignored.empty()) {
     std::string list;
     for (const IgnoredFeature& feature : scene.ignored) list += (list.empty() ? "" : "; ") + feature.describe();
@@ -342,6 +361,10 @@ Scene loadScene(const std::string& nameOrPath, const SceneLoadOptions& options, 
     throw SettingsError(
         "scene " + options.gltfScene + ": " + nameOrPath + " is built in, not a glTF file with scenes to choose from",
         {"scene"});
+  if (builtin && (!options.animation.empty() || options.animationTime))
+    throw SettingsError(std::string(options.animation.empty() ? "time" : "animation") + ": " + nameOrPath +
+                            " is a built-in scene and has no animations",
+                        {options.animation.empty() ? "time" : "animation"});
   if (builtin && !options.materialVariant.empty())
     throw SettingsError("material-variant " + options.materialVariant + ": " + nameOrPath +
                             " is a built-in scene and has no KHR_materials_variants variants",

@@ -29,6 +29,16 @@ std::string verboseHeader(const Context& context, const Scene& scene) {
     for (const std::string& name : scene.materialVariants) text += " '" + name + "'";
     text += "\n";
   }
+  if (!scene.animations.empty()) {
+    text += "animations (--animation N|NAME --time SECONDS; default: the static pose):";
+    for (std::size_t i = 0; i < scene.animations.size(); ++i) {
+      char end[32];
+      std::snprintf(end, sizeof end, "%g", double(scene.animations[i].end));
+      text += (i == 0 ? " " : ", ") + std::to_string(i) +
+              (scene.animations[i].name.empty() ? "" : " '" + scene.animations[i].name + "'") + " (0.." + end + " s)";
+    }
+    text += "\n";
+  }
   return text;
 }
 

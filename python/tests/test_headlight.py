@@ -481,3 +481,45 @@ if __name__ == "__main__":
         test()
         print("ok", name)
     print(len(tests), "passed")
+
+
+def test_set_scene_animation_poses_the_file_at_a_time():
+    # A triangle whose node moves along +X from 0 to 4 over 1 s (LINEAR):
+    # at 0.5 s its pixels' world positions are 2 further along X.
+    import base64
+    import json
+    import struct
+    positions = struct.pack("<9f", -1, -1, 0, 1, -1, 0, 0, 1, 0)
+    keys = struct.pack("<2f6f", 0, 1, 0, 0, 0, 4, 0, 0)
+    data = positions + keys
+    document = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 8},
+                        {"buffer": 0, "byteOffset": 44, "byteLength": 24}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 3,
+                       "min": [-1, -1, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5126, "type": "SCALAR", "count": 2, "min": [0], "max": [1]},
+                      {"bufferView": 2, "componentType": 5126, "type": "VEC3", "count": 2}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0,
+        "animations": [{"name": "Slide", "channels": [{"sampler": 0, "target": {"node": 0, "path": "translation"}}],
+                        "samplers": [{"input": 1, "output": 2}]}],
+    }
+    r = osmesa_renderer()
+    view = dict(width=64, height=48, eye=(2, 0, 6), target=(2, 0, 0))
+    with tempfile.TemporaryDirectory() as folder:
+        path = pathlib.Path(folder) / "slide.gltf"
+        path.write_text(json.dumps(document))
+        r.set_scene(path, animation="Slide", time=0.5)
+        posed = r.render(**view)["position"]
+        r.set_scene(path, animation=0, time=5.0)  # after the last keyframe: the last holds
+        last = r.render(**view)["position"]
+        expect(headlight.SceneError, lambda: r.set_scene(path, animation="Run"), "'Run'", "'Slide'")
+        expect(headlight.SettingsError, lambda: r.set_scene(path, time="soon"), "time")
+    covered = posed[:, :, 3] == 1.0
+    assert covered.any()
+    assert posed[covered][:, 0].min() > 0.9  # the triangle spans x in [-1, 1] + 2
+    assert posed[covered][:, 0].max() < 3.1
+    assert last[last[:, :, 3] == 1.0][:, 0].min() > 2.9

@@ -1,6 +1,7 @@
 // libFuzzer target for the glTF loader (issue 10). Each input is written to
 // a file (the loader reads paths) as .glb when it starts with the GLB magic,
-// else .gltf, and loaded with default limits. A SceneError or LimitError is
+// else .gltf, and loaded with default limits, then posed by its first
+// animation at two times. A SceneError or LimitError is
 // the expected answer to a bad file; anything else escaping, a crash or a
 // sanitizer report is a finding. Built and run by tools/fuzz.sh.
 #include <unistd.h>
@@ -36,6 +37,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)headlight::loadGltf(path, {}, limits);
   } catch (const headlight::SceneError&) {
   } catch (const headlight::LimitError&) {
+  }
+  // Posed by its first animation too, between keyframes and past the last
+  // (gltf_animation_pose.cpp's sampling reads the keyframes the time needs).
+  headlight::SceneLoadOptions posed;
+  posed.animationTime = 0.37f;
+  for (int pass = 0; pass < 2; ++pass, posed.animationTime = 1e6f) {
+    try {
+      (void)headlight::loadGltf(path, posed, limits);
+    } catch (const headlight::SceneError&) {
+    } catch (const headlight::LimitError&) {
+    }
   }
   return 0;
 }

@@ -1,11 +1,14 @@
 // Writes the fuzzer's seed corpus into the folder given: the hostile
 // suite's generated scenes (valid and mutated), as .gltf text and as GLB.
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <vector>
 
 #include "compressed_inputs.hpp"
 #include "hostile_inputs.hpp"
+#include "support/encoding.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -71,6 +74,74 @@ int main(int argc, char** argv) {
       {{"material", 1}, {"variants", {0}}}};
   variants["extensions"]["KHR_materials_variants"]["variants"] = {{{"name", "v"}}};
   write("variants.gltf", variants.dump());
+  // Animations to play (the fuzzer also loads every input posed at two
+  // times): LINEAR translation, STEP scale, CUBICSPLINE rotation, on the
+  // triangle's node, from a second buffer.
+  nlohmann::json animated = scene;
+  const float keys[] = {0,
+                        1,
+                        /* translations */ 0,
+                        0,
+                        0,
+                        1,
+                        2,
+                        3,
+                        /* scales */ 1,
+                        1,
+                        1,
+                        2,
+                        2,
+                        2,
+                        /* rotations: in, value, out per keyframe */ 0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        1,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0,
+                        0.6f,
+                        0,
+                        0.8f,
+                        0,
+                        0,
+                        0,
+                        0};
+  std::vector<unsigned char> keyBytes(sizeof keys);
+  std::memcpy(keyBytes.data(), keys, sizeof keys);
+  animated["buffers"].push_back({{"byteLength", keyBytes.size()},
+                                 {"uri", "data:application/octet-stream;base64," + headlight::test::base64(keyBytes)}});
+  const int keyBuffer = int(animated["buffers"].size()) - 1;
+  const int view = int(animated["bufferViews"].size());
+  animated["bufferViews"].push_back({{"buffer", keyBuffer}, {"byteLength", keyBytes.size()}});
+  const int first = int(animated["accessors"].size());
+  animated["accessors"].push_back(
+      {{"bufferView", view}, {"componentType", 5126}, {"type", "SCALAR"}, {"count", 2}, {"min", {0}}, {"max", {1}}});
+  animated["accessors"].push_back(
+      {{"bufferView", view}, {"byteOffset", 8}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 2}});
+  animated["accessors"].push_back(
+      {{"bufferView", view}, {"byteOffset", 32}, {"componentType", 5126}, {"type", "VEC3"}, {"count", 2}});
+  animated["accessors"].push_back(
+      {{"bufferView", view}, {"byteOffset", 56}, {"componentType", 5126}, {"type", "VEC4"}, {"count", 6}});
+  animated["animations"] = {{{"name", "Move"},
+                             {"channels",
+                              {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}},
+                               {{"sampler", 1}, {"target", {{"node", 0}, {"path", "scale"}}}},
+                               {{"sampler", 2}, {"target", {{"node", 0}, {"path", "rotation"}}}}}},
+                             {"samplers",
+                              {{{"input", first}, {"output", first + 1}},
+                               {{"input", first}, {"output", first + 2}, {"interpolation", "STEP"}},
+                               {{"input", first}, {"output", first + 3}, {"interpolation", "CUBICSPLINE"}}}}}};
+  write("animated.gltf", animated.dump());
   std::cout << "seeds written to " << folder.string() << "\n";
   return 0;
 }

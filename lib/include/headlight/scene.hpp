@@ -308,6 +308,12 @@ struct Scene {
   std::vector<IgnoredFeature> ignored;  // glTF only; in the order first met
   // glTF KHR_materials_variants' names, in file order (SceneLoadOptions::materialVariant picks one).
   std::vector<std::string> materialVariants;
+  // glTF animations in file order (SceneLoadOptions::animation picks one).
+  struct Animation {
+    std::string name;  // "" where unnamed
+    float end = 0.0f;  // seconds: the latest keyframe time its samplers declare (their input's max)
+  };
+  std::vector<Animation> animations;
 
   Bounds worldBounds() const;
   bool hasEmissive() const;

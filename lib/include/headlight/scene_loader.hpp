@@ -2,6 +2,7 @@
 // Turning a scene name into a Scene: glTF 2.0 files (.gltf, .glb) through
 // tinygltf, and the built-in scenes by name ("builtin:cornell").
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -31,9 +32,16 @@ struct SceneLoadOptions {
   // KHR_materials_variants: the variant whose materials the primitives take;
   // empty: the file's default materials. A name the file lacks is a SceneError.
   std::string materialVariant;
+  // An animation to pose the file by (glTF 2.0 §3.11): an index or a name;
+  // empty: the static pose, unless animationTime is set (then animation 0).
+  // Node transforms, morph weights and the skins that follow the joints are
+  // posed at animationTime seconds (unset: 0); a name the file lacks is a
+  // SceneError naming its animations.
+  std::string animation;
+  std::optional<float> animationTime;
 };
 
-// The rows (strict-gltf, scene, environment, material-variant), for the CLI and settings files.
+// The rows (strict-gltf, scene, environment, material-variant, animation, time), for the CLI and settings files.
 std::span<const Option<SceneLoadOptions>> sceneLoadOptions();
 
 // "builtin:<name>" makes a built-in scene; anything else is read as a glTF
