@@ -488,6 +488,7 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   frame.backend = std::string(backendName(impl.context.backend())) + ": " + impl.context.description();
   frame.sceneSource = impl.scene.source;
   frame.sceneHash = impl.scene.sourceHash;
+  frame.scenePose = impl.scene.poseDescription();
   for (const IgnoredFeature& feature : impl.scene.ignored) frame.ignored.push_back(feature.describe());
   frame.ignored.insert(frame.ignored.end(), plan.unrendered.begin(), plan.unrendered.end());
   return pending;

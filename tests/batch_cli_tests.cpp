@@ -201,3 +201,32 @@ TEST_CASE(
   CHECK(run.output.find("animation 'Run' is not in the file: its animations are 0 'Slide'") != std::string::npos);
   CHECK(meanX(a) - meanX(still) == doctest::Approx(2.0).epsilon(0.02));
 }
+
+TEST_CASE("--views N --through-time poses view k at k / N of the animation, each set naming its pose") {
+  headlight::test::TempFolder folder("through_time_cli");
+  const fs::path scene = folder.write("slide.gltf", slidingTriangleGltf());
+  const fs::path out = folder.path() / "views";
+  Run run = runHeadlight("render " + quote(scene.string()) +
+                         " --views 4 --through-time --width 32 --height 24 --targets position --strict --out " +
+                         quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(run.output.find("4 jobs: 4 rendered, 0 skipped, 0 failed") != std::string::npos);
+  const char* poses[] = {"animation 0 'Slide' at 0 s", "animation 0 'Slide' at 0.25 s", "animation 0 'Slide' at 0.5 s",
+                         "animation 0 'Slide' at 0.75 s"};
+  for (int v = 0; v < 4; ++v) {
+    char name[16];
+    std::snprintf(name, sizeof name, "view_%03d", v);
+    std::ifstream manifest(out / name / "frame.json");
+    const std::string text((std::istreambuf_iterator<char>(manifest)), std::istreambuf_iterator<char>());
+    CAPTURE(v);
+    CHECK(text.find(std::string("\"pose\": \"") + poses[v] + "\"") != std::string::npos);
+  }
+  run = runHeadlight("render " + quote(scene.string()) + " --views 2 --through-time --time 1 --out " +
+                     quote((folder.path() / "x").string()));
+  CHECK(run.exitCode == 2);
+  CHECK(run.output.find("--through-time and --time: choose one") != std::string::npos);
+  run = runHeadlight("render builtin:cornell --views 2 --through-time --out " + quote((folder.path() / "y").string()));
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("--through-time: the scene has no animations") != std::string::npos);
+}

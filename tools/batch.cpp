@@ -210,8 +210,8 @@ std::string outputFolderRefusal(const Job& job, bool force) {
 }
 
 bool isSingleRender(const RenderCommand& command) {
-  return command.jobFiles.empty() && command.scenes.size() <= 1 && !command.orbit && !command.camerasAll &&
-         command.shardCount == 1 && !command.json;
+  return command.jobFiles.empty() && command.scenes.size() <= 1 && !command.orbit && !command.throughTime &&
+         !command.camerasAll && command.shardCount == 1 && !command.json;
 }
 
 namespace {
@@ -300,7 +300,14 @@ int runRenderBatch(const RenderCommand& command) {
       found = countedScenes.emplace(scene, loadCommandScene(scene, command.sceneLoad, command.limits, quiet)).first;
     return int(found->second.cameras.size());
   };
-  const std::vector<Job> all = expandJobs(command, cameraCount);
+  auto animationLength = [&](const std::string& name) {
+    cameraCount(name);  // loads it once
+    const Scene& scene = countedScenes.at(name);
+    if (scene.animations.empty())
+      throw SceneError(name + ": --through-time: the scene has no animations", {"through-time"});
+    return scene.animations[std::size_t(std::max(scene.animation, 0))].end;
+  };
+  const std::vector<Job> all = expandJobs(command, cameraCount, animationLength);
   // Over all jobs, not the shard: every shard refuses a clash alike.
   checkDistinctOutDirs(all);
   std::vector<Job> jobs = selectShard(all, resolveShardIndex(command), command.shardCount);
@@ -309,7 +316,15 @@ int runRenderBatch(const RenderCommand& command) {
 
   std::vector<JobResult> results(jobs.size());
   SceneCache cache(jobs, command.sceneLoad, command.limits, quiet);
-  for (auto& [name, scene] : countedScenes) cache.adopt(name, std::move(scene));  // loaded once
+  // Loaded once, with the command's load options: the key a job with the
+  // command's --animation and --time has.
+  for (auto& [name, scene] : countedScenes) {
+    Job probe;
+    probe.scene = name;
+    if (!command.sceneLoad.animation.empty()) probe.animation = command.sceneLoad.animation;
+    probe.animationTime = command.sceneLoad.animationTime;
+    cache.adopt(sceneKey(probe), std::move(scene));
+  }
   countedScenes.clear();
   std::optional<Context> context;
   std::optional<Renderer> renderer;

@@ -95,7 +95,8 @@ std::vector<Option<RenderCommand>> batchOptions() {
       bindOption<C>(
           {.name = "views",
            .type = T::Int,
-           .help = "views per scene on a turntable (needs --orbit); 0: one view",
+           .help = "views per scene: on a turntable (--orbit), through an animation (--through-time), or both; "
+                   "0: one view",
            .maximum = 100000},
           [](auto& c) -> auto& { return c.views; }),
       bindOption<C>(
@@ -103,6 +104,11 @@ std::vector<Option<RenderCommand>> batchOptions() {
            .type = T::Switch,
            .help = "--views N cameras on a circle around the scene's bounds, looking at their centre"},
           [](auto& c) -> auto& { return c.orbit; }),
+      bindOption<C>(
+          {.name = "through-time",
+           .type = T::Switch,
+           .help = "--views N poses at N times through --animation (default 0): view k at k / N of its length"},
+          [](auto& c) -> auto& { return c.throughTime; }),
       actionOption<C>({.name = "orbit-elevation",
                        .type = T::Float,
                        .help = "--orbit: degrees above the bounds' centre (default 14, a little from above)",
@@ -308,10 +314,13 @@ RenderCommand parseRenderArgs(const std::vector<std::string>& args, CommandKind 
       command.jobFiles.push_back(scene);
     else
       command.scenes.push_back(scene);
-  if (command.views > 0 && !command.orbit)
+  if (command.views > 0 && !command.orbit && !command.throughTime)
     throw SettingsError("--views " + std::to_string(command.views) +
-                        ": needs --orbit (the only way to place several views)");
+                        ": needs --orbit (cameras on a turntable) or --through-time (poses through an animation)");
   if (command.orbit && command.views == 0) throw SettingsError("--orbit: needs --views N");
+  if (command.throughTime && command.views == 0) throw SettingsError("--through-time: needs --views N");
+  if (command.throughTime && command.sceneLoad.animationTime)
+    throw SettingsError("--through-time and --time: choose one (the views' times are k / N of the animation)");
   if (!command.orbit && (command.orbitElevationDegrees || command.orbitDistanceScale))
     throw SettingsError("--orbit-elevation and --orbit-distance: need --views N --orbit");
   if (command.orbit && command.camerasAll) throw SettingsError("--orbit and --cameras all: choose one");

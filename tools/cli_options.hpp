@@ -47,6 +47,7 @@ struct RenderCommand {
   std::vector<std::string> jobFiles;           // --jobs FILE: JSON Lines, one job per line
   int views = 0;                               // --views N: N views per scene (with --orbit)
   bool orbit = false;                          // --orbit: a turntable around the scene's bounds
+  bool throughTime = false;                    // --through-time: the views step through --animation's length
   std::optional<float> orbitElevationDegrees;  // --orbit-elevation DEG (default: fitCamera's 14)
   std::optional<float> orbitDistanceScale;     // --orbit-distance F: times the framing distance
   bool camerasAll = false;                     // --cameras all: one job per camera of the scene

@@ -255,7 +255,8 @@ std::vector<Job> readJobFile(const fs::path& path, const RenderSettings& base) {
   return parseJobLines(detail::readRegularFile(path, detail::kMaxJobFileBytes, "the job file"), path.string(), base);
 }
 
-std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount) {
+std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount,
+                            const std::function<float(const std::string&)>& animationLength) {
   std::vector<Job> jobs;
   std::vector<std::string> scenes = command.scenes;
   if (scenes.empty() && command.jobFiles.empty()) scenes.push_back(command.scene);
@@ -279,14 +280,31 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
       if (command.up) base.camera.up = *command.up;
       if (command.fovDegrees) base.camera.fovDegrees = *command.fovDegrees;
     }
-    if (command.orbit) {
+    if (command.orbit || command.throughTime) {
+      // --through-time: view v poses the animation at v / N of its length
+      // (a loop's last view is a step before its first again).
+      float length = 0.0f;
+      if (command.throughTime) {
+        try {
+          length = animationLength(scene);
+        } catch (const Error& error) {
+          Job bad = base;
+          bad.error = commandLineMessage(error);
+          jobs.push_back(bad);
+          continue;
+        }
+        base.animation = command.sceneLoad.animation.empty() ? "0" : command.sceneLoad.animation;
+      }
       for (int v = 0; v < command.views; ++v) {
         Job job = base;
-        job.camera.kind = JobCamera::Kind::Orbit;
-        job.camera.orbitIndex = v;
-        job.camera.orbitViews = command.views;
-        job.camera.orbitElevationDegrees = command.orbitElevationDegrees;
-        job.camera.orbitDistanceScale = command.orbitDistanceScale.value_or(1.0f);
+        if (command.throughTime) job.animationTime = length * float(v) / float(command.views);
+        if (command.orbit) {
+          job.camera.kind = JobCamera::Kind::Orbit;
+          job.camera.orbitIndex = v;
+          job.camera.orbitViews = command.views;
+          job.camera.orbitElevationDegrees = command.orbitElevationDegrees;
+          job.camera.orbitDistanceScale = command.orbitDistanceScale.value_or(1.0f);
+        }
         char name[32];
         std::snprintf(name, sizeof name, "view_%03d", v);
         job.outDir = (folder / name).string();

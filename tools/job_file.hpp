@@ -71,9 +71,11 @@ std::vector<Job> parseJobLines(const std::string& text, const std::string& name,
 std::vector<Job> readJobFile(const std::filesystem::path& path, const RenderSettings& base);
 
 // Jobs from the command: its scenes (x --views/--cameras all; `cameraCount`
-// tells how many cameras a scene has, loading it if needed) then every job
-// file's lines, in order.
-std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount);
+// tells how many cameras a scene has, `animationLength` how long the
+// animation --through-time steps through lasts, each loading the scene if
+// needed) then every job file's lines, in order.
+std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount,
+                            const std::function<float(const std::string&)>& animationLength = {});
 
 // The folder a job writes, as compared for clashes: absolute, normalised,
 // without a trailing separator ("dup", "./dup/" and "$PWD/dup" are one).

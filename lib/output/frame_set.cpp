@@ -102,6 +102,7 @@ json manifestJson(const Frame& frame, const OutputOptions& options, bool complet
   j["complete"] = complete;
   j["scene"] = frame.sceneSource;
   j["scene_hash"] = frame.sceneHash;
+  if (!frame.scenePose.empty()) j["pose"] = frame.scenePose;  // --animation, --time
   j["settings_hash"] = textFingerprint(settingsText);
   j["job_hash"] = options.jobHash;
   j["renderer"] = frame.glRenderer;

@@ -45,6 +45,7 @@ void addMetadata(OIIO::ImageSpec& spec, const Frame& frame) {
   spec.attribute("headlight:backend", frame.backend);
   spec.attribute("headlight:scene", frame.sceneSource);
   spec.attribute("headlight:sceneHash", frame.sceneHash);
+  if (!frame.scenePose.empty()) spec.attribute("headlight:pose", frame.scenePose);
   // glTF features the scene uses that are not rendered, "; "-separated (empty: none).
   std::string ignored;
   for (const std::string& feature : frame.ignored) ignored += (ignored.empty() ? "" : "; ") + feature;

@@ -330,6 +330,8 @@ Scene loadGltf(const fs::path& path, const SceneLoadOptions& options, const Reso
                   {options.animation.empty() ? "time" : "animation"});
     playedAnimation = options.animation.empty() ? 0 : gltf::findAnimation(source, options.animation);
     gltf::applyAnimation(model, source, playedAnimation, options.animationTime.value_or(0.0f));
+    scene.animation = playedAnimation;
+    scene.animationTime = options.animationTime.value_or(0.0f);
   }
   scene.ignored = gltf::findIgnoredFeatures(model, playedAnimation);
   if (options.strictGltf && !scene.ignored.empty()) {

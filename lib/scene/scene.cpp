@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 
 #include "headlight/scene_loader.hpp"
 
@@ -51,6 +52,14 @@ Bounds Bounds::transformed(const glm::mat4& transform) const {
     result.extend(glm::vec3(transform * glm::vec4(local, 1.0f)));
   }
   return result;
+}
+
+std::string Scene::poseDescription() const {
+  if (animation < 0 || std::size_t(animation) >= animations.size()) return {};
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%g", double(animationTime));
+  const std::string& name = animations[std::size_t(animation)].name;
+  return "animation " + std::to_string(animation) + (name.empty() ? "" : " '" + name + "'") + " at " + seconds + " s";
 }
 
 Bounds Scene::worldBounds() const {

@@ -87,6 +87,7 @@ struct Frame {
   std::string backend;      // "egl" or "osmesa", and which device
   std::string sceneSource;  // file path or builtin name
   std::string sceneHash;
+  std::string scenePose;  // "animation 0 'Walk' at 1.25 s" when posed by one (--animation, --time); "" otherwise
   // glTF features the scene uses that are not rendered, one line each
   // (Scene::ignored, IgnoredFeature::describe()); written to frame.json and
   // the EXRs' headlight:ignored.

@@ -314,6 +314,10 @@ struct Scene {
     float end = 0.0f;  // seconds: the latest keyframe time its samplers declare (their input's max)
   };
   std::vector<Animation> animations;
+  int animation = -1;          // the one the scene is posed by (SceneLoadOptions::animation), -1: none
+  float animationTime = 0.0f;  // and at what time, seconds
+  // "animation 0 'Walk' at 1.25 s", or "" for the static pose.
+  std::string poseDescription() const;
 
   Bounds worldBounds() const;
   bool hasEmissive() const;
