@@ -192,8 +192,14 @@ void main() {
   const vec4 metallicRoughness =
       texture(metallicRoughnessTexture, textureUv(METALLIC_ROUGHNESS_SET, material.metallicRoughnessTransformU,
                                                   material.metallicRoughnessTransformV));
+#ifdef ROUGHNESS_FROM_GLOSSINESS
+  // KHR_materials_pbrSpecularGlossiness: the texture is its
+  // specularGlossinessTexture and the factor its glossinessFactor.
+  roughness = 1.0 - roughness * metallicRoughness.a;
+#else
   roughness *= metallicRoughness.g;
   metallic *= metallicRoughness.b;
+#endif
 #endif
 #ifdef HAS_OCCLUSION_TEXTURE
   const vec2 occlusionUv = textureUv(OCCLUSION_SET, material.occlusionTransformU, material.occlusionTransformV);

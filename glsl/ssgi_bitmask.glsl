@@ -472,12 +472,15 @@ vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
 // by its specular alone, and a lobe narrower than the angle between slices
 // was read by whichever slice the pixel's random rotation brought near R:
 // black grain on mirrors that the blur, weighing by normals that turn fast
-// across a ball, could not average (issue 33). A metal's diffuse terms are 0,
-// so the turn costs its AO and indirect nothing; rough or dielectric
-// surfaces keep the random rotation, whose variety the blur averages.
-float turnedTowardReflection(float random, vec3 reflected, vec3 toEye, vec2 metallicRoughness, int sliceCount) {
-  const float share =
-      smoothstep(0.5, 1.0, metallicRoughness.x) * (1.0 - smoothstep(0.3, 0.6, metallicRoughness.y));
+// across a ball, could not average (issue 33). Where the diffuse albedo
+// ((1 - metallic) x the base colour's largest channel) is 0 the AO and
+// indirect light shade nothing, so the turn costs them nothing: metals,
+// and black dielectrics such as specular-glossiness chrome. Rough surfaces
+// and those with a diffuse colour keep the random rotation, whose variety
+// the blur averages.
+float turnedTowardReflection(float random, vec3 reflected, vec3 toEye, float diffuseAlbedo, float roughness,
+                             int sliceCount) {
+  const float share = (1.0 - smoothstep(0.0, 0.25, diffuseAlbedo)) * (1.0 - smoothstep(0.3, 0.6, roughness));
   // The slice plane holds toEye and the screen direction (d, 0): R lies in
   // it for d along R's component off toEye, with z removed.
   const vec2 d = reflected.xy * toEye.z - toEye.xy * reflected.z;
@@ -518,8 +521,11 @@ PassOutputs shadePixel(ivec2 outputPixel) {
 
   const vec3 reflected = reflect(-toEye, normal);
   const vec2 metallicRoughness = texelFetch(gbufferMaterial, pixel, 0).xy;
+  const vec3 baseColor = texelFetch(gbufferAlbedo, pixel, 0).rgb;
   const float lobeAlpha = specularLobeAlpha(metallicRoughness.y);
-  const float rotation = turnedTowardReflection(randomRotation, reflected, toEye, metallicRoughness, sliceCount);
+  const float diffuseAlbedo = (1.0 - metallicRoughness.x) * max(baseColor.r, max(baseColor.g, baseColor.b));
+  const float rotation =
+      turnedTowardReflection(randomRotation, reflected, toEye, diffuseAlbedo, metallicRoughness.y, sliceCount);
   vec3 specularSum = vec3(0.0);  // the slices' weighted open shares of the lobe, their weights, bends
 
   float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
@@ -579,7 +585,7 @@ PassOutputs shadePixel(ivec2 outputPixel) {
   const float skyVisibility = totalSum > 0.0 ? clamp(skyVisibleSum / totalSum, 0.0, 1.0) : 1.0;
   // A Lambertian receiver: (1 - metallic) albedo / pi * integral(L cos) over
   // the occluded directions; the sums above are that integral over pi.
-  const vec3 receiver = (1.0 - texelFetch(gbufferMaterial, pixel, 0).x) * texelFetch(gbufferAlbedo, pixel, 0).rgb;
+  const vec3 receiver = (1.0 - metallicRoughness.x) * baseColor;
   const vec3 gathered = totalSum > 0.0 ? indirect / totalSum : vec3(0.0);
   const vec4 nearField = vec4(ambientOcclusion, gathered * receiver * bitmask.indirectStrength);
   // With no sky steps the mask above is the within-R one: sky = AO.

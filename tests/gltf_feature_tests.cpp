@@ -189,21 +189,45 @@ TEST_CASE("glTF: KHR_mesh_quantization's integer attributes decode as the extens
 
 // ---- Tangents (MikkTSpace's rules) -----------------------------------------
 
-
-TEST_CASE("glTF: KHR_materials_pbrSpecularGlossiness is approximated as metallic-roughness, and says so") {
+TEST_CASE("glTF: KHR_materials_pbrSpecularGlossiness is rendered through the specular lobe, not named") {
   TempFolder folder;
   GltfParts parts;
   parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+  // A pbrMetallicRoughness fallback, as exporters write one: the extension wins.
   parts.extra = R"(,"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],
     "extensionsRequired":["KHR_materials_pbrSpecularGlossiness"],
-    "materials":[{"name":"Old","extensions":{"KHR_materials_pbrSpecularGlossiness":
-      {"diffuseFactor":[0.5,0.25,1,1],"specularFactor":[1,1,1],"glossinessFactor":0.75}}}])";
+    "materials":[{"name":"Old","pbrMetallicRoughness":{"metallicFactor":1,"roughnessFactor":0.5},
+      "extensions":{"KHR_materials_pbrSpecularGlossiness":
+      {"diffuseFactor":[0.5,0.25,1,1],"specularFactor":[1,0.75,0.5],"glossinessFactor":0.75}}}])";
   const Scene scene = loadGltf(writeTriangleGltf(folder, parts));
   REQUIRE(scene.materials.size() == 1);
-  CHECK(near(glm::vec3(scene.materials[0].baseColorFactor), {0.5f, 0.25f, 1.0f}));
-  CHECK(scene.materials[0].metallicFactor == 0.0f);
-  CHECK(scene.materials[0].roughnessFactor == doctest::Approx(0.25f));
-  REQUIRE(scene.ignored.size() == 1);
-  CHECK(scene.ignored[0].describe().find(
-            "KHR_materials_pbrSpecularGlossiness on 1 material (first: material 0 'Old') is approximated") == 0);
+  const Material& m = scene.materials[0];
+  CHECK(near(glm::vec3(m.baseColorFactor), {0.5f, 0.25f, 1.0f}));
+  CHECK(m.metallicFactor == 0.0f);
+  CHECK(m.roughnessFactor == doctest::Approx(0.25f));
+  CHECK_FALSE(m.roughnessFromGlossiness);
+  // F0 = ((ior - 1) / (ior + 1))^2 x specular colour with ior 0: the colour itself, at full weight.
+  REQUIRE(m.specular);
+  CHECK(near(m.specular->specularColorFactor, {1.0f, 0.75f, 0.5f}));
+  CHECK(m.specular->specularFactor == 1.0f);
+  CHECK(m.ior == 0.0f);
+  CHECK(scene.ignored.empty());
+
+  // The specularGlossinessTexture: the specular colour (sRGB RGB) and, in
+  // the metallic-roughness slot, the glossiness (A) times the factor.
+  const std::string png =
+      "iVBORw0KGgoAAAANSUhEUgAAAAEAAAACCAIAAAAW4yFwAAAADUlEQVR4nGP4zwAC/wEIAAH/2ZC7NQAAAABJRU5ErkJggg==";
+  parts.extra = R"(,"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],
+    "materials":[{"extensions":{"KHR_materials_pbrSpecularGlossiness":
+      {"glossinessFactor":0.5,"specularGlossinessTexture":{"index":0},"diffuseTexture":{"index":0}}}}],
+    "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,)" +
+                png + R"("}])";
+  const Scene textured = loadGltf(writeTriangleGltf(folder, parts));
+  const Material& t = textured.materials.at(0);
+  CHECK(t.roughnessFromGlossiness);
+  CHECK(t.roughnessFactor == doctest::Approx(0.5f));
+  CHECK(t.metallicRoughnessTexture.image == 0);
+  CHECK(t.baseColorTexture.image == 0);
+  REQUIRE(t.specular);
+  CHECK(t.specular->specularColorTexture.image == 0);
 }

@@ -122,8 +122,12 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
     baseColor *= w * primitive.colors[corner[0]] + u * primitive.colors[corner[1]] + v * primitive.colors[corner[2]];
   if (textured && material.metallicRoughnessTexture.present()) {
     const glm::vec4 texel = sampleTexture(in_.scene, material.metallicRoughnessTexture, uv, false);
-    roughness *= texel.g;
-    metallic *= texel.b;
+    if (material.roughnessFromGlossiness) {
+      roughness = 1.0f - roughness * texel.a;  // as gbuffer.frag: glossiness in A, metallic the factor
+    } else {
+      roughness *= texel.g;
+      metallic *= texel.b;
+    }
   }
   if (textured && material.emissiveTexture.present() && material.emissive())
     emission *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
@@ -377,7 +381,7 @@ glm::vec3 Tracer::radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayD
   // KHR_materials_unlit: the surface shows its base colour, as the
   // composite writes it, whatever lights it.
   if (material.unlit) return baseColor;
-  if (textured && material.metallicRoughnessTexture.present())
+  if (textured && material.metallicRoughnessTexture.present() && !material.roughnessFromGlossiness)
     metallic *= sample(material.metallicRoughnessTexture, false).b;
   if (textured && material.emissiveTexture.present() && material.emissive())
     emissive *= glm::vec3(sample(material.emissiveTexture, true));

@@ -18,8 +18,12 @@ namespace {
 // Extensions that are rendered: nothing about them is named.
 // One line each: merged branches add lines, not sizes.
 constexpr std::string_view kRenderedExtensions[]{
-    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "EXT_mesh_gpu_instancing", "KHR_mesh_quantization",
-    "KHR_texture_transform", "KHR_materials_unlit",
+    "KHR_lights_punctual",
+    "KHR_materials_emissive_strength",
+    "EXT_mesh_gpu_instancing",
+    "KHR_mesh_quantization",
+    "KHR_texture_transform",
+    "KHR_materials_unlit",
     "KHR_materials_variants",      // the default materials, or --material-variant's (gltf_variants.cpp)
     kTextureWebp,                  // decoded by OpenImageIO (gltf_texture_sources.cpp)
     "EXT_lights_image_based",      // the scene's light, as an environment map (gltf_image_based_light.cpp)
@@ -28,9 +32,11 @@ constexpr std::string_view kRenderedExtensions[]{
     "KHR_materials_iridescence",   // a G-buffer lobe: the thin-film Fresnel (glsl/lobe_iridescence.glsl)
     "KHR_materials_ior",           // with KHR_materials_specular, the specular lobe (glsl/lobe_specular.glsl)
     "KHR_materials_specular",
-    "KHR_materials_clearcoat",     // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
-    "KHR_materials_sheen",         // a G-buffer lobe (glsl/lobe_sheen.glsl)
-    "KHR_materials_anisotropy",    // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
+    "KHR_materials_clearcoat",   // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
+    "KHR_materials_sheen",       // a G-buffer lobe (glsl/lobe_sheen.glsl)
+    "KHR_materials_anisotropy",  // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
+    // Through the metallic-roughness model's parts and the specular lobe (gltf_materials.cpp).
+    "KHR_materials_pbrSpecularGlossiness",
 };
 
 // Rendered when the build has their decoder (meson options draco, meshopt).
@@ -51,17 +57,13 @@ constexpr std::pair<std::string_view, const char*> kRefusalReasons[]{
 // that requires them still loads (and names them): the picture is wrong only
 // in the named way. Any other required extension (Draco, meshopt, BasisU:
 // geometry or images that cannot be read without it) refuses the file.
-constexpr std::array<std::string_view, 1> kDrawableWithout{
-    "KHR_materials_pbrSpecularGlossiness"  // approximated as metallic-roughness (gltf_materials.cpp)
-};
+constexpr std::array<std::string_view, 0> kDrawableWithout{};  // none since spec-gloss is rendered
 
 // Extensions converted at load into something close: named with what was done.
 constexpr std::pair<std::string_view, const char*> kApproximatedExtensions[]{
-    {"KHR_materials_pbrSpecularGlossiness",
-     "is approximated (diffuse as base colour, metallic 0, roughness 1 - glossiness; the specular colour and "
-     "specularGlossinessTexture are not rendered)"},
     {kTextureBasisu, "is not rendered (KTX2 is not decoded; the texture's core source image is drawn)"},
-    {"KHR_draco_mesh_compression", "is not rendered (no Draco decoder in this build; the uncompressed accessors are drawn)"},
+    {"KHR_draco_mesh_compression",
+     "is not rendered (no Draco decoder in this build; the uncompressed accessors are drawn)"},
     {"EXT_meshopt_compression", "is not rendered (no meshoptimizer in this build; the fallback buffers are drawn)"},
 };
 

@@ -143,6 +143,8 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   gpu.transmissive = material.transmissive();
   if (material.masked()) gpu.alphaFeatures |= kFeatureAlphaMask;
   if (material.unlit) gpu.shadingFeatures |= kFeatureUnlit;
+  if (material.roughnessFromGlossiness && material.metallicRoughnessTexture.present())
+    gpu.shadingFeatures |= kFeatureRoughnessFromGlossiness;
   for (const MaterialTextureRow& row : materialTextureRows()) {
     const TextureRef* ref = row.ref(material);
     const TextureRef none;
@@ -250,6 +252,7 @@ std::vector<std::string> featureDefines(FeatureBits features) {
       {kFeatureTexcoords1, "HAS_TEXCOORDS_1"},
       {kFeatureTextureTransform, "HAS_TEXTURE_TRANSFORM"},
       {kFeatureUnlit, "UNLIT"},
+      {kFeatureRoughnessFromGlossiness, "ROUGHNESS_FROM_GLOSSINESS"},
   };
   std::vector<std::string> defines;
   for (const auto& [bit, name] : names)

@@ -20,6 +20,8 @@ constexpr int kFirstExtensionTexture = int(T::Emissive) + 1;
   return FeatureBits{1} << (kFirstExtensionBit + kExtensionTextures + int(id) - kFirstExtensionTexture);
 }
 static_assert(kFirstExtensionBit + 2 * kExtensionTextures <= 64);
+static_assert(kFeatureRoughnessFromGlossiness == FeatureBits{1} << (kFirstExtensionBit + 2 * kExtensionTextures),
+              "the glossiness bit follows the extension textures' bits");
 
 // A texture of an extension, when the material has it. A row reads
 //   HL_EXTENSION_ROW(Clearcoat, "CLEARCOAT", kUnitClearcoatTexture, false, clearcoat,

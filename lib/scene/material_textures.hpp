@@ -39,6 +39,10 @@ enum GBufferFeature : FeatureBits {
   kFeatureNormalTexcoord1 = FeatureBits{1} << 14,
   kFeatureOcclusionTexcoord1 = FeatureBits{1} << 15,
   kFeatureEmissiveTexcoord1 = FeatureBits{1} << 16,
+  // KHR_materials_pbrSpecularGlossiness's texture in the metallic-roughness
+  // slot: roughness = 1 - factor x its A (Material::roughnessFromGlossiness).
+  // After the extension textures' bits (material_textures.cpp).
+  kFeatureRoughnessFromGlossiness = FeatureBits{1} << 41,
 };
 
 enum class MaterialTexture {

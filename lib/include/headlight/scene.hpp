@@ -156,12 +156,18 @@ struct Material {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;  // MASK only: alpha = baseColorFactor.a x texture alpha x COLOR_0 alpha; 0..1
   TextureRef baseColorTexture;          // sRGB
-  TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic
+  TextureRef metallicRoughnessTexture;  // G = roughness, B = metallic (see roughnessFromGlossiness)
   TextureRef normalTexture;             // tangent space
   TextureRef occlusionTexture;          // R
   TextureRef emissiveTexture;           // sRGB
   bool unlit = false;  // KHR_materials_unlit: lit = base colour (factor x texture x COLOR_0), untouched by light
   float ior = 1.5f;    // KHR_materials_ior: >= 1 (glTF's 0, a perfect mirror's F0 of 1, is kept as 0)
+  // KHR_materials_pbrSpecularGlossiness with a specularGlossinessTexture:
+  // metallicRoughnessTexture is that texture and roughnessFactor its
+  // glossinessFactor, so roughness = 1 - roughnessFactor x texture A and
+  // metallic = metallicFactor (0). Without the texture the loader stores
+  // roughness 1 - glossiness and this stays false.
+  bool roughnessFromGlossiness = false;
   std::optional<MaterialSpecular> specular;
   std::optional<MaterialClearcoat> clearcoat;
   std::optional<MaterialSheen> sheen;
