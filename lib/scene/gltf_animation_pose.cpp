@@ -93,6 +93,20 @@ std::vector<float> elementsOf(const AccessorReader& reader, const CheckedAccesso
   return flat;
 }
 
+// Elements [first, first + count) of an output accessor with `components`
+// floats each, flattened.
+std::vector<float> outputElements(const AccessorReader& reader, const CheckedAccessor& output, int components,
+                                  std::size_t first, std::size_t count) {
+  switch (components) {
+    case 1:
+      return elementsOf<1>(reader, output, first, count);
+    case 3:
+      return elementsOf<3>(reader, output, first, count);
+    default:
+      return elementsOf<4>(reader, output, first, count);
+  }
+}
+
 // The value the sampler's output holds at its first input time: elements
 // [0, perKeyframe), or for CUBICSPLINE (in-tangent, value, out-tangent per
 // keyframe) [perKeyframe, 2 perKeyframe). Output and input counts must agree.
@@ -106,14 +120,7 @@ std::vector<float> firstKeyframe(const AccessorReader& reader, const tinygltf::A
     reader.source().fail("sampler output count does not match its input");
   }
   const std::size_t first = sampler.interpolation == "CUBICSPLINE" ? perKeyframe : 0;
-  switch (path.components) {
-    case 1:
-      return elementsOf<1>(reader, output, first, perKeyframe);
-    case 3:
-      return elementsOf<3>(reader, output, first, perKeyframe);
-    default:
-      return elementsOf<4>(reader, output, first, perKeyframe);
-  }
+  return outputElements(reader, output, path.components, first, perKeyframe);
 }
 
 // The static value: the node's own, else glTF's default; for weights the
@@ -183,20 +190,6 @@ bool channelDiffers(const AccessorReader& reader, const tinygltf::Animation& ani
       quantum(output.componentType, output.normalized && output.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT);
   const bool rotation = path->name == "rotation";
   return !same(keyframe, pose, step) && !(rotation && same(keyframe, pose, step, -1.0f));
-}
-
-// Elements [first, first + count) of an output accessor with `components`
-// floats each, flattened.
-std::vector<float> outputElements(const AccessorReader& reader, const CheckedAccessor& output, int components,
-                                  std::size_t first, std::size_t count) {
-  switch (components) {
-    case 1:
-      return elementsOf<1>(reader, output, first, count);
-    case 3:
-      return elementsOf<3>(reader, output, first, count);
-    default:
-      return elementsOf<4>(reader, output, first, count);
-  }
 }
 
 // Where `time` falls among a sampler's keyframe times: keyframe `index` and

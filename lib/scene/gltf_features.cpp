@@ -35,7 +35,7 @@ constexpr std::string_view kRenderedExtensions[]{
     "KHR_materials_clearcoat",   // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
     "KHR_materials_sheen",       // a G-buffer lobe (glsl/lobe_sheen.glsl)
     "KHR_materials_anisotropy",  // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
-    // Through the metallic-roughness model's parts and the specular lobe (gltf_materials.cpp).
+    // Through the metallic-roughness model's parts and the specular lobe (gltf_material_extensions.cpp).
     "KHR_materials_pbrSpecularGlossiness",
 };
 

@@ -60,12 +60,15 @@ class ExtensionReader {
     return checked(object_.Get(key), key, range);
   }
 
-  glm::vec3 color(const char* key, glm::vec3 fallback, Range range) const {
+  // An array of N numbers (a colour: N = 3, or 4 with alpha).
+  template <int N = 3>
+  glm::vec<N, float> color(const char* key, glm::vec<N, float> fallback, Range range) const {
     if (!object_.Has(key)) return fallback;
     const tinygltf::Value& array = object_.Get(key);
-    if (!array.IsArray() || array.ArrayLen() != 3) source_.fail(user_ + " " + key + " is not 3 numbers");
-    glm::vec3 out;
-    for (int c = 0; c < 3; ++c) out[c] = checked(array.Get(c), key, range);
+    if (!array.IsArray() || array.ArrayLen() != std::size_t(N))
+      source_.fail(user_ + " " + key + " is not " + std::to_string(N) + " numbers");
+    glm::vec<N, float> out;
+    for (int c = 0; c < N; ++c) out[c] = checked(array.Get(c), key, range);
     return out;
   }
 
@@ -168,12 +171,41 @@ void readVolume(const ExtensionReader& in, Material& out) {
   v.attenuationColor = in.color("attenuationColor", glm::vec3(1.0f), kUnit);
 }
 
-// The one table of material extensions read here.
+// KHR_materials_pbrSpecularGlossiness, rendered through the metallic-
+// roughness model's own parts, as glTF-Transform's conversion does: the
+// diffuse colour and texture are the base colour (metallic 0), the specular
+// colour is KHR_materials_specular's F0 colour at full weight with
+// KHR_materials_ior's 0 (F0 = the specular colour itself:
+// ((0 - 1) / (0 + 1))^2 = 1), and roughness is 1 - glossiness. The
+// specularGlossinessTexture serves twice: its sRGB RGB as the specular
+// colour texture, its linear A (glossiness) through the metallic-roughness
+// slot (Material::roughnessFromGlossiness). A pbrMetallicRoughness fallback
+// in the same material is replaced. The diffuse lobe then takes 1 - F per
+// channel, where the extension's reference takes 1 - max(specular)
+// (docs/PIPELINE.md).
+void readSpecularGlossiness(const ExtensionReader& in, Material& out) {
+  out.baseColorFactor = in.color<4>("diffuseFactor", glm::vec4(1.0f), kUnit);
+  out.baseColorTexture = in.texture("diffuseTexture");
+  out.metallicFactor = 0.0f;
+  out.metallicRoughnessTexture = {};  // a pbrMetallicRoughness fallback's is not this material's
+  const float glossiness = in.number("glossinessFactor", 1.0f, kUnit);
+  MaterialSpecular& s = out.specular.emplace();
+  s.specularColorFactor = in.color("specularFactor", glm::vec3(1.0f), kUnit);
+  s.specularColorTexture = in.texture("specularGlossinessTexture");
+  out.ior = 0.0f;
+  out.roughnessFromGlossiness = s.specularColorTexture.present();
+  if (out.roughnessFromGlossiness) out.metallicRoughnessTexture = s.specularColorTexture;
+  out.roughnessFactor = out.roughnessFromGlossiness ? glossiness : 1.0f - glossiness;
+}
+
+// The one table of material extensions read here (in order: an explicit
+// KHR_materials_ior or _specular after specular-glossiness overrides it).
 struct ExtensionRow {
   const char* name;
   void (*read)(const ExtensionReader&, Material&);
 };
 constexpr ExtensionRow kExtensionRows[] = {
+    {"KHR_materials_pbrSpecularGlossiness", readSpecularGlossiness},
     {"KHR_materials_ior", readIor},
     {"KHR_materials_specular", readSpecular},
     {"KHR_materials_clearcoat", readClearcoat},

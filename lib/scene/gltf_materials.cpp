@@ -177,86 +177,6 @@ void readFactors(const Source& source, const tinygltf::Material& material, const
   }
 }
 
-double numberOr(const tinygltf::Value& object, const char* key, double fallback) {
-  if (!object.Has(key)) return fallback;
-  const tinygltf::Value& value = object.Get(key);
-  return value.IsNumber() || value.IsInt() ? value.GetNumberAsDouble() : fallback;
-}
-
-// A texture reference of the extension object `owner` (its "index",
-// "texCoord" and KHR_texture_transform); an absent key leaves none.
-TextureRef extensionTextureRef(const Source& source, const tinygltf::Value& owner, const char* key,
-                               const std::string& user) {
-  if (!owner.Has(key) || !owner.Get(key).Has("index")) return {};
-  const tinygltf::Value& texture = owner.Get(key);
-  const tinygltf::Value* transform = nullptr;
-  if (texture.Has("extensions") && texture.Get("extensions").Has("KHR_texture_transform"))
-    transform = &texture.Get("extensions").Get("KHR_texture_transform");
-  return readTextureRef(source, texture.Get("index").GetNumberAsInt(),
-                        static_cast<int>(numberOr(texture, "texCoord", 0.0)), transform, user);
-}
-
-// `count` numbers of `owner[key]` into `out`, or a SceneError naming them.
-void readNumbers(const Source& source, const tinygltf::Value& owner, const char* key, int count, float* out,
-                 const std::string& user) {
-  if (!owner.Has(key)) return;
-  const tinygltf::Value& array = owner.Get(key);
-  const auto bad = [&] { source.fail(user + " " + key + " is not " + std::to_string(count) + " numbers"); };
-  if (!array.IsArray() || array.ArrayLen() != std::size_t(count)) bad();
-  for (int c = 0; c < count; ++c) {
-    const tinygltf::Value& component = array.Get(c);
-    if (!component.IsNumber() && !component.IsInt()) bad();
-    out[c] = static_cast<float>(component.GetNumberAsDouble());
-  }
-}
-
-// KHR_materials_pbrSpecularGlossiness, rendered through the metallic-
-// roughness model's own parts, as glTF-Transform's conversion does: the
-// diffuse colour and texture are the base colour (metallic 0), the specular
-// colour is KHR_materials_specular's F0 colour at full weight with
-// KHR_materials_ior's 0 (F0 = the specular colour itself:
-// ((0 - 1) / (0 + 1))^2 = 1), and roughness is 1 - glossiness. The
-// specularGlossinessTexture serves twice: its sRGB RGB as the specular
-// colour texture, its linear A (glossiness) through the metallic-roughness
-// slot (Material::roughnessFromGlossiness). The diffuse lobe then takes
-// 1 - F per channel, where the extension's reference takes 1 - max(specular)
-// (docs/PIPELINE.md).
-void readSpecularGlossiness(const Source& source, const tinygltf::Material& material, const std::string& name,
-                            Material& out) {
-  const auto extension = material.extensions.find("KHR_materials_pbrSpecularGlossiness");
-  if (extension == material.extensions.end() || !extension->second.IsObject()) {
-    return;
-  }
-  const tinygltf::Value& specGloss = extension->second;
-  const std::string user = name + " KHR_materials_pbrSpecularGlossiness";
-  out.baseColorFactor = glm::vec4(1.0f);
-  readNumbers(source, specGloss, "diffuseFactor", 4, &out.baseColorFactor[0], user);
-  glm::vec3 specularColor(1.0f);
-  readNumbers(source, specGloss, "specularFactor", 3, &specularColor[0], user);
-  const double glossiness = numberOr(specGloss, "glossinessFactor", 1.0);
-  const auto unit = [](float f) { return std::isfinite(f) && f >= 0.0f && f <= 1.0f; };
-  const bool valid = std::isfinite(glossiness) && glossiness >= 0.0 && glossiness <= 1.0 &&
-                     std::all_of(&out.baseColorFactor[0], &out.baseColorFactor[0] + 4, unit) &&
-                     std::all_of(&specularColor[0], &specularColor[0] + 3, unit);
-  if (!valid) source.fail(user + " has a factor that is not a number in 0..1");
-  out.metallicFactor = 0.0f;
-  out.baseColorTexture = extensionTextureRef(source, specGloss, "diffuseTexture", user + " diffuseTexture");
-  MaterialSpecular specular;
-  specular.specularColorFactor = specularColor;
-  specular.specularColorTexture =
-      extensionTextureRef(source, specGloss, "specularGlossinessTexture", user + " specularGlossinessTexture");
-  out.ior = 0.0f;
-  out.metallicRoughnessTexture = {};  // a pbrMetallicRoughness fallback's is not this material's
-  if (specular.specularColorTexture.present()) {
-    out.metallicRoughnessTexture = specular.specularColorTexture;
-    out.roughnessFactor = static_cast<float>(glossiness);
-    out.roughnessFromGlossiness = true;
-  } else {
-    out.roughnessFactor = static_cast<float>(1.0 - glossiness);
-  }
-  out.specular = specular;
-}
-
 // glTF 2.0 3.9.4: alphaMode is one of three names; alphaCutoff (MASK) is >= 0.
 // Above 1 nothing could pass, so it is refused as the corrupt value it is.
 void readAlpha(const Source& source, const tinygltf::Material& material, const std::string& name, Material& out) {
@@ -295,7 +215,6 @@ Material readMaterial(const Source& source, int materialIndex) {
   out.emissiveTexture = reference(material.emissiveTexture, "emissiveTexture");
   // KHR_materials_unlit: its object has no properties; being there is the flag.
   out.unlit = material.extensions.count("KHR_materials_unlit") != 0;
-  readSpecularGlossiness(source, material, name, out);
   readMaterialExtensions(source, material, name, out);
   return out;
 }
