@@ -80,7 +80,7 @@ vec4 shadeRadiance(ivec2 pixel) {
   // diffuse sky visibility, not the specular one: the SSGI estimates the
   // base's lobe (its roughness, its normal), and a glossy coat over a rough
   // base reflects elsewhere (ClearCoatTest's coated column lost its
-  // highlight under the base's lobe, layers_conformance_tests.cpp).
+  // highlight under the base's lobe, specular_clearcoat_conformance_tests.cpp).
   const Clearcoat coat = clearcoatAt(pixel, surface.view);
   ambient = clearcoatLayer(coat, ambient, clearcoatAmbient(coat, surface.view, materialOcclusion, skyVisibility));
 #endif

@@ -207,7 +207,7 @@ void main() {
 #endif
 
   // The back of a double-sided surface faces the other way. Points and
-  // lines without a normal (0, gltf_geometry.cpp) face the camera.
+  // lines without a normal (0, gltf/geometry.cpp) face the camera.
   vec3 normal = normalize(vWorldNormal) * (gl_FrontFacing ? 1.0 : -1.0);
   if (dot(vWorldNormal, vWorldNormal) < 1e-24) {
     normal = frame.cameraPosition.w > 0.5 ? vec3(frame.view[0][2], frame.view[1][2], frame.view[2][2])

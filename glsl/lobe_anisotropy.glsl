@@ -4,7 +4,7 @@
 // T and alpha_b = alpha along B; strength 0 is brdf.glsl's isotropic lobe.
 // Pure functions of their inputs; lib/reference/lobe_anisotropy.hpp is the
 // CPU port (same names, clamps and constants), held to this file by
-// tests/lobe_parity_tests.cpp. Needs sampling.glsl (kPi).
+// tests/sheen_anisotropy_parity_tests.cpp. Needs sampling.glsl (kPi).
 
 float anisotropyAlphaT(float alpha, float strength) { return mix(alpha, 1.0, strength * strength); }
 
@@ -43,7 +43,7 @@ float anisotropicSpecular(vec3 tangent, float strength, float alpha, vec3 normal
 // lobe's, alpha = (alpha_t + alpha_b) / 2. The stretched lobe reflects less
 // than the isotropic one of the material's roughness (0.62 against 0.95 at
 // roughness 0.4, strength 0.9, N.V 0.7); the mean alpha's lobe reflects 0.68
-// (tests/lobe_sheen_anisotropy_tests.cpp bounds the difference).
+// (tests/sheen_anisotropy_lobe_tests.cpp bounds the difference).
 float anisotropicAlbedoRoughness(float roughness, float strength) {
   const float alpha = roughness * roughness;
   return sqrt(0.5 * (anisotropyAlphaT(alpha, strength) + alpha));

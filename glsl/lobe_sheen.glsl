@@ -4,7 +4,7 @@
 //   f = f_sheen + f_base * min(1 - max3(sheenColor) E(N.V), 1 - max3(sheenColor) E(N.L))
 // with f_sheen = sheenColor D V (no Fresnel). Pure functions of their
 // inputs; lib/reference/lobe_sheen.hpp is the CPU port (same names, clamps
-// and constants), held to this file by tests/lobe_parity_tests.cpp.
+// and constants), held to this file by tests/sheen_anisotropy_parity_tests.cpp.
 // Needs sampling.glsl (kPi).
 
 // Below 0.07 the distribution's exponent 1 / alpha passes 200: its grazing
@@ -48,7 +48,7 @@ float sheenVisibility(float alpha, float nDotV, float nDotL) {
 
 // E(cos theta): the share of light the sheen lobe reflects (its directional
 // albedo for a white sheenColor). An analytic fit in (1 - cos)^3 and
-// sqrt(alpha) instead of a table; tests/lobe_sheen_anisotropy_tests.cpp integrates the
+// sqrt(alpha) instead of a table; tests/sheen_anisotropy_lobe_tests.cpp integrates the
 // lobe and bounds the fit's error (docs/ACCURACY.md has the numbers).
 float sheenAlbedo(float alpha, float cosTheta) {
   const float c = 1.0 - clamp(cosTheta, 0.0, 1.0);

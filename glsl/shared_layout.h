@@ -411,7 +411,7 @@ HL_STORAGE_BEGIN(VirtualLightBuffer, kBindingVirtualLights)
 HL_STORAGE_END(virtualLights)
 #endif
 
-// Vertex attribute locations of the scene's primitives (lib/scene/gpu_scene.cpp).
+// Vertex attribute locations of the scene's primitives (lib/gl/gpu_scene.cpp).
 HL_CONST(int, kAttributePosition, 0)
 HL_CONST(int, kAttributeNormal, 1)
 HL_CONST(int, kAttributeTexcoord, 2)

@@ -21,6 +21,7 @@
 #include "context/context_access.hpp"
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
+#include "gl/gpu_scene.hpp"
 #include "gl/objects.hpp"
 #include "gl/readback.hpp"
 #include "gl/target_formats.hpp"
@@ -35,7 +36,6 @@
 #include "passes/shadow.hpp"
 #include "passes/transmission.hpp"
 #include "passes/virtual_lights.hpp"
-#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
 namespace headlight {

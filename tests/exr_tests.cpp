@@ -15,7 +15,7 @@
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
-#include "output/folder_lock.hpp"
+#include "io/folder_lock.hpp"
 #include "support/gl.hpp"
 #include "support/temp_folder.hpp"
 

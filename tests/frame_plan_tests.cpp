@@ -51,13 +51,14 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   REQUIRE(plan.shadows);
   CHECK(plan.shadows->mapSize == 1024);
   REQUIRE(plan.direct);
-  CHECK(*plan.direct == DirectLightVariant{false, true, false, true});  // bitmask gathers direct light
+  CHECK(*plan.direct ==
+        DirectLightVariant{.planarShadows = true, .diffuseTarget = true});  // bitmask gathers direct light
   REQUIRE(plan.ssgi);
   CHECK(plan.ssgi->method->method == SsgiMethod::Bitmask);
   CHECK(plan.ssgi->blur);
   CHECK(plan.skyTables);
   REQUIRE(plan.composite);
-  CHECK(*plan.composite == CompositeVariant{true, true});
+  CHECK(*plan.composite == CompositeVariant{.ssgi = true, .sky = true});
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
                                                           "ssgi-surface", "ssgi", "ssgi-blur", "composite",
                                                           "readback"});
@@ -76,7 +77,8 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   scene.blended = true;
   FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.blend);
-  CHECK(*plan.blend == BlendVariant{true, false, true, false});  // the planar caster's map, the sky term, no map
+  CHECK(*plan.blend ==
+        BlendVariant{.planarShadows = true, .sky = true});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
                                                           "ssgi-surface", "ssgi", "ssgi-blur", "composite", "blend",
@@ -92,7 +94,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   settings.lighting.skyIntensity = 0.0f;
   plan = planFrame(scene, settings, {});
   REQUIRE(plan.blend);
-  CHECK(*plan.blend == BlendVariant{false, false, false, false});
+  CHECK(*plan.blend == BlendVariant{});
   // Without lit there is nothing to blend over.
   const std::vector<std::string> gbufferOnly{"albedo", "coverage"};
   plan = planFrame(scene, test::resolvedPlanSettings(), gbufferOnly);
@@ -166,7 +168,7 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.ssgi);
   CHECK(!plan.direct->diffuseTarget);
-  CHECK(*plan.composite == CompositeVariant{false, true});
+  CHECK(*plan.composite == CompositeVariant{.sky = true});
   CHECK(skips(plan, "ssgi", "setting ssgi is off"));
   CHECK(readOf(plan, "ssgi") == nullptr);
 }

@@ -12,6 +12,7 @@
 
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
+#include "gl/gpu_scene.hpp"
 #include "headlight/reference.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
@@ -19,7 +20,6 @@
 #include "passes/frame_block.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/virtual_lights.hpp"
-#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 #include "support/gl.hpp"
 

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "compressed_inputs.hpp"
+#include "gltf/draco.hpp"
 #include "headlight/error.hpp"
 #include "headlight/limits.hpp"
 #include "headlight/scene_loader.hpp"
-#include "scene/gltf_draco.hpp"
 #include "support/temp_folder.hpp"
 
 using namespace headlight;

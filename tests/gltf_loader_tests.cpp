@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "gltf/common.hpp"
 #include "gltf_test_files.hpp"
 #include "headlight/camera.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
-#include "scene/gltf_common.hpp"
 #include "support/assets.hpp"
 #include "support/encoding.hpp"
 #include "support/temp_folder.hpp"

@@ -272,7 +272,7 @@ TEST_CASE("TextureTransformTest and TextureTransformMultiTest: transforms read, 
     CHECK(t.rotation == transform.value("rotation", 0.0f));
   }
   const Scene multi = loadGltf(modelPath("TextureTransformMultiTest"));
-  CHECK(multi.ignored.empty());  // its clearcoat is rendered (layers_conformance_tests.cpp)
+  CHECK(multi.ignored.empty());  // its clearcoat is rendered (specular_clearcoat_conformance_tests.cpp)
   int transformed = 0, secondSet = 0, unlit = 0;
   for (const Material& m : multi.materials) {
     for (const TextureRef* ref : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,

@@ -175,7 +175,7 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
 }
 
 TEST_CASE("the film stays finite at the loader's extremes") {
-  // What loading lets through (gltf_material_extensions.cpp refuses NaN, IORs
+  // What loading lets through (gltf/material_extensions.cpp refuses NaN, IORs
   // below 1 and negative thicknesses): a base IOR of 0 (glTF's "F0 = 1",
   // kept as 0), huge film IORs and thicknesses.
   for (const reference::IridescenceInputs film :

@@ -90,7 +90,7 @@ TEST_CASE("transmission plan: a transmitting scene runs the pass after the compo
   scene.blended = true;
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.transmission);
-  CHECK(*plan.transmission == TransmissionVariant{true, false, true, false});  // planar map, sky term, no map
+  CHECK(*plan.transmission == TransmissionVariant{.planarShadows = true, .sky = true});  // planar map, sky term, no map
   CHECK(plan.gbuffer.deferTransmissive);
   CHECK(plan.allocates(Attachment::Transmission));
   CHECK(reads(plan, "transmission"));
@@ -133,7 +133,7 @@ TEST_CASE("transmission plan: the pass follows the frame's shadows, sky and envi
   settings.lighting.shadows = false;
   const FramePlan plan = planFrame(scene, settings, {});
   REQUIRE(plan.transmission);
-  CHECK(*plan.transmission == TransmissionVariant{false, false, true, true});
+  CHECK(*plan.transmission == TransmissionVariant{.sky = true, .environment = true});
 }
 
 TEST_CASE("transmission: which materials the pass draws") {

@@ -1,7 +1,7 @@
 #include "bench_command.hpp"
 
 #include "batch.hpp"
-#include "output/folder_lock.hpp"
+#include "io/folder_lock.hpp"
 
 #include <unistd.h>
 

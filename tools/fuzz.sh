@@ -34,33 +34,53 @@ mkdir -p "$out/obj" "$corpus"
 flags=(-std=c++20 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
        -Ilib/include -Ilib -Iglsl -Itools -DHEADLIGHT_VERSION='"fuzz"' -DHEADLIGHT_HAS_EMBREE=0
        -DHEADLIGHT_HAS_DRACO=1 -DHEADLIGHT_HAS_MESHOPT=1)
-# Only what each target needs: no GL, no context.
-common=(lib/settings/options.cpp lib/output/fingerprint.cpp lib/output/bounded_read.cpp)
+# The library's GL-free part, the sources of meson's headlight-no-gl target
+# (meson.build lists them once; read back from the configured build), as an
+# archive from which each target's link takes what it calls: no GL, no context.
+build=${HEADLIGHT_BUILD_DIR:-build}
+if [[ ! -f "$build/meson-info/intro-targets.json" ]]; then
+  echo "fuzz.sh: no configured meson build in '$build' (HEADLIGHT_BUILD_DIR); run tools/quickstart.sh first" >&2; exit 2
+fi
+mapfile -t library < <(python3 -c '
+import json, os, sys
+for target in json.load(open(sys.argv[1])):
+    if target["name"] == "headlight-no-gl":
+        for group in target["target_sources"]:
+            for source in group.get("sources", []):
+                if source.endswith(".cpp"): print(os.path.relpath(source))
+' "$build/meson-info/intro-targets.json")
+if (( ${#library[@]} == 0 )); then echo "fuzz.sh: headlight-no-gl has no sources in '$build'" >&2; exit 2; fi
 case "$target" in
-  gltf-loader)
-    sources=("${common[@]}" lib/scene/gltf_*.cpp lib/scene/limits.cpp lib/scene/scene.cpp lib/scene/shapes.cpp
-             lib/scene/tangents.cpp lib/scene/builtin_scenes.cpp lib/scene/scene_builder.cpp lib/scene/material_textures.cpp
-             lib/image_io/texture_decode.cpp lib/environment/environment_load.cpp lib/image_io/environment_decode.cpp
-             tests/fuzz/gltf_loader_fuzz.cpp)
-    libs=($(pkg-config --libs OpenImageIO libxxhash draco) -ltinygltf -lmeshoptimizer) ;;
-  job-file)
-    sources=("${common[@]}" lib/settings/settings.cpp lib/scene/scene.cpp lib/scene/camera.cpp tools/job_file.cpp
-             tests/fuzz/job_file_fuzz.cpp)
-    libs=($(pkg-config --libs libxxhash)) ;;
-  settings)
-    sources=("${common[@]}" lib/settings/settings.cpp tests/fuzz/settings_fuzz.cpp)
-    libs=($(pkg-config --libs libxxhash)) ;;
+  # The image module's decoders linked directly, not through dlopen.
+  gltf-loader) sources=(lib/image_io/texture_decode.cpp lib/image_io/environment_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp) ;;
+  job-file) sources=(tools/job_file.cpp tests/fuzz/job_file_fuzz.cpp) ;;
+  settings) sources=(tests/fuzz/settings_fuzz.cpp) ;;
   *) echo "fuzz.sh: unknown FUZZ_TARGET '$target' (gltf-loader, job-file, settings)" >&2; exit 2 ;;
 esac
-objects=()
-for source in "${sources[@]}"; do
-  object="$out/obj/$(basename "$source" .cpp).o"
-  if [[ ! -f "$object" || "$source" -nt "$object" || lib/include/headlight/limits.hpp -nt "$object" ]]; then
-    "$cxx" "${flags[@]}" -c "$source" -o "$object"
+libs=($(pkg-config --libs OpenImageIO libxxhash draco) -ltinygltf -lmeshoptimizer)
+# One object per source, named by its path (lib/gltf/materials.cpp and
+# lib/scene/... never meet), rebuilt when older than its source or the limits.
+object_of() { local path=${1%.cpp}; echo "$out/obj/${path//\//_}.o"; }
+compile() {
+  local object
+  object=$(object_of "$1")
+  if [[ ! -f "$object" || "$1" -nt "$object" || lib/include/headlight/limits.hpp -nt "$object" ]]; then
+    "$cxx" "${flags[@]}" -c "$1" -o "$object"
   fi
-  objects+=("$object")
+}
+pending=0
+for source in "${library[@]}" "${sources[@]}"; do
+  compile "$source" &
+  if (( ++pending >= $(nproc) )); then wait -n; ((pending--)); fi
 done
-"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" "${libs[@]}" -o "$out/$target-fuzz"
+while (( pending > 0 )); do wait -n; ((pending--)); done
+archive_objects=()
+for source in "${library[@]}"; do archive_objects+=("$(object_of "$source")"); done
+rm -f "$out/headlight-no-gl.a"
+ar qc "$out/headlight-no-gl.a" "${archive_objects[@]}"
+objects=()
+for source in "${sources[@]}"; do objects+=("$(object_of "$source")"); done
+"$cxx" -fsanitize=fuzzer,address,undefined "${objects[@]}" "$out/headlight-no-gl.a" "${libs[@]}" -o "$out/$target-fuzz"
 [[ -n "$maker" ]] && "$maker" "$seeds"
 dirs=("$corpus")
 [[ -n "$seeds" ]] && dirs+=("$seeds")

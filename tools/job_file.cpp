@@ -10,15 +10,14 @@
 #include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/scene_loader.hpp"
-#include "output/bounded_read.hpp"
-#include "output/fingerprint.hpp"
-#include "scene/gltf_prescan.hpp"
+#include "io/bounded_json.hpp"
+#include "io/bounded_read.hpp"
+#include "io/fingerprint.hpp"
 #include "tooling/command_line.hpp"
 
 namespace headlight::cli {
@@ -62,32 +61,6 @@ std::string sceneStem(const std::string& scene) {
   return fs::path(scene).stem().string();
 }
 
-// The line parsed, refusing nesting deeper than a scene's JSON may have
-// (gltf::kMaxJsonDepth) as the parser meets it: nlohmann's parser does not
-// recurse, but dump() and error texts over a deeper value would.
-// A key given twice in one object is refused too: JSON parsers disagree on
-// which one wins, so the line does not say what it asks for.
-json parseBounded(const std::string& line) {
-  std::vector<std::set<std::string>> keysByObject;  // the objects open at this point, innermost last
-  const json::parser_callback_t depthCheck = [&keysByObject](int depth, json::parse_event_t event, json& parsed) {
-    if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
-        depth >= gltf::kMaxJsonDepth)
-      throw SettingsError("JSON nests deeper than " + std::to_string(gltf::kMaxJsonDepth) +
-                          " levels (the limit for scenes too)");
-    if (event == json::parse_event_t::object_start) keysByObject.emplace_back();
-    if (event == json::parse_event_t::object_end && !keysByObject.empty()) keysByObject.pop_back();
-    if (event == json::parse_event_t::key && !keysByObject.empty() && parsed.is_string() &&
-        !keysByObject.back().insert(parsed.get<std::string>()).second)
-      throw SettingsError("the key \"" + excerpt(parsed.get<std::string>()) + "\" appears twice in one object");
-    return true;
-  };
-  try {
-    return json::parse(line, depthCheck);
-  } catch (const json::exception& e) {
-    throw SettingsError("not valid JSON: " + excerpt(e.what(), 160));
-  }
-}
-
 Job parseJobLine(const std::string& line, const std::string& origin, const RenderSettings& base) {
   Job job;
   job.origin = origin;
@@ -95,7 +68,12 @@ Job parseJobLine(const std::string& line, const std::string& origin, const Rende
   if (line.size() > detail::kMaxJobLineBytes)
     throw SettingsError("the line is " + detail::byteSizeText(line.size()) + ", more than the " +
                         detail::byteSizeText(detail::kMaxJobLineBytes) + " a job line may have");
-  const json j = parseBounded(line);
+  json j;
+  try {
+    j = detail::parseBoundedJson(line);
+  } catch (const detail::JsonError& e) {
+    throw SettingsError(e.what());
+  }
   if (!j.is_object()) throw SettingsError("expected a JSON object, got " + shown(j));
   static const char* kKeys[] = {"scene", "out",  "camera",        "eye",      "target",           "up",
                                 "fov",   "size", "settings_file", "settings", "material_variant", "animation",
@@ -399,10 +377,14 @@ int resolveShardIndex(const RenderCommand& command) {
   return index;
 }
 
-std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment) {
+std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment,
+                    const std::function<std::string(const std::string&)>& fingerprint) {
+  const auto fileHash = [&](const std::string& path) {
+    return fingerprint ? fingerprint(path) : fileFingerprint(path);
+  };
   std::string text = "scene=" + job.scene + "\n";
-  if (job.scene.rfind("builtin:", 0) != 0) text += "scene-bytes=" + fileFingerprint(job.scene) + "\n";
-  if (!environment.empty()) text += "environment-bytes=" + fileFingerprint(environment) + "\n";
+  if (job.scene.rfind("builtin:", 0) != 0) text += "scene-bytes=" + fileHash(job.scene) + "\n";
+  if (!environment.empty()) text += "environment-bytes=" + fileHash(environment) + "\n";
   for (const auto& [name, value] : settingsAsText(job.settings)) text += name + "=" + value + "\n";
   text += "camera=" + job.camera.describe() + "\n";
   if (job.materialVariant) text += "material-variant=" + *job.materialVariant + "\n";

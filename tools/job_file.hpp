@@ -62,7 +62,7 @@ struct Job {
 // settings); its "settings" object goes through the setting table
 // (applySettingsText). A bad line becomes a Job with `error` set, naming
 // the line: one longer than detail::kMaxJobLineBytes, JSON nested deeper than
-// scenes may nest (gltf::kMaxJsonDepth), an unknown key, a bad value. Echoed
+// scenes may nest (detail::kMaxJsonDepth, io/bounded_json.hpp), an unknown key, a bad value. Echoed
 // input is cut to a short excerpt. `name` is the file's name for origins.
 std::vector<Job> parseJobLines(const std::string& text, const std::string& name, const RenderSettings& base);
 
@@ -97,6 +97,9 @@ int resolveShardIndex(const RenderCommand& command);
 // builtin name), the requested settings, the camera, the output choices and,
 // when one is given, the environment map's bytes (--environment; none adds
 // nothing, so sets rendered without one keep their hash).
-std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment = {});
+// `fingerprint` reads a file's (io/fingerprint.hpp's fileFingerprint when
+// empty): a batch passes one that reads each file once.
+std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment = {},
+                    const std::function<std::string(const std::string&)>& fingerprint = {});
 
 }  // namespace headlight::cli

@@ -14,8 +14,8 @@ cd "$(dirname "$0")/.."
 out=${1:-build-sanitize}
 if [[ ! -f "$out/build.ninja" ]]; then
   # -O0 -g1 (line tables, no variables): the compile is what this suite
-  # spends its time on. -O2 -g took 2.7x longer than -O1 (gltf_loader.cpp:
-  # 96 s against 36 s), and -O0 takes half of -O1 (gltf_loader.cpp 5.2 s
+  # spends its time on. -O2 -g took 2.7x longer than -O1 (gltf/loader.cpp:
+  # 96 s against 36 s), and -O0 takes half of -O1 (gltf/loader.cpp 5.2 s
   # against 10.9 s, renderer.cpp 4.9 against 9.9, gl_tests.cpp 3.4 against
   # 6.6, one core each); the suites' own run changes little, since the GL
   # work happens in Mesa, which is not instrumented. ASan's documentation

@@ -10,8 +10,8 @@
 
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
-#include "output/atomic_file.hpp"
-#include "output/bounded_read.hpp"
+#include "io/atomic_file.hpp"
+#include "io/bounded_read.hpp"
 
 namespace headlight::cli {
 namespace {

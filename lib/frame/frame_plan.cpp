@@ -60,55 +60,106 @@ using S = AttachmentScale;
 // attachment that holds it. Direct light is internal. The rows marked
 // radiance hold light: half float, or float32 with radiance-precision float.
 constexpr AttachmentRow kAttachmentRows[] = {
-    {Attachment::GbufferPosition, "gbuffer.position", F::Rgba32F, 0, "", S::Image, &Frame::position},
-    {Attachment::GbufferNormal, "gbuffer.normal", F::Rgba16F, 1, "", S::Image, &Frame::normal},
-    {Attachment::GbufferAlbedo, "gbuffer.albedo", F::Srgb8Alpha8, 2, "", S::Image, &Frame::albedo},
-    {Attachment::GbufferMaterial, "gbuffer.material", F::Rgba8, 3, "", S::Image, &Frame::material},
-    {Attachment::GbufferEmissive, "gbuffer.emissive", F::Rgba16F, kAssignedLocation, "EMISSIVE_TARGET", S::Image,
-     &Frame::emissive, true},
+    {.id = Attachment::GbufferPosition,
+     .name = "gbuffer.position",
+     .format = F::Rgba32F,
+     .gbufferLocation = 0,
+     .target = &Frame::position},
+    {.id = Attachment::GbufferNormal,
+     .name = "gbuffer.normal",
+     .format = F::Rgba16F,
+     .gbufferLocation = 1,
+     .target = &Frame::normal},
+    {.id = Attachment::GbufferAlbedo,
+     .name = "gbuffer.albedo",
+     .format = F::Srgb8Alpha8,
+     .gbufferLocation = 2,
+     .target = &Frame::albedo},
+    {.id = Attachment::GbufferMaterial,
+     .name = "gbuffer.material",
+     .format = F::Rgba8,
+     .gbufferLocation = 3,
+     .target = &Frame::material},
+    {.id = Attachment::GbufferEmissive,
+     .name = "gbuffer.emissive",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "EMISSIVE_TARGET",
+     .target = &Frame::emissive,
+     .radiance = true},
     // Sheen colour in sRGB8 like the albedo (it comes from sRGB textures and
     // factors; the targets' sRGB encoding is applied on write), sheen
     // roughness in the linear alpha: 8 bits like the material factors.
-    {Attachment::GbufferSheen, "gbuffer.sheen", F::Srgb8Alpha8, kAssignedLocation, "SHEEN_TARGET", S::Image,
-     &Frame::sheen, false, Lobe::Sheen, gpu::kUnitSheenLobe},
+    {.id = Attachment::GbufferSheen,
+     .name = "gbuffer.sheen",
+     .format = F::Srgb8Alpha8,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "SHEEN_TARGET",
+     .target = &Frame::sheen,
+     .lobe = Lobe::Sheen,
+     .lobeUnit = gpu::kUnitSheenLobe},
     // The anisotropy direction resolved to world space in the G-buffer pass
     // (the tangent frame lives there), half float like the normal: 0.03 deg.
-    {Attachment::GbufferAnisotropy, "gbuffer.anisotropy", F::Rgba16F, kAssignedLocation, "ANISOTROPY_TARGET", S::Image,
-     &Frame::anisotropy, false, Lobe::Anisotropy, gpu::kUnitAnisotropyLobe},
-    {Attachment::GbufferDepth, "gbuffer.depth", F::Depth32F, -1, "", S::Image, &Frame::depth},
-    {Attachment::DirectTowardEye, "direct.towardEye", F::Rgba16F, -1, "", S::Image, nullptr, true},
-    {Attachment::DirectDiffuse, "direct.diffuse", F::Rgba16F, -1, "", S::Image, nullptr, true},
-    {Attachment::SsgiRaw, "ssgi.raw", F::Rgba16F, -1, "", S::SsgiNear, nullptr, true},
-    {Attachment::SsgiRawSky, "ssgi.rawSky", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
-    {Attachment::SsgiFarSky, "ssgi.farSky", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
+    {.id = Attachment::GbufferAnisotropy,
+     .name = "gbuffer.anisotropy",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "ANISOTROPY_TARGET",
+     .target = &Frame::anisotropy,
+     .lobe = Lobe::Anisotropy,
+     .lobeUnit = gpu::kUnitAnisotropyLobe},
+    {.id = Attachment::GbufferDepth, .name = "gbuffer.depth", .format = F::Depth32F, .target = &Frame::depth},
+    {.id = Attachment::DirectTowardEye, .name = "direct.towardEye", .format = F::Rgba16F, .radiance = true},
+    {.id = Attachment::DirectDiffuse, .name = "direct.diffuse", .format = F::Rgba16F, .radiance = true},
+    {.id = Attachment::SsgiRaw, .name = "ssgi.raw", .format = F::Rgba16F, .scale = S::SsgiNear, .radiance = true},
+    {.id = Attachment::SsgiRawSky, .name = "ssgi.rawSky", .format = F::Rgba16F, .scale = S::SsgiFar},
+    {.id = Attachment::SsgiFarSky, .name = "ssgi.farSky", .format = F::Rgba16F, .scale = S::SsgiFar},
     // Written with the sky (the far field's pass): its lobe reaches past R.
-    {Attachment::SsgiRawSpecular, "ssgi.rawSpecular", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
-    {Attachment::SsgiFarSpecular, "ssgi.farSpecular", F::Rgba16F, -1, "", S::SsgiFar, nullptr},
-    {Attachment::Ssgi, "ssgi", F::Rgba16F, -1, "", S::Image, &Frame::ssgi, true},
-    {Attachment::SsgiSky, "ssgi.sky", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
+    {.id = Attachment::SsgiRawSpecular, .name = "ssgi.rawSpecular", .format = F::Rgba16F, .scale = S::SsgiFar},
+    {.id = Attachment::SsgiFarSpecular, .name = "ssgi.farSpecular", .format = F::Rgba16F, .scale = S::SsgiFar},
+    {.id = Attachment::Ssgi, .name = "ssgi", .format = F::Rgba16F, .target = &Frame::ssgi, .radiance = true},
+    {.id = Attachment::SsgiSky, .name = "ssgi.sky", .format = F::Rgba16F, .target = &Frame::ssgi},
     // The specular sky visibility (ssgi channel 8) and, internal, its weight.
-    {Attachment::SsgiSpecular, "ssgi.specular", F::Rgba16F, -1, "", S::Image, &Frame::ssgi},
-    {Attachment::Lit, "lit", F::Rgba16F, -1, "", S::Image, &Frame::lit, true},
+    {.id = Attachment::SsgiSpecular, .name = "ssgi.specular", .format = F::Rgba16F, .target = &Frame::ssgi},
+    {.id = Attachment::Lit, .name = "lit", .format = F::Rgba16F, .target = &Frame::lit, .radiance = true},
     // Float: coverage accumulates a + (1 - a) c over every layer, and in
     // half float it stopped once a layer's share fell under half a step near
     // 1 (0.976 after ~200 layers of alpha 0.03, where 0.9999 is due; issue
     // 32). The file keeps half: 0..1 to ~5e-4.
-    {Attachment::BlendCoverage, "blend.coverage", F::Rgba32F, -1, "", S::Image, &Frame::coverage},
+    {.id = Attachment::BlendCoverage, .name = "blend.coverage", .format = F::Rgba32F, .target = &Frame::coverage},
     // Half float: a throughput 0..1 and a path length in world units.
-    {Attachment::Transmission, "transmission", F::Rgba16F, -1, "", S::Image, &Frame::transmission},
+    {.id = Attachment::Transmission, .name = "transmission", .format = F::Rgba16F, .target = &Frame::transmission},
     // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
     // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
-    {Attachment::GbufferIridescence, "gbuffer.iridescence", F::Rgba16F, kAssignedLocation, "IRIDESCENCE_TARGET",
-     S::Image, &Frame::iridescence, false, Lobe::Iridescence, gpu::kUnitIridescenceLobe},
+    {.id = Attachment::GbufferIridescence,
+     .name = "gbuffer.iridescence",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "IRIDESCENCE_TARGET",
+     .target = &Frame::iridescence,
+     .lobe = Lobe::Iridescence,
+     .lobeUnit = gpu::kUnitIridescenceLobe},
     // The specular and clearcoat lobes (glsl/lobe_*_material.glsl). Half
     // floats: a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
     // it; the coat's octahedral normal needs ~11 bits per coordinate.
-    {Attachment::GbufferSpecularLobe, "gbuffer.specularLobe", F::Rgba16F, kAssignedLocation, "SPECULAR_TARGET",
-     S::Image, &Frame::specular, false, Lobe::Specular, gpu::kUnitSpecularLobe},
-    {Attachment::GbufferClearcoatLobe, "gbuffer.clearcoatLobe", F::Rgba16F, kAssignedLocation, "CLEARCOAT_TARGET",
-     S::Image, &Frame::clearcoat, false, Lobe::Clearcoat, gpu::kUnitClearcoatLobe},
+    {.id = Attachment::GbufferSpecularLobe,
+     .name = "gbuffer.specularLobe",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "SPECULAR_TARGET",
+     .target = &Frame::specular,
+     .lobe = Lobe::Specular,
+     .lobeUnit = gpu::kUnitSpecularLobe},
+    {.id = Attachment::GbufferClearcoatLobe,
+     .name = "gbuffer.clearcoatLobe",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "CLEARCOAT_TARGET",
+     .target = &Frame::clearcoat,
+     .lobe = Lobe::Clearcoat,
+     .lobeUnit = gpu::kUnitClearcoatLobe},
     // float32: the depth buffer's value exactly, and the view normal as the marches computed it.
-    {Attachment::SsgiSurface, "ssgi.surface", F::Rgba32F, -1, "", S::Image},
+    {.id = Attachment::SsgiSurface, .name = "ssgi.surface", .format = F::Rgba32F},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -525,33 +576,44 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     const int divisor = ssgiDivisor(settings.ssgi.resolution);
     // The far field's own pass needs far samples to march and the blur to upsample it.
     const bool farPass = method.marchesBeyondRadius && settings.ssgi.skyStepCount > 0 && settings.ssgi.blur;
-    plan.ssgi = SsgiStep{&method, method.accumulatesFrames ? settings.ssgi.frames : 1, divisor, settings.ssgi.blur,
-                         farPass ? std::max(divisor, ssgiDivisor(settings.ssgi.farResolution)) : divisor};
+    plan.ssgi =
+        SsgiStep{.method = &method,
+                 .frames = method.accumulatesFrames ? settings.ssgi.frames : 1,
+                 .downsample = divisor,
+                 .blur = settings.ssgi.blur,
+                 .farDownsample = farPass ? std::max(divisor, ssgiDivisor(settings.ssgi.farResolution)) : divisor};
     if (method.marchesBeyondRadius) plan.ssgi->virtualLights = settings.ssgi.virtualLightCount;
   }
   if (skips.runs(Work::Direct))
-    plan.direct = DirectLightVariant{skips.runs(Work::Emissive), plan.shadows && scene.planarShadowCasters > 0,
-                                     plan.shadows && scene.cubeShadowCasters > 0,
-                                     plan.ssgi && method.readsDirectDiffuse, plan.gbuffer.lobes};
+    plan.direct = DirectLightVariant{.emissive = skips.runs(Work::Emissive),
+                                     .planarShadows = plan.shadows && scene.planarShadowCasters > 0,
+                                     .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
+                                     .diffuseTarget = plan.ssgi && method.readsDirectDiffuse,
+                                     .lobes = plan.gbuffer.lobes};
   plan.skyTables = skips.runs(Work::Sky) && !scene.environment;
   plan.environmentTables = skips.runs(Work::Sky) && scene.environment;
   if (skips.runs(Work::Composite))
-    plan.composite =
-        CompositeVariant{plan.ssgi.has_value(), skips.runs(Work::Sky), plan.environmentTables, plan.gbuffer.lobes};
+    plan.composite = CompositeVariant{.ssgi = plan.ssgi.has_value(),
+                                      .sky = skips.runs(Work::Sky),
+                                      .environment = plan.environmentTables,
+                                      .lobes = plan.gbuffer.lobes};
   // Transmissive surfaces refract the composite's lit image and are lit as
   // blended ones are; they wait for it only when it is drawn.
   if (scene.transmission && skips.runs(Work::Transmission)) {
-    plan.transmission =
-        TransmissionVariant{plan.shadows && scene.planarShadowCasters > 0, plan.shadows && scene.cubeShadowCasters > 0,
-                            skips.runs(Work::Sky), plan.environmentTables};
+    plan.transmission = TransmissionVariant{.planarShadows = plan.shadows && scene.planarShadowCasters > 0,
+                                            .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
+                                            .sky = skips.runs(Work::Sky),
+                                            .environment = plan.environmentTables};
     plan.gbuffer.deferTransmissive = true;
   }
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))
-    plan.blend =
-        BlendVariant{plan.shadows && scene.planarShadowCasters > 0, plan.shadows && scene.cubeShadowCasters > 0,
-                     skips.runs(Work::Sky), plan.environmentTables, scene.lobes};
+    plan.blend = BlendVariant{.planarShadows = plan.shadows && scene.planarShadowCasters > 0,
+                              .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
+                              .sky = skips.runs(Work::Sky),
+                              .environment = plan.environmentTables,
+                              .lobes = scene.lobes};
   plan.passes = declareFullscreenPasses(plan, fullscreenPassRows());
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "gl/gpu_format.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/scene.hpp"
 #include "headlight/settings.hpp"
@@ -90,15 +91,6 @@ std::string_view passFormName(PassForm form);  // "fragment", "compute"
 
 // ---- Attachments -------------------------------------------------------------
 
-// How the GPU stores an attachment (lib/gl/target_formats.hpp maps it to GL).
-enum class GpuFormat {
-  Rgba32F,      // float32: position, where half's 11 bits are too few far from the origin
-  Rgba16F,      // half: normals and HDR radiance
-  Srgb8Alpha8,  // 8-bit sRGB: albedo, like the textures it comes from
-  Rgba8,        // 8-bit: material factors, like the textures they come from
-  Depth32F,     // depth, read back as view depth
-};
-
 // Every texture a frame may draw into. The frame's textures are an array
 // indexed by this (lib/renderer.cpp).
 enum class Attachment {
@@ -153,7 +145,7 @@ struct AttachmentRow {
   int gbufferLocation = -1;
   // An optional G-buffer attachment's name in gbuffer.frag: the plan defines
   // HAS_<gbufferDefine> and <gbufferDefine>_LOCATION (its location).
-  std::string_view gbufferDefine;
+  std::string_view gbufferDefine{};
   AttachmentScale scale = AttachmentScale::Image;
   // The frame target it holds (several rows: channels 4k..4k+3 in the k-th);
   // null for internal attachments.
@@ -184,13 +176,13 @@ struct GBufferVariant {
 };
 
 struct DirectLightVariant {
-  bool emissive, planarShadows, cubeShadows, diffuseTarget;
+  bool emissive = false, planarShadows = false, cubeShadows = false, diffuseTarget = false;
   std::uint32_t lobes = 0;  // the G-buffer's lobes (GBufferVariant::lobes)
   auto operator<=>(const DirectLightVariant&) const = default;
 };
 
 struct CompositeVariant {
-  bool ssgi, sky;            // sky: the ambient term is drawn (from the sky's or the environment's tables)
+  bool ssgi = false, sky = false;  // sky: the ambient term is drawn (from the sky's or the environment's tables)
   bool environment = false;  // the ambient and the background come from the environment map's tables
   std::uint32_t lobes = 0;   // the G-buffer's lobes (GBufferVariant::lobes)
   auto operator<=>(const CompositeVariant&) const = default;
@@ -199,7 +191,8 @@ struct CompositeVariant {
 // The forward pass of alphaMode BLEND surfaces over lit (lib/passes/blend.hpp):
 // lit by the lights, shadows and sky the composite uses.
 struct BlendVariant {
-  bool planarShadows, cubeShadows, sky, environment;  // sky and environment as the composite's
+  bool planarShadows = false, cubeShadows = false, sky = false,
+       environment = false;  // sky, environment: the composite's
   std::uint32_t lobes = 0;  // the scene's lobes (a blended material's own data; no G-buffer read)
   auto operator<=>(const BlendVariant&) const = default;
 };
@@ -208,7 +201,7 @@ struct BlendVariant {
 // (lib/passes/transmission.hpp): lit by the lights, shadows and sky the
 // composite uses, refracting the opaque lit image.
 struct TransmissionVariant {
-  bool planarShadows, cubeShadows, sky, environment;  // as BlendVariant's
+  bool planarShadows = false, cubeShadows = false, sky = false, environment = false;  // as BlendVariant's
   auto operator<=>(const TransmissionVariant&) const = default;
 };
 

@@ -4,7 +4,7 @@
 // attachment has, without GL; this maps it for allocation.
 #include <glad/gl.h>
 
-#include "frame/frame_plan.hpp"
+#include "gl/gpu_format.hpp"
 
 namespace headlight::gl {
 

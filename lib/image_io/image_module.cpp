@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
-#include "output/folder_lock.hpp"
+#include "io/folder_lock.hpp"
 
 namespace headlight::detail {
 namespace {

@@ -14,9 +14,9 @@
 
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
-#include "output/atomic_file.hpp"
-#include "output/bounded_read.hpp"
-#include "output/fingerprint.hpp"
+#include "io/atomic_file.hpp"
+#include "io/bounded_read.hpp"
+#include "io/fingerprint.hpp"
 
 namespace headlight {
 namespace {

@@ -25,12 +25,12 @@
 #include <vector>
 
 #include "frame/frame_plan.hpp"
+#include "gl/gpu_scene.hpp"
 #include "gl/objects.hpp"
 #include "headlight/camera.hpp"
 #include "passes/environment.hpp"
 #include "passes/program_cache.hpp"
 #include "passes/shadow.hpp"
-#include "scene/gpu_scene.hpp"
 
 namespace headlight {
 

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "frame/frame_plan.hpp"
+#include "gl/gpu_scene.hpp"
 #include "gl/objects.hpp"
 #include "passes/program_cache.hpp"
-#include "scene/gpu_scene.hpp"
 
 namespace headlight {
 

@@ -9,10 +9,10 @@
 #include <span>
 #include <vector>
 
+#include "gl/gpu_scene.hpp"
 #include "gl/objects.hpp"
 #include "headlight/camera.hpp"
 #include "passes/program_cache.hpp"
-#include "scene/gpu_scene.hpp"
 #include "shared_layout.h"
 
 namespace headlight {

@@ -30,12 +30,12 @@
 #include <cstdint>
 
 #include "frame/frame_plan.hpp"
+#include "gl/gpu_scene.hpp"
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
 #include "passes/gbuffer.hpp"
 #include "passes/program_cache.hpp"
 #include "passes/shadow.hpp"
-#include "scene/gpu_scene.hpp"
 
 namespace headlight {
 

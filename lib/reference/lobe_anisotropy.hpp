@@ -2,7 +2,7 @@
 // CPU port of glsl/lobe_anisotropy.glsl (KHR_materials_anisotropy's
 // stretched GGX lobe), plus what the Embree reference needs beyond it:
 // half vectors drawn from the stretched distribution. Same names, clamps and
-// constants as the GLSL, held to it by tests/lobe_parity_tests.cpp.
+// constants as the GLSL, held to it by tests/sheen_anisotropy_parity_tests.cpp.
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>

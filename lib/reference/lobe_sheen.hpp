@@ -1,7 +1,7 @@
 #pragma once
 // CPU port of glsl/lobe_sheen.glsl (KHR_materials_sheen's Charlie lobe and
 // its albedo scaling): same names, clamps and constants, held to the GLSL by
-// tests/lobe_parity_tests.cpp. Pure functions of their inputs.
+// tests/sheen_anisotropy_parity_tests.cpp. Pure functions of their inputs.
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>

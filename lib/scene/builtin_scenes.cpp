@@ -10,10 +10,10 @@
 #include <string>
 
 #include "headlight/error.hpp"
-#include "output/fingerprint.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
+#include "io/fingerprint.hpp"
 #include "scene/builtin_layouts.hpp"
 
 namespace headlight {

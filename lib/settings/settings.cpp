@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
-#include "output/bounded_read.hpp"
+#include "io/bounded_read.hpp"
 #include "settings/option_binding.hpp"
 #include "settings/setting_fields.hpp"
 #include "shared_layout.h"

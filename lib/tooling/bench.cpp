@@ -13,7 +13,7 @@
 #include "diff/flip.hpp"
 #include "headlight/error.hpp"
 #include "headlight/settings.hpp"
-#include "output/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 namespace headlight {
 namespace {

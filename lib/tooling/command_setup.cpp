@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "headlight/scene_loader.hpp"
-#include "output/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 namespace headlight {
 

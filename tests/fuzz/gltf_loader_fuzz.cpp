@@ -39,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const headlight::LimitError&) {
   }
   // Posed by its first animation too, between keyframes and past the last
-  // (gltf_animation_pose.cpp's sampling reads the keyframes the time needs).
+  // (gltf/animation_pose.cpp's sampling reads the keyframes the time needs).
   headlight::SceneLoadOptions posed;
   posed.animationTime = 0.37f;
   for (int pass = 0; pass < 2; ++pass, posed.animationTime = 1e6f) {

@@ -99,7 +99,7 @@ enum class AlphaMode { Opaque, Mask, Blend };
 // The ratified KHR_materials_* extensions, with the specification's property
 // names and defaults. A Material holds one only when its glTF material has
 // the extension; a texture's channel is noted where the specification picks
-// one. Loading checks the ranges (lib/scene/gltf_material_extensions.cpp).
+// one. Loading checks the ranges (lib/gltf/material_extensions.cpp).
 struct MaterialSpecular {  // KHR_materials_specular
   float specularFactor = 1.0f;              // 0..1: the dielectric specular weight
   TextureRef specularTexture;               // A

@@ -1,0 +1,114 @@
+// The difference images headlight diff --out writes: diff.exr (the raw
+// differences and the error channel), its heatmap, and for the Flip metric
+// the two images as FLIP saw them.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "color/srgb.hpp"
+#include "diff/flip.hpp"
+#include "headlight/diff.hpp"
+#include "headlight/error.hpp"
+#include "image_io/atomic_image.hpp"
+#include "image_io/image_files.hpp"
+
+namespace headlight {
+namespace {
+
+namespace fs = std::filesystem;
+using diffio::checkOk;
+using diffio::loadImage;
+using diffio::rgbChannels;
+
+// An image as the Flip metric saw it, as an 8-bit sRGB PNG at `path`: an
+// integer (display) image as it is, a float one at the middle of the
+// HDR-FLIP exposures, ACES tone mapped.
+void writeFlipView(const fs::path& source, const DiffResult& result, const fs::path& path) {
+  std::string problem;
+  bool integer = false;
+  const std::optional<OIIO::ImageBuf> image = loadImage(source, problem, integer);
+  if (!image) throw IoError(path.string() + ": cannot show " + problem);
+  const std::vector<int> rgb = rgbChannels(image->spec().channelnames);
+  if (rgb.empty()) throw IoError(path.string() + ": " + source.string() + " has no R, G, B channels to show");
+  const OIIO::ImageBuf picked = OIIO::ImageBufAlgo::channels(*image, 3, rgb);
+  checkOk(picked, "channels");
+  std::vector<float> pixels(picked.roi().npixels() * 3);
+  picked.get_pixels(picked.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  const bool hdr = !result.flip || result.flip->hdr;
+  const float scale =
+      hdr && result.flip ? float(std::exp2(0.5 * (result.flip->startExposure + result.flip->stopExposure))) : 1.0f;
+  for (float& v : pixels) {
+    const float shown = hdr ? linearToSrgb(std::clamp(flip::acesToneMap(std::max(v, 0.0f) * scale), 0.0f, 1.0f)) : v;
+    v = std::isfinite(shown) ? std::clamp(shown, 0.0f, 1.0f) : 0.0f;
+  }
+  OIIO::ImageSpec spec(picked.spec().width, picked.spec().height, 3, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B"};
+  OIIO::ImageBuf view(spec);
+  view.set_pixels(view.roi(), OIIO::TypeDesc::FLOAT, pixels.data());
+  OIIO::ImageSpec pngSpec = spec;
+  pngSpec.set_format(OIIO::TypeDesc::UINT8);
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");
+  detail::writeImageAtomically(path, view, pngSpec, "png");
+}
+
+}  // namespace
+
+std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& exrPath) {
+  namespace iba = OIIO::ImageBufAlgo;
+  const ImageF& diff = result.difference;
+  if (diff.empty())
+    throw Error("writeDiffImages: " + exrPath.string() + ": the comparison ended in '" +
+                std::string(statusName(result.status)) + "', so there is no difference image");
+  OIIO::ImageSpec spec(diff.width, diff.height, diff.channelCount(), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = diff.channels;
+  OIIO::ImageBuf buffer(spec);
+  buffer.set_pixels(buffer.roi(), OIIO::TypeDesc::FLOAT, diff.pixels.data());
+  OIIO::ImageSpec exrSpec = spec;
+  exrSpec.attribute("compression", "zip");
+  exrSpec.attribute("headlight:diff:a", result.a.string());
+  exrSpec.attribute("headlight:diff:b", result.b.string());
+  exrSpec.attribute("headlight:diff:target", result.target);
+  exrSpec.attribute("headlight:diff:metric", std::string(metricName(result.metric)));
+  exrSpec.attribute("headlight:diff:fail", float(result.thresholds.fail));
+  exrSpec.attribute("headlight:diff:status", std::string(statusName(result.status)));
+
+  // Heatmap: error * (0.5 / fail), so the fail threshold sits mid-ramp and
+  // twice it saturates; +inf (NaN/Inf inputs) saturates too.
+  // FLIP maps are shown as the papers show them: 0..1 through magma.
+  const bool flipMap = result.metric == DiffMetric::Flip;
+  const int errorChannel = diff.channelCount() - 1;
+  double fullScale = flipMap ? 1.0 : 2.0 * result.thresholds.fail;
+  if (!(fullScale > 0) || !std::isfinite(fullScale)) {
+    fullScale = 0;
+    for (std::size_t p = std::size_t(errorChannel); p < diff.pixels.size(); p += diff.channels.size())
+      if (std::isfinite(diff.pixels[p])) fullScale = std::max(fullScale, double(diff.pixels[p]));
+    if (fullScale == 0) fullScale = 1;
+  }
+  const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
+  const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / fullScale)), 0.0f, 1.0f);
+  OIIO::ImageBuf heat = iba::color_map(scaled, 0, flipMap ? "magma" : "inferno");
+  if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
+  OIIO::ImageSpec pngSpec = heat.spec();
+  pngSpec.set_format(OIIO::TypeDesc::UINT8);
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");  // the colour map's values are display values
+
+  fs::path pngPath = exrPath;
+  pngPath.replace_extension(".png");
+  detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
+  detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
+  std::vector<fs::path> written{exrPath, pngPath};
+  if (flipMap) {
+    // What FLIP compared, for a report to show beside the map.
+    for (const auto& [source, suffix] : {std::pair{result.a, "_a.png"}, std::pair{result.b, "_b.png"}}) {
+      fs::path path = exrPath;
+      path.replace_filename(exrPath.stem().string() + suffix);
+      writeFlipView(source, result, path);
+      written.push_back(path);
+    }
+  }
+  return written;
+}
+
+}  // namespace headlight

@@ -1,0 +1,32 @@
+#include "io/bounded_json.hpp"
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "io/bounded_read.hpp"
+
+namespace headlight::detail {
+
+nlohmann::ordered_json parseBoundedJson(std::string_view text) {
+  using json = nlohmann::ordered_json;
+  std::vector<std::set<std::string>> keysByObject;  // the objects open at this point, innermost last
+  const json::parser_callback_t depthCheck = [&keysByObject](int depth, json::parse_event_t event, json& parsed) {
+    if ((event == json::parse_event_t::object_start || event == json::parse_event_t::array_start) &&
+        depth >= kMaxJsonDepth)
+      throw JsonError("JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels (the limit for scenes too)");
+    if (event == json::parse_event_t::object_start) keysByObject.emplace_back();
+    if (event == json::parse_event_t::object_end && !keysByObject.empty()) keysByObject.pop_back();
+    if (event == json::parse_event_t::key && !keysByObject.empty() && parsed.is_string() &&
+        !keysByObject.back().insert(parsed.get<std::string>()).second)
+      throw JsonError("the key \"" + excerpt(parsed.get<std::string>()) + "\" appears twice in one object");
+    return true;
+  };
+  try {
+    return json::parse(text.begin(), text.end(), depthCheck);
+  } catch (const json::exception& e) {
+    throw JsonError("not valid JSON: " + excerpt(e.what(), 160));
+  }
+}
+
+}  // namespace headlight::detail

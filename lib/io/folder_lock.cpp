@@ -1,0 +1,177 @@
+// The output folder's advisory lock (io/folder_lock.hpp).
+#include "io/folder_lock.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "headlight/error.hpp"
+
+namespace headlight::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// This process's folder locks: the flocked descriptor and how many
+// OutputFolderLock objects share it.
+struct HeldFolder {
+  int fd = -1;
+  int holders = 0;
+};
+std::mutex heldMutex;
+std::map<std::string, HeldFolder> held;
+
+std::string folderKey(int fd, const fs::path& folder) {
+  struct stat status {};
+  if (::fstat(fd, &status) != 0)
+    throw IoError(folder.string() + ": cannot stat the output folder: " + std::strerror(errno));
+  return std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino);
+}
+
+// Takes the flock on `fd`, waiting up to `waitSeconds` where `wait`; closes
+// it and throws if it cannot.
+void flockOrThrow(int fd, const fs::path& folder, bool wait, double waitSeconds,
+                  const std::function<void(const std::string&)>& waiting) {
+  const auto start = std::chrono::steady_clock::now();
+  bool told = false;
+  while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (errno == EINTR) continue;
+    const int savedErrno = errno;
+    if (savedErrno != EWOULDBLOCK) {
+      ::close(fd);
+      throw IoError(folder.string() + ": cannot lock the output folder: " + std::strerror(savedErrno));
+    }
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!wait || waited >= waitSeconds) {
+      const std::string holder = folderLockHolder(fd);
+      ::close(fd);
+      if (!wait)
+        throw IoError(folder.string() + ": " + holder +
+                          " holds this folder's lock (a render writing into it takes it); wait for it, or choose "
+                          "another output folder",
+                      {"wait"});
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%g", waitSeconds);
+      throw IoError(folder.string() + ": " + holder + " still holds the folder's lock after " + seconds +
+                        " s of waiting; raise wait-timeout, or choose another output folder",
+                    {"wait-timeout"});
+    }
+    if (!told && waiting) waiting(folderLockHolder(fd));
+    told = true;
+    // flock cannot time out: polled, at most 0.1 s late.
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
+
+std::string readFirstLine(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+}  // namespace
+
+std::string folderLockHolder(int fd) {
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) return "another process";
+  // /proc/locks: "1: FLOCK  ADVISORY  WRITE 1234 08:01:5678 0 EOF", the device as the
+  // kernel's major:minor in hex; a waiter's line has "->" after the number. A
+  // file system stacked on another (overlayfs) may list the lower device: the
+  // inode alone then decides, if one FLOCK lists it.
+  char wanted[64];
+  std::snprintf(wanted, sizeof wanted, "%02x:%02x:%lu", unsigned(major(status.st_dev)), unsigned(minor(status.st_dev)),
+                static_cast<unsigned long>(status.st_ino));
+  // Built by appending: GCC 12 warns falsely (-Wrestrict, bug 105329) on ":" + text.
+  std::string inodeSuffix(1, ':');
+  inodeSuffix.append(std::to_string(status.st_ino));
+  std::ifstream locks("/proc/locks");
+  std::string line, exact, byInode;
+  int inodeMatches = 0;
+  while (std::getline(locks, line)) {
+    std::istringstream fields(line);
+    std::string number, type, advisory, mode, pid, where;
+    fields >> number >> type >> advisory >> mode >> pid >> where;
+    if (type != "FLOCK") continue;
+    if (where == wanted) exact = pid;
+    if (where.size() > inodeSuffix.size() && where.ends_with(inodeSuffix)) {
+      byInode = pid;
+      ++inodeMatches;
+    }
+  }
+  const std::string pid = !exact.empty() ? exact : inodeMatches == 1 ? byInode : "";
+  if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) return "another process";
+  const std::string name = readFirstLine(fs::path("/proc") / pid / "comm");
+  return "process " + pid + (name.empty() ? "" : " (" + name + ")");
+}
+
+OutputFolderLock::OutputFolderLock(const fs::path& folder, bool wait, double waitSeconds,
+                                   const std::function<void(const std::string& holder)>& waiting)
+    : folder_(folder) {
+  std::error_code error;
+  created_ = fs::create_directories(folder, error);
+  if (error) throw IoError(folder.string() + ": cannot create the output folder: " + error.message());
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw IoError(folder.string() + ": cannot open the output folder to lock it: " + std::strerror(errno));
+  std::string key;
+  try {
+    key = folderKey(fd, folder);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  {
+    const std::lock_guard guard(heldMutex);
+    if (HeldFolder& entry = held[key]; entry.holders > 0) {
+      ++entry.holders;  // this process holds it already: share it
+      ::close(fd);
+      key_ = key;
+      return;
+    }
+  }
+  // Not under the mutex: waiting for another process must not stop this
+  // one's other folders.
+  try {
+    flockOrThrow(fd, folder, wait, waitSeconds, waiting);
+  } catch (...) {
+    const std::lock_guard guard(heldMutex);
+    if (held[key].holders == 0) held.erase(key);
+    throw;
+  }
+  const std::lock_guard guard(heldMutex);
+  HeldFolder& entry = held[key];
+  if (entry.holders > 0) {
+    ::close(fd);  // another thread of this process took it meanwhile: share theirs
+  } else {
+    entry.fd = fd;
+  }
+  ++entry.holders;
+  key_ = key;
+}
+
+OutputFolderLock::~OutputFolderLock() {
+  const std::lock_guard guard(heldMutex);
+  auto found = held.find(key_);
+  if (found == held.end() || --found->second.holders > 0) return;
+  if (created_) {
+    std::error_code ignored;
+    if (fs::is_empty(folder_, ignored) && !ignored) fs::remove(folder_, ignored);
+  }
+  ::close(found->second.fd);  // closing drops the flock
+  held.erase(found);
+}
+
+}  // namespace headlight::detail
