@@ -30,6 +30,7 @@
 #include "io/bounded_read.hpp"
 #include "io/fingerprint.hpp"
 #include "output/frame_set.hpp"
+#include "scene_catalogue.hpp"
 #include "support/gl.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
@@ -246,6 +247,77 @@ TEST_CASE("job hash: changes with the settings, camera and targets, not with the
   other.animationTime = 2.0f;
   CHECK(atOne != animated);
   CHECK(jobHash(other, {}) != atOne);
+}
+
+TEST_CASE("the scene catalogue: each scene loaded once, each file fingerprinted once, no copy on a scene's last run") {
+  int loads = 0, fileReads = 0;
+  SceneCatalogue catalogue(
+      [&](const Job& job) {
+        ++loads;
+        if (job.scene == "broken.glb") throw SceneError("broken.glb: not glTF");
+        Scene scene;
+        scene.source = job.scene;
+        scene.sourceHash = "hash-of-" + job.scene;  // what the loader computes from the file's bytes
+        scene.images.push_back({"texture", 256, 256, std::vector<std::uint8_t>(256 * 256 * 4, 7)});
+        return scene;
+      },
+      [&](const std::string& path) {
+        ++fileReads;
+        return "hash-of-" + path;
+      });
+  auto jobOf = [](const std::string& scene, int view) {
+    Job job;
+    job.scene = scene;
+    job.outDir = "out/" + scene + "/" + std::to_string(view);
+    job.camera.kind = JobCamera::Kind::Orbit;
+    job.camera.orbitIndex = view;
+    job.camera.orbitViews = 100;
+    return job;
+  };
+  std::vector<Job> views;
+  for (int view = 0; view < 100; ++view) views.push_back(jobOf("duck.glb", view));
+  std::vector<const Job*> order;
+  for (const Job& job : views) order.push_back(&job);
+  catalogue.countRuns(order);
+
+  // 100 views of one file: one load, and every job's hash from the loaded
+  // scene's fingerprint, the same hash the file's own bytes give.
+  const Scene taken = catalogue.checkOut(views[0]);
+  CHECK(taken.images.at(0).rgba.size() == 256u * 256u * 4u);
+  for (const Job& job : views) {
+    CHECK(catalogue.jobHash(job, {}, {}) ==
+          jobHash(job, {}, {}, [](const std::string& path) { return "hash-of-" + path; }));
+  }
+  CHECK(loads == 1);
+  CHECK(fileReads == 0);
+
+  // --resume hashes before anything loads: the file once, for every job.
+  SceneCatalogue resumed([&](const Job&) -> Scene { throw Error("not loaded"); },
+                         [&](const std::string& path) {
+                           ++fileReads;
+                           return "hash-of-" + path;
+                         });
+  for (const Job& job : views) (void)resumed.jobHash(job, {}, {});
+  CHECK(fileReads == 1);
+
+  // Runs A, B, A: the first run of A gets a copy (A is loaded once for both
+  // runs), the last runs take their scenes, after which A is loaded again.
+  const std::vector<Job> runs{jobOf("a.glb", 0), jobOf("b.glb", 0), jobOf("a.glb", 1)};
+  loads = 0;
+  catalogue.countRuns({&runs[0], &runs[1], &runs[2]});
+  (void)catalogue.checkOut(runs[0]);
+  (void)catalogue.checkOut(runs[1]);
+  (void)catalogue.checkOut(runs[2]);
+  CHECK(loads == 2);
+  (void)catalogue.scene(runs[2]);
+  CHECK(loads == 3);
+
+  // A file that failed to load fails every job of it, loaded once.
+  const Job broken = jobOf("broken.glb", 0);
+  loads = 0;
+  CHECK_THROWS_AS((void)catalogue.scene(broken), SceneError);
+  CHECK_THROWS_WITH_AS((void)catalogue.scene(broken), "broken.glb: not glTF", SceneError);
+  CHECK(loads == 1);
 }
 
 TEST_CASE("frame sets: frame.json lists each file; a changed or missing file, or a pending write, is incomplete") {

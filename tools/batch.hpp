@@ -1,9 +1,8 @@
 #pragma once
-// `headlight render`: one scene straight through (runSingleRender), or a
-// batch (runRenderBatch): jobs (job_file.hpp) from the command line and job
+// `headlight render`: jobs (job_file.hpp) from the command line and job
 // files, sharded, resumable, rendered by one context and one renderer,
 // written on a worker thread while the next view renders. Every job holds
-// its output folder's lock (output/folder_lock.hpp) from before its render
+// its output folder's lock (io/folder_lock.hpp) from before its render
 // until its set is written. docs/BATCH.md is the user's guide.
 #include <string>
 #include <vector>
@@ -24,13 +23,10 @@ bool jobAlreadyDone(const Job& job, const OutputOptions& output, const std::stri
 // Headlight set there listed (a user's own file, which writing would replace).
 std::string outputFolderRefusal(const Job& job, bool force);
 
-// True when the command is one render (one scene, no views, cameras or job
-// files): runSingleRender, whose errors are the command's (exit 1, or 2 for
-// bad settings), serves it.
-bool isSingleRender(const RenderCommand& command);
-int runSingleRender(const RenderCommand& command);
-
-// Runs `render` as a batch; returns the exit code (0, or 1 when any job failed).
-int runRenderBatch(const RenderCommand& command);
+// `render`: plan, run, report (batch.cpp). A single render (one scene, no
+// views, cameras, job files or shards) is a batch of one whose errors are
+// the command's (exit 1, or 2 for bad settings); a batch returns 0, or 1
+// when any job failed.
+int runRender(const RenderCommand& command);
 
 }  // namespace headlight::cli

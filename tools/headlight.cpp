@@ -1,7 +1,8 @@
 // headlight: glTF (or a built-in scene) in, every G-buffer target, the SSGI
 // output and the lit image out as EXR. The whole data flow of `render`:
-//   parse flags -> jobs (tools/batch.cpp) -> Context -> loadScene ->
-//   Renderer::setScene -> Renderer::render -> writeFrame -> one summary line per file.
+//   parse flags -> plan the jobs (tools/batch.cpp) -> run: loadScene ->
+//   Context -> Renderer::setScene -> Renderer::submit/collect -> writeFrame
+//   -> report: one summary line per file.
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -18,7 +19,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
-#include "output/folder_lock.hpp"
+#include "io/folder_lock.hpp"
 #include "progress.hpp"
 #include "tune_command.hpp"
 
@@ -59,7 +60,7 @@ int runRender(const std::vector<std::string>& args) {
     std::cout << cli::renderHelp();
     return kExitOk;
   }
-  return cli::isSingleRender(command) ? cli::runSingleRender(command) : cli::runRenderBatch(command);
+  return cli::runRender(command);
 }
 
 // `reference`: the G-buffer as `render` would draw it, then Embree traces
