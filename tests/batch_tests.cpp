@@ -592,6 +592,31 @@ TEST_CASE("two jobs writing one folder are refused before anything renders, nami
   CHECK_THROWS_WITH_AS(checkDistinctOutDirs(jobs), doctest::Contains("jobs.jsonl:1 and jobs.jsonl:3 both write into"),
                        SettingsError);
   CHECK_NOTHROW(checkDistinctOutDirs({jobs[0], jobs[1]}));
+
+  // A folder and a symlink to it, or the folder through /proc/self/cwd, are
+  // one folder (issue 32: "2 rendered", exit 0, and the first set was lost).
+  test::TempFolder folder("distinct-outs");
+  fs::create_directories(folder.path() / "real");
+  fs::create_directory_symlink(folder.path() / "real", folder.path() / "link");
+  auto jobInto = [](const fs::path& out, const char* origin) {
+    Job job;
+    job.scene = "builtin:cornell";
+    job.origin = origin;
+    job.outDir = out.string();
+    return job;
+  };
+  CHECK_THROWS_WITH_AS(checkDistinctOutDirs({jobInto(folder.path() / "real", "jobs.jsonl:1"),
+                                             jobInto(folder.path() / "link", "jobs.jsonl:2")}),
+                       doctest::Contains("jobs.jsonl:1 and jobs.jsonl:2 both write into"), SettingsError);
+  // Not yet made: the link in the part that exists is followed all the same.
+  CHECK_THROWS_AS(checkDistinctOutDirs(
+                      {jobInto(folder.path() / "real" / "new", "a"), jobInto(folder.path() / "link" / "new", "b")}),
+                  SettingsError);
+  const fs::path before = fs::current_path();
+  fs::current_path(folder.path());
+  CHECK_THROWS_AS(checkDistinctOutDirs({jobInto("real", "a"), jobInto("/proc/self/cwd/real", "b")}), SettingsError);
+  CHECK_NOTHROW(checkDistinctOutDirs({jobInto("real", "a"), jobInto("link/../other", "b")}));
+  fs::current_path(before);
 }
 
 TEST_CASE("frame sets: an edited file list (an entry removed, the list emptied) is incomplete") {

@@ -3,6 +3,8 @@
 // hashes. Pure: no context, no rendering, no writing.
 #include "job_file.hpp"
 
+#include <sys/stat.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -329,8 +331,11 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
 
 fs::path normalizedOutDir(const std::string& outDir) {
   std::error_code error;
+  // Links in the part that exists are followed: a folder, a symlink to it
+  // and /proc/self/cwd/... are one folder.
   fs::path path = fs::absolute(fs::path(outDir), error);
   if (error) path = outDir;
+  if (fs::path resolved = fs::weakly_canonical(path, error); !error) path = resolved;
   path = path.lexically_normal();
   // "a/b/" normalises to "a/b/" (an empty last element): drop it.
   if (!path.has_filename() && path.has_parent_path() && path != path.root_path()) path = path.parent_path();
@@ -339,13 +344,24 @@ fs::path normalizedOutDir(const std::string& outDir) {
 
 void checkDistinctOutDirs(const std::vector<Job>& jobs) {
   std::map<fs::path, const Job*> seen;
+  // Folders that exist, by identity: two paths that no link resolution
+  // joins (a bind mount) are still one folder.
+  std::map<std::pair<dev_t, ino_t>, const Job*> seenFolders;
+  auto clash = [](const Job& first, const Job& second, const fs::path& folder) {
+    return SettingsError(first.origin + " and " + second.origin + " both write into '" + folder.string() + "' (out \"" +
+                         excerpt(first.outDir) + "\" and \"" + excerpt(second.outDir) +
+                         "\"): their files would mix; give each job its own folder");
+  };
   for (const Job& job : jobs) {
     if (!job.error.empty()) continue;
-    const auto [at, inserted] = seen.emplace(normalizedOutDir(job.outDir), &job);
-    if (!inserted)
-      throw SettingsError(at->second->origin + " and " + job.origin + " both write into '" + at->first.string() +
-                          "' (out \"" + excerpt(at->second->outDir) + "\" and \"" + excerpt(job.outDir) +
-                          "\"): their files would mix; give each job its own folder");
+    const fs::path folder = normalizedOutDir(job.outDir);
+    const auto [at, inserted] = seen.emplace(folder, &job);
+    if (!inserted) throw clash(*at->second, job, at->first);
+    struct stat info {};
+    if (::stat(folder.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+      const auto [same, firstTime] = seenFolders.emplace(std::pair{info.st_dev, info.st_ino}, &job);
+      if (!firstTime) throw clash(*same->second, job, folder);
+    }
   }
 }
 
