@@ -349,3 +349,61 @@ TEST_CASE("diff: lit is judged by HDR-FLIP, preview.png by LDR-FLIP, and --metri
   CHECK(diffImages(folder / "preview.png", folder / "b" / "preview.png").status == DiffStatus::Pass);
   fs::remove_all(folder);
 }
+
+TEST_CASE("diff: --out replaces only what an earlier diff wrote, never a compared folder (issue 32)" *
+          doctest::test_suite("diff")) {
+  const fs::path folder = test::freshFolder("diff_owned");
+  const fs::path a = folder / "a", b = folder / "b";
+  fs::create_directories(a);
+  fs::create_directories(b);
+  const TestImage lit = gradient(8, 8, {"A", "B", "G", "R"});
+  TestImage changed = lit;
+  changed.at(2, 2, 1) += 0.5f;
+  write(a / "lit.exr", lit);
+  write(b / "lit.exr", changed);
+  auto readText = [](const fs::path& path) {
+    std::ifstream file(path);
+    return std::string(std::istreambuf_iterator<char>(file), {});
+  };
+
+  // Folder mode: the compared folder itself is refused, even with --force.
+  for (const char* force : {"", "--force"}) {
+    std::vector<std::string> args{a.string(), b.string(), "--out", b.string()};
+    if (*force) args.push_back(force);
+    const Cli intoB = runCli(args);
+    CHECK(intoB.exitCode == 5);
+    CHECK(contains(intoB.err, "is the compared folder"));
+  }
+  CHECK_FALSE(fs::exists(b / "report.html"));
+
+  // A user's report.html in --out: refused, untouched; --force replaces it;
+  // the next diff there replaces its own files without asking.
+  const fs::path out = folder / "diffs";
+  fs::create_directories(out);
+  { std::ofstream(out / "report.html") << "<html>my notes</html>"; }
+  const Cli refused = runCli({a.string(), b.string(), "--out", out.string()});
+  CHECK(refused.exitCode == 5);
+  CHECK(contains(refused.err, (out / "report.html").string() + " exists and no earlier headlight diff report"));
+  CHECK(readText(out / "report.html") == "<html>my notes</html>");
+  CHECK(runCli({a.string(), b.string(), "--out", out.string(), "--force"}).exitCode != 5);
+  CHECK(contains(readText(out / "report.html"), "<title>headlight diff</title>"));
+  CHECK(fs::exists(out / "lit_diff.png"));
+  CHECK(runCli({a.string(), b.string(), "--out", out.string()}).exitCode != 5);
+
+  // File mode: a PNG of the user's beside --out's EXR likewise.
+  const fs::path exr = folder / "single" / "d.exr";
+  fs::create_directories(exr.parent_path());
+  { std::ofstream(folder / "single" / "d.png") << "not ours"; }
+  const std::vector<std::string> fileArgs{(a / "lit.exr").string(), (b / "lit.exr").string(), "--out", exr.string()};
+  const Cli besidePng = runCli(fileArgs);
+  CHECK(besidePng.exitCode == 5);
+  CHECK(contains(besidePng.err, "d.png exists"));
+  CHECK(readText(folder / "single" / "d.png") == "not ours");
+  CHECK_FALSE(fs::exists(exr));
+  std::vector<std::string> forced = fileArgs;
+  forced.push_back("--force");
+  CHECK(runCli(forced).exitCode != 5);
+  CHECK(fs::exists(exr));
+  CHECK(runCli(fileArgs).exitCode != 5);  // d.html is now a diff's report
+  fs::remove_all(folder);
+}

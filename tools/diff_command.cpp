@@ -40,6 +40,7 @@ struct DiffCommand {
   std::string out;  // file mode: diff.exr; folder mode: a folder
   bool json = false;
   bool quiet = false;
+  bool force = false;  // replace files in --out that no earlier headlight diff wrote
   bool help = false;
 };
 
@@ -138,6 +139,12 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
                        .minimum = 2,
                        .maximum = 100000},
                       [](C& c, const OptionValue& v) { c.options.maxFlipExposures = int(std::get<std::int64_t>(v)); }),
+      bindOption<C>(
+          {.name = "force",
+           .type = T::Switch,
+           .help = "let --out replace files that no earlier headlight diff wrote there (a report.html, "
+                   "a PNG of your own)"},
+          [](auto& c) -> auto& { return c.force; }),
       bindOption<C>(
           {.name = "json", .type = T::Switch, .help = "print one JSON object instead of the table"},
           [](auto& c) -> auto& { return c.json; }),
@@ -431,6 +438,44 @@ void writeHtmlReport(const fs::path& html, const std::vector<std::pair<const Dif
   written.push_back(html.string());
 }
 
+// ---- What --out may replace -------------------------------------------------------
+
+// The files one comparison's --out PATH.exr writes (writeDiffImages, and
+// the report beside it in file mode).
+std::vector<fs::path> comparisonFiles(const fs::path& exr) {
+  fs::path png = exr, a = exr, b = exr;
+  png.replace_extension(".png");
+  a.replace_filename(exr.stem().string() + "_a.png");
+  b.replace_filename(exr.stem().string() + "_b.png");
+  return {exr, png, a, b};
+}
+
+// True when `html` is a report an earlier headlight diff wrote (its title
+// says so; writeHtmlReport): the files beside it are that diff's.
+bool isDiffReport(const fs::path& html) {
+  std::error_code error;
+  if (!fs::is_regular_file(html, error)) return false;
+  std::ifstream file(html, std::ios::binary);
+  std::string head(512, '\0');
+  file.read(head.data(), std::streamsize(head.size()));
+  head.resize(std::size_t(file.gcount()));
+  return head.find("<title>headlight diff</title>") != std::string::npos;
+}
+
+// Refuses (a usage error naming the file) to replace a file that exists
+// where --out writes, unless an earlier headlight diff's report sits there
+// (the files are that diff's) or --force is given.
+void checkOutputsOurs(const std::vector<fs::path>& files, const fs::path& report, const DiffCommand& command) {
+  if (command.force || isDiffReport(report)) return;
+  for (const fs::path& file : files) {
+    std::error_code error;
+    if (fs::exists(fs::symlink_status(file, error)))
+      throw UsageError{"--out " + command.out + ": " + file.string() +
+                       " exists and no earlier headlight diff report there lists it; pass --force to replace it, "
+                       "or write the difference elsewhere"};
+  }
+}
+
 int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.out.empty() && fs::path(command.out).extension() != ".exr")
     throw UsageError{"--out: in file mode, expected a path ending in .exr (the heatmap goes beside it as .png), got '" +
@@ -445,6 +490,12 @@ int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
           throw UsageError{"--out " + command.out + ": would overwrite the input " + input + " (with " +
                            written.string() + "); write the difference elsewhere"};
       }
+  }
+  if (!command.out.empty()) {
+    const fs::path html = fs::path(command.out).replace_extension(".html");
+    std::vector<fs::path> files = comparisonFiles(command.out);
+    files.push_back(html);
+    checkOutputsOurs(files, html, command);
   }
   const DiffResult result = diffImages(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
@@ -475,6 +526,21 @@ int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err)
     throw UsageError{
         "--channels and --target apply to one file; in folder mode each target uses its own row "
         "(compare the files one by one instead)"};
+  if (!command.out.empty()) {
+    // Never into a compared folder: its files would be mixed with the diff's.
+    for (const std::string& input : command.paths) {
+      std::error_code error;
+      if (fs::equivalent(command.out, input, error))
+        throw UsageError{"--out " + command.out + ": is the compared folder " + input +
+                         "; write the difference elsewhere"};
+    }
+    const fs::path report = fs::path(command.out) / "report.html";
+    std::vector<fs::path> files{report};
+    for (const FrameTarget& target : frameTargets())
+      for (const fs::path& file : comparisonFiles(fs::path(command.out) / (std::string(target.name) + "_diff.exr")))
+        files.push_back(file);
+    checkOutputsOurs(files, report, command);
+  }
   const DirectoryDiff result = diffDirectories(command.paths[0], command.paths[1], command.options);
   std::vector<std::string> errors, written;
   if (!command.out.empty() && !result.targets.empty()) {
