@@ -306,3 +306,25 @@ TEST_CASE("MetalRoughSpheresNoTextures' anchor file adds one camera and one dire
 
 // ---- glTF files written by the tests ------------------------------------------
 
+TEST_CASE("a scene of no extent gets a finite fitted view: every vertex at one point, at the origin or far out") {
+  for (const glm::vec3 point : {glm::vec3(0.0f), glm::vec3(0.5f), glm::vec3(1e4f, -3e3f, 7.0f)}) {
+    CAPTURE(point.x);
+    headlight::Bounds bounds;
+    bounds.min = bounds.max = point;
+    const headlight::Camera camera = headlight::fitCamera(bounds, 4.0f / 3.0f);
+    const headlight::CameraView view = headlight::makeCameraView(camera, bounds, 32, 24);
+    bool finite = true;
+    for (int column = 0; column < 4; ++column)
+      for (int row = 0; row < 4; ++row)
+        finite = finite && std::isfinite(view.view[column][row]) && std::isfinite(view.projection[column][row]);
+    CHECK(finite);
+    CHECK(view.nearPlane > 0.0f);
+    CHECK(view.farPlane > view.nearPlane);
+    // The point projects inside the image, at a depth between the planes.
+    const glm::vec4 clip = view.projection * view.view * glm::vec4(point, 1.0f);
+    REQUIRE(clip.w > 0.0f);
+    CHECK(std::abs(clip.x / clip.w) <= 1.0f);
+    CHECK(std::abs(clip.y / clip.w) <= 1.0f);
+    CHECK(std::abs(clip.z / clip.w) <= 1.0f);
+  }
+}

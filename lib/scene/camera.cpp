@@ -15,8 +15,13 @@ Camera fitCamera(const Bounds& bounds, float aspectRatio, float yfovRadians, flo
   Camera camera;
   camera.name = "fitted";
   camera.yfov = yfovRadians;
-  const float radius = bounds.empty() ? 1.0f : std::max(bounds.radius(), 1e-30f);
   const glm::vec3 center = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+  // A scene of no extent (every vertex at one point) still gets an eye apart
+  // from it: a radius under float's spacing at the centre put the eye on the
+  // centre, and the view was NaN; under 1e-10 the projection's near x far
+  // underflows float.
+  const float spacingFloor = 1e-5f * std::max({std::abs(center.x), std::abs(center.y), std::abs(center.z)});
+  const float radius = bounds.empty() ? 1.0f : std::max({bounds.radius(), 1e-10f, spacingFloor});
   // The sphere fits the narrower of the two fields of view.
   const float halfFov = 0.5f * camera.yfov * std::min(1.0f, aspectRatio);
   const float distance = distanceScale * radius / std::sin(halfFov);
