@@ -3,6 +3,11 @@
 // reference's importance sampler.
 #include <doctest/doctest.h>
 
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <string>
 
@@ -176,4 +181,27 @@ TEST_CASE("loadEnvironmentMap refuses bad files, naming the file and the value")
 
   CHECK(messageOf(folder.path()).find("a folder") != std::string::npos);
   CHECK(messageOf(folder.path() / "missing.hdr").find("no such file") != std::string::npos);
+}
+
+TEST_CASE("a map whose header declares more than its data holds fails before the map's memory is taken (issue 32)") {
+  const TempFolder folder("environment-truncated");
+  // 16384 x 8192 declared in 52 bytes (1.7 GB as float): within the default
+  // max-memory, so refused only when its pixels run out, at the first band.
+  const auto huge = folder.write("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n");
+  CHECK_THROWS_WITH_AS(loadEnvironmentMap(huge), doctest::Contains("truncated"), SceneError);
+  // The CLI's whole peak (a child process: wait4's rusage), refusing it:
+  // it reached 1.7 GB when the map was allocated whole before reading.
+  const std::string out = (folder.path() / "out").string();
+  const char* const argv[] = {HEADLIGHT_EXE, "render",    "builtin:cornell", "--environment", huge.c_str(),
+                              "--out",       out.c_str(), "--quiet",         nullptr};
+  pid_t child = -1;
+  REQUIRE(posix_spawn(&child, HEADLIGHT_EXE, nullptr, nullptr, const_cast<char* const*>(argv), environ) == 0);
+  int status = 0;
+  rusage usage{};
+  REQUIRE(wait4(child, &status, 0, &usage) == child);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK_MESSAGE(usage.ru_maxrss < 1024 * 1024, "peak resident memory " << usage.ru_maxrss << " kB");
+  const auto small = writeEnvironmentMap(folder.path() / "small.exr", 8, 4, uniformRadiance);
+  CHECK(loadEnvironmentMap(small)->height == 4);  // and a whole map still loads
 }

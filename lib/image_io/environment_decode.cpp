@@ -39,6 +39,9 @@ std::string firstBadValue(const DecodedEnvironment& map) {
 
 }  // namespace
 
+// Rows read at a time (decodeEnvironment).
+constexpr int kBandRows = 64;
+
 std::string decodeEnvironment(const char* path, std::uint64_t maxBytes, int maxSide, DecodedEnvironment& map) {
   auto input = OIIO::ImageInput::open(path);
   if (!input) return "cannot be read by OpenImageIO: " + oneLine(OIIO::geterror());
@@ -56,15 +59,30 @@ std::string decodeEnvironment(const char* path, std::uint64_t maxBytes, int maxS
            ", more than max-memory allows (" + mebibytes(maxBytes) + "); raise max-memory";
   const int channels = std::min(spec.nchannels, 3);
   const std::size_t texels = std::size_t(width) * std::size_t(height);
-  std::vector<float> pixels(texels * std::size_t(channels));
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    return "is truncated or corrupt: OpenImageIO failed reading its pixels: " + oneLine(input->geterror());
+  // Scanline files are read in bands of rows, the map growing as they
+  // arrive: one whose header declares more than its data holds (a 52-byte
+  // .hdr declaring 16384x8192) fails at its first band, before the map's
+  // memory is taken (1.7 GB was). Tiled files are read whole.
+  const int bandRows = spec.tile_width > 0 ? height : std::min(height, kBandRows);
+  std::vector<float> band(std::size_t(width) * std::size_t(bandRows) * std::size_t(channels));
+  map.rgb.clear();
+  for (int y = 0; y < height; y += bandRows) {
+    const int rows = std::min(bandRows, height - y);
+    const bool read = spec.tile_width > 0 ? input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, band.data())
+                                          : input->read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, channels,
+                                                                  OIIO::TypeDesc::FLOAT, band.data());
+    if (!read) return "is truncated or corrupt: OpenImageIO failed reading its pixels: " + oneLine(input->geterror());
+    const std::size_t bandTexels = std::size_t(width) * std::size_t(rows);
+    const std::size_t start = map.rgb.size();
+    map.rgb.resize(start + bandTexels * 3);
+    for (std::size_t texel = 0; texel < bandTexels; ++texel)
+      for (int c = 0; c < 3; ++c)  // grey (and grey + alpha) spread to RGB
+        map.rgb[start + texel * 3 + std::size_t(c)] =
+            band[texel * std::size_t(channels) + std::size_t(channels < 3 ? 0 : c)];
+  }
+  if (map.rgb.size() != texels * 3) return "is truncated or corrupt: fewer rows than its header declares";
   map.width = width;
   map.height = height;
-  map.rgb.resize(texels * 3);
-  for (std::size_t texel = 0; texel < texels; ++texel)
-    for (int c = 0; c < 3; ++c)  // grey (and grey + alpha) spread to RGB
-      map.rgb[texel * 3 + std::size_t(c)] = pixels[texel * std::size_t(channels) + std::size_t(channels < 3 ? 0 : c)];
   return firstBadValue(map);
 }
 
