@@ -737,3 +737,17 @@ TEST_CASE("frame.json's camera projects every geometry pixel's position onto tha
   for (int row = 0; row < 3; ++row)
     CHECK(cameraToWorld[row][3].get<double>() == doctest::Approx(camera["position"][row].get<double>()).epsilon(1e-5));
 }
+
+TEST_CASE("a broken frame.json is named in words, not in nlohmann's tags (issue 32, unclear messages)") {
+  test::TempFolder folder("manifest-words");
+  auto reasonFor = [&](const std::string& manifest) {
+    std::ofstream(folder.path() / "frame.json") << manifest;
+    return checkFrameSet(folder.path()).problem;
+  };
+  const std::string truncated = reasonFor(R"({"version": 2, "files": [)");
+  CHECK(truncated.find("frame.json: not a headlight frame manifest: parse error at line 1") != std::string::npos);
+  CHECK(truncated.find("[json.exception") == std::string::npos);
+  const std::string noComplete = reasonFor(R"({"version": 2, "files": []})");
+  CHECK(noComplete.find("not a headlight frame manifest: no \"complete\" field") != std::string::npos);
+  CHECK(noComplete.find("[json.exception") == std::string::npos);
+}

@@ -317,7 +317,7 @@ void checkStructure(std::string_view text, const std::string& file) {
   try {
     root = json::parse(text.begin(), text.end());
   } catch (const json::exception& error) {
-    fail(file, std::string("is not valid JSON: ") + error.what());
+    fail(file, "is not valid JSON: " + detail::jsonErrorText(error));
   }
   StructureCheck(file).run(root);
 }

@@ -25,8 +25,18 @@ nlohmann::ordered_json parseBoundedJson(std::string_view text) {
   try {
     return json::parse(text.begin(), text.end(), depthCheck);
   } catch (const json::exception& e) {
-    throw JsonError("not valid JSON: " + excerpt(e.what(), 160));
+    throw JsonError("not valid JSON: " + excerpt(jsonErrorText(e), 160));
   }
+}
+
+std::string jsonErrorText(const nlohmann::json::exception& error) {
+  std::string text = error.what();
+  if (const std::size_t end = text.find("] "); text.rfind("[json.exception.", 0) == 0 && end != std::string::npos)
+    text.erase(0, end + 2);
+  constexpr std::string_view kKey = "key '", kNotFound = "' not found";
+  if (text.size() > kKey.size() + kNotFound.size() && text.rfind(kKey, 0) == 0 && text.ends_with(kNotFound))
+    text = "no \"" + text.substr(kKey.size(), text.size() - kKey.size() - kNotFound.size()) + "\" field";
+  return text;
 }
 
 }  // namespace headlight::detail

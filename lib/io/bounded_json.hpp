@@ -7,6 +7,7 @@
 // scan their text against the same depth before tinygltf, which recurses.
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace headlight::detail {
@@ -22,5 +23,10 @@ struct JsonError : std::runtime_error {
 };
 
 nlohmann::ordered_json parseBoundedJson(std::string_view text);
+
+// nlohmann-json's message for a person: without its "[json.exception.
+// parse_error.101] " tag, and a missing key said as a missing field
+// ("no \"complete\" field" for "key 'complete' not found").
+std::string jsonErrorText(const nlohmann::json::exception& error);
 
 }  // namespace headlight::detail

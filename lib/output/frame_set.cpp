@@ -15,6 +15,7 @@
 #include "headlight/error.hpp"
 #include "headlight/targets.hpp"
 #include "io/atomic_file.hpp"
+#include "io/bounded_json.hpp"
 #include "io/bounded_read.hpp"
 #include "io/fingerprint.hpp"
 
@@ -47,7 +48,8 @@ json readManifestJson(const fs::path& path) {
   try {
     return json::parse(text);
   } catch (const json::exception& e) {
-    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
+    throw IoError(path.string() +
+                  ": not a headlight frame manifest: " + detail::excerpt(detail::jsonErrorText(e), 160));
   }
 }
 
@@ -184,7 +186,8 @@ std::optional<FrameManifest> readManifest(const fs::path& folder) {
       throw IoError(path.string() + ": its file list does not match the list hash written with it (edited?)");
     return manifest;
   } catch (const json::exception& e) {
-    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
+    throw IoError(path.string() +
+                  ": not a headlight frame manifest: " + detail::excerpt(detail::jsonErrorText(e), 160));
   }
 }
 
@@ -241,7 +244,8 @@ std::vector<std::string> ownedFileNames(const fs::path& folder) {
       }
     }
   } catch (const json::exception& e) {
-    throw IoError(path.string() + ": not a headlight frame manifest: " + detail::excerpt(e.what(), 160));
+    throw IoError(path.string() +
+                  ": not a headlight frame manifest: " + detail::excerpt(detail::jsonErrorText(e), 160));
   }
   return names;
 }
