@@ -9,7 +9,9 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <chrono>
 #include <filesystem>
+#include <memory>
 #include <thread>
 
 #include "headlight/error.hpp"
@@ -152,12 +154,49 @@ TEST_CASE(
     ::close(fd);
   }
   // The CLI's way: its own lock from before the render, then writeFrame on
-  // another thread; the nested lock must not wait for the first.
+  // its writer thread, which it shares the lock with: the nested lock must
+  // not wait for the first.
   {
     const detail::OutputFolderLock held(folder, false);
-    std::thread([&] { CHECK(writeFrame(frame, folder, options).size() == 1); }).join();
+    std::thread([&] {
+      const detail::OutputFolderLock::ThreadShare share(held);
+      CHECK(writeFrame(frame, folder, options).size() == 1);
+    }).join();
   }
   CHECK(fs::exists(folder / "lit.exr"));
+  // Another thread the holder did not share it with (two Python threads
+  // calling Frame.write into one folder mixed their files, issue 32) is kept
+  // out as another process is: refused at once, or after --wait-timeout.
+  {
+    const detail::OutputFolderLock held(folder, false);
+    std::thread([&] {
+      try {
+        writeFrame(frame, folder, options);
+        FAIL("another thread wrote into a held folder");
+      } catch (const IoError& error) {
+        CHECK(std::string(error.what()).find("another thread of this process") != std::string::npos);
+      }
+      OutputOptions waiting = options;
+      waiting.waitForFolder = true;
+      waiting.waitForFolderSeconds = 0.2;
+      CHECK_THROWS_WITH_AS(writeFrame(frame, folder, waiting), doctest::Contains("after 0.2 s of waiting"), IoError);
+    }).join();
+    // The holder's own thread takes it again freely.
+    CHECK(writeFrame(frame, folder, options).size() == 1);
+  }
+  // Released: the other thread writes, and a waiting one gets the folder as
+  // soon as the holder lets go.
+  std::thread([&] { CHECK(writeFrame(frame, folder, options).size() == 1); }).join();
+  {
+    auto held = std::make_unique<detail::OutputFolderLock>(folder, false);
+    OutputOptions waiting = options;
+    waiting.waitForFolder = true;
+    waiting.waitForFolderSeconds = 30;
+    std::thread writer([&] { CHECK(writeFrame(frame, folder, waiting).size() == 1); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    held.reset();
+    writer.join();
+  }
   // Released: a second flock succeeds at once.
   const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   CHECK(::flock(fd, LOCK_EX | LOCK_NB) == 0);

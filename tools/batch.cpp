@@ -251,6 +251,8 @@ BatchRun runBatch(const RenderCommand& command, const BatchPlan& plan, SceneCata
       output.waitForFolder = command.wait;
       output.waitForFolderSeconds = command.waitSeconds;
       pendingWrite = std::async(std::launch::async, [&, i, frame, output, folderLock = job.folderLock] {
+        // writeFrame takes the folder's lock again: this thread shares the job's.
+        const detail::OutputFolderLock::ThreadShare share(*folderLock);
         const auto writeStart = std::chrono::steady_clock::now();
         try {
           results[i].files = writeFrame(*frame, plan.jobs[i].job.outDir, output);

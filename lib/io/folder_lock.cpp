@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -25,11 +26,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// This process's folder locks: the flocked descriptor and how many
-// OutputFolderLock objects share it.
+// This process's folder locks: the flocked descriptor, how many
+// OutputFolderLock objects share it, and the threads that may share it (the
+// one that took it, and those it was shared with).
 struct HeldFolder {
   int fd = -1;
   int holders = 0;
+  std::thread::id owner;
+  std::multiset<std::thread::id> sharers;
+  bool sharedWith(std::thread::id thread) const { return thread == owner || sharers.count(thread) > 0; }
 };
 std::mutex heldMutex;
 std::map<std::string, HeldFolder> held;
@@ -114,6 +119,7 @@ std::string folderLockHolder(int fd) {
   }
   const std::string pid = !exact.empty() ? exact : inodeMatches == 1 ? byInode : "";
   if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) return "another process";
+  if (pid == std::to_string(::getpid())) return "another thread of this process (" + pid + ")";
   const std::string name = readFirstLine(fs::path("/proc") / pid / "comm");
   return "process " + pid + (name.empty() ? "" : " (" + name + ")");
 }
@@ -135,13 +141,15 @@ OutputFolderLock::OutputFolderLock(const fs::path& folder, bool wait, double wai
   }
   {
     const std::lock_guard guard(heldMutex);
-    if (HeldFolder& entry = held[key]; entry.holders > 0) {
-      ++entry.holders;  // this process holds it already: share it
+    if (HeldFolder& entry = held[key]; entry.holders > 0 && entry.sharedWith(std::this_thread::get_id())) {
+      ++entry.holders;  // this thread holds it already, or was given it: share it
       ::close(fd);
       key_ = key;
       return;
     }
   }
+  // Free, or held by another thread that did not share it: flock on this
+  // descriptor waits for (or refuses) that holder as for another process.
   // Not under the mutex: waiting for another process must not stop this
   // one's other folders.
   try {
@@ -152,14 +160,24 @@ OutputFolderLock::OutputFolderLock(const fs::path& folder, bool wait, double wai
     throw;
   }
   const std::lock_guard guard(heldMutex);
-  HeldFolder& entry = held[key];
-  if (entry.holders > 0) {
-    ::close(fd);  // another thread of this process took it meanwhile: share theirs
-  } else {
-    entry.fd = fd;
-  }
+  HeldFolder& entry = held[key];  // the flock is ours, so no other holder is left
+  entry.fd = fd;
+  entry.owner = std::this_thread::get_id();
   ++entry.holders;
   key_ = key;
+}
+
+OutputFolderLock::ThreadShare::ThreadShare(const OutputFolderLock& lock) : key_(lock.key_) {
+  const std::lock_guard guard(heldMutex);
+  held[key_].sharers.insert(std::this_thread::get_id());
+}
+
+OutputFolderLock::ThreadShare::~ThreadShare() {
+  const std::lock_guard guard(heldMutex);
+  if (auto found = held.find(key_); found != held.end()) {
+    auto& sharers = found->second.sharers;
+    if (auto mine = sharers.find(std::this_thread::get_id()); mine != sharers.end()) sharers.erase(mine);
+  }
 }
 
 OutputFolderLock::~OutputFolderLock() {

@@ -7,12 +7,14 @@
 // Advisory: only Headlight processes (and anything else that flocks the
 // folder) honour it; a network file system without flock may not.
 //
-// Within one process the lock is shared: the CLI holds a folder's lock from
-// before the render, and writeFrame (which every embedder calls) takes it
-// again on its writer thread. flock would make that second taking wait for
-// the first forever, so a process-wide count per folder lets a nested lock
-// through; the flock is dropped with the last one. Two threads of one
-// process writing one folder at once are therefore not kept apart.
+// Within one process a lock is shared only where its holder allows: the
+// thread that took it may take it again (the CLI holds a folder's lock from
+// before the render, and writeFrame takes it again), and so may a thread
+// the holder shares it with (ThreadShare: the batch's writer thread). The
+// flock is dropped with the last of them. Any other thread of the process
+// (two Python threads calling Frame.write into one folder) takes the flock
+// through a descriptor of its own, which flock keeps apart as it keeps
+// processes apart: it waits, or is refused, like another process.
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -43,6 +45,19 @@ class OutputFolderLock {
   ~OutputFolderLock();
   OutputFolderLock(const OutputFolderLock&) = delete;
   OutputFolderLock& operator=(const OutputFolderLock&) = delete;
+
+  // While it lives, the thread that makes it may take `lock`'s folder
+  // again, sharing the lock (made on that thread; `lock` must outlive it).
+  class ThreadShare {
+   public:
+    explicit ThreadShare(const OutputFolderLock& lock);
+    ~ThreadShare();
+    ThreadShare(const ThreadShare&) = delete;
+    ThreadShare& operator=(const ThreadShare&) = delete;
+
+   private:
+    std::string key_;
+  };
 
  private:
   std::filesystem::path folder_;

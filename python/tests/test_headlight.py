@@ -138,6 +138,42 @@ def test_write_writes_the_clis_files():
         assert all(pathlib.Path(p).stat().st_size > 0 for p in paths)
 
 
+def test_two_threads_writing_one_folder_never_mix_their_files():
+    # Each frame.write takes the folder's lock as a render does: a second
+    # thread is refused (or, told to wait, waits) like a second process, so
+    # the folder holds one frame's whole set (issue 32: 5 of 8 trials mixed).
+    import json
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    frames = [r.render(**SMALL), r.render(width=32, height=24, ssgi_samples=8)]
+    with tempfile.TemporaryDirectory() as folder:
+        for trial in range(4):
+            out = os.path.join(folder, str(trial))
+            errors = []
+
+            def write(frame):
+                try:
+                    frame.write(out)
+                except headlight.IoError as error:
+                    errors.append(str(error))
+
+            threads = [threading.Thread(target=write, args=(frame,)) for frame in frames]
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                thread.join()
+            assert len(errors) <= 1, errors
+            assert all("another thread of this process" in error for error in errors), errors
+            manifest = json.loads(pathlib.Path(out, "frame.json").read_text())
+            assert manifest["complete"]
+            # Every listed file is the one written with this list (frames of
+            # two sizes differ in bytes), and nothing else is in the folder.
+            for entry in manifest["files"]:
+                assert pathlib.Path(out, entry["name"]).stat().st_size == entry["bytes"], entry
+            listed = {entry["name"] for entry in manifest["files"]}
+            assert listed == {name for name in os.listdir(out) if not name.startswith(".")} - {"frame.json"}
+
+
 def egl_available():
     # On this thread: backends follow each other on one thread (a context is
     # released through its own API before another backend's is made current).
