@@ -3,6 +3,10 @@
 // geometry sharing.
 #include <doctest/doctest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -327,4 +331,26 @@ TEST_CASE("a scene of no extent gets a finite fitted view: every vertex at one p
     CHECK(std::abs(clip.y / clip.w) <= 1.0f);
     CHECK(std::abs(clip.z / clip.w) <= 1.0f);
   }
+}
+
+TEST_CASE("max-memory auto: half of physical memory, or of the address-space limit where that is less (issue 32)") {
+  CHECK(headlight::maxMemoryBytes({}) > 0);
+  headlight::ResourceLimits set;
+  set.maxMemoryMiB = 100;
+  CHECK(headlight::maxMemoryBytes(set) == std::uint64_t(100) << 20);
+  // Under `ulimit -v` 1 GiB (in a child: the limit stays with it): auto is
+  // 512 MiB, a set value is kept. Nothing is allocated after the limit.
+  const pid_t child = fork();
+  if (child == 0) {
+    const rlimit limit{rlim_t(1) << 30, rlim_t(1) << 30};
+    if (::setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
+    const bool halved = headlight::maxMemoryBytes({}) <= std::uint64_t(512) << 20;
+    const bool kept = headlight::maxMemoryBytes(set) == std::uint64_t(100) << 20;
+    _exit(halved && kept ? 0 : 1);
+  }
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(WIFEXITED(status));
+  CHECK_MESSAGE(WEXITSTATUS(status) != 3, "setrlimit failed");
+  CHECK(WEXITSTATUS(status) == 0);
 }

@@ -125,7 +125,7 @@ const std::vector<Option<DiffCommand>>& diffOptions() {
                        .help = "MiB the compared images may take decoded (checked on their declared sizes first)",
                        .minimum = 64,
                        .maximum = double(std::int64_t(1) << 30),
-                       .autoMeaning = "half of physical memory"},
+                       .autoMeaning = "half of physical memory or of the address-space limit (ulimit -v), the smaller"},
                       [](C& c, const OptionValue& v) {
                         if (const auto* mib = std::get_if<std::int64_t>(&v))
                           c.options.maxMemoryMiB = *mib;

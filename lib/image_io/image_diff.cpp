@@ -385,13 +385,15 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
     const double allowed = double(maxMemoryBytes(limits));
     if (need > allowed) {
       result.status = DiffStatus::FileError;
-      result.problem = a.string() + " and " + b.string() + " declare " + std::to_string(inputA->spec().width) + "x" +
-                       std::to_string(inputA->spec().height) + "x" + std::to_string(inputA->spec().nchannels) +
-                       " and " + std::to_string(inputB->spec().width) + "x" + std::to_string(inputB->spec().height) +
-                       "x" + std::to_string(inputB->spec().nchannels) + " values: comparing them needs about " +
-                       mebibytes(need) + " (both as float, and as much again to compare), more than --max-memory " +
-                       "allows (" + mebibytes(allowed) + (options.maxMemoryMiB ? "" : ", half of physical memory") +
-                       "); raise --max-memory to compare them";
+      result.problem =
+          a.string() + " and " + b.string() + " declare " + std::to_string(inputA->spec().width) + "x" +
+          std::to_string(inputA->spec().height) + "x" + std::to_string(inputA->spec().nchannels) + " and " +
+          std::to_string(inputB->spec().width) + "x" + std::to_string(inputB->spec().height) + "x" +
+          std::to_string(inputB->spec().nchannels) + " values: comparing them needs about " + mebibytes(need) +
+          " (both as float, and as much again to compare), more than --max-memory " + "allows (" + mebibytes(allowed) +
+          (options.maxMemoryMiB ? ""
+                                : ", half of physical memory or of the address-space limit (ulimit -v), the smaller") +
+          "); raise --max-memory to compare them";
       return result;
     }
   }

@@ -1,6 +1,9 @@
 #include "headlight/limits.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
+
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -22,7 +25,7 @@ std::span<const Option<ResourceLimits>> limitOptions() {
            .help = "MiB a render may use (scene, frame and textures); larger requests are refused up front",
            .minimum = 64,
            .maximum = double(std::int64_t(1) << 30),
-           .autoMeaning = "half of physical memory"},
+           .autoMeaning = "half of physical memory or of the address-space limit (ulimit -v), the smaller"},
           [](auto& l) -> auto& { return l.maxMemoryMiB; }),
       bindOption<L>(
           {.name = "max-instances",
@@ -69,10 +72,24 @@ std::uint64_t physicalMemoryBytes() {
   return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
 }
 
+// The process's address-space limit (RLIMIT_AS, `ulimit -v`); 0 when none.
+std::uint64_t addressSpaceLimitBytes() {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+  return std::uint64_t(limit.rlim_cur);
+}
+
 std::uint64_t maxMemoryBytes(const ResourceLimits& limits) {
   if (limits.maxMemoryMiB) return std::uint64_t(*limits.maxMemoryMiB) << 20;
+  // Half, to leave room for the libraries, Mesa and the decoders' own
+  // buffers. Under an address-space limit, a bound past it ended in the
+  // allocator's "Resource temporarily unavailable" or std::bad_alloc instead
+  // of a refusal naming max-memory.
   const std::uint64_t physical = physicalMemoryBytes();
-  return physical > 0 ? physical / 2 : std::uint64_t(8) << 30;
+  std::uint64_t bound = physical > 0 ? physical / 2 : std::uint64_t(8) << 30;
+  if (const std::uint64_t addressSpace = addressSpaceLimitBytes(); addressSpace > 0)
+    bound = std::min(bound, addressSpace / 2);
+  return bound;
 }
 
 std::uint64_t estimateFrameBytes(int width, int height) {
@@ -88,12 +105,14 @@ void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const Resou
   const std::uint64_t frame = estimateFrameBytes(width, height);
   const std::uint64_t limit = maxMemoryBytes(limits);
   if (frame + sceneBytes > limit) {
-    throw LimitError("a " + std::to_string(width) + "x" + std::to_string(height) + " render needs about " +
-                     mib(frame + sceneBytes) + " (" + std::to_string(kFrameBytesPerPixel) + " bytes per pixel + " +
-                     mib(kFrameBaseBytes) + " + the scene's " + mib(sceneBytes) + "), more than max-memory allows (" +
-                     mib(limit) + (limits.maxMemoryMiB ? "" : ", half of physical memory") +
-                         "); render smaller or raise max-memory",
-                     {"max-memory"});
+    throw LimitError(
+        "a " + std::to_string(width) + "x" + std::to_string(height) + " render needs about " + mib(frame + sceneBytes) +
+            " (" + std::to_string(kFrameBytesPerPixel) + " bytes per pixel + " + mib(kFrameBaseBytes) +
+            " + the scene's " + mib(sceneBytes) + "), more than max-memory allows (" + mib(limit) +
+            (limits.maxMemoryMiB ? ""
+                                 : ", half of physical memory or of the address-space limit (ulimit -v), the smaller") +
+            "); render smaller or raise max-memory",
+        {"max-memory"});
   }
 }
 

@@ -76,7 +76,7 @@ struct DiffOptions {
   std::optional<DiffMetric> metric;
   // MiB the decoded images may take (A and B as float, and as much again
   // for the comparison), checked on their declared sizes before any pixel
-  // is decoded; nullopt: half of physical memory (the CLI's --max-memory).
+  // is decoded; nullopt: half of physical memory or of RLIMIT_AS, the smaller (the CLI's --max-memory).
   std::optional<std::int64_t> maxMemoryMiB;
   // HDR-FLIP evaluates FLIP once per exposure, one a stop from A's brightest
   // pixel to its median: a pair needing more is refused before the first (a

@@ -19,7 +19,8 @@
 namespace headlight HEADLIGHT_PUBLIC {
 
 struct ResourceLimits {
-  std::optional<std::int64_t> maxMemoryMiB;        // MiB, 64..2^30; auto: half of physical memory
+  std::optional<std::int64_t>
+      maxMemoryMiB;  // MiB, 64..2^30; auto: half of physical memory or of RLIMIT_AS, the smaller
   std::int64_t maxInstances = 1'000'000;           // drawn mesh primitives (node x primitive), 1..2^31
   std::int64_t maxTriangles = 10'000'000;          // decoded triangles, all primitives together, 1..2^31
   std::int64_t maxTexels = std::int64_t(1) << 28;  // decoded texels, all images together (1 GiB as RGBA8)
@@ -37,7 +38,8 @@ std::span<const Option<ResourceLimits>> limitOptions();
 
 // Physical memory in bytes (sysconf), or 0 where it cannot be read.
 std::uint64_t physicalMemoryBytes();
-// maxMemoryMiB in bytes; auto is half of physical memory (8 GiB where unknown).
+// maxMemoryMiB in bytes; auto is half of physical memory (8 GiB where unknown), or half of
+// the address-space limit (RLIMIT_AS, `ulimit -v`) where that is less.
 std::uint64_t maxMemoryBytes(const ResourceLimits& limits);
 
 // Peak memory a render of width x height costs beyond the scene, in bytes:
