@@ -62,8 +62,7 @@ bool setMatches(const std::string& outDir, const std::string& hash) {
 struct PlannedJob {
   enum class Status { Render, Skip, Refused, Invalid } status = Status::Render;
   Job job;
-  std::string hash;            // computed once: by the plan with --resume, else when the job's set is written
-  std::exception_ptr refusal;  // Refused: the folder's refusal, as an IoError
+  std::string hash;  // computed once: by the plan with --resume, else when the job's set is written
 };
 
 struct BatchPlan {
@@ -107,7 +106,6 @@ BatchPlan planBatch(const RenderCommand& command, SceneCatalogue& catalogue, boo
     } else if (const std::string refusal = outputFolderRefusal(planned.job, command.force); !refusal.empty()) {
       planned.status = PlannedJob::Status::Refused;
       planned.job.error = refusal;
-      planned.refusal = std::make_exception_ptr(IoError(refusal));
     } else if (command.resume) {
       try {
         planned.hash = catalogue.jobHash(planned.job, command.output, command.sceneLoad.environment);
@@ -281,7 +279,9 @@ BatchRun runBatch(const RenderCommand& command, const BatchPlan& plan, SceneCata
         result.status = JobResult::Status::Skipped;
       } else {
         result.error = job.error;
-        result.exception = planned.refusal;
+        // A single render's refusal is the command's error, as an IoError.
+        if (planned.status == PlannedJob::Status::Refused)
+          result.exception = std::make_exception_ptr(IoError(job.error));
       }
       ended(i, results[i]);
       continue;

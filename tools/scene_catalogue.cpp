@@ -2,7 +2,6 @@
 
 #include <utility>
 
-#include "headlight/error.hpp"
 #include "io/fingerprint.hpp"
 
 namespace headlight::cli {
@@ -36,8 +35,6 @@ const Scene& SceneCatalogue::scene(const Job& job) {
       Scene scene = load_(job);
       if (job.scene.rfind("builtin:", 0) != 0) fingerprints_.emplace(job.scene, scene.sourceHash);
       found = scenes_.emplace(key, std::move(scene)).first;
-    } catch (const ContextError&) {
-      throw;
     } catch (...) {
       failures_.emplace(key, std::current_exception());
       throw;
