@@ -460,3 +460,38 @@ TEST_CASE("a missing image module is exit 1 naming the path and the remedy, and 
   CHECK(folderEmpty(folder / "out"));
   fs::remove_all(folder);
 }
+
+TEST_CASE(
+    "the CLI asks glibc for huge pages where the kernel gives them on request, and leaves a caller's GLIBC_TUNABLES "
+    "alone") {
+  // The kernel's policy, read here as the kernel writes it ("always [madvise] never").
+  std::string policy;
+  {
+    std::ifstream file("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string line;
+    std::getline(file, line);
+    if (const auto open = line.find('['), close = line.find(']'); open != std::string::npos && close > open)
+      policy = line.substr(open + 1, close - open - 1);
+  }
+  const fs::path folder = freshFolder("large-pages");
+  const std::string render = " render builtin:cornell --width 16 --height 16 --targets depth --verbose --out " +
+                             quote((folder / "out").string());
+  const Run restarted = headlight::test::runCommand("env -u GLIBC_TUNABLES " + quote(HEADLIGHT_EXE) + render);
+  const Run callers =
+      headlight::test::runCommand("env GLIBC_TUNABLES=glibc.malloc.arena_max=2 " + quote(HEADLIGHT_EXE) + render);
+  INFO(restarted.output);
+  INFO(callers.output);
+  REQUIRE(restarted.exitCode == 0);
+  REQUIRE(callers.exitCode == 0);
+  if (policy == "madvise") {
+    CHECK(restarted.output.find("memory: transparent huge pages on (policy 'madvise', "
+                                "GLIBC_TUNABLES=glibc.malloc.hugetlb=1)") != std::string::npos);
+    CHECK(callers.output.find("memory: transparent huge pages off (policy 'madvise', "
+                              "GLIBC_TUNABLES=glibc.malloc.arena_max=2)") != std::string::npos);
+  } else {
+    MESSAGE("skipped the restart: this kernel's huge-page policy is '" << policy << "', not madvise");
+    CHECK(restarted.output.find("memory: transparent huge pages ") != std::string::npos);
+    CHECK(restarted.output.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1") == std::string::npos);
+  }
+  fs::remove_all(folder);
+}

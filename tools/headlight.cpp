@@ -21,6 +21,7 @@
 #include "headlight/version.hpp"
 #include "io/folder_lock.hpp"
 #include "progress.hpp"
+#include "tooling/large_pages.hpp"
 #include "tune_command.hpp"
 
 namespace {
@@ -132,6 +133,7 @@ int main(int argc, char** argv) {
     std::cout << "headlight " << kVersion << "\n";
     return kExitOk;
   }
+  restartWithLargePages(argv);  // returns unless it restarts
   try {
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (args[0] == "render") return runRender(rest);

@@ -16,6 +16,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/settings.hpp"
+#include "tooling/large_pages.hpp"
 
 int main(int argc, char** argv) {
   // File managers ask for 128, 256, 512 or 1024 (freedesktop's normal, large,
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
               << kMaxSize << " pixels a side)\n";
     return 2;
   }
+  headlight::restartWithLargePages(argv);  // returns unless it restarts
   const std::string input = argv[1], output = argv[2];
   try {
     headlight::Context context;  // backend auto: EGL, then OSMesa

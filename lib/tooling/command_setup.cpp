@@ -4,6 +4,7 @@
 
 #include "headlight/scene_loader.hpp"
 #include "io/atomic_file.hpp"
+#include "tooling/large_pages.hpp"
 
 namespace headlight {
 
@@ -21,6 +22,7 @@ std::string verboseHeader(const Context& context, const Scene& scene) {
   for (const std::string& attempt : context.attempts()) text += "context: " + attempt + "\n";
   text += "backend: " + std::string(backendName(context.backend())) + " (" + context.description() + ")\n";
   text += "GL_RENDERER: " + context.renderer() + "\nGL_VERSION: " + context.version() + "\n";
+  text += largePagesNote() + "\n";
   text += "scene: " + scene.source + ": " + std::to_string(scene.instances.size()) + " instances, " +
           std::to_string(scene.triangleCount()) + " triangles, " + std::to_string(scene.lights.size()) + " lights, " +
           std::to_string(scene.cameras.size()) + " cameras\n";
