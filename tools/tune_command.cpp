@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "headlight/error.hpp"
@@ -73,6 +74,8 @@ std::string joinArgs(const std::vector<std::string>& args) {
   return text;
 }
 
+constexpr const char* kAsGiven = "as given";
+
 std::string number(double value, int digits = 4) {
   std::ostringstream text;
   text.precision(digits);
@@ -104,6 +107,33 @@ void checkTuneOut(const TuneCommand& command) {
     if (isInput(settings))
       throw SettingsError("--out " + out.string() + ": is the --settings file the run starts from (" + settings +
                           "); write the tuned settings elsewhere");
+}
+
+// The two configurations every tune measures beside its candidates, so that
+// a user sees what the pick is worth (issue 30): the settings as given (the
+// defaults, --settings and flags; what render would do without tune's file)
+// and no SSGI at all (cheapest of all, and within a loose bound the honest
+// answer). No SSGI is left out when the sweeps already vary `ssgi`.
+struct Comparisons {
+  std::size_t asGiven = 0;
+  std::optional<std::size_t> noSsgi;
+};
+Comparisons addComparisons(const TuneCommand& command, const std::vector<SettingSweep>& sweeps,
+                           std::vector<BenchConfig>& configs) {
+  Comparisons added{configs.size(), std::nullopt};
+  for (BenchConfig config : sweepConfigs(command.base, {}, command.base.width, command.base.height)) {
+    config.label = kAsGiven;
+    configs.push_back(std::move(config));
+  }
+  const bool sweepsSsgi =
+      std::any_of(sweeps.begin(), sweeps.end(), [](const SettingSweep& s) { return s.name == "ssgi"; });
+  if (!sweepsSsgi && command.base.ssgi.enabled) {
+    added.noSsgi = configs.size();
+    for (BenchConfig& config :
+         sweepConfigs(command.base, {parseSweep("ssgi=off")}, command.base.width, command.base.height))
+      configs.push_back(std::move(config));
+  }
+  return added;
 }
 
 }  // namespace
@@ -154,6 +184,9 @@ std::string tuneHelp() {
       "`name = value` lines, for `headlight render --settings FILE`) holding the cheapest\n"
       "configuration whose AO RMSE is at most E (and/or whose lit, as mean HDR-FLIP against the reference's\n"
       "lit_ref, is at most F), with its measured errors and time as '# tune:' lines.\n"
+      "Two configurations are measured beside the candidates and may be chosen: the settings as given\n"
+      "(defaults, --settings, flags) and no SSGI (--no-ssgi; unless the sweeps vary ssgi); the pick is\n"
+      "reported beside both, with its time as a fraction of the settings as given.\n"
       "Prints the front; a progress bar on stderr when it is a terminal.\n\n"
       "Exit codes: 0 written; 1 runtime error; 2 usage error; 3 no configuration reaches E: nothing is\n"
       "written, and the message names the best AO RMSE reached.\n\n";
@@ -181,8 +214,9 @@ int runTuneCommand(const std::vector<std::string>& args) {
   renderer.setScene(std::move(scene));
   const std::vector<SettingSweep> sweeps =
       command.sweeps.empty() ? defaultTuneSweeps(*renderer.resolve(command.base).ssgi.thickness) : command.sweeps;
-  const std::vector<BenchConfig> configs = sweepConfigs(command.base, sweeps, command.base.width, command.base.height);
+  std::vector<BenchConfig> configs = sweepConfigs(command.base, sweeps, command.base.width, command.base.height);
   if (configs.empty()) throw SettingsError("tune: every combination of the --sweep values is refused by the settings");
+  const Comparisons comparisons = addComparisons(command, sweeps, configs);
 
   const bool quiet = command.verbosity == Verbosity::Quiet;
   Progress progress(configs.size(), !quiet, "configs");
@@ -256,12 +290,28 @@ int runTuneCommand(const std::vector<std::string>& args) {
       "tune: reference = " + std::to_string(row.referenceSamples) + " rays/pixel, mean AO standard error " +
       number(row.referenceAoStandardError, 3) +
       (row.referenceScreenBound ? ", the screen-space bound (--reference-screen-bound), not the truth" : ""));
+  const BenchRow& given = rows[comparisons.asGiven];
+  const std::string timeRatio = number(row.frameMs.median / given.frameMs.median, 3) + "x";
+  // The comparisons as the chosen row is recorded: one `# tune: key = value` line each.
+  const auto record = [&](const std::string& prefix, const BenchRow& r) {
+    comments.push_back("tune: " + prefix + "-ao-rmse = " + number(r.ao.rmse, 6));
+    comments.push_back("tune: " + prefix + "-lit-flip = " + number(r.litFlip, 6));
+    comments.push_back("tune: " + prefix + "-frame-ms = " + number(r.frameMs.median, 6));
+  };
+  record("as-given", given);
+  if (comparisons.noSsgi) record("no-ssgi", rows[*comparisons.noSsgi]);
   comments.push_back("use: headlight render SCENE --settings FILE (flags after --settings override it)");
   writeTextFile(command.outDir, settingsFileText(configs[*chosen].settings, comments));
-  if (!quiet)
-    std::cout << "chosen: " << row.label << ": AO RMSE " << number(row.ao.rmse) << ", lit HDR-FLIP "
-              << number(row.litFlip) << " (" << bounds << "), " << number(row.frameMs.median) << " ms/frame\n"
-              << command.outDir << "\n";
+  if (!quiet) {
+    const auto line = [](const BenchRow& r) {
+      return "AO RMSE " + number(r.ao.rmse) + ", lit HDR-FLIP " + number(r.litFlip) + ", " + number(r.frameMs.median) +
+             " ms/frame";
+    };
+    std::cout << "chosen: " << row.label << ": " << line(row) << " (" << bounds << ")\n"
+              << "  as given: " << line(given) << "; the chosen takes " << timeRatio << " its time\n";
+    if (comparisons.noSsgi) std::cout << "  no SSGI: " << line(rows[*comparisons.noSsgi]) << "\n";
+    std::cout << command.outDir << "\n";
+  }
   return 0;
 }
 
