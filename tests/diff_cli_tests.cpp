@@ -69,6 +69,26 @@ TEST_CASE("diff: folder mode reports each target and the worst verdict" * doctes
   CHECK(contains(page, "albedo_diff.png"));
   CHECK(contains(page, "lit_diff_b.png"));
   CHECK(contains(page, "<span class='fail'>FAIL</span>"));
+  // One self-contained page: the verdict and exit code first, every image
+  // inside it (a PNG's base64 starts with its signature's, iVBORw0KGgo), no
+  // image linked by name, and each map's colour scale labelled.
+  CHECK(contains(page, "<p class='verdict fail'>verdict: FAIL (3 targets: 2 pass, 0 warn, 1 fail"));
+  CHECK(contains(page, " &mdash; exit 2</p>"));
+  CHECK(page.find("verdict") < page.find("<table>"));
+  CHECK(contains(page, "src='data:image/png;base64,iVBORw0KGgo"));
+  CHECK_FALSE(contains(page, "src='albedo"));
+  CHECK_FALSE(contains(page, "src='lit"));
+  CHECK(fs::exists(out / "albedo_diff_scale.png"));
+  CHECK(contains(page, "alt='albedo_diff_scale.png'"));
+  CHECK(contains(page, "<span>fail 0.01</span><span>0.02 or more</span>"));  // albedo: fail mid-scale
+  CHECK(contains(page, "<span>1 (FLIP)</span>"));                            // lit: FLIP's 0..1
+  {
+    // The embedded heatmap is the file's bytes: its base64 is 4 characters per 3 bytes.
+    const auto at = page.find("alt='albedo_diff.png' src='data:image/png;base64,");
+    REQUIRE(at != std::string::npos);
+    const auto start = page.find("base64,", at) + 7, end = page.find('\'', start);
+    CHECK(end - start == (fs::file_size(out / "albedo_diff.png") + 2) / 3 * 4);
+  }
 
   // A target in one folder only is structural, and the worst status wins.
   write(b / "ssgi.exr", gradient(10, 10, {"ao.Y"}));

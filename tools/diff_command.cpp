@@ -6,16 +6,19 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
+#include "diff/heatmap.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/options.hpp"
@@ -388,28 +391,72 @@ std::string htmlEscaped(std::string_view text) {
   return escaped;
 }
 
-// report.html beside the diff images: per compared target its verdict and
-// numbers, and the images writeDiffImages left beside its diff.exr (for the
-// flip metric A and B as FLIP saw them, then the FLIP map in magma; else the
-// heatmap), linked by relative name. `diffs`: each result with its diff.exr.
+// A file's bytes as base64 (RFC 4648, section 4), for a data: URI; empty when
+// the file cannot be read.
+std::string base64File(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t left = bytes.size() - i;
+    const std::uint32_t group = std::uint32_t(std::uint8_t(bytes[i])) << 16 |
+                                (left > 1 ? std::uint32_t(std::uint8_t(bytes[i + 1])) << 8 : 0) |
+                                (left > 2 ? std::uint32_t(std::uint8_t(bytes[i + 2])) : 0);
+    text += kAlphabet[group >> 18 & 63];
+    text += kAlphabet[group >> 12 & 63];
+    text += left > 1 ? kAlphabet[group >> 6 & 63] : '=';
+    text += left > 2 ? kAlphabet[group & 63] : '=';
+  }
+  return text;
+}
+
+// report.html beside the diff images, one self-contained page (the images
+// are in it as data: URIs, so it can be mailed or attached to a CI run
+// alone): the verdict and exit code first, then per compared target its
+// status, A, B and the error map (for the flip metric A and B as FLIP saw
+// them, then the FLIP map; else the heatmap) with its colour scale
+// labelled, and the numbers. `diffs`: each result with its diff.exr.
 void writeHtmlReport(const fs::path& html, const std::vector<std::pair<const DiffResult*, fs::path>>& diffs,
-                     std::vector<std::string>& written, std::vector<std::string>& errors) {
+                     const std::string& verdict, int exitStatus, std::vector<std::string>& written,
+                     std::vector<std::string>& errors) {
+  DiffStatus worst = DiffStatus::Pass;
+  for (const auto& [r, exr] : diffs) worst = std::max(worst, r->status);
   std::ostringstream page;
   page << "<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>headlight diff</title><style>"
-          "body{font-family:sans-serif} td{vertical-align:top;padding:4px} img{image-rendering:pixelated;"
-          "max-width:320px} .pass{color:green} .warn{color:orange} .fail,.structural,.file-error{color:red}"
-          "</style></head><body>\n<h1>headlight diff</h1>\n<table>\n"
-          "<tr><th>target</th><th>A (reference)</th><th>B</th><th>error</th><th>numbers</th></tr>\n";
+          "body{font-family:sans-serif;margin:1em} table{border-collapse:collapse;width:100%}"
+          "td,th{vertical-align:top;padding:4px;border-bottom:1px solid #ddd;text-align:left}"
+          "td.numbers{overflow-wrap:anywhere;min-width:16em;font-size:90%}"
+          "figure{margin:0} figcaption{font-size:80%;color:#555;overflow-wrap:anywhere}"
+          "img{image-rendering:pixelated;max-width:min(320px,22vw)} img.scale{height:12px;width:min(320px,22vw)}"
+          ".ends{display:flex;justify-content:space-between;font-size:80%;width:min(320px,22vw)}"
+          ".verdict{font-size:130%;padding:8px;border:2px solid} .pass{color:green} .warn{color:darkorange}"
+          ".fail,.structural,.file-error{color:red}</style></head><body>\n<h1>headlight diff</h1>\n"
+       << "<p class='verdict " << statusName(worst) << "'>" << htmlEscaped(verdict) << " &mdash; exit " << exitStatus
+       << "</p>\n<table>\n<tr><th>target</th><th>A (reference)</th><th>B</th><th>error</th><th>numbers</th></tr>\n";
   std::error_code ignored;
   for (const auto& [r, exr] : diffs) {
     const std::string stem = exr.stem().string();
-    auto image = [&](const std::string& name) {
-      return fs::exists(exr.parent_path() / name, ignored) ? "<img src='" + htmlEscaped(name) + "'>" : std::string();
+    auto image = [&](const std::string& name, const char* type = "") {
+      const fs::path path = exr.parent_path() / name;
+      if (!fs::exists(path, ignored)) return std::string();
+      return "<figure><img" + std::string(*type ? " class='" + std::string(type) + "'" : "") + " alt='" +
+             htmlEscaped(name) + "' src='data:image/png;base64," + base64File(path) + "'>" +
+             (*type ? "" : "<figcaption>" + htmlEscaped(name) + "</figcaption>") + "</figure>";
     };
+    std::string scale;
+    if (!r->difference.empty()) {
+      const HeatmapScale heat = heatmapScale(*r);
+      scale = image(stem + "_scale.png", "scale") + "<div class='ends'><span>0</span>" +
+              (heat.failAtMiddle ? "<span>fail " + number(r->thresholds.fail) + "</span>" : std::string()) + "<span>" +
+              number(heat.fullScale) + (heat.colorMap == "magma" ? " (FLIP)" : " or more") + "</span></div>";
+    }
     page << "<tr><td><b>" << htmlEscaped(r->target.empty() ? "(none)" : r->target) << "</b><br><span class='"
          << statusName(r->status) << "'>" << upper(statusName(r->status)) << "</span></td><td>"
          << image(stem + "_a.png") << "</td><td>" << image(stem + "_b.png") << "</td><td>" << image(stem + ".png")
-         << "</td><td>A: " << htmlEscaped(r->a.string()) << "<br>B: " << htmlEscaped(r->b.string()) << "<br>"
+         << scale << "</td><td class='numbers'>A: " << htmlEscaped(r->a.string())
+         << "<br>B: " << htmlEscaped(r->b.string()) << "<br>"
          << htmlEscaped(std::string(metricName(r->metric)) + ": " + describeMetric(*r)) << "<br>"
          << htmlEscaped(thresholdsLine(r->thresholds)) << "<br>";
     for (const ChannelDiff& c : r->channels)
@@ -443,11 +490,12 @@ void writeHtmlReport(const fs::path& html, const std::vector<std::pair<const Dif
 // The files one comparison's --out PATH.exr writes (writeDiffImages, and
 // the report beside it in file mode).
 std::vector<fs::path> comparisonFiles(const fs::path& exr) {
-  fs::path png = exr, a = exr, b = exr;
+  fs::path png = exr, a = exr, b = exr, scale = exr;
   png.replace_extension(".png");
   a.replace_filename(exr.stem().string() + "_a.png");
   b.replace_filename(exr.stem().string() + "_b.png");
-  return {exr, png, a, b};
+  scale.replace_filename(exr.stem().string() + "_scale.png");
+  return {exr, png, a, b, scale};
 }
 
 // True when `html` is a report an earlier headlight diff wrote (its title
@@ -502,8 +550,11 @@ int runFiles(const DiffCommand& command, std::ostream& out, std::ostream& err) {
   if (!command.out.empty()) {
     written = writeImages(result, command.out, errors);
     if (!result.difference.empty() && errors.empty())
-      writeHtmlReport(fs::path(command.out).replace_extension(".html"), {{&result, fs::path(command.out)}}, written,
-                      errors);
+      writeHtmlReport(
+          fs::path(command.out).replace_extension(".html"), {{&result, fs::path(command.out)}},
+          "verdict: " + upper(statusName(result.status)) + (result.problem.empty() ? "" : ": " + result.problem),
+          errors.empty() ? exitCode(result.status) : std::max(exitCode(result.status), exitCode(DiffStatus::FileError)),
+          written, errors);
   }
   int code = exitCode(result.status);
   if (!errors.empty()) code = std::max(code, exitCode(DiffStatus::FileError));
@@ -555,7 +606,9 @@ int runFolders(const DiffCommand& command, std::ostream& out, std::ostream& err)
         for (std::string& path : writeImages(r, exr, errors)) written.push_back(std::move(path));
         diffs.emplace_back(&r, exr);
       }
-      writeHtmlReport(fs::path(command.out) / "report.html", diffs, written, errors);
+      const int code = exitCode(result.status);
+      writeHtmlReport(fs::path(command.out) / "report.html", diffs, verdictLine(result),
+                      errors.empty() ? code : std::max(code, exitCode(DiffStatus::FileError)), written, errors);
     }
   }
   int code = result.incompleteSet ? kDiffExitIncompleteSet : exitCode(result.status);

@@ -1,6 +1,6 @@
 // The difference images headlight diff --out writes: diff.exr (the raw
 // differences and the error channel), its heatmap, and for the Flip metric
-// the two images as FLIP saw them.
+// the two images as FLIP saw them; the heatmap's colour scale.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
@@ -9,6 +9,7 @@
 
 #include "color/srgb.hpp"
 #include "diff/flip.hpp"
+#include "diff/heatmap.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "image_io/atomic_image.hpp"
@@ -74,32 +75,37 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
   exrSpec.attribute("headlight:diff:fail", float(result.thresholds.fail));
   exrSpec.attribute("headlight:diff:status", std::string(statusName(result.status)));
 
-  // Heatmap: error * (0.5 / fail), so the fail threshold sits mid-ramp and
-  // twice it saturates; +inf (NaN/Inf inputs) saturates too.
-  // FLIP maps are shown as the papers show them: 0..1 through magma.
-  const bool flipMap = result.metric == DiffMetric::Flip;
+  // Heatmap: the error channel over the scale's full range through its
+  // colour map (diff/heatmap.hpp); +inf (NaN/Inf inputs) saturates.
+  const HeatmapScale scale = heatmapScale(result);
+  const std::string colorMap(scale.colorMap);
   const int errorChannel = diff.channelCount() - 1;
-  double fullScale = flipMap ? 1.0 : 2.0 * result.thresholds.fail;
-  if (!(fullScale > 0) || !std::isfinite(fullScale)) {
-    fullScale = 0;
-    for (std::size_t p = std::size_t(errorChannel); p < diff.pixels.size(); p += diff.channels.size())
-      if (std::isfinite(diff.pixels[p])) fullScale = std::max(fullScale, double(diff.pixels[p]));
-    if (fullScale == 0) fullScale = 1;
-  }
   const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
-  const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / fullScale)), 0.0f, 1.0f);
-  OIIO::ImageBuf heat = iba::color_map(scaled, 0, flipMap ? "magma" : "inferno");
+  const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / scale.fullScale)), 0.0f, 1.0f);
+  OIIO::ImageBuf heat = iba::color_map(scaled, 0, colorMap);
   if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
   OIIO::ImageSpec pngSpec = heat.spec();
   pngSpec.set_format(OIIO::TypeDesc::UINT8);
   pngSpec.attribute("oiio:ColorSpace", "sRGB");  // the colour map's values are display values
+  // The colour scale: 0 at the left to fullScale at the right, through the same map.
+  OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 12, 1, OIIO::TypeDesc::FLOAT));
+  const float left = 0.0f, right = 1.0f;
+  iba::fill(ramp, {&left, 1}, {&right, 1}, {&left, 1}, {&right, 1});
+  OIIO::ImageBuf rampColors = iba::color_map(ramp, 0, colorMap);
+  if (rampColors.has_error()) throw IoError(exrPath.string() + ": colour scale failed: " + rampColors.geterror());
+  OIIO::ImageSpec rampSpec = rampColors.spec();
+  rampSpec.set_format(OIIO::TypeDesc::UINT8);
+  rampSpec.attribute("oiio:ColorSpace", "sRGB");
 
   fs::path pngPath = exrPath;
   pngPath.replace_extension(".png");
   detail::writeImageAtomically(exrPath, buffer, exrSpec, "openexr");
   detail::writeImageAtomically(pngPath, heat, pngSpec, "png");
-  std::vector<fs::path> written{exrPath, pngPath};
-  if (flipMap) {
+  fs::path scalePath = exrPath;
+  scalePath.replace_filename(exrPath.stem().string() + "_scale.png");
+  detail::writeImageAtomically(scalePath, rampColors, rampSpec, "png");
+  std::vector<fs::path> written{exrPath, pngPath, scalePath};
+  if (result.metric == DiffMetric::Flip) {
     // What FLIP compared, for a report to show beside the map.
     for (const auto& [source, suffix] : {std::pair{result.a, "_a.png"}, std::pair{result.b, "_b.png"}}) {
       fs::path path = exrPath;
