@@ -153,6 +153,26 @@ bool isCameraKeyword(std::string_view name) {
   throw SettingsError(name + ": expected " + expected + ", got " + py::repr(value).cast<std::string>(), {name});
 }
 
+// A list of frame target names (targets=, png=): anything else is a
+// SettingsError naming the argument and the known targets.
+std::vector<std::string> targetNames(const std::string& argument, const py::object& given) {
+  if (py::isinstance<py::str>(given) || !py::isinstance<py::sequence>(given))
+    badArgument(argument, "a list of target names", given);
+  std::vector<std::string> names;
+  for (const py::handle& item : given) {
+    if (!py::isinstance<py::str>(item)) badArgument(argument, "a list of target names", given);
+    const std::string name = item.cast<std::string>();
+    if (findFrameTarget(name) == nullptr) {
+      std::string known;
+      for (const FrameTarget& target : frameTargets())
+        if (target.image) (known += known.empty() ? "" : ", ") += target.name;
+      throw SettingsError(argument + ": unknown target '" + name + "' (known: " + known + ")", {argument});
+    }
+    names.push_back(name);
+  }
+  return names;
+}
+
 float finiteNumber(const py::handle& value, const std::string& name, const std::string& expected) {
   if (!isReal(value)) badArgument(name, expected, value);
   const double number = py::float_(own(value));
@@ -577,15 +597,18 @@ PYBIND11_MODULE(headlight, m) {
       .def_property_readonly("height", [](const Frame& f) { return f.settings.height; })
       .def(
           "write",
-          [](const Frame& frame, const py::object& folder) {
+          [](const Frame& frame, const py::object& folder, const py::object& png) {
             const std::filesystem::path path = pathArgument(folder, "folder");
+            OutputOptions options;
+            if (!png.is_none()) options.pngTargets = targetNames("png", png);
             std::vector<std::filesystem::path> paths;
             py::gil_scoped_release release;
-            for (const WrittenFile& file : writeFrame(frame, path)) paths.push_back(file.path);
+            for (const WrittenFile& file : writeFrame(frame, path, options)) paths.push_back(file.path);
             return paths;
           },
-          py::arg("folder"),
-          "writes <folder>/<target>.exr and preview.png as `headlight render` does; returns the paths");
+          py::arg("folder"), py::arg("png") = py::none(),
+          "writes <folder>/<target>.exr and preview.png as `headlight render` does, and <target>.png for each "
+          "target named in png (e.g. png=['normal', 'depth']: as `render --png`); returns the paths");
 
   // render()'s and submit()'s keywords: the settings, an explicit camera and the targets to read back.
   struct RenderRequest {
@@ -597,22 +620,8 @@ PYBIND11_MODULE(headlight, m) {
     RenderRequest request;
     request.camera = cameraFromKwargs(kwargs);
     request.settings = settingsFromKwargs(kwargs);
-    if (kwargs.contains("targets") && !kwargs["targets"].is_none()) {
-      const py::object given = kwargs["targets"];
-      if (py::isinstance<py::str>(given) || !py::isinstance<py::sequence>(given))
-        badArgument("targets", "a list of target names", given);
-      for (const py::handle& item : given) {
-        if (!py::isinstance<py::str>(item)) badArgument("targets", "a list of target names", given);
-        const std::string name = item.cast<std::string>();
-        if (findFrameTarget(name) == nullptr) {
-          std::string known;
-          for (const FrameTarget& target : frameTargets())
-            if (target.image) (known += known.empty() ? "" : ", ") += target.name;
-          throw SettingsError("targets: unknown target '" + name + "' (known: " + known + ")", {"targets"});
-        }
-        request.targets.push_back(name);
-      }
-    }
+    if (kwargs.contains("targets") && !kwargs["targets"].is_none())
+      request.targets = targetNames("targets", kwargs["targets"]);
     return request;
   };
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -493,5 +494,50 @@ TEST_CASE(
     CHECK(restarted.output.find("memory: transparent huge pages ") != std::string::npos);
     CHECK(restarted.output.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1") == std::string::npos);
   }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("render --png writes the named targets as PNGs, drawn even when --targets leaves out their EXR") {
+  const fs::path folder = freshFolder("png");
+  const fs::path out = folder / "out";
+  const Run run = runHeadlight(
+      "render builtin:cornell --width 32 --height 24 --targets lit,preview --png normal,depth "
+      "--preview-background transparent --out " +
+      quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(fs::exists(out / "lit.exr"));
+  CHECK_FALSE(fs::exists(out / "normal.exr"));  // not asked for as EXR
+  for (const char* png : {"normal.png", "depth.png", "preview.png"}) {
+    CAPTURE(png);
+    OIIO::ImageBuf image((out / png).string());
+    REQUIRE(image.read());
+    CHECK(image.spec().width == 32);
+    CHECK(image.nchannels() == (std::string(png) == "preview.png" ? 4 : 3));  // the preview's alpha: coverage
+  }
+  CHECK(run.output.find("8-bit PNG of normal (vectors as (v + 1) / 2)") != std::string::npos);
+  // frame.json lists the PNGs: they belong to the set (--resume, ownership).
+  std::ifstream manifest(out / "frame.json");
+  const std::string json((std::istreambuf_iterator<char>(manifest)), std::istreambuf_iterator<char>());
+  CHECK(json.find("\"normal.png\"") != std::string::npos);
+
+  // Another PNG list is another job: --resume renders it again.
+  const Run again = runHeadlight(
+      "render builtin:cornell --width 32 --height 24 --targets lit,preview --png normal "
+      "--preview-background transparent --resume --out " +
+      quote(out.string()));
+  INFO(again.output);
+  CHECK(again.exitCode == 0);
+  CHECK(again.output.find("skipped") == std::string::npos);
+  CHECK_FALSE(fs::exists(out / "depth.png"));  // the earlier set's, removed
+
+  const Run unknown = runHeadlight("render builtin:cornell --png preview --out " + quote((folder / "x").string()));
+  CHECK(unknown.exitCode == 2);
+  CHECK(unknown.output.find("--png: unknown target 'preview'") != std::string::npos);
+  const Run badBackground =
+      runHeadlight("render builtin:cornell --preview-background blue --out " + quote((folder / "x").string()));
+  CHECK(badBackground.exitCode == 2);
+  CHECK(badBackground.output.find("preview-background 'blue'") != std::string::npos);
+  CHECK_FALSE(fs::exists(folder / "x"));
   fs::remove_all(folder);
 }

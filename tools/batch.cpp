@@ -14,6 +14,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <exception>
@@ -182,6 +183,10 @@ void warnSaturated(const std::vector<WrittenFile>& files) {
 std::vector<std::string> renderTargetsFor(const OutputOptions& output) {
   std::vector<std::string> targets;
   for (const std::string& target : output.targets) targets.push_back(target == "preview" ? "lit" : target);
+  // A PNG is drawn from its target, written as EXR or not (empty: every target is drawn anyway).
+  if (!targets.empty())
+    for (const std::string& target : output.pngTargets)
+      if (std::find(targets.begin(), targets.end(), target) == targets.end()) targets.push_back(target);
   return targets;
 }
 

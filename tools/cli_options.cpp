@@ -10,6 +10,7 @@
 #include "bench_command.hpp"
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
+#include "headlight/targets.hpp"
 #include "tune_command.hpp"
 
 namespace headlight::cli {
@@ -181,6 +182,25 @@ std::vector<Option<RenderCommand>> batchOptions() {
                                                 "' (known: position, normal, albedo, material, depth, emissive, "
                                                 "ssgi, lit, preview)");
                         if (c.output.targets.empty()) throw SettingsError("--targets: expected a list of targets");
+                      }),
+      actionOption<C>({.name = "png",
+                       .type = T::Text,
+                       .help = "also write these targets as <target>.png, as a person looks at them: normal as "
+                               "colours, depth through viridis (near yellow), ssgi's AO as grey, albedo and "
+                               "material as they are, lit and emissive tone mapped (docs/PIPELINE.md, \"PNG "
+                               "targets\")",
+                       .valueName = "LIST"},
+                      [](C& c, const OptionValue& v) {
+                        c.output.pngTargets = detail::splitList("png", text(v));
+                        for (const std::string& name : c.output.pngTargets)
+                          if (!findFrameTarget(name)) {
+                            std::string known;
+                            for (const FrameTarget& target : frameTargets())
+                              known += (known.empty() ? "" : ", ") + std::string(target.name);
+                            throw SettingsError("--png: unknown target '" + name + "' (known: " + known +
+                                                "; preview.png is always written)");
+                          }
+                        if (c.output.pngTargets.empty()) throw SettingsError("--png: expected a list of targets");
                       }),
       actionOption<C>(
           {.name = "exr-compression",

@@ -408,6 +408,10 @@ std::string jobHash(const Job& job, const OutputOptions& output, const std::stri
   if (job.animationTime) text += "time=" + std::to_string(*job.animationTime) + "\n";
   text += "targets=";
   for (const std::string& target : output.targets) text += target + ",";
+  if (!output.pngTargets.empty()) {  // absent without PNGs: earlier sets keep their hashes
+    text += "\npng=";
+    for (const std::string& target : output.pngTargets) text += target + ",";
+  }
   text += "\nnonfinite=" + std::string(output.nonFinite == NonFinitePolicy::Clamp ? "clamp" : "error") + "\n";
   return textFingerprint(text);
 }

@@ -13,6 +13,7 @@
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "image_io/atomic_image.hpp"
+#include "image_io/color_maps.hpp"
 #include "image_io/image_files.hpp"
 
 namespace headlight {
@@ -82,17 +83,15 @@ std::vector<fs::path> writeDiffImages(const DiffResult& result, const fs::path& 
   const int errorChannel = diff.channelCount() - 1;
   const OIIO::ImageBuf error = iba::channels(buffer, 1, OIIO::cspan<int>(&errorChannel, 1));
   const OIIO::ImageBuf scaled = iba::clamp(iba::mul(error, float(1.0 / scale.fullScale)), 0.0f, 1.0f);
-  OIIO::ImageBuf heat = iba::color_map(scaled, 0, colorMap);
-  if (heat.has_error()) throw IoError(exrPath.string() + ": heatmap failed: " + heat.geterror());
+  const OIIO::ImageBuf heat = displayColorMap(scaled, colorMap);
   OIIO::ImageSpec pngSpec = heat.spec();
   pngSpec.set_format(OIIO::TypeDesc::UINT8);
-  pngSpec.attribute("oiio:ColorSpace", "sRGB");  // the colour map's values are display values
+  pngSpec.attribute("oiio:ColorSpace", "sRGB");
   // The colour scale: 0 at the left to fullScale at the right, through the same map.
   OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 12, 1, OIIO::TypeDesc::FLOAT));
   const float left = 0.0f, right = 1.0f;
   iba::fill(ramp, {&left, 1}, {&right, 1}, {&left, 1}, {&right, 1});
-  OIIO::ImageBuf rampColors = iba::color_map(ramp, 0, colorMap);
-  if (rampColors.has_error()) throw IoError(exrPath.string() + ": colour scale failed: " + rampColors.geterror());
+  const OIIO::ImageBuf rampColors = displayColorMap(ramp, colorMap);
   OIIO::ImageSpec rampSpec = rampColors.spec();
   rampSpec.set_format(OIIO::TypeDesc::UINT8);
   rampSpec.attribute("oiio:ColorSpace", "sRGB");

@@ -28,8 +28,9 @@ namespace headlight::detail {
 // Bumped whenever the table or a type crossing it changes: a module from
 // another build is refused, not called.
 // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder;
-// 5: OutputOptions::waitForFolderSeconds, DiffOptions::maxFlipExposures; 6: Frame::scenePose
-inline constexpr std::uint32_t kImageModuleAbi = 6;
+// 5: OutputOptions::waitForFolderSeconds, DiffOptions::maxFlipExposures; 6: Frame::scenePose;
+// 7: OutputOptions::pngTargets, RenderSettings::previewBackground
+inline constexpr std::uint32_t kImageModuleAbi = 7;
 
 struct ImageModuleTable {
   std::uint32_t abi;

@@ -15,9 +15,10 @@
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
 #include "image_io/atomic_image.hpp"
+#include "image_io/target_pngs.hpp"
 #include "io/atomic_file.hpp"
 #include "output/frame_set.hpp"
-#include "output/tonemap.hpp"
+#include "settings/preview_background.hpp"
 
 namespace headlight {
 namespace {
@@ -127,13 +128,6 @@ std::string nonFiniteMessage(std::string_view what, std::size_t count, std::size
          "-> 0, inf -> the largest finite value)";
 }
 
-// The one-pass tonemap of the preview, straight to 8-bit sRGB.
-std::uint8_t encodeSrgb8(float linear) {
-  const float v = std::clamp(linear, 0.0f, 1.0f);
-  const float encoded = linearToSrgb(v);
-  return std::uint8_t(encoded * 255.0f + 0.5f);
-}
-
 // Runs `tasks` on up to `threads` threads; rethrows the first exception
 // after all have finished (so no task outlives the data it reads).
 void runParallel(const std::vector<std::function<void()>>& tasks, int threads) {
@@ -207,54 +201,45 @@ WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& pa
   return writeExrChecked(frame, image, path, halfFloat, extra, compression, nonFinite, imageStats(image));
 }
 
-WrittenFile writePreview(const Frame& frame, const fs::path& path) {
-  const ImageF& lit = frame.lit;
-  const float scale = std::exp2(frame.settings.exposure);
-  const bool aces = frame.settings.tonemap == Tonemap::Aces;
-  const std::size_t channels = lit.channels.size(), pixels = std::size_t(lit.width) * std::size_t(lit.height);
-  std::vector<std::uint8_t> encoded(pixels * 3);
-  for (std::size_t p = 0; p < pixels; ++p)
-    for (std::size_t c = 0; c < 3; ++c) {
-      float v = lit.pixels[p * channels + c] * scale;
-      v = std::isfinite(v) ? std::max(0.0f, v) : 0.0f;
-      encoded[p * 3 + c] = encodeSrgb8(aces ? tonemapAces(v) : tonemapReinhard(v));
-    }
-  OIIO::ImageSpec spec(lit.width, lit.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  detail::writePixelsAtomically(path, encoded.data(), OIIO::TypeDesc::UINT8, spec, "png");
-  std::ostringstream line;
-  line << path.string() << ": " << lit.width << "x" << lit.height << " 8-bit sRGB preview ("
-       << (aces ? "ACES" : "Reinhard") << ", exposure " << frame.settings.exposure << " EV)";
-  WrittenFile file{path, line.str(), 0, 0, 0};
-  std::error_code error;
-  file.bytes = std::size_t(fs::file_size(path, error));
-  return file;
-}
-
 std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, const OutputOptions& options) {
   for (const std::string& name : options.targets)
     if (name != "preview" && !findFrameTarget(name))
       throw SettingsError("output target '" + name + "': not a frame target");
+  for (const std::string& name : options.pngTargets)
+    if (!findFrameTarget(name)) throw SettingsError("PNG target '" + name + "': not a frame target");
+  // Checked before anything is written, like the images: a bad background
+  // must not leave the folder half replaced.
+  parsePreviewBackground(frame.settings.previewBackground);
 
   // Every target checked before anything is written: a refused set leaves
   // the folder as it was.
+  enum class Kind { Exr, Png, Preview };
   struct Job {
+    Kind kind;
     const FrameTarget* target;  // null: the preview
     ImageStats stats;
+    std::string file() const {
+      return kind == Kind::Preview ? "preview.png" : std::string(target->name) + (kind == Kind::Exr ? ".exr" : ".png");
+    }
   };
   std::vector<Job> jobs;
   std::string refused;
   for (const FrameTarget& target : frameTargets()) {
     const ImageF& image = frame.*target.image;
     if (image.empty() || !wanted(options, target.name)) continue;
-    jobs.push_back({&target, imageStats(image)});
+    jobs.push_back({Kind::Exr, &target, imageStats(image)});
     if (jobs.back().stats.nonFinite && options.nonFinite == NonFinitePolicy::Error)
       refused += (refused.empty() ? "" : "; ") +
                  nonFiniteMessage(std::string(target.name) + ".exr", jobs.back().stats.nonFinite, image.pixels.size());
   }
   if (!refused.empty()) throw IoError(outDir.string() + ": not written: " + refused, {"clamp-nonfinite"});
   const bool preview = wanted(options, "preview") && !frame.lit.empty();
-  if (preview) jobs.push_back({nullptr, {}});
+  if (preview) jobs.push_back({Kind::Preview, nullptr, {}});
+  // A PNG is a look at a target the frame has (non-finite values show black).
+  for (const FrameTarget& target : frameTargets())
+    if (!(frame.*target.image).empty() &&
+        std::find(options.pngTargets.begin(), options.pngTargets.end(), target.name) != options.pngTargets.end())
+      jobs.push_back({Kind::Png, &target, {}});
 
   // The caller's side of the module holds the folder's lock (image_module.cpp).
   std::error_code error;
@@ -270,7 +255,7 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
     // Not a Headlight manifest: nothing in the folder is ours to remove.
   }
   std::vector<std::string> planned;
-  for (const Job& job : jobs) planned.push_back(job.target ? std::string(job.target->name) + ".exr" : "preview.png");
+  for (const Job& job : jobs) planned.push_back(job.file());
   detail::beginFrameSet(frame, outDir, options, planned);
 
   std::vector<WrittenFile> written(jobs.size());
@@ -278,11 +263,19 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
   for (std::size_t i = 0; i < jobs.size(); ++i)
     tasks.push_back([&, i] {
       const Job& job = jobs[i];
-      written[i] =
-          job.target
-              ? writeExrChecked(frame, frame.*job.target->image, outDir / (std::string(job.target->name) + ".exr"),
-                                halfStorage(*job.target, frame), {}, options.compression, options.nonFinite, job.stats)
-              : writePreview(frame, outDir / "preview.png");
+      const fs::path path = outDir / job.file();
+      switch (job.kind) {
+        case Kind::Exr:
+          written[i] = writeExrChecked(frame, frame.*job.target->image, path, halfStorage(*job.target, frame), {},
+                                       options.compression, options.nonFinite, job.stats);
+          break;
+        case Kind::Png:
+          written[i] = writeTargetPng(frame, *job.target, path);
+          break;
+        case Kind::Preview:
+          written[i] = writePreview(frame, path);
+          break;
+      }
     });
   runParallel(tasks, options.threads > 0 ? options.threads : int(std::max(1u, std::thread::hardware_concurrency())));
 
@@ -293,7 +286,10 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
     if (std::find(owned.begin(), owned.end(), name) != owned.end()) fs::remove(outDir / name, error);
   };
   for (const FrameTarget& target : frameTargets())
-    if ((frame.*target.image).empty() || !wanted(options, target.name)) removeIfOurs(std::string(target.name) + ".exr");
+    for (const char* extension : {".exr", ".png"})
+      if (const std::string file = std::string(target.name) + extension;
+          std::find(planned.begin(), planned.end(), file) == planned.end())
+        removeIfOurs(file);
   if (!preview) removeIfOurs("preview.png");
   detail::finishFrameSet(frame, outDir, options, written);
   return written;

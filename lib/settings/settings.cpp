@@ -12,6 +12,7 @@
 #include "headlight/error.hpp"
 #include "io/bounded_read.hpp"
 #include "settings/option_binding.hpp"
+#include "settings/preview_background.hpp"
 #include "settings/setting_fields.hpp"
 #include "shared_layout.h"
 
@@ -234,6 +235,13 @@ const std::vector<Row>& table() {
            .maximum = 20},
           [](auto& s) -> auto& { return s.exposure; }),
       row(
+          {.name = "preview-background",
+           .type = T::Text,
+           .help = "what preview.png shows where no geometry is: sky (what lit.exr has there), transparent "
+                   "(alpha = coverage), or a display colour #rrggbb or R,G,B in 0..1",
+           .valueName = "sky|transparent|COLOUR"},
+          [](auto& s) -> auto& { return s.previewBackground; }),
+      row(
           {.name = "radiance-precision",
            .type = T::Choice,
            .help = "storage of lit, emissive and ssgi, on the GPU and in the EXRs (half holds up to 65504)",
@@ -404,6 +412,7 @@ void RenderSettings::validate() const {
     throw SettingsError("width " + std::to_string(width) + " x height " + std::to_string(height) +
                             ": at most 67108864 pixels (8192 x 8192)",
                         {"width", "height"});
+  parsePreviewBackground(previewBackground);  // throws naming preview-background
   if (ssgi.resolution != SsgiResolution::Full && !ssgi.blur)
     throw SettingsError("ssgi-blur off needs ssgi-resolution full: below full resolution the blur pass upsamples",
                         {"ssgi-blur", "ssgi-resolution"});

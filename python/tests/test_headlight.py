@@ -138,6 +138,25 @@ def test_write_writes_the_clis_files():
         assert all(pathlib.Path(p).stat().st_size > 0 for p in paths)
 
 
+def test_write_png_and_preview_background():
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    frame = r.render(preview_background="#ff0000", **SMALL)
+    assert frame.settings["preview-background"] == "#ff0000"
+    with tempfile.TemporaryDirectory() as folder:
+        paths = frame.write(folder, png=["normal", "depth"])
+        names = sorted(os.path.basename(p) for p in paths)
+        assert "normal.png" in names and "depth.png" in names and "normal.exr" in names
+        # PNG's signature, and an 8-bit RGB image (colour type 2) of the frame's size.
+        header = pathlib.Path(folder, "normal.png").read_bytes()[:26]
+        assert header[:8] == b"\x89PNG\r\n\x1a\n"
+        assert int.from_bytes(header[16:20], "big") == 64 and int.from_bytes(header[20:24], "big") == 48
+        assert header[24] == 8 and header[25] == 2
+    expect(headlight.SettingsError, lambda: frame.write("/tmp/unused", png=["preview"]), "png")
+    expect(headlight.SettingsError, lambda: frame.write("/tmp/unused", png="normal"), "png")
+    expect(headlight.SettingsError, lambda: r.render(preview_background="blue", **SMALL), "preview-background")
+
+
 def test_two_threads_writing_one_folder_never_mix_their_files():
     # Each frame.write takes the folder's lock as a render does: a second
     # thread is refused (or, told to wait, waits) like a second process, so

@@ -50,6 +50,10 @@ enum class NonFinitePolicy { Error, Clamp };
 struct OutputOptions {
   // Target names (frameTargets()) and "preview" to write; empty: all of them.
   std::vector<std::string> targets;
+  // Frame targets also written as <target>.png, each through its row's look
+  // (FrameTarget::png: normals as colours, depth through viridis, ...); a
+  // target the frame lacks is left out, as its EXR is.
+  std::vector<std::string> pngTargets;
   ExrCompression compression = ExrCompression::Zip;  // docs/BENCHMARKS.md: smallest, and faster than zips and piz
   NonFinitePolicy nonFinite = NonFinitePolicy::Error;
   int threads = 0;  // files encoded at once; 0: one per hardware thread
@@ -100,7 +104,9 @@ inline constexpr std::string_view kSettingAttributePrefix = "headlight:setting:"
 std::map<std::string, std::string> readSettingAttributes(const std::filesystem::path& exr);
 
 // The lit image tonemapped (frame.settings.tonemap, .exposure) to 8-bit
-// sRGB, in one pass over the floats. Non-finite values become black.
+// sRGB, in one pass over the floats, over frame.settings.previewBackground
+// (the sky as lit has it, alpha from lit's coverage, or a colour). Non-finite
+// values become black.
 WrittenFile writePreview(const Frame& frame, const std::filesystem::path& path);
 
 // NaN and inf are counted and refused (or clamped) per file by writeFrame;

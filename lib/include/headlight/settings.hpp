@@ -131,6 +131,10 @@ struct RenderSettings {
   LightingSettings lighting;
   Tonemap tonemap = Tonemap::Aces;  // preview.png only; lit.exr stays linear
   float exposure = 0.0f;            // EV, preview.png only
+  // What preview.png shows where no geometry is: "sky" (the sky or
+  // environment behind, as lit.exr has it), "transparent" (alpha = lit's
+  // coverage) or a display colour, "#rrggbb" or "R,G,B" in 0..1.
+  std::string previewBackground = "sky";
   // Auto: float when the scene has a light or an emitter bright enough that
   // half may clamp (resolve: autoRadiancePrecision), else half.
   std::optional<RadiancePrecision> radiancePrecision;

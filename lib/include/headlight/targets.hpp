@@ -48,6 +48,17 @@ struct DiffThresholds {
 // half, or float32 when the frame's radiance-precision is float.
 enum class ExrStorage { Half, Float, Radiance };
 
+// How a target looks as an 8-bit PNG (render --png; OutputOptions::pngTargets).
+enum class PngLook {
+  Radiance,  // light: tone mapped like preview.png (the frame's exposure and tonemap), sRGB
+  Color,     // a linear 0..1 colour (the first three channels), sRGB-encoded
+  Signed,    // unit vectors, -1..1 -> 0..255 per component as normal maps are shown; zero vectors black
+  Range,     // the first three channels, each stretched over its range on geometry pixels; background black
+  Depth,     // viridis, near (yellow) to far (purple) over the geometry's depths; background black
+  Grey,      // the first channel, 0..1, as grey (ssgi: ambient occlusion)
+  Values,    // the first three channels, 0..1, as they are (material: metallic, roughness, occlusion)
+};
+
 struct FrameTarget {
   std::string_view name;                       // file stem (<name>.exr), and headlight diff's row name
   ImageF Frame::*image = nullptr;              // where a Frame keeps it; null for the diff fallback row
@@ -56,6 +67,7 @@ struct FrameTarget {
   DiffMetric metric = DiffMetric::Absolute;
   DiffThresholds thresholds;
   std::string_view reason;  // why this storage, metric and these thresholds (diff --help, docs/DIFF.md)
+  PngLook png = PngLook::Values;
 };
 
 // Every target a frame can have, in output order.
