@@ -46,6 +46,9 @@ std::string otherValue(const OptionSpec& spec, const OptionValue& defaultValue) 
       const double value = spec.minimum + (spec.maximum - spec.minimum) / 3.0;
       return formatOptionValue(spec, double(float(value)));
     }
+    case OptionType::Text:
+      if (!spec.example.empty()) return std::string(spec.example);
+      break;
     default:
       break;
   }

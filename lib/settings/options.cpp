@@ -104,6 +104,7 @@ OptionValue parseOptionValue(const OptionSpec& spec, std::string_view text) {
         if (choice == text) return std::string(text);
       expected(spec, expectedAuto + "one of " + choiceList(spec, ", "), text);
     case OptionType::Text:
+      if (spec.checkText) spec.checkText(text);
       return std::string(text);
   }
   return std::string(text);
@@ -147,6 +148,7 @@ void checkOptionValue(const OptionSpec& spec, const OptionValue& value) {
     }
     case OptionType::Text:
       if (!std::holds_alternative<std::string>(value)) wrongKind();
+      if (spec.checkText) spec.checkText(std::get<std::string>(value));
       return;
   }
 }

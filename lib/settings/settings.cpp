@@ -239,7 +239,9 @@ const std::vector<Row>& table() {
            .type = T::Text,
            .help = "what preview.png shows where no geometry is: sky (what lit.exr has there), transparent "
                    "(alpha = coverage), or a display colour #rrggbb or R,G,B in 0..1",
-           .valueName = "sky|transparent|COLOUR"},
+           .valueName = "sky|transparent|COLOUR",
+           .checkText = [](std::string_view text) { parsePreviewBackground(text); },
+           .example = "#3060a0"},
           [](auto& s) -> auto& { return s.previewBackground; }),
       row(
           {.name = "radiance-precision",
@@ -412,7 +414,6 @@ void RenderSettings::validate() const {
     throw SettingsError("width " + std::to_string(width) + " x height " + std::to_string(height) +
                             ": at most 67108864 pixels (8192 x 8192)",
                         {"width", "height"});
-  parsePreviewBackground(previewBackground);  // throws naming preview-background
   if (ssgi.resolution != SsgiResolution::Full && !ssgi.blur)
     throw SettingsError("ssgi-blur off needs ssgi-resolution full: below full resolution the blur pass upsamples",
                         {"ssgi-blur", "ssgi-resolution"});

@@ -53,6 +53,11 @@ struct OptionSpec {
   std::span<const std::string_view> choices{};  // Choice: the accepted names
   std::string_view autoMeaning{};               // non-empty: "auto" is accepted, and this says what it becomes
   std::string_view valueName{};                 // Text: shown in help (e.g. "DIR"); other types derive theirs
+  // Text: what the row accepts, checked wherever a value is parsed (command
+  // line, settings file, EXR attributes, Python): throws SettingsError naming
+  // the row for a value it refuses. Null: any text.
+  void (*checkText)(std::string_view text) = nullptr;
+  std::string_view example{};  // Text: a value the row accepts other than its default (the option tests set it)
 };
 
 // Parses `text` for the row: on|off, a number in range, one of the choices,
