@@ -15,9 +15,19 @@
 #include "headlight/scene_loader.hpp"
 
 namespace {
+// This process's two scratch files, removed when it exits normally (libFuzzer
+// ends a timed run with exit()); a crash leaves them, beside its reproducer.
+struct ScratchFiles {
+  std::string base = "/tmp/headlight-fuzz-" + std::to_string(getpid());
+  ~ScratchFiles() {
+    std::remove((base + ".glb").c_str());
+    std::remove((base + ".gltf").c_str());
+  }
+};
+
 std::string scratchPath(const char* extension) {
-  static const std::string base = "/tmp/headlight-fuzz-" + std::to_string(getpid());
-  return base + extension;
+  static const ScratchFiles files;
+  return files.base + extension;
 }
 }  // namespace
 
