@@ -541,3 +541,55 @@ TEST_CASE("render --png writes the named targets as PNGs, drawn even when --targ
   CHECK_FALSE(fs::exists(folder / "x"));
   fs::remove_all(folder);
 }
+
+TEST_CASE(
+    "bench replaces only its own files in --out: a user's bench.csv is refused, named, and kept; --force replaces it") {
+  const fs::path folder = freshFolder("bench-ours");
+  const fs::path out = folder / "out";
+  const std::string bench =
+      "bench builtin:cornell --resolutions 16x16 --sweep ssgi-samples=4 --repetitions 1 "
+      "--warmup 0 --no-reference --quiet --out " +
+      quote(out.string());
+  Run run = runHeadlight(bench);
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  run = runHeadlight(bench);  // an earlier bench's files: replaced
+  CHECK(run.exitCode == 0);
+  fs::remove(out / "bench.json");
+  { std::ofstream(out / "bench.csv") << "my,own\n1,2\n"; }
+  run = runHeadlight(bench);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find(out.string() + " holds bench.csv, which no earlier headlight bench wrote; pass --force to "
+                                       "replace it") != std::string::npos);
+  CHECK_FALSE(fs::exists(out / "bench.json"));  // refused before measuring: nothing written
+  std::ifstream kept(out / "bench.csv");
+  CHECK(std::string((std::istreambuf_iterator<char>(kept)), std::istreambuf_iterator<char>()) == "my,own\n1,2\n");
+  run = runHeadlight(bench + " --force");
+  CHECK(run.exitCode == 0);
+  CHECK(fs::exists(out / "bench.json"));
+  fs::remove_all(folder);
+}
+
+#if HEADLIGHT_HAS_EMBREE
+TEST_CASE(
+    "reference replaces only its own EXRs in --out: a user's lit_ref.exr is refused and kept; --force replaces it") {
+  const fs::path folder = freshFolder("reference-ours");
+  const fs::path out = folder / "out";
+  const std::string reference =
+      "reference builtin:cornell --width 16 --height 12 --reference-samples 4 --quiet --out " + quote(out.string());
+  Run run = runHeadlight(reference);
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  run = runHeadlight(reference);  // its own files: replaced
+  CHECK(run.exitCode == 0);
+  { std::ofstream(out / "lit_ref.exr") << "not an image of Headlight's"; }
+  run = runHeadlight(reference);
+  CHECK(run.exitCode == 1);
+  CHECK(run.output.find("holds lit_ref.exr, which no earlier headlight reference wrote") != std::string::npos);
+  CHECK(fs::file_size(out / "lit_ref.exr") == std::string("not an image of Headlight's").size());
+  run = runHeadlight(reference + " --force");
+  CHECK(run.exitCode == 0);
+  CHECK(fs::file_size(out / "lit_ref.exr") > 100);
+  fs::remove_all(folder);
+}
+#endif

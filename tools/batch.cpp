@@ -448,16 +448,33 @@ std::string outputFolderRefusal(const Job& job, bool force) {
     return std::string(problem.what()) + " (not a Headlight set's; pass --force to replace it)";
   }
   std::vector<std::string> names{std::string(kManifestName), "preview.png"};
-  for (const FrameTarget& target : frameTargets()) names.push_back(std::string(target.name) + ".exr");
+  for (const FrameTarget& target : frameTargets())
+    for (const char* extension : {".exr", ".png"}) names.push_back(std::string(target.name) + extension);
+  // frame.json, read above, is a set's; the other files are ours when it lists them.
+  return foreignFilesRefusal(
+      folder, names,
+      [&](const fs::path& file) {
+        std::error_code ignored;
+        if (file.filename() == kManifestName) return fs::is_regular_file(file, ignored);
+        return std::find(owned.begin(), owned.end(), file.filename().string()) != owned.end();
+      },
+      "Headlight set in this folder", false);
+}
+
+std::string foreignFilesRefusal(const fs::path& folder, std::span<const std::string> names,
+                                const std::function<bool(const fs::path&)>& ours, std::string_view writer, bool force) {
+  if (force) return "";
+  std::error_code error;
   std::string foreign;
+  int count = 0;
   for (const std::string& name : names) {
-    if (!fs::exists(folder / name, error) && !fs::is_symlink(folder / name, error)) continue;
-    if (name == kManifestName && fs::is_regular_file(folder / name, error)) continue;  // read above: ours
-    if (std::find(owned.begin(), owned.end(), name) == owned.end()) (foreign += foreign.empty() ? "" : ", ") += name;
+    const fs::path file = folder / name;
+    if (!fs::exists(file, error) && !fs::is_symlink(file, error)) continue;
+    if (!ours(file)) (foreign += count++ ? ", " : "") += name;
   }
   if (foreign.empty()) return "";
-  return folder.string() + " holds " + foreign +
-         ", which no earlier Headlight set in this folder wrote; pass --force to replace them, or choose another --out";
+  return folder.string() + " holds " + foreign + ", which no earlier " + std::string(writer) +
+         " wrote; pass --force to replace " + (count == 1 ? "it" : "them") + ", or choose another --out";
 }
 
 bool isSingleRender(const RenderCommand& command) {

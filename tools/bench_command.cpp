@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -39,6 +40,29 @@ std::pair<int, int> parseResolution(const std::string& text) {
           int(std::get<std::int64_t>(parseOptionValue(height.spec, text.substr(x + 1))))};
 }
 
+const std::string kBenchFiles[] = {"bench.csv", "bench.json", "bench.png", "bench.svg"};
+
+// An earlier bench's file: its CSV starts with the bench's header, its JSON
+// with the bench's command; the chart beside either is that bench's too.
+bool isBenchOutput(const std::filesystem::path& file) {
+  // The first bytes of `path`, when it is a regular file.
+  const auto head = [](const std::filesystem::path& path, std::size_t bytes) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) return std::string();
+    std::ifstream in(path, std::ios::binary);
+    std::string text(bytes, '\0');
+    in.read(text.data(), std::streamsize(text.size()));
+    text.resize(std::size_t(in.gcount()));
+    return text;
+  };
+  const std::filesystem::path folder = file.parent_path();
+  const bool csv = head(folder / "bench.csv", 64).rfind(kCsvHeaderStart, 0) == 0;
+  const bool json = head(folder / "bench.json", 64).find("\"command\": \"headlight bench") != std::string::npos;
+  if (file.filename() == "bench.csv") return csv;
+  if (file.filename() == "bench.json") return json;
+  return csv || json;
+}
+
 std::vector<Option<BenchCommand>> benchOptions() {
   using T = OptionType;
   using C = BenchCommand;
@@ -61,6 +85,12 @@ std::vector<Option<BenchCommand>> benchOptions() {
   rows.push_back(bindOption<C>(
       {.name = "chart", .type = T::Bool, .help = "draw bench.png/svg (needs /usr/bin/python3 with matplotlib)"},
       [](auto& c) -> auto& { return c.chart; }));
+  rows.push_back(bindOption<C>(
+      {.name = "force",
+       .type = T::Switch,
+       .help = "replace bench.csv, bench.json, bench.png or bench.svg files in --out that no earlier headlight "
+               "bench wrote"},
+      [](auto& c) -> auto& { return c.force; }));
   rows.push_back(bindOption<C>(
       {.name = "reference",
        .type = T::Bool,
@@ -410,6 +440,10 @@ int runBenchCommand(const std::vector<std::string>& args) {
       throw IoError(refusal);
   }
   const detail::OutputFolderLock lock(out, false);
+  if (const std::string refusal =
+          foreignFilesRefusal(out, kBenchFiles, isBenchOutput, "headlight bench", command.force);
+      !refusal.empty())
+    throw IoError(refusal);
   std::optional<Context> context;  // made once the first scene has loaded: a refused scene needs no GL
   std::optional<Renderer> renderer;
   std::vector<BenchRow> rows;

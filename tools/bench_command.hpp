@@ -67,6 +67,7 @@ struct BenchCommand {
   int repetitions = 5;               // timed frames per configuration (median and spread reported)
   int warmup = 2;                    // untimed frames first (shader variants, caches)
   bool chart = true;
+  bool force = false;  // replace bench.csv/json/png/svg files no earlier headlight bench wrote
   Verbosity verbosity = Verbosity::Normal;
   bool help = false;
   ContextOptions context;

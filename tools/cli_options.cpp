@@ -237,8 +237,15 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
                                  [](C& c, const OptionValue& v) { applyPreset(c.settings, text(v)); }));
   rows.push_back(settingsFileOption<C>(&C::settings));
   for (auto& row : sceneInputOptions<C>()) rows.push_back(std::move(row));
-  if (kind == CommandKind::Reference)
+  if (kind == CommandKind::Reference) {
     for (auto& row : liftOptions(referenceOptions(), &C::reference)) rows.push_back(std::move(row));
+    rows.push_back(bindOption<C>(
+        {.name = "force",
+         .type = T::Switch,
+         .help = "replace ao_ref.exr, indirect_ref.exr or lit_ref.exr files in --out that no "
+                 "earlier headlight reference wrote"},
+        [](auto& c) -> auto& { return c.force; }));
+  }
   if (kind == CommandKind::Render)
     for (auto& row : batchOptions()) rows.push_back(std::move(row));
   for (auto& row : liftOptions(settingOptions(), &C::settings)) rows.push_back(std::move(row));

@@ -82,6 +82,19 @@ int runReference(const std::vector<std::string>& args) {
   if (const std::string refusal = cli::outputFolderRefusal(folderJob, /*force=*/true); !refusal.empty())
     throw IoError(refusal);
   const detail::OutputFolderLock lock(command.outDir, command.wait, command.waitSeconds);
+  // Nor a file of that name the user keeps there: ours carry Headlight's settings attributes.
+  const std::vector<std::string> referenceFiles{"ao_ref.exr", "indirect_ref.exr", "lit_ref.exr"};
+  const auto isHeadlightExr = [](const std::filesystem::path& file) {
+    try {
+      return !readSettingAttributes(file).empty();
+    } catch (const Error&) {
+      return false;  // not an EXR, or unreadable: not ours
+    }
+  };
+  if (const std::string refusal = cli::foreignFilesRefusal(command.outDir, referenceFiles, isHeadlightExr,
+                                                           "headlight reference", command.force);
+      !refusal.empty())
+    throw IoError(refusal);
   Scene scene =
       loadCommandScene(command.scene, command.sceneLoad, command.limits, command.verbosity == cli::Verbosity::Quiet);
   Context context(command.context);
@@ -109,9 +122,9 @@ int runReference(const std::vector<std::string>& args) {
       {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},
       {"headlight:reference:seconds", std::to_string(reference.seconds)}};
   const std::filesystem::path out(command.outDir);  // made by the lock
-  const WrittenFile files[] = {writeExr(frame, reference.ao, out / "ao_ref.exr", true, metadata),
-                               writeExr(frame, reference.indirect, out / "indirect_ref.exr", true, metadata),
-                               writeExr(frame, reference.lit, out / "lit_ref.exr", true, metadata)};
+  const WrittenFile files[] = {writeExr(frame, reference.ao, out / referenceFiles[0], true, metadata),
+                               writeExr(frame, reference.indirect, out / referenceFiles[1], true, metadata),
+                               writeExr(frame, reference.lit, out / referenceFiles[2], true, metadata)};
   if (command.verbosity != cli::Verbosity::Quiet) {
     for (const WrittenFile& file : files) std::cout << file.summary << "\n";
     std::cout << "reference: " << reference.samplesPerPixel << " rays/pixel in " << reference.seconds

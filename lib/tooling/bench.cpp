@@ -166,10 +166,11 @@ std::string machineDescription() {
   return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
 }
 
+const char* const kCsvHeaderStart = "scene,label,";
+
 namespace {
 
-// Settings columns (width and height among them) come between these, one per setting row.
-const char* kCsvHeaderStart = "scene,label,";
+// Settings columns (width and height among them) come between kCsvHeaderStart and this, one per setting row.
 const char* kCsvHeaderEnd =
     "seed_default,repetitions,"
     "frame_ms_median,frame_ms_min,frame_ms_max,ssgi_ms_median,ssgi_ms_min,ssgi_ms_max,"

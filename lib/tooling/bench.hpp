@@ -93,6 +93,8 @@ struct BenchRow {
   std::string machine;  // CPU model and core count
 };
 
+// bench.csv's first columns: an earlier bench's file starts with them.
+extern const char* const kCsvHeaderStart;
 void writeBenchCsv(const std::vector<BenchRow>& rows, const std::filesystem::path& path);
 void writeBenchJson(const std::vector<BenchRow>& rows, const std::string& command, const std::filesystem::path& path);
 
