@@ -3,6 +3,7 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -32,82 +33,95 @@ float radianceToDisplay(float linear, const RenderSettings& settings) {
   return linearToSrgb(std::clamp(settings.tonemap == Tonemap::Aces ? tonemapAces(v) : tonemapReinhard(v), 0.0f, 1.0f));
 }
 
-// Pixels of `image` that show geometry: where its "A" channel (coverage) is
-// above 0, every pixel for an image without one.
-std::vector<bool> geometryMask(const ImageF& image) {
-  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height), count = image.channels.size();
-  const auto alpha = std::find(image.channels.begin(), image.channels.end(), "A");
-  std::vector<bool> mask(pixels, true);
-  if (alpha != image.channels.end())
-    for (std::size_t p = 0; p < pixels; ++p)
-      mask[p] = image.pixels[p * count + std::size_t(alpha - image.channels.begin())] > 0.0f;
-  return mask;
-}
-
-// Display values (0..1, three a pixel) of `image` through `look`.
-std::vector<float> displayValues(const Frame& frame, const ImageF& image, PngLook look) {
-  const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height), count = image.channels.size();
-  const auto value = [&](std::size_t p, std::size_t c) { return c < count ? image.pixels[p * count + c] : 0.0f; };
-  std::vector<float> shown(pixels * 3, 0.0f);
-  switch (look) {
-    case PngLook::Radiance:
-      for (std::size_t p = 0; p < pixels; ++p)
-        for (std::size_t c = 0; c < 3; ++c) shown[p * 3 + c] = radianceToDisplay(value(p, c), frame.settings);
-      break;
-    case PngLook::Color:
-      for (std::size_t p = 0; p < pixels; ++p)
-        for (std::size_t c = 0; c < 3; ++c) shown[p * 3 + c] = linearToSrgb(std::clamp(value(p, c), 0.0f, 1.0f));
-      break;
-    case PngLook::Signed:
-      for (std::size_t p = 0; p < pixels; ++p) {
-        const float x = value(p, 0), y = value(p, 1), z = value(p, 2);
-        if (x * x + y * y + z * z > 1e-12f)
-          for (std::size_t c = 0; c < 3; ++c) shown[p * 3 + c] = 0.5f * value(p, c) + 0.5f;
-      }
-      break;
-    case PngLook::Grey:
-      for (std::size_t p = 0; p < pixels; ++p) shown[p * 3] = shown[p * 3 + 1] = shown[p * 3 + 2] = value(p, 0);
-      break;
-    case PngLook::Values:
-      for (std::size_t p = 0; p < pixels; ++p)
-        for (std::size_t c = 0; c < 3; ++c) shown[p * 3 + c] = value(p, c);
-      break;
-    case PngLook::Range: {
-      const std::vector<bool> geometry = geometryMask(image);
-      for (std::size_t c = 0; c < 3 && c < count; ++c) {
-        float low = std::numeric_limits<float>::max(), high = -low;
+// How `image` shows through `look`, one pixel at a time, so that encoding
+// needs no image-sized buffer beside the 8-bit one (an 8192x8192 preview
+// would take 805 MB of floats): what the whole image decides is computed
+// first (Range's per-channel bounds, Depth's near and far), once.
+class Look {
+ public:
+  Look(const Frame& frame, const ImageF& image, PngLook look)
+      : frame_(frame), image_(image), look_(look), count_(image.channels.size()) {
+    const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
+    if (look == PngLook::Range) {
+      const auto alpha = std::find(image.channels.begin(), image.channels.end(), "A");
+      if (alpha != image.channels.end()) alpha_ = std::size_t(alpha - image.channels.begin());
+      for (std::size_t c = 0; c < 3; ++c) {
+        low_[c] = std::numeric_limits<float>::max();
+        high_[c] = -low_[c];
         for (std::size_t p = 0; p < pixels; ++p)
-          if (geometry[p] && std::isfinite(value(p, c)))
-            low = std::min(low, value(p, c)), high = std::max(high, value(p, c));
-        const float span = high > low ? high - low : 1.0f;
-        for (std::size_t p = 0; p < pixels; ++p)
-          if (geometry[p]) shown[p * 3 + c] = (value(p, c) - low) / span;
+          if (geometry(p) && std::isfinite(value(p, c)))
+            low_[c] = std::min(low_[c], value(p, c)), high_[c] = std::max(high_[c], value(p, c));
       }
-      break;
     }
-    case PngLook::Depth: {
-      // Background holds the far plane (targets.cpp); near is bright (viridis' yellow).
-      const float background = frame.view.farPlane * (1.0f - 1e-6f);
-      float low = std::numeric_limits<float>::max(), high = 0.0f;
+    if (look == PngLook::Depth) {
+      // Background holds the far plane (targets.cpp); near is viridis' yellow end.
+      background_ = frame.view.farPlane * (1.0f - 1e-6f);
+      low_[0] = std::numeric_limits<float>::max();
+      high_[0] = 0.0f;
       for (std::size_t p = 0; p < pixels; ++p)
-        if (const float z = value(p, 0); std::isfinite(z) && z < background)
-          low = std::min(low, z), high = std::max(high, z);
-      OIIO::ImageBuf ramp(OIIO::ImageSpec(image.width, image.height, 1, OIIO::TypeDesc::FLOAT));
-      std::vector<float> t(pixels, 0.0f);
-      for (std::size_t p = 0; p < pixels; ++p)
-        if (const float z = value(p, 0); std::isfinite(z) && z < background)
-          t[p] = high > low ? (high - z) / (high - low) : 1.0f;
-      ramp.set_pixels(ramp.roi(), OIIO::TypeDesc::FLOAT, t.data());
-      const OIIO::ImageBuf colors = displayColorMap(ramp, "viridis");
-      colors.get_pixels(colors.roi(), OIIO::TypeDesc::FLOAT, shown.data());
-      for (std::size_t p = 0; p < pixels; ++p)
-        if (const float z = value(p, 0); !(std::isfinite(z) && z < background))
-          shown[p * 3] = shown[p * 3 + 1] = shown[p * 3 + 2] = 0.0f;
-      break;
+        if (const float z = value(p, 0); std::isfinite(z) && z < background_)
+          low_[0] = std::min(low_[0], z), high_[0] = std::max(high_[0], z);
+      // viridis in 256 steps, display-encoded (displayColorMap).
+      OIIO::ImageBuf ramp(OIIO::ImageSpec(256, 1, 1, OIIO::TypeDesc::FLOAT));
+      std::vector<float> steps(256);
+      for (std::size_t k = 0; k < steps.size(); ++k) steps[k] = float(k) / 255.0f;
+      ramp.set_pixels(ramp.roi(), OIIO::TypeDesc::FLOAT, steps.data());
+      palette_.resize(256 * 3);
+      displayColorMap(ramp, "viridis")
+          .get_pixels(OIIO::ROI(0, 256, 0, 1, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, palette_.data());
     }
   }
-  return shown;
-}
+
+  // Pixel p's display values, 0..1.
+  std::array<float, 3> operator()(std::size_t p) const {
+    std::array<float, 3> shown{};
+    switch (look_) {
+      case PngLook::Radiance:
+        for (std::size_t c = 0; c < 3; ++c) shown[c] = radianceToDisplay(value(p, c), frame_.settings);
+        break;
+      case PngLook::Color:
+        for (std::size_t c = 0; c < 3; ++c) shown[c] = linearToSrgb(std::clamp(value(p, c), 0.0f, 1.0f));
+        break;
+      case PngLook::Signed:
+        if (const float x = value(p, 0), y = value(p, 1), z = value(p, 2); x * x + y * y + z * z > 1e-12f)
+          for (std::size_t c = 0; c < 3; ++c) shown[c] = 0.5f * value(p, c) + 0.5f;
+        break;
+      case PngLook::Grey:
+        shown.fill(value(p, 0));
+        break;
+      case PngLook::Values:
+        for (std::size_t c = 0; c < 3; ++c) shown[c] = value(p, c);
+        break;
+      case PngLook::Range:
+        if (geometry(p))
+          for (std::size_t c = 0; c < 3 && c < count_; ++c)
+            shown[c] = (value(p, c) - low_[c]) / (high_[c] > low_[c] ? high_[c] - low_[c] : 1.0f);
+        break;
+      case PngLook::Depth:
+        if (const float z = value(p, 0); std::isfinite(z) && z < background_) {
+          const float t = high_[0] > low_[0] ? (high_[0] - z) / (high_[0] - low_[0]) : 1.0f;
+          const std::size_t step = std::size_t(std::clamp(t, 0.0f, 1.0f) * 255.0f + 0.5f);
+          for (std::size_t c = 0; c < 3; ++c) shown[c] = palette_[step * 3 + c];
+        }
+        break;
+    }
+    return shown;
+  }
+
+ private:
+  float value(std::size_t p, std::size_t c) const { return c < count_ ? image_.pixels[p * count_ + c] : 0.0f; }
+  // Geometry where the image's "A" channel (coverage) is above 0; every pixel without one.
+  bool geometry(std::size_t p) const { return alpha_ == kNoAlpha || image_.pixels[p * count_ + alpha_] > 0.0f; }
+
+  static constexpr std::size_t kNoAlpha = std::size_t(-1);
+  const Frame& frame_;
+  const ImageF& image_;
+  PngLook look_;
+  std::size_t count_, alpha_ = kNoAlpha;
+  std::array<float, 3> low_{}, high_{};
+  float background_ = 0.0f;
+  std::vector<float> palette_;  // Depth: 256 viridis colours, display values
+};
 
 WrittenFile writePng(const fs::path& path, int width, int height, int channels, const std::vector<std::uint8_t>& bytes,
                      const std::string& description) {
@@ -146,9 +160,12 @@ std::string_view lookName(PngLook look) {
 
 WrittenFile writeTargetPng(const Frame& frame, const FrameTarget& target, const fs::path& path) {
   const ImageF& image = frame.*target.image;
-  const std::vector<float> shown = displayValues(frame, image, target.png);
-  std::vector<std::uint8_t> bytes(shown.size());
-  std::transform(shown.begin(), shown.end(), bytes.begin(), toByte);
+  const Look look(frame, image, target.png);
+  std::vector<std::uint8_t> bytes(std::size_t(image.width) * std::size_t(image.height) * 3);
+  for (std::size_t p = 0; p < bytes.size() / 3; ++p) {
+    const std::array<float, 3> shown = look(p);
+    for (std::size_t c = 0; c < 3; ++c) bytes[p * 3 + c] = toByte(shown[c]);
+  }
   return writePng(path, image.width, image.height, 3, bytes,
                   "8-bit PNG of " + std::string(target.name) + " (" + std::string(lookName(target.png)) + ")");
 }
@@ -156,7 +173,7 @@ WrittenFile writeTargetPng(const Frame& frame, const FrameTarget& target, const 
 WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   const ImageF& lit = frame.lit;
   const PreviewBackground background = parsePreviewBackground(frame.settings.previewBackground);
-  const std::vector<float> shown = displayValues(frame, lit, PngLook::Radiance);
+  const Look look(frame, lit, PngLook::Radiance);
   const std::size_t pixels = std::size_t(lit.width) * std::size_t(lit.height), count = lit.channels.size();
   const auto alphaAt = std::find(lit.channels.begin(), lit.channels.end(), "A");
   const auto coverage = [&](std::size_t p) {
@@ -169,8 +186,9 @@ WrittenFile writePreview(const Frame& frame, const fs::path& path) {
   std::vector<std::uint8_t> bytes(pixels * channels);
   for (std::size_t p = 0; p < pixels; ++p) {
     const float a = coverage(p);
+    const std::array<float, 3> shown = look(p);
     for (std::size_t c = 0; c < 3; ++c) {
-      float v = shown[p * 3 + c];
+      float v = shown[c];
       if (background.kind == PreviewBackground::Kind::Color) v = a * v + (1.0f - a) * background.color[c];
       if (transparent && a == 0.0f) v = 0.0f;  // nothing shows there: no sky colour under alpha 0
       bytes[p * channels + c] = toByte(v);
