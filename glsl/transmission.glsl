@@ -113,8 +113,11 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
   radiance += ambientLight(surface, materialOcclusion, 1.0, vec3(0.0)) - share * diffuseIbl;
 #endif
   const float pathThickness = max(thickness, 0.0);
-  const vec3 path = volumeTransmissionRay(surface.normal, surface.view, pathThickness, ior, vModelScale);
-  const float pathLength = length(path);
+  // The length of the unit-thickness ray times the thickness, not length(path):
+  // its squares overflow float from a path of ~1.8e19 (thicknessFactor is unbounded).
+  const vec3 unitPath = volumeTransmissionRay(surface.normal, surface.view, 1.0, ior, vModelScale);
+  const vec3 path = unitPath * pathThickness;
+  const float pathLength = length(unitPath) * pathThickness;
   const vec3 attenuation =
       volumeAttenuation(pathLength, material.attenuationColor.rgb, material.transmissionFactors.w);
   const vec3 throughput = transmissionThroughput(surface, specularAlbedo, share, attenuation);

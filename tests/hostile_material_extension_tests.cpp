@@ -72,4 +72,30 @@ TEST_SUITE("hostile") {
     CHECK(run.exitCode == 0);
     CHECK(std::filesystem::exists(out / "lit.exr"));
   }
+
+  TEST_CASE("a volume thicker than half float holds renders, its path length kept in a float transmission.exr") {
+    // thicknessFactor has no upper bound in KHR_materials_volume: 1e20 made the
+    // path length inf (length()'s squares overflow, and the half target), so no
+    // set could be written (issue 32).
+    TempFolder folder("hostile-thick-volume");
+    const auto scene =
+        writeGltf(folder, withMaterialExtensions({{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                                                  {"KHR_materials_volume", {{"thicknessFactor", 1e20}}}}));
+    const auto out = folder.path() / "out";
+    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+    INFO(run.output);
+    CHECK(run.exitCode == 0);
+    CHECK(run.output.find("transmission.exr: 32x24 float ") != std::string::npos);
+    CHECK(run.output.find("transmission.thickness [0, 1e+20]; non-finite 0") != std::string::npos);
+    // A volume within half's range keeps the half file.
+    const auto thin = writeGltf(folder,
+                                withMaterialExtensions({{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
+                                                        {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}),
+                                "thin.gltf");
+    const ProcessResult half =
+        runHeadlight("render " + quote(thin) + " --width 32 --height 24 --out " + quote(folder.path() / "thin"));
+    INFO(half.output);
+    CHECK(half.exitCode == 0);
+    CHECK(half.output.find("transmission.exr: 32x24 half ") != std::string::npos);
+  }
 }

@@ -128,7 +128,9 @@ constexpr AttachmentRow kAttachmentRows[] = {
     // 32). The file keeps half: 0..1 to ~5e-4.
     {.id = Attachment::BlendCoverage, .name = "blend.coverage", .format = F::Rgba32F, .target = &Frame::coverage},
     // Half float: a throughput 0..1 and a path length in world units.
-    {.id = Attachment::Transmission, .name = "transmission", .format = F::Rgba16F, .target = &Frame::transmission},
+    // Float: the path length through a KHR_materials_volume is the file's thickness times its scale,
+    // unbounded; half turned any beyond 65504 into inf and the set could not be written (issue 32).
+    {.id = Attachment::Transmission, .name = "transmission", .format = F::Rgba32F, .target = &Frame::transmission},
     // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
     // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
     {.id = Attachment::GbufferIridescence,

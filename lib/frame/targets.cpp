@@ -116,11 +116,12 @@ const FrameTarget kTargets[] = {
      "only for scenes that blend. Alpha comes from 8-bit textures and factors (one step 3.9e-3), like albedo: any "
      "step warns, more than two fail.",
      L::Grey},
-    {"transmission", &Frame::transmission, kTransmissionChannels, E::Half, M::RelativeToValue,
+    {"transmission", &Frame::transmission, kTransmissionChannels, E::HalfWhereItFits, M::RelativeToValue,
      thresholds(2e-3, 1e-2, 0.5, 1e-2),
      "KHR_materials_transmission: the share of the opaque image behind that came through the nearest "
      "transmissive surface (0..1 per channel), and the path length through its volume (world units, 0 for thin "
-     "walls); only for scenes that transmit. A product of 8-bit base colour and transmission texture, the split-sum "
+     "walls); only for scenes that transmit; half, or float when a path length exceeds half's 65504. A product of "
+     "8-bit base colour and transmission texture, the split-sum "
      "table and Beer-Lambert: one 8-bit step is 3.9e-3, so any step warns and more than two fail; relative above 1 "
      "for path lengths, whose scale is the scene's.",
      L::Values},

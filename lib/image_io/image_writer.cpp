@@ -150,9 +150,11 @@ void runParallel(const std::vector<std::function<void()>>& tasks, int threads) {
 }
 
 // Light is half unless the frame was rendered with float radiance: then its
-// GPU target held float32, and half would clamp what it kept.
-bool halfStorage(const FrameTarget& target, const Frame& frame) {
+// GPU target held float32, and half would clamp what it kept. A target that
+// is half where it fits is float when its image holds a finite value beyond half.
+bool halfStorage(const FrameTarget& target, const Frame& frame, const ImageStats& stats) {
   if (target.storage == ExrStorage::Radiance) return frame.settings.radiancePrecision != RadiancePrecision::Float;
+  if (target.storage == ExrStorage::HalfWhereItFits) return stats.saturatedPixels == 0;
   return target.storage == ExrStorage::Half;
 }
 
@@ -266,8 +268,9 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
       const fs::path path = outDir / job.file();
       switch (job.kind) {
         case Kind::Exr:
-          written[i] = writeExrChecked(frame, frame.*job.target->image, path, halfStorage(*job.target, frame), {},
-                                       options.compression, options.nonFinite, job.stats);
+          written[i] =
+              writeExrChecked(frame, frame.*job.target->image, path, halfStorage(*job.target, frame, job.stats), {},
+                              options.compression, options.nonFinite, job.stats);
           break;
         case Kind::Png:
           written[i] = writeTargetPng(frame, *job.target, path);

@@ -42,8 +42,8 @@ namespace headlight {
 // GPU memory the pass adds per pixel, for the renderer's pre-flight
 // (--max-memory): lit's copy with its mip chain (RGBA32F under
 // radiance-precision float: 16 bytes x 4/3) and the transmission target
-// (RGBA16F, 8), rounded up.
-inline constexpr std::uint64_t kTransmissionBytesPerPixel = 32;
+// (RGBA32F, 16), rounded up.
+inline constexpr std::uint64_t kTransmissionBytesPerPixel = 40;
 
 struct TransmissionInputs {
   const GpuScene& scene;

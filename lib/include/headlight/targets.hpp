@@ -46,7 +46,10 @@ struct DiffThresholds {
 
 // What the EXR stores: float32 where half's 11 bits are too few; light is
 // half, or float32 when the frame's radiance-precision is float.
-enum class ExrStorage { Half, Float, Radiance };
+// HalfWhereItFits: half, or float32 for a frame whose image holds a finite
+// value beyond half's 65504 (transmission's path lengths: a volume's thickness
+// is unbounded), so nothing saturates or turns into inf in the file.
+enum class ExrStorage { Half, Float, Radiance, HalfWhereItFits };
 
 // How a target looks as an 8-bit PNG (render --png; OutputOptions::pngTargets).
 enum class PngLook {
