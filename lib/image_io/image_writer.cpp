@@ -10,7 +10,6 @@
 #include <sstream>
 #include <thread>
 
-#include "color/srgb.hpp"
 #include "headlight/error.hpp"
 #include "headlight/output.hpp"
 #include "headlight/targets.hpp"
