@@ -96,7 +96,8 @@ using mat4 = glm::mat4;
   X(kUnitPassAccumulated1, 44)            \
   X(kUnitPassAccumulated2, 45)            \
   X(kUnitPassAccumulated3, 46)            \
-  X(kUnitSsgiSurface, 47)
+  X(kUnitSsgiSurface, 47)                 \
+  X(kUnitLit, 48)
 
 // Image units (X(name, unit)), for image load/store: a fullscreen pass's
 // compute form writes its outputs 0..3 to these (glsl/fullscreen_entry.comp).

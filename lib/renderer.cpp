@@ -2,7 +2,10 @@
 // tables (on demand) -> G-buffer -> the fullscreen passes the plan declared
 // (direct light -> SSGI (-> blur) -> composite; lib/passes/frame_passes.cpp)
 // -> transmission (scenes with KHR_materials_transmission) -> blend (scenes
-// with alphaMode BLEND) -> read back. What runs, with which shader variant
+// with alphaMode BLEND) -> read back every target but lit -> with
+// antialiasing, each jittered sample's G-buffer, direct light, composite,
+// transmission and blend again, averaged into lit (frame/antialias.hpp) ->
+// read back lit. What runs, with which shader variant
 // and into which attachments, is the frame plan's (frame/frame_plan.hpp);
 // this file executes it. Each pass is timed between
 // glFinish calls and checked for GL errors.
@@ -19,6 +22,7 @@
 #include <vector>
 
 #include "context/context_access.hpp"
+#include "frame/antialias.hpp"
 #include "frame/frame_plan.hpp"
 #include "frame/resolve.hpp"
 #include "gl/gpu_scene.hpp"
@@ -275,11 +279,13 @@ struct Renderer::Impl {
     return fitted;
   }
 
-  // Starts reading each planned target from its attachments (depth as view
-  // depth); a target with no source is zeros of the image's size at once.
-  void startReads(const FramePlan& plan, PendingFrame& pending) {
+  // Starts reading each planned target whose afterAntialias is `antialiased`
+  // from its attachments (depth as view depth); a target with no source is
+  // zeros of the image's size at once.
+  void startReads(const FramePlan& plan, PendingFrame& pending, bool antialiased) {
     Frame& frame = pending.frame;
     for (const TargetRead& read : plan.reads) {
+      if (read.afterAntialias != antialiased) continue;
       const FrameTarget& target = *read.target;
       const std::vector<std::string>& channels = read.channels;
       if (read.sources.empty()) {
@@ -298,6 +304,41 @@ struct Renderer::Impl {
                                                     ? PendingImage::viewDepth(*sources.front(), frame.view,
                                                                               channels.front(), path, &readbackBuffers)
                                                     : PendingImage::color(sources, channels, path, &readbackBuffers));
+    }
+  }
+
+  // Draws `view` (whose frame block is bound): the G-buffer, the plan's
+  // fullscreen passes at `passes` (indices into plan.passes), transmission
+  // and blend. `run(name, work, form)` runs each step: timed apart for the
+  // centre's view, as they are inside the antialias entry for a jittered one.
+  template <class Run>
+  void drawView(const FramePlan& plan, const FrameInputs& inputs, const PassForms& forms, const CameraView& view,
+                std::span<const std::size_t> passes, Run&& run) {
+    run(
+        "gbuffer", [&] { gbufferPass->run(*gpuScene, gbufferTargets(plan.gbuffer), plan.gbuffer); }, std::nullopt);
+    // The fullscreen passes, as the plan declared them: each binds what it
+    // reads and writes what it declared.
+    for (std::size_t index : passes) {
+      const PassDeclaration& pass = plan.passes[index];
+      const PassForm form = forms[pass.row];
+      run(
+          fullscreenPassRows()[pass.row].name, [&] { runFramePass(framePass(pass.row), pass, inputs, textures, form); },
+          form);
+    }
+    if (plan.transmission) {
+      const GBufferTargets targets = gbufferTargets(plan.gbuffer);
+      const TransmissionInputs transmissionInputs{*gpuScene,    *gbufferPass, targets,
+                                                  plan.gbuffer, shadowMaps,   environment.tables()};
+      const TransmissionTargets outputs{texture(Attachment::Lit), texture(Attachment::Transmission), width, height};
+      run(
+          "transmission", [&] { transmission.run(transmissionInputs, outputs, *plan.transmission); }, std::nullopt);
+    }
+    if (plan.blend) {
+      const BlendInputs blendInputs{*gpuScene, view, texture(Attachment::GbufferDepth), shadowMaps,
+                                    environment.tables()};
+      const BlendTargets outputs{texture(Attachment::Lit), texture(Attachment::BlendCoverage), width, height};
+      run(
+          "blend", [&] { blend.run(blendInputs, outputs, *plan.blend); }, std::nullopt);
     }
   }
 
@@ -445,38 +486,45 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   if (plan.environmentTables && !impl.environment.holdsEnvironment(*impl.scene.environment))
     timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
   impl.bindLighting(used.lighting);
-  timer.run("gbuffer", [&] { impl.gbufferPass->run(*impl.gpuScene, impl.gbufferTargets(plan.gbuffer), plan.gbuffer); });
-  // The fullscreen passes, as the plan declared them: each binds what it
-  // reads and writes what it declared.
+  // The view at the pixel centres: every pass, each timed apart.
   const FrameInputs inputs{plan, used, impl.shadowMaps, impl.environment.tables(), impl.virtualLights};
-  for (const PassDeclaration& pass : plan.passes) {
-    const PassForm form = forms[pass.row];
-    timer.run(
-        fullscreenPassRows()[pass.row].name,
-        [&] { runFramePass(impl.framePass(pass.row), pass, inputs, impl.textures, form); }, form);
-  }
-  if (plan.transmission) {
-    const GBufferTargets gbufferTargets = impl.gbufferTargets(plan.gbuffer);
-    const TransmissionInputs inputs{*impl.gpuScene, *impl.gbufferPass, gbufferTargets,
-                                    plan.gbuffer,   impl.shadowMaps,   impl.environment.tables()};
-    const TransmissionTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::Transmission), impl.width,
-                                      impl.height};
-    timer.run("transmission", [&] { impl.transmission.run(inputs, targets, *plan.transmission); });
-  }
-  if (plan.blend) {
-    const BlendInputs inputs{*impl.gpuScene, frame.view, impl.texture(Attachment::GbufferDepth), impl.shadowMaps,
-                             impl.environment.tables()};
-    const BlendTargets targets{impl.texture(Attachment::Lit), impl.texture(Attachment::BlendCoverage), impl.width,
-                               impl.height};
-    timer.run("blend", [&] { impl.blend.run(inputs, targets, *plan.blend); });
+  std::vector<std::size_t> allPasses(plan.passes.size());
+  for (std::size_t index = 0; index < allPasses.size(); ++index) allPasses[index] = index;
+  impl.drawView(plan, inputs, forms, frame.view, allPasses,
+                [&](std::string_view pass, auto&& work, std::optional<PassForm> form) { timer.run(pass, work, form); });
+  // Every target but lit is the centre's: read before a jittered sample overwrites it.
+  const auto readStart = std::chrono::steady_clock::now();
+  impl.startReads(plan, pending, false);
+  double readQueueMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count();
+  if (plan.antialias) {
+    // Each sample's view drawn again, timed as one entry: what antialiasing costs.
+    const std::size_t accumulateRow = fullscreenPassIndex("antialias");
+    timer.run("antialias", [&] {
+      for (int sample = 0; sample < plan.antialias->samples; ++sample) {
+        const CameraView view =
+            jitteredView(frame.view, antialiasOffset(sample, plan.antialias->samples), used.width, used.height);
+        impl.frameBlock.update(makeFrameBlock(view, used.width, used.height));
+        // A sample's own SSGI gets its own noise: the seed moved past the frames' rotations.
+        RenderSettings sampleSettings = used;
+        sampleSettings.ssgi.seed += unsigned((sample + 1) * used.ssgi.frames);
+        FrameInputs sampleInputs{plan,  sampleSettings, impl.shadowMaps, impl.environment.tables(), impl.virtualLights,
+                                 sample};
+        impl.drawView(plan, sampleInputs, forms, view, plan.antialias->perSamplePasses,
+                      [](std::string_view, auto&& work, std::optional<PassForm>) { work(); });
+        runFramePass(impl.framePass(accumulateRow), plan.antialias->accumulate, sampleInputs, impl.textures,
+                     forms[accumulateRow]);
+      }
+      impl.frameBlock.update(frameBlock);
+    });
   }
   // The copies are queued behind the passes; the pixels come back in
   // collectFrame, whose "readback" time includes this queueing.
-  const auto readStart = std::chrono::steady_clock::now();
-  impl.startReads(plan, pending);
+  const auto antialiasedReadStart = std::chrono::steady_clock::now();
+  impl.startReads(plan, pending, true);
   impl.context.checkErrors("readback");
-  pending.readbackQueueMs =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - readStart).count();
+  readQueueMs +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - antialiasedReadStart).count();
+  pending.readbackQueueMs = readQueueMs;
   if (!synchronous) {
     pending.fence = gl::Fence::insert();
     glFlush();  // the GPU starts on this frame while the CPU goes on

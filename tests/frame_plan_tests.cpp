@@ -60,7 +60,7 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   REQUIRE(plan.composite);
   CHECK(*plan.composite == CompositeVariant{.ssgi = true, .sky = true});
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
-                                                          "ssgi-surface", "ssgi", "ssgi-blur", "composite",
+                                                          "ssgi-surface", "ssgi", "ssgi-blur", "composite", "antialias",
                                                           "readback"});
   CHECK(!plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.allocates(Attachment::SsgiRaw));
@@ -82,7 +82,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   CHECK(!skips(plan, "blend"));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
                                                           "ssgi-surface", "ssgi", "ssgi-blur", "composite", "blend",
-                                                          "readback"});
+                                                          "antialias", "readback"});
   CHECK(plan.allocates(Attachment::BlendCoverage));
   CHECK(plan.allocates(Attachment::Lit));
   const TargetRead* coverage = readOf(plan, "coverage");
@@ -163,7 +163,8 @@ TEST_CASE("frame plan: each SSGI method's row decides the direct light, the blur
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.allocates(Attachment::SsgiRaw));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
-                                                          "ssgi-surface", "ssgi", "composite", "readback"});
+                                                          "ssgi-surface", "ssgi", "composite", "antialias",
+                                                          "readback"});
   settings.ssgi.enabled = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.ssgi);
@@ -317,7 +318,8 @@ TEST_CASE("frame plan: the fullscreen passes' declarations give the allocations,
                                   [&](const PassDeclaration& pass) { return pass.writesAttachment(row.id); });
                   const bool forward = (row.id == Attachment::BlendCoverage && plan.blend) ||
                                        (row.id == Attachment::Transmission && plan.transmission);
-                  CHECK(plan.allocates(row.id) == (gbuffer || declared || forward));
+                  const bool antialias = plan.antialias && plan.antialias->accumulate.writesAttachment(row.id);
+                  CHECK(plan.allocates(row.id) == (gbuffer || declared || forward || antialias));
                 }
                 // No pass runs for nothing: each writes something a later pass
                 // reads or the frame reads back (lit: also what the forward passes draw over).
@@ -326,6 +328,7 @@ TEST_CASE("frame plan: the fullscreen passes' declarations give the allocations,
                   const bool consumed =
                       std::any_of(plan.passes[i].writes.begin(), plan.passes[i].writes.end(), [&](Attachment id) {
                         return readBack(plan, id) ||
+                               (plan.antialias && plan.antialias->accumulate.readsAttachment(id)) ||
                                std::any_of(plan.passes.begin() + std::ptrdiff_t(i) + 1, plan.passes.end(),
                                            [&](const PassDeclaration& later) { return later.readsAttachment(id); });
                       });

@@ -97,6 +97,7 @@ const std::vector<PassSource>& passSources() {
       {"brdf_lut.glsl", {"scaleBias"}, {}},
       {"sky_prefilter.glsl", {"radiance"}, {}},
       {"sky_irradiance.glsl", {"irradianceOverPi"}, {}},
+      {"antialias.glsl", {"lit"}, {}},
   };
   return sources;
 }

@@ -30,7 +30,7 @@ TEST_CASE("SSGI plan: by default the far field is its own pass at half resolutio
   CHECK(plan.allocates(Attachment::SsgiFarSky));
   // The far field's passes are timed with the SSGI pass and its blur.
   CHECK(plan.passNames() == std::vector<std::string_view>{"virtual-lights", "sky", "gbuffer", "direct", "ssgi-surface",
-                                                          "ssgi", "ssgi-blur", "composite", "readback"});
+                                                          "ssgi", "ssgi-blur", "composite", "antialias", "readback"});
 }
 
 TEST_CASE("SSGI plan: the far field's divisor follows ssgi-far-resolution, never finer than ssgi-resolution") {

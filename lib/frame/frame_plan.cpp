@@ -162,6 +162,8 @@ constexpr AttachmentRow kAttachmentRows[] = {
      .lobeUnit = gpu::kUnitClearcoatLobe},
     // float32: the depth buffer's value exactly, and the view normal as the marches computed it.
     {.id = Attachment::SsgiSurface, .name = "ssgi.surface", .format = F::Rgba32F},
+    // float32 whatever lit's precision: 64 samples' running mean in half would round at every step.
+    {.id = Attachment::LitAccumulation, .name = "lit.accumulation", .format = F::Rgba32F},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -271,17 +273,33 @@ std::optional<PassDeclaration> declareComposite(const FramePlan& plan) {
 // direct, 0.98-1.53 for SSGI, 0.99-1.33 for the blur, 0.83-1.03 for the composite. The tables run once
 // per renderer and were not told apart: fragment, as before.
 const FullscreenPassRow kFullscreenPassRows[] = {
-    {"direct", PassForm::Fragment, declareDirectLight},
+    {.name = "direct", .softwareForm = PassForm::Fragment, .declare = declareDirectLight},
     // ssgi-surface: compute 5.5-7.9 ms against fragment 11.9-13.0 at cornell 640x480, 3.3-5.0 against 8.8-14.8
     // at spheres 256x256 (--verbose, three cold runs each; one compute outlier of 31 ms, a first run's JIT).
-    {"ssgi-surface", PassForm::Compute, declareSsgiSurface, "ssgi_surface.glsl", nullptr, kSsgiSurfaceOutputs},
-    {"ssgi", PassForm::Fragment, declareSsgi},
-    {"ssgi-blur", PassForm::Fragment, declareSsgiBlur},
-    {"composite", PassForm::Compute, declareComposite},
+    {.name = "ssgi-surface",
+     .softwareForm = PassForm::Compute,
+     .declare = declareSsgiSurface,
+     .body = "ssgi_surface.glsl",
+     .outputs = kSsgiSurfaceOutputs,
+     .perAntialiasSample = false},
+    {.name = "ssgi", .softwareForm = PassForm::Fragment, .declare = declareSsgi, .perAntialiasSample = false},
+    {.name = "ssgi-blur", .softwareForm = PassForm::Fragment, .declare = declareSsgiBlur, .perAntialiasSample = false},
+    {.name = "composite", .softwareForm = PassForm::Compute, .declare = declareComposite},
     // The BRDF, sky and environment tables (EnvironmentPass): made on demand
     // ahead of the frame's passes, not attachments of it.
-    {"sky", PassForm::Fragment},
+    {.name = "sky", .softwareForm = PassForm::Fragment},
+    // Lit's samples averaged (AntialiasStep): after the transmission and
+    // blend passes, which are no rows, so the plan declares it itself
+    // (declareAntialias). A copy: compute, untimed apart.
+    {.name = "antialias", .softwareForm = PassForm::Compute},
 };
+
+// The antialias pass: one sample of lit into lit.accumulation's running mean.
+PassDeclaration declareAntialias() {
+  return PassDeclaration{.row = fullscreenPassIndex("antialias"),
+                         .reads = {{Attachment::Lit, gpu::kUnitLit}},
+                         .writes = {Attachment::LitAccumulation}};
+}
 
 // ---- What a frame skips ------------------------------------------------------------
 
@@ -381,6 +399,7 @@ void planAttachments(FramePlan& plan) {
     for (Attachment id : pass.writes) allocate(id);
   if (plan.blend) allocate(Attachment::BlendCoverage);
   if (plan.transmission) allocate(Attachment::Transmission);
+  if (plan.antialias) allocate(Attachment::LitAccumulation);
 }
 
 // The G-buffer's colour attachments, in row order: the fixed ones, then each
@@ -418,6 +437,10 @@ void planReads(FramePlan& plan, const TargetWanted& wanted, const SceneSummary& 
     if (target.image == &Frame::material && scene.unlit) read.channels.emplace_back(kMaterialUnlitChannel);
     for (const AttachmentRow& row : kAttachmentRows)
       if (row.target == target.image && plan.allocates(row.id)) read.sources.push_back(row.id);
+    if (target.image == &Frame::lit && plan.antialias) {
+      read.sources = {Attachment::LitAccumulation};
+      read.afterAntialias = true;
+    }
     // Asked for by name and drawn by nothing the scene needs (the emissive
     // target of a scene without emission): what it would hold, zeros.
     const bool zeros = read.sources.empty() && target.image == &Frame::emissive && wanted.named(target.name);
@@ -542,6 +565,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   for (const PassDeclaration& pass : passes) names.push_back(fullscreenPassRows()[pass.row].name);
   if (transmission) names.push_back("transmission");
   if (blend) names.push_back("blend");
+  if (antialias) names.push_back("antialias");  // the jittered samples' passes, timed as one
   names.push_back("readback");
   return names;
 }
@@ -617,6 +641,15 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
                               .environment = plan.environmentTables,
                               .lobes = scene.lobes};
   plan.passes = declareFullscreenPasses(plan, fullscreenPassRows());
+  if (plan.composite && settings.antialiasSamples > 1) {
+    plan.antialias = AntialiasStep{.samples = settings.antialiasSamples,
+                                   .ssgiPerSample = settings.antialiasSsgi && plan.ssgi,
+                                   .perSamplePasses = {},
+                                   .accumulate = declareAntialias()};
+    for (std::size_t index = 0; index < plan.passes.size(); ++index)
+      if (plan.antialias->ssgiPerSample || fullscreenPassRows()[plan.passes[index].row].perAntialiasSample)
+        plan.antialias->perSamplePasses.push_back(index);
+  }
   planAttachments(plan);
   const bool floatRadiance = settings.radiancePrecision == RadiancePrecision::Float;
   for (const AttachmentRow& row : kAttachmentRows)

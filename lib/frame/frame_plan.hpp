@@ -120,6 +120,7 @@ enum class Attachment {
   GbufferSpecularLobe,   // Lobe::Specular: dielectric F0 colour, specular weight
   GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
   SsgiSurface,           // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
+  LitAccumulation,       // the running mean of lit's antialias samples; lit.exr's source when antialiased
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
@@ -231,6 +232,9 @@ struct TargetRead {
   std::vector<Attachment> sources;  // empty: written as zeros (asked for by name, nothing draws it)
   // The EXR's channels: the target's, then material.unlit where the scene has unlit materials.
   std::vector<std::string> channels;
+  // Read once the antialias samples are averaged (lit); every other target
+  // is read after the centre sample, before a jittered one overwrites it.
+  bool afterAntialias = false;
 };
 
 // ---- Fullscreen passes: what each declares ---------------------------------
@@ -258,6 +262,21 @@ struct PassDeclaration {
 
 struct FramePlan;
 
+// Antialiasing (RenderSettings::antialiasSamples, lib/frame/antialias.hpp):
+// the frame is drawn at the pixel centre, and every target but lit read
+// from that; then each sample draws the view again through a projection
+// jittered by its sub-pixel offset: the G-buffer, the fullscreen passes that run per
+// sample (FullscreenPassRow::perAntialiasSample: not the SSGI, whose centre
+// output each sample's composite reads), transmission and blend. The
+// `antialias` pass keeps the running mean of the samples' lit in
+// lit.accumulation, which lit is read from.
+struct AntialiasStep {
+  int samples = 2;                           // jittered samples averaged (the centre's frame is not one)
+  bool ssgiPerSample = false;                // antialias-ssgi: the SSGI passes are among perSamplePasses
+  std::vector<std::size_t> perSamplePasses;  // indices into FramePlan::passes a jittered sample runs again
+  PassDeclaration accumulate;                // the antialias pass: reads lit, writes lit.accumulation
+};
+
 // One fullscreen pass: its name, the form auto picks for it on a software
 // rasteriser (measured), and what it reads and writes in a plan. Its GL side
 // is its FramePass (lib/passes/frame_passes.cpp makes it), or, for a pass
@@ -279,6 +298,10 @@ struct FullscreenPassRow {
   std::string_view body = {};
   std::vector<std::string> (*defines)(const FramePlan& plan) = nullptr;
   std::span<const std::string_view> outputs = {};
+  // Runs again for each jittered antialias sample (AntialiasStep); false:
+  // its output is the screen-space light, low in frequency, and the centre
+  // sample's serves every sample.
+  bool perAntialiasSample = true;
 };
 // Every fullscreen pass, in frame order.
 std::span<const FullscreenPassRow> fullscreenPassRows();
@@ -317,6 +340,7 @@ struct FramePlan {
   std::vector<PassDeclaration> passes;
   std::optional<TransmissionVariant> transmission;  // after the composite, before the blend pass
   std::optional<BlendVariant> blend;                // after the composite, over lit
+  std::optional<AntialiasStep> antialias;           // after everything that writes lit
 
   std::array<bool, kAttachmentCount> allocate{};     // by Attachment
   std::array<GpuFormat, kAttachmentCount> format{};  // by Attachment: the row's, or Rgba32F for radiance in float

@@ -32,6 +32,7 @@ struct FrameInputs {
   const ShadowMaps& shadows;       // empty maps: no shadows
   const EnvironmentTables& environment;
   const VirtualLights& virtualLights;  // read where the plan's SSGI step gathers them
+  int antialiasSample = 0;             // the antialias pass's sample (AntialiasStep)
 };
 
 // The attachments one pass declared, and nothing else.

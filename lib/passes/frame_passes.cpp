@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "headlight/error.hpp"
+#include "passes/antialias.hpp"
 #include "passes/composite.hpp"
 #include "passes/direct_light.hpp"
 #include "passes/frame_pass.hpp"
@@ -24,10 +25,8 @@ struct OwnPass {
   std::unique_ptr<FramePass> (*make)();
 };
 constexpr OwnPass kOwnPasses[] = {
-    {"direct", make<DirectLightPass>},
-    {"ssgi", make<SsgiPass>},
-    {"ssgi-blur", make<SsgiBlurPass>},
-    {"composite", make<CompositePass>},
+    {"direct", make<DirectLightPass>},  {"ssgi", make<SsgiPass>},           {"ssgi-blur", make<SsgiBlurPass>},
+    {"composite", make<CompositePass>}, {"antialias", make<AntialiasPass>},
 };
 
 }  // namespace

@@ -54,6 +54,20 @@ const std::vector<Row>& table() {
            .autoMeaning = "the scene's first camera, else one fitted to the bounds"},
           [](auto& s) -> auto& { return s.camera; }),
       row(
+          {.name = "antialias",
+           .type = T::Int,
+           .help = "lit and preview.png: sub-pixel samples averaged per pixel (1: off); the G-buffer targets and "
+                   "ssgi keep the pixel centre's",
+           .minimum = 1,
+           .maximum = 64},
+          [](auto& s) -> auto& { return s.antialiasSamples; }),
+      row(
+          {.name = "antialias-ssgi",
+           .type = T::Bool,
+           .help = "every antialias sample runs the SSGI pass too, with its own noise (off: each reads the pixel "
+                   "centre's SSGI; on costs the SSGI's time per sample)"},
+          [](auto& s) -> auto& { return s.antialiasSsgi; }),
+      row(
           {.name = "ssgi", .type = T::Bool, .help = "the SSGI pass (off: no ssgi.exr; ambient is unoccluded)"},
           [](auto& s) -> auto& { return s.ssgi.enabled; }),
       row(

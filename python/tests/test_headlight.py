@@ -71,6 +71,20 @@ def test_pass_times_and_settings_as_used():
     assert frame.settings["exposure"] == "0.5"
 
 
+def test_antialias_changes_lit_alone_and_is_timed():
+    r = osmesa_renderer()
+    r.set_scene("builtin:spheres")
+    centre = r.render(**SMALL, antialias=1)
+    antialiased = r.render(**SMALL)  # the default: 8 samples
+    assert antialiased.settings["antialias"] == "8" and centre.settings["antialias"] == "1"
+    for name in ("position", "normal", "depth", "ssgi"):
+        assert np.array_equal(centre[name], antialiased[name]), name
+    alpha = antialiased["lit"][..., 3]
+    assert ((alpha > 0) & (alpha < 1)).any()  # soft silhouettes
+    assert set(np.unique(centre["lit"][..., 3])) <= {0.0, 1.0}
+    assert "antialias" in antialiased.times and "antialias" not in centre.times
+
+
 def test_gpu_times_and_forms():
     r = osmesa_renderer()
     r.set_scene("builtin:cornell")

@@ -49,11 +49,15 @@ Scene openPlaneScene();
 // `scene` rendered by a fresh renderer on sharedContext().
 Frame renderFresh(Scene scene, const RenderSettings& settings);
 
-// Settings for a small test render.
+// Settings for a small test render, lit sampled at the pixel centres (no
+// antialiasing): the per-pixel checks compare lit with the G-buffer's
+// surface at the same pixel and with CPU ports evaluated there; the
+// antialiased lit has its own tests (antialias_tests.cpp).
 inline RenderSettings smallSettings(int width = 96, int height = 96) {
   RenderSettings settings;
   settings.width = width;
   settings.height = height;
+  settings.antialiasSamples = 1;
   return settings;
 }
 

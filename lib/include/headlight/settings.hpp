@@ -127,6 +127,18 @@ struct RenderSettings {
   int width = 640;            // pixels; width x height at most 2^26
   int height = 480;           // pixels
   std::optional<int> camera;  // glTF camera index; auto: the scene's first camera, or one fitted to the bounds
+  // lit (and preview.png, made from it): the mean of this many samples
+  // jittered over the pixel (lib/frame/antialias.hpp); 1: the pixel centre
+  // only. The other targets are the centre's: an average of normals or
+  // depths across an edge is no surface's. 8: cornell 640x480's lit FLIP
+  // against 16 samples 0.0090 -> 0.0024 (0.27x; 4: 0.55x, 6: 0.43x) for
+  // 8 more draws of the G-buffer, direct light and composite
+  // (docs/BENCHMARKS.md, "Antialiasing").
+  int antialiasSamples = 8;
+  // Each antialias sample runs the SSGI too, its noise turned (the seed
+  // moved); off: each sample's composite reads the centre's SSGI, light low
+  // in frequency whose per-sample cost is most of a frame's on llvmpipe.
+  bool antialiasSsgi = false;
   SsgiSettings ssgi;
   LightingSettings lighting;
   Tonemap tonemap = Tonemap::Aces;  // preview.png only; lit.exr stays linear
