@@ -367,6 +367,8 @@ TEST_CASE("bench --no-reference times both fullscreen forms with GPU columns, an
     for (const char* gpu : {"frame_gpu_ms_median", "ssgi_gpu_ms_median"})
       CHECK((row.at(gpu) == "nan" || std::stod(row.at(gpu)) >= 0.0));
     CHECK(row.at("ao_rmse") == "nan");  // no reference, no error
+    // lit judged at the pixel centres, as the reference traces them, unless --antialias is given.
+    CHECK(row.at("antialias") == "1");
     if (row.at("fullscreen-form") == "compute") {
       ++compute;
       CHECK(row.at("forms").find("ssgi=compute") != std::string::npos);

@@ -76,6 +76,9 @@ TEST_CASE("tune writes the cheapest configuration within the bound, with its err
   CHECK(recorded(text, "max-ao-error") == doctest::Approx(0.2));
   CHECK(recorded(text, "frame-ms") > 0.0);
   CHECK(text.find("\nwidth = ") == std::string::npos);  // a size is each render's own
+  // So is antialiasing: tune measures at the pixel centres, as its reference traces them, and the file
+  // leaves the sample count to the render that reads it.
+  CHECK(text.find("\nantialias") == std::string::npos);
   const std::string slices = fileValue(text, "ssgi-slices"), steps = fileValue(text, "ssgi-steps");
   CHECK((slices == "1" || slices == "2"));
   CHECK((steps == "4" || steps == "8"));

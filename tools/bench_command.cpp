@@ -196,6 +196,7 @@ std::vector<BenchConfig> benchConfigs(const BenchCommand& command, int width, in
   seed.settings.height = height;
   applyPreset(seed.settings, "seed");
   seed.settings.ssgi.blur = false;
+  seed.settings.antialiasSamples = 1;  // the seed had none
   configs.push_back(seed);
   return configs;
 }

@@ -60,8 +60,16 @@ struct BenchCommand {
   std::vector<std::string> scenes;  // default: the built-ins
   std::string outDir = "bench";
   std::vector<std::pair<int, int>> resolutions{{128, 96}};
-  RenderSettings base;               // what every configuration starts from (render flags)
+  // What every configuration starts from (render flags); antialiasing off
+  // unless given: the reference traces the pixel centres, and lit is judged
+  // against it pixel for pixel (TuneCommand::smallBase).
+  RenderSettings base = centreSampled();
   std::vector<SettingSweep> sweeps;  // empty: every product of defaultBenchSweeps()
+  static RenderSettings centreSampled() {
+    RenderSettings settings;
+    settings.antialiasSamples = 1;
+    return settings;
+  }
   ReferenceSettings reference;       // rays per pixel (--reference-samples)
   bool traceReference = true;        // --no-reference: time only (no errors, no chart, no Embree needed)
   int repetitions = 5;               // timed frames per configuration (median and spread reported)

@@ -36,10 +36,15 @@ struct TuneCommand {
 
   // 128 x 128: each configuration's frames take tens of milliseconds on
   // llvmpipe, and the reference a few seconds (docs/BENCHMARKS.md, "tune").
+  // Antialiasing off: the reference traces the pixel centres, and the
+  // configurations' lit is judged against it pixel for pixel (an
+  // antialiased edge would count as error in every one alike); the file
+  // written leaves antialiasing to the render that reads it.
   static RenderSettings smallBase() {
     RenderSettings settings;
     settings.width = 128;
     settings.height = 128;
+    settings.antialiasSamples = 1;
     return settings;
   }
   // 1024 rays: the reference's own AO noise (mean standard error about 0.01

@@ -56,8 +56,8 @@ const std::vector<Row>& table() {
       row(
           {.name = "antialias",
            .type = T::Int,
-           .help = "lit and preview.png: sub-pixel samples averaged per pixel (1: off); the G-buffer targets and "
-                   "ssgi keep the pixel centre's",
+           .help = "lit and preview.png: the mean of this many samples jittered over each pixel (1: off, the "
+                   "pixel centre); every other target keeps the pixel centre's",
            .minimum = 1,
            .maximum = 64},
           [](auto& s) -> auto& { return s.antialiasSamples; }),
@@ -313,9 +313,10 @@ void applySettingsText(RenderSettings& settings, const std::map<std::string, std
 
 namespace {
 
-// The image's size and the view belong to each render, not to the scene's
-// model: a file tuned at 128 x 128 is meant for any size and camera.
-constexpr std::string_view kRowsNotInSettingsFiles[] = {"width", "height", "camera"};
+// The image's size, the view and its antialiasing belong to each render,
+// not to the scene's model: a file tuned at 128 x 128 without antialiasing
+// is meant for any size, camera and sample count.
+constexpr std::string_view kRowsNotInSettingsFiles[] = {"width", "height", "camera", "antialias", "antialias-ssgi"};
 
 std::string_view trimmed(std::string_view text) {
   const auto first = text.find_first_not_of(" \t\r");

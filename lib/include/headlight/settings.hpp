@@ -175,8 +175,8 @@ void applySettingsText(RenderSettings& settings, const std::map<std::string, std
 // reads it): one `name = value` a line, names and values as the flags take
 // them (the table's rows, through applySettingsText); blank lines and lines
 // starting with '#' are ignored. settingsFileText writes every row but the
-// image's and the view's (width, height, camera: a render's, not the
-// scene's), after `comments`, each as a '#' line.
+// image's and the view's (width, height, camera, antialias, antialias-ssgi:
+// a render's, not the scene's), after `comments`, each as a '#' line.
 std::string settingsFileText(const RenderSettings& settings, std::span<const std::string> comments = {});
 // Applies the file's lines in order. Throws SettingsError "NAME:LINE: ..."
 // for a malformed line, an unknown setting, a bad value or a setting given
