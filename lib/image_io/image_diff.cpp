@@ -26,6 +26,7 @@
 #include "image_io/atomic_image.hpp"
 #include "image_io/image_files.hpp"
 #include "io/atomic_file.hpp"
+#include "scene/address_space.hpp"
 #include "io/bounded_read.hpp"
 
 namespace headlight {
@@ -394,6 +395,18 @@ DiffResult diffImages(const fs::path& a, const fs::path& b, const DiffOptions& o
           (options.maxMemoryMiB ? ""
                                 : ", half of physical memory or of the address-space limit (ulimit -v), the smaller") +
           "); raise --max-memory to compare them";
+      return result;
+    }
+    // A --max-memory set above what the process may map (`ulimit -v`) is no
+    // bound: OpenImageIO's failed allocation then ended in an assertion
+    // (SIGABRT, issue 32). A quarter of the space is left to the libraries
+    // and the decoders.
+    if (const std::uint64_t addressSpace = addressSpaceLimitBytes();
+        addressSpace > 0 && need > 0.75 * double(addressSpace)) {
+      result.status = DiffStatus::FileError;
+      result.problem = a.string() + " and " + b.string() + ": comparing them needs about " + mebibytes(need) +
+                       ", more than the process's address-space limit (ulimit -v, " +
+                       mebibytes(double(addressSpace)) + ") leaves room for; raise ulimit -v";
       return result;
     }
   }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "scene/address_space.hpp"
 #include "scene/material_textures.hpp"
 #include "settings/option_binding.hpp"
 
@@ -72,7 +73,6 @@ std::uint64_t physicalMemoryBytes() {
   return pages > 0 && pageSize > 0 ? std::uint64_t(pages) * std::uint64_t(pageSize) : 0;
 }
 
-// The process's address-space limit (RLIMIT_AS, `ulimit -v`); 0 when none.
 std::uint64_t addressSpaceLimitBytes() {
   rlimit limit{};
   if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
