@@ -144,6 +144,11 @@ TEST_CASE("EXT_lights_image_based: a malformed light is refused, naming it and t
   CHECK(error({{"specularImages", {{0, 1, 2, 3, 4, 9}}}}).find("specularImages[0][5] is not an image of the file") !=
         std::string::npos);
   CHECK(error({{"intensity", -1}}).find("EXT_lights_image_based light 0 intensity is -1") != std::string::npos);
+  // Finite, and every texel it makes finite, but the tables' sums overflowed: lit was NaN (issue 32).
+  const std::string blinding = error({{"intensity", 1e38}});
+  CHECK(blinding.find("environment map") != std::string::npos);
+  CHECK(blinding.find("(EXT_lights_image_based light 0)") != std::string::npos);
+  CHECK(blinding.find("so that float rendering stays finite") != std::string::npos);
   CHECK(error({{"rotation", {0, 0, 0, 0}}}).find("rotation is not a quaternion") != std::string::npos);
   CHECK(error({{"specularImages", json::array()}}).find("has no specularImages level") != std::string::npos);
   CHECK(error(json::object()).find("(loaded)") != std::string::npos);

@@ -60,6 +60,11 @@ TEST_CASE("hostile environment maps: huge, truncated, non-finite, not 2:1, a fol
        "",
        {"texel (7, 0) R = -2", ">= 0"}},
       {writeEnvironmentMap(folder.path() / "wide.exr", 96, 32, uniformRadiance), "", {"96x32", "2:1"}},
+      // Finite, but past what the tables' sums hold in float (issue 32: lit came out NaN).
+      {writeEnvironmentMap(folder.path() / "blinding.exr", 8, 4,
+                           [](int x, int y) { return x == 5 && y == 2 ? glm::vec3(3e38f) : glm::vec3(1.0f); }),
+       "",
+       {"texel (5, 2) R", "expected 0..", "float rendering stays finite"}},
       {folder.path() / "folder.hdr", "", {"a folder"}},
       {fifo, "", {"a FIFO"}},  // returns: nothing opens it
       {folder.path() / "missing.hdr", "", {"no such file"}},

@@ -139,6 +139,7 @@ class RangeCheck {
     for (const glm::vec3& radiance : {sky.zenith, sky.horizon, sky.ground}) {
       lightValue(radiance * sky.intensity, "the sky", "radiance x intensity");
     }
+    if (scene_.environment) environment(*scene_.environment);
   }
 
  private:
@@ -162,6 +163,23 @@ class RangeCheck {
         fail(element + " has " + what + " " + number(value[channel]) + " in channel " + std::to_string(channel) +
              ", expected 0.." + number(kMaxLightValue) + " so that float rendering stays finite");
       }
+    }
+  }
+
+  // The map's brightest texel, as a light value: its prefiltered tables and
+  // the ambient term sum many texels, and an EXT_lights_image_based
+  // intensity of 1e38 (finite, like every texel it made) turned them into
+  // infinities and lit into NaN (issue 32).
+  void environment(const EnvironmentMap& map) const {
+    static constexpr const char* kChannel[] = {"R", "G", "B"};
+    const std::size_t values = std::min(map.rgb.size(), std::size_t(map.width) * std::size_t(map.height) * 3);
+    for (std::size_t i = 0; i < values; ++i) {
+      if (map.rgb[i] >= 0.0f && map.rgb[i] <= kMaxLightValue) continue;
+      const std::size_t texel = i / 3;
+      fail("environment map " + map.source + " has radiance " + number(map.rgb[i]) + " at texel (" +
+           std::to_string(texel % std::size_t(map.width)) + ", " + std::to_string(texel / std::size_t(map.width)) +
+           ") " + kChannel[i % 3] + ", expected 0.." + number(kMaxLightValue) +
+           " so that float rendering stays finite");
     }
   }
 

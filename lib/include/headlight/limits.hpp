@@ -57,14 +57,15 @@ void checkFrameFits(int width, int height, std::uint64_t sceneBytes, const Resou
 // Where float rendering stays finite. Float holds 3.4e38; shading squares
 // distances and multiplies light by BRDF and area terms, so world
 // coordinates, transform entries, camera planes and extents stay within
-// 1e12, and light values (colour x intensity, emissive x strength, sky) too:
-// about 1e14 of headroom under float's range.
+// 1e12, and light values (colour x intensity, emissive x strength, sky, an
+// environment map's texels) too: about 1e14 of headroom under float's range.
 inline constexpr double kMaxWorldMagnitude = 1e12;
 inline constexpr double kMaxLightValue = 1e12;
 
 // Throws SceneError "<scene.source>: <element> ..." for a value outside those
 // ranges or not finite: instance transforms and world bounds, cameras,
-// lights, emissive and base colour factors, the sky; for a primitive that
+// lights, emissive and base colour factors, the sky, the environment map's
+// texels (an EXT_lights_image_based intensity included); for a primitive that
 // breaks Primitive's contract (an attribute count other than its positions',
 // an index past them); for an instance naming a primitive or material the
 // scene lacks, a material texture naming a missing image, and an image whose
