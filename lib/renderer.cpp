@@ -521,6 +521,13 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   // collectFrame, whose "readback" time includes this queueing.
   const auto antialiasedReadStart = std::chrono::steady_clock::now();
   impl.startReads(plan, pending, true);
+  if (plan.antialias && plan.antialias->foreground) {
+    const gl::Texture* foreground[] = {&impl.texture(Attachment::LitForeground)};
+    pending.images.emplace_back(
+        &Frame::litForeground,
+        PendingImage::color(foreground, {"R", "G", "B", "A"},
+                            impl.softwareRasterizer ? ReadPath::Direct : ReadPath::PixelBuffer, &impl.readbackBuffers));
+  }
   impl.context.checkErrors("readback");
   readQueueMs +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - antialiasedReadStart).count();

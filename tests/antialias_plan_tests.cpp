@@ -95,11 +95,25 @@ TEST_CASE("antialias: the plan draws each sample's geometry and light again, reu
   CHECK(plan.antialias->accumulate.readsAttachment(Attachment::Lit));
   CHECK(plan.antialias->accumulate.writes == std::vector<Attachment>{Attachment::LitAccumulation});
   CHECK(plan.allocates(Attachment::LitAccumulation));
+  CHECK(!plan.antialias->foreground);  // the preview shows lit as it is, sky and all
+  CHECK(!plan.allocates(Attachment::LitForeground));
   for (const TargetRead& read : plan.reads) {
     CAPTURE(read.target->name);
     const bool lit = read.target->name == "lit";
     CHECK(read.afterAntialias == lit);
     if (lit) CHECK(read.sources == std::vector<Attachment>{Attachment::LitAccumulation});
+  }
+
+  // A preview over a colour or transparent: the foreground is accumulated beside lit.
+  for (const char* background : {"transparent", "#3060a0"}) {
+    RenderSettings over = settings;
+    over.previewBackground = background;
+    const FramePlan withForeground = planFrame(plainScene(), over, {});
+    REQUIRE(withForeground.antialias);
+    CHECK(withForeground.antialias->foreground);
+    CHECK(withForeground.antialias->accumulate.writes ==
+          std::vector<Attachment>{Attachment::LitAccumulation, Attachment::LitForeground});
+    CHECK(withForeground.allocates(Attachment::LitForeground));
   }
 
   // antialias-ssgi: every pass again, the SSGI's included.

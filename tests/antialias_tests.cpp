@@ -121,6 +121,37 @@ TEST_CASE("antialias: every target but lit is the pixel centre's; lit's alpha be
   CHECK(fractional > 50);
 }
 
+TEST_CASE("antialias: over a transparent preview the foreground is kept apart from the sky behind the edges") {
+  Renderer renderer(sharedContext());
+  renderer.setScene(loadScene("builtin:spheres"));
+  RenderSettings settings = sized(96, 72, 8);
+  CHECK(renderer.render(settings).litForeground.empty());  // a preview over the sky needs none
+  settings.previewBackground = "transparent";
+  const Frame frame = renderer.render(settings);
+  REQUIRE(frame.litForeground.width == 96);
+  REQUIRE(frame.litForeground.channels.size() == 4);
+  int edges = 0;
+  for (int y = 0; y < 72; ++y)
+    for (int x = 0; x < 96; ++x) {
+      CAPTURE(x);
+      CAPTURE(y);
+      const float a = frame.lit.at(x, y, 3);
+      // The same coverage (lit's A is half float, the foreground's float).
+      CHECK(frame.litForeground.at(x, y, 3) == doctest::Approx(a).epsilon(1e-3).scale(1.0));
+      if (a == 0.0f)
+        for (int c = 0; c < 3; ++c) CHECK(frame.litForeground.at(x, y, c) == 0.0f);  // no sky at all
+      if (a == 1.0f)
+        for (int c = 0; c < 3; ++c)
+          CHECK(frame.litForeground.at(x, y, c) == doctest::Approx(frame.lit.at(x, y, c)).epsilon(2e-3).scale(1e-3));
+      if (a > 0.05f && a < 0.95f) {
+        ++edges;
+        // lit = foreground + (1 - a) x the sky behind: the sky's share is what the foreground leaves out.
+        for (int c = 0; c < 3; ++c) CHECK(frame.lit.at(x, y, c) > frame.litForeground.at(x, y, c));
+      }
+    }
+  CHECK(edges > 20);
+}
+
 TEST_CASE("antialias-ssgi: each sample runs the SSGI with its own noise; ssgi.exr stays the centre's") {
   Renderer renderer(sharedContext());
   renderer.setScene(loadScene("builtin:cornell"));

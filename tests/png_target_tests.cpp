@@ -49,7 +49,10 @@ Frame smallFrame() {
 
 // The 8-bit values of pixel (x, y) of a PNG.
 std::array<int, 4> pixel(const fs::path& png, int x, int y) {
-  OIIO::ImageBuf image(png.string());
+  // The file's bytes: PNG's alpha is unassociated, and OpenImageIO would otherwise premultiply on read.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf image(png.string(), 0, 0, nullptr, &config);
   REQUIRE(image.read(0, 0, true, OIIO::TypeDesc::UINT8));
   std::array<int, 4> values{0, 0, 0, 255};
   for (int c = 0; c < std::min(4, image.nchannels()); ++c)
@@ -129,6 +132,31 @@ TEST_CASE("preview.png's background: the sky as lit has it, transparent with cov
   frame.settings.previewBackground = "0,0.5,1";
   writeFrame(frame, folder / "triple");
   CHECK(pixel(folder / "triple" / "preview.png", 3, 1) == std::array<int, 4>{0, 128, 255, 255});
+
+  // An antialiased edge pixel: half a red surface (radiance 0.8, 0, 0), half the blue sky. lit mixes
+  // both; over a colour or transparent the preview shows the foreground (Frame::litForeground) alone.
+  Frame edge = frame;
+  const float mixed[] = {0.4f, 0.0f, 0.25f, 0.5f};
+  for (int c = 0; c < 4; ++c) at(edge.lit, 2, 1, c) = mixed[c];
+  const float surface[] = {0.8f, 0.0f, 0.0f, 1.0f};  // the same surface covering pixel (1, 1) whole
+  for (int c = 0; c < 4; ++c) at(edge.lit, 1, 1, c) = surface[c];
+  edge.litForeground = edge.lit;
+  for (std::size_t p = 0; p < edge.litForeground.pixels.size(); p += 4)
+    for (std::size_t c = 0; c < 3; ++c) edge.litForeground.pixels[p + c] *= edge.litForeground.pixels[p + 3];
+  const float foreground[] = {0.4f, 0.0f, 0.0f, 0.5f};  // 0.8 x 0.5: the surface's share, no sky
+  for (int c = 0; c < 4; ++c) at(edge.litForeground, 2, 1, c) = foreground[c];
+  edge.settings.previewBackground = "transparent";
+  writeFrame(edge, folder / "edge");
+  const auto shown = pixel(folder / "edge" / "preview.png", 2, 1);
+  CHECK(shown[3] == 128);  // the coverage
+  CHECK(shown[2] == 0);    // no sky under the surface's colour
+  const auto whole = pixel(folder / "edge" / "preview.png", 1, 1);
+  CHECK(whole[0] > 100);
+  CHECK(shown[0] == whole[0]);  // the surface's red, unpremultiplied: as where it covers the pixel
+  CHECK(pixel(folder / "edge" / "preview.png", 0, 1) == covered);  // whole pixels as before
+  edge.litForeground = ImageF{};                                   // without it: lit's RGB, the sky mixed in
+  writeFrame(edge, folder / "edge-lit");
+  CHECK(pixel(folder / "edge-lit" / "preview.png", 2, 1)[2] > 50);
 
   // A background that is none of these is refused naming the setting, before anything is written.
   for (const char* bad : {"blue", "#ff80", "#gg0000", "1,0", "0,0,2", "0,0,nan", ""}) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "settings/preview_background.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -164,6 +165,7 @@ constexpr AttachmentRow kAttachmentRows[] = {
     {.id = Attachment::SsgiSurface, .name = "ssgi.surface", .format = F::Rgba32F},
     // float32 whatever lit's precision: 64 samples' running mean in half would round at every step.
     {.id = Attachment::LitAccumulation, .name = "lit.accumulation", .format = F::Rgba32F},
+    {.id = Attachment::LitForeground, .name = "lit.foreground", .format = F::Rgba32F},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -294,11 +296,14 @@ const FullscreenPassRow kFullscreenPassRows[] = {
     {.name = "antialias", .softwareForm = PassForm::Compute},
 };
 
-// The antialias pass: one sample of lit into lit.accumulation's running mean.
-PassDeclaration declareAntialias() {
-  return PassDeclaration{.row = fullscreenPassIndex("antialias"),
-                         .reads = {{Attachment::Lit, gpu::kUnitLit}},
-                         .writes = {Attachment::LitAccumulation}};
+// The antialias pass: one sample of lit into lit.accumulation's running
+// mean, and with `foreground` its RGB x A and A into lit.foreground's.
+PassDeclaration declareAntialias(bool foreground) {
+  PassDeclaration pass{.row = fullscreenPassIndex("antialias"),
+                       .reads = {{Attachment::Lit, gpu::kUnitLit}},
+                       .writes = {Attachment::LitAccumulation}};
+  if (foreground) pass.writes.push_back(Attachment::LitForeground);
+  return pass;
 }
 
 // ---- What a frame skips ------------------------------------------------------------
@@ -399,7 +404,8 @@ void planAttachments(FramePlan& plan) {
     for (Attachment id : pass.writes) allocate(id);
   if (plan.blend) allocate(Attachment::BlendCoverage);
   if (plan.transmission) allocate(Attachment::Transmission);
-  if (plan.antialias) allocate(Attachment::LitAccumulation);
+  if (plan.antialias)
+    for (Attachment id : plan.antialias->accumulate.writes) allocate(id);
 }
 
 // The G-buffer's colour attachments, in row order: the fixed ones, then each
@@ -642,10 +648,13 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
                               .lobes = scene.lobes};
   plan.passes = declareFullscreenPasses(plan, fullscreenPassRows());
   if (plan.composite && settings.antialiasSamples > 1) {
+    // A preview over a colour or transparent shows the foreground alone.
+    const bool foreground = parsePreviewBackground(settings.previewBackground).kind != PreviewBackground::Kind::Sky;
     plan.antialias = AntialiasStep{.samples = settings.antialiasSamples,
                                    .ssgiPerSample = settings.antialiasSsgi && plan.ssgi,
+                                   .foreground = foreground,
                                    .perSamplePasses = {},
-                                   .accumulate = declareAntialias()};
+                                   .accumulate = declareAntialias(foreground)};
     for (std::size_t index = 0; index < plan.passes.size(); ++index)
       if (plan.antialias->ssgiPerSample || fullscreenPassRows()[plan.passes[index].row].perAntialiasSample)
         plan.antialias->perSamplePasses.push_back(index);

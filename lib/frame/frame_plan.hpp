@@ -121,6 +121,7 @@ enum class Attachment {
   GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
   SsgiSurface,           // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
   LitAccumulation,       // the running mean of lit's antialias samples; lit.exr's source when antialiased
+  LitForeground,         // the running mean of their RGB x A and A (Frame::litForeground)
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
@@ -273,8 +274,11 @@ struct FramePlan;
 struct AntialiasStep {
   int samples = 2;                           // jittered samples averaged (the centre's frame is not one)
   bool ssgiPerSample = false;                // antialias-ssgi: the SSGI passes are among perSamplePasses
+  // The preview is shown over a colour or transparent: the foreground is
+  // accumulated too (lit.foreground, read into Frame::litForeground).
+  bool foreground = false;
   std::vector<std::size_t> perSamplePasses;  // indices into FramePlan::passes a jittered sample runs again
-  PassDeclaration accumulate;                // the antialias pass: reads lit, writes lit.accumulation
+  PassDeclaration accumulate;  // the antialias pass: reads lit, writes lit.accumulation (and lit.foreground)
 };
 
 // One fullscreen pass: its name, the form auto picks for it on a software

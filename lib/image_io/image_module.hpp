@@ -29,7 +29,8 @@ namespace headlight::detail {
 // another build is refused, not called.
 // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder;
 // 5: OutputOptions::waitForFolderSeconds, DiffOptions::maxFlipExposures; 6: Frame::scenePose;
-// 7: OutputOptions::pngTargets, RenderSettings::previewBackground; 8: RenderSettings::antialiasSamples, antialiasSsgi
+// 7: OutputOptions::pngTargets, RenderSettings::previewBackground; 8: RenderSettings::antialiasSamples,
+// antialiasSsgi, Frame::litForeground
 inline constexpr std::uint32_t kImageModuleAbi = 8;
 
 struct ImageModuleTable {

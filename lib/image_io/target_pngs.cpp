@@ -128,6 +128,10 @@ WrittenFile writePng(const fs::path& path, int width, int height, int channels, 
   OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   if (channels == 4) spec.alpha_channel = 3;
+  // The bytes are straight alpha, as PNG stores it: OpenImageIO otherwise
+  // takes them as premultiplied and divides by alpha on write, brightening
+  // every pixel of fractional coverage (an antialiased or blended edge).
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   detail::writePixelsAtomically(path, bytes.data(), OIIO::TypeDesc::UINT8, spec, "png");
   WrittenFile file{
       path, path.string() + ": " + std::to_string(width) + "x" + std::to_string(height) + " " + description, 0, 0, 0};
@@ -170,9 +174,31 @@ WrittenFile writeTargetPng(const Frame& frame, const FrameTarget& target, const 
                   "8-bit PNG of " + std::string(target.name) + " (" + std::string(lookName(target.png)) + ")");
 }
 
+namespace {
+
+// What preview.png shows of an antialiased frame over a colour or
+// transparent: the samples' foreground (Frame::litForeground, RGB x A and A)
+// unpremultiplied, so a silhouette's edge pixel is the surface's colour at
+// its coverage, without the sky that lit's RGB mixes in there.
+ImageF foregroundOf(const Frame& frame) {
+  ImageF image = frame.litForeground;
+  for (std::size_t p = 0; p + 3 < image.pixels.size(); p += 4) {
+    const float a = image.pixels[p + 3];
+    for (std::size_t c = 0; c < 3; ++c) image.pixels[p + c] = a > 0.0f ? image.pixels[p + c] / a : 0.0f;
+  }
+  return image;
+}
+
+}  // namespace
+
 WrittenFile writePreview(const Frame& frame, const fs::path& path) {
-  const ImageF& lit = frame.lit;
   const PreviewBackground background = parsePreviewBackground(frame.settings.previewBackground);
+  const bool overBackground = background.kind != PreviewBackground::Kind::Sky && !frame.litForeground.empty() &&
+                              frame.litForeground.width == frame.lit.width &&
+                              frame.litForeground.height == frame.lit.height &&
+                              frame.litForeground.channels.size() == 4;
+  const ImageF foreground = overBackground ? foregroundOf(frame) : ImageF{};
+  const ImageF& lit = overBackground ? foreground : frame.lit;
   const Look look(frame, lit, PngLook::Radiance);
   const std::size_t pixels = std::size_t(lit.width) * std::size_t(lit.height), count = lit.channels.size();
   const auto alphaAt = std::find(lit.channels.begin(), lit.channels.end(), "A");

@@ -3,8 +3,10 @@
 // jittered sample's lit into the running mean in lit.accumulation.
 //   reads  lit (this sample's)
 //   writes lit.accumulation  sample 0 overwrites it, sample s blends in with weight 1 / (s + 1)
+//          lit.foreground    the same for RGB x A and A (AntialiasStep::foreground)
 // Body: glsl/antialias.glsl, in either form.
 #include <variant>
+#include <vector>
 
 #include "passes/frame_pass.hpp"
 #include "passes/fullscreen.hpp"

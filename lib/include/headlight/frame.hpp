@@ -62,6 +62,12 @@ struct Frame {
   ImageF
       ssgi;  // ao.Y, indirect.R/G/B (within R), sky.Y (any distance), indirectFar.R/G/B (beyond R); empty with SSGI off
   ImageF lit;       // R/G/B/A linear HDR; A = coverage, RGB = sky on background
+  // Not a target (no file of its own): with antialiasing and a preview
+  // background other than the sky, the samples' foreground premultiplied,
+  // the mean of lit's RGB x A (R/G/B) and of A; preview.png shows it over
+  // the colour or transparent, where lit's RGB would bring the sky behind a
+  // silhouette's edge pixels along. Empty otherwise.
+  ImageF litForeground;
   ImageF coverage;  // coverage.Y: alphaMode BLEND's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
   // transmission.R/G/B: how much of the opaque image behind came through the
   // nearest KHR_materials_transmission surface; transmission.thickness: its path
