@@ -152,6 +152,20 @@ TEST_CASE("antialias: over a transparent preview the foreground is kept apart fr
   CHECK(edges > 20);
 }
 
+TEST_CASE("antialias: the accumulation gives the same pixels as fragment and compute") {
+  Renderer renderer(sharedContext());
+  renderer.setScene(loadScene("builtin:spheres"));
+  RenderSettings settings = sized(64, 48, 4);
+  settings.previewBackground = "transparent";  // the foreground output too
+  settings.fullscreenForm = FullscreenForm::Fragment;
+  const Frame fragment = renderer.render(settings);
+  settings.fullscreenForm = FullscreenForm::Compute;
+  const Frame compute = renderer.render(settings);
+  CHECK(fragment.lit.pixels == compute.lit.pixels);
+  CHECK(fragment.litForeground.pixels == compute.litForeground.pixels);
+  CHECK(!compute.litForeground.empty());
+}
+
 TEST_CASE("antialias-ssgi: each sample runs the SSGI with its own noise; ssgi.exr stays the centre's") {
   Renderer renderer(sharedContext());
   renderer.setScene(loadScene("builtin:cornell"));
