@@ -129,6 +129,10 @@ layout(location = SHEEN_TARGET_LOCATION) out vec4 outSheen;
 #ifdef HAS_ANISOTROPY_TARGET
 layout(location = ANISOTROPY_TARGET_LOCATION) out vec4 outAnisotropy;
 #endif
+#ifdef HAS_IDS_TARGET
+layout(location = 7) flat in uint vObjectIndex;
+layout(location = IDS_TARGET_LOCATION) out uvec4 outIds;
+#endif
 #endif
 
 #if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE) || defined(HAS_ANISOTROPY_LOBE)
@@ -273,6 +277,9 @@ void main() {
 #endif
 #ifdef HAS_ANISOTROPY_TARGET
   outAnisotropy = anisotropyMaterial(normal);
+#endif
+#ifdef HAS_IDS_TARGET
+  outIds = objects.objectList[vObjectIndex].ids;
 #endif
 #endif
 }

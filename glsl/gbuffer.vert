@@ -30,6 +30,9 @@ layout(location = 1) out vec3 vWorldNormal;
 // KHR_materials_volume's thickness is in mesh units: the instance's scale per axis.
 layout(location = 6) flat out vec3 vModelScale;
 #endif
+#ifdef HAS_IDS_TARGET
+layout(location = 7) flat out uint vObjectIndex;  // whose ids the fragment writes
+#endif
 // The transmission pass redraws surfaces depth-equal with another variant of
 // this shader: every variant must rasterise the same depths.
 invariant gl_Position;
@@ -54,6 +57,9 @@ void main() {
 #ifdef TRANSMISSION_FORWARD
   vModelScale = vec3(length(object.worldFromLocal[0].xyz), length(object.worldFromLocal[1].xyz),
                      length(object.worldFromLocal[2].xyz));
+#endif
+#ifdef HAS_IDS_TARGET
+  vObjectIndex = inObjectIndex;
 #endif
   gl_Position = frame.viewProjection * world;
 }

@@ -20,6 +20,7 @@ namespace headlight::gpu {
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using ivec4 = glm::ivec4;
+using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
 #define HL_CONST(type, name, value) inline constexpr type name = value;
 #define HL_BLOCK_BEGIN(Name, binding) \
@@ -383,6 +384,7 @@ HL_STORAGE_END(lights)
 struct GpuObject {
   mat4 worldFromLocal;
   mat4 normalFromLocal;     // cofactor of worldFromLocal's upper 3x3 (normalMatrix; upper 3x3 used)
+  uvec4 ids;                // the ids target's mesh instance, mesh, material, mesh primitive (scene/ids.hpp)
 };
 #ifdef __cplusplus
 HL_STORAGE_BEGIN(ObjectBuffer, kBindingObjects)

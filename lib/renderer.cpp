@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -40,6 +41,7 @@
 #include "passes/shadow.hpp"
 #include "passes/transmission.hpp"
 #include "passes/virtual_lights.hpp"
+#include "scene/ids.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -159,6 +161,7 @@ struct Renderer::Impl {
   // Per scene.
   Scene scene;
   SceneSummary summary;
+  std::shared_ptr<const IdNames> idNames;  // made for the first frame with ids
   std::optional<GpuScene> gpuScene;
   std::optional<GBufferPass> gbufferPass;
   gl::Buffer lightBuffer;                 // scene.lights packed, with the shadow slots of shadowMaps
@@ -412,6 +415,7 @@ void Renderer::Impl::loadScene(Scene newScene) {
   if (impl.scene.lights.empty()) impl.scene.lights.push_back(defaultKeyLight());
   impl.gpuScene.emplace(uploadScene(impl.scene));
   impl.summary = summarizeScene(impl.scene);
+  impl.idNames.reset();
   // The default settings' G-buffer variant, for the G-buffer pass's draw groups.
   const FramePlan plan = planFrame(impl.summary, resolveSettings(RenderSettings{}, impl.scene), {});
   impl.gbufferPass.emplace(*impl.gpuScene, plan.gbuffer);
@@ -544,6 +548,10 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   frame.sceneSource = impl.scene.source;
   frame.sceneHash = impl.scene.sourceHash;
   frame.scenePose = impl.scene.poseDescription();
+  if (plan.allocates(Attachment::GbufferIds)) {
+    if (!impl.idNames) impl.idNames = std::make_shared<const IdNames>(makeIdNames(impl.scene));
+    frame.idNames = impl.idNames;
+  }
   for (const IgnoredFeature& feature : impl.scene.ignored) frame.ignored.push_back(feature.describe());
   frame.ignored.insert(frame.ignored.end(), plan.unrendered.begin(), plan.unrendered.end());
   return pending;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -343,7 +344,33 @@ py::array_t<float> matrix(const glm::mat4& m) {
 // one-channel target (depth).
 // Frame's pickle state (multiprocessing pools return frames): every field,
 // images as bytes. Version first, so a future layout can refuse an old one.
-constexpr int kFrameStateVersion = 1;
+constexpr int kFrameStateVersion = 2;  // 2: the ids' names
+
+// IdNames as plain tuples: (name, index, subIndex) per entry, four tables.
+py::tuple idNamesState(const std::shared_ptr<const IdNames>& names) {
+  if (!names) return py::make_tuple();
+  auto table = [](const std::vector<IdName>& entries) {
+    py::list rows;
+    for (const IdName& e : entries) rows.append(py::make_tuple(e.name, e.index, e.subIndex));
+    return rows;
+  };
+  return py::make_tuple(table(names->meshInstances), table(names->meshes), table(names->materials),
+                        table(names->meshPrimitives));
+}
+
+std::shared_ptr<const IdNames> idNamesFromState(const py::tuple& state) {
+  if (state.empty()) return nullptr;
+  if (state.size() != 4) throw SettingsError("Frame state: the ids' names are not four tables");
+  auto table = [](const py::handle& rows) {
+    std::vector<IdName> entries;
+    for (const py::handle& row : rows.cast<py::list>()) {
+      const py::tuple e = row.cast<py::tuple>();
+      entries.push_back({e[0].cast<std::string>(), e[1].cast<int>(), e[2].cast<int>()});
+    }
+    return entries;
+  };
+  return std::make_shared<const IdNames>(IdNames{table(state[0]), table(state[1]), table(state[2]), table(state[3])});
+}
 
 py::tuple matrixState(const glm::mat4& m) {
   return py::make_tuple(py::bytes(reinterpret_cast<const char*>(&m[0][0]), sizeof(glm::mat4)));
@@ -374,11 +401,12 @@ py::tuple frameState(const Frame& f) {
       kFrameStateVersion, images, settingsAsText(f.settings),
       py::make_tuple(matrixState(v.view), matrixState(v.projection),
                      py::make_tuple(v.position.x, v.position.y, v.position.z), v.nearPlane, v.farPlane, v.orthographic),
-      timings, skipped, f.glRenderer, f.glVersion, f.backend, f.sceneSource, f.sceneHash, f.ignored);
+      timings, skipped, f.glRenderer, f.glVersion, f.backend, f.sceneSource, f.sceneHash, f.ignored,
+      idNamesState(f.idNames));
 }
 
 std::shared_ptr<Frame> frameFromState(const py::tuple& state) {
-  if (state.size() != 12 || state[0].cast<int>() != kFrameStateVersion)
+  if (state.size() != 13 || state[0].cast<int>() != kFrameStateVersion)
     throw SettingsError("Frame state: not a headlight " + std::string(kVersion) + " frame");
   auto f = std::make_shared<Frame>();
   for (const auto& [name, value] : state[1].cast<py::dict>()) {
@@ -420,11 +448,20 @@ std::shared_ptr<Frame> frameFromState(const py::tuple& state) {
   f->sceneSource = state[9].cast<std::string>();
   f->sceneHash = state[10].cast<std::string>();
   f->ignored = state[11].cast<std::vector<std::string>>();
+  f->idNames = idNamesFromState(state[12].cast<py::tuple>());
   return f;
 }
 
 py::array imageArray(const ImageF& image, py::handle owner) {
   const py::ssize_t c = image.channelCount(), h = image.height, w = image.width;
+  // The ids are labels: uint32 as in ids.exr (a copy; the frame holds them as exact floats).
+  if (&image == &owner.cast<const Frame&>().ids) {
+    py::array_t<std::uint32_t> ids({h, w, c});
+    std::uint32_t* to = ids.mutable_data();
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) to[i] = std::uint32_t(image.pixels[i]);
+    ids.attr("setflags")(py::arg("write") = false);
+    return ids;
+  }
   const py::ssize_t rowStride = py::ssize_t(sizeof(float)) * w * c, pixelStride = py::ssize_t(sizeof(float)) * c;
   py::array array = c == 1 ? py::array_t<float>({h, w}, {rowStride, pixelStride}, image.pixels.data(), owner)
                            : py::array_t<float>({h, w, c}, {rowStride, pixelStride, py::ssize_t(sizeof(float))},
@@ -554,6 +591,15 @@ PYBIND11_MODULE(headlight, m) {
             return channels;
           },
           "dict: target name -> channel names, e.g. 'normal' -> ['normal.X', 'normal.Y', 'normal.Z']")
+      .def_property_readonly(
+          "id_names",
+          [](const Frame& f) -> py::object {
+            if (!f.idNames) return py::none();
+            return py::module_::import("json").attr("loads")(idNamesJson(*f.idNames));
+          },
+          "dict as frame.json's ids: 'instance', 'mesh', 'material', 'primitive' -> a list of {'id', 'name', and "
+          "the file's index: 'node' and 'copy', 'mesh', 'material', 'mesh' and 'primitive'}; id k is entry k - 1, "
+          "0 the background. None without the ids target")
       .def_property_readonly(
           "view", [](const Frame& f) { return matrix(f.view.view); }, "4x4 world -> view (looks down -Z)")
       .def_property_readonly(

@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <thread>
@@ -51,6 +53,22 @@ TEST_CASE("writeFrame: every target reads back with its channels, type, size and
     CHECK(spec.height == image->height);
     CHECK(spec.nchannels == image->channelCount());
     const bool isFloat = name == "position" || name == "depth";
+    if (name == "ids") {
+      // Integers, read as integers (as float OpenImageIO would scale them to 0..1): exact.
+      CHECK(file.nativespec().format == OIIO::TypeDesc::UINT);
+      auto input = OIIO::ImageInput::open((folder / "ids.exr").string());
+      REQUIRE(input);
+      std::vector<std::uint32_t> ids(image->pixels.size());
+      REQUIRE(input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, ids.data()));
+      std::size_t differing = 0;
+      for (std::size_t p = 0; p < std::size_t(image->width * image->height); ++p)
+        for (int c = 0; c < image->channelCount(); ++c)
+          differing +=
+              ids[p * std::size_t(spec.nchannels) + std::size_t(spec.channelindex(image->channels[std::size_t(c)]))] !=
+              std::uint32_t(image->pixels[p * std::size_t(image->channelCount()) + std::size_t(c)]);
+      CHECK(differing == 0);
+      continue;
+    }
     CHECK(file.nativespec().format == (isFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF));
     // OpenEXR stores channels sorted by name; look each up by name.
     for (int c = 0; c < image->channelCount(); ++c) {

@@ -12,6 +12,7 @@
 #include "headlight/scene_builder.hpp"
 #include "headlight/shapes.hpp"
 #include "headlight/targets.hpp"
+#include "scene/ids.hpp"
 #include "support/plan_settings.hpp"
 
 namespace headlight {
@@ -64,7 +65,8 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
                                                           "readback"});
   CHECK(!plan.allocates(Attachment::GbufferEmissive));
   CHECK(plan.allocates(Attachment::SsgiRaw));
-  CHECK(plan.gbuffer.defines.empty());
+  // The one optional attachment: ids, wanted with every target.
+  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_IDS_TARGET", "IDS_TARGET_LOCATION 4"});
   CHECK(readOf(plan, "emissive") == nullptr);  // not drawn, not named: not written
   const TargetRead* ssgi = readOf(plan, "ssgi");
   REQUIRE(ssgi);
@@ -109,11 +111,48 @@ TEST_CASE("frame plan: an emissive scene gets the emissive attachment, its defin
   scene.emissive = true;
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   CHECK(plan.allocates(Attachment::GbufferEmissive));
-  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4"});
-  CHECK(plan.gbuffer.colorAttachments.back() == Attachment::GbufferEmissive);
+  CHECK(plan.gbuffer.defines == std::vector<std::string>{"HAS_EMISSIVE_TARGET", "EMISSIVE_TARGET_LOCATION 4",
+                                                         "HAS_IDS_TARGET", "IDS_TARGET_LOCATION 5"});
+  CHECK(plan.gbuffer.colorAttachments.at(4) == Attachment::GbufferEmissive);
   CHECK(plan.direct->emissive);
   REQUIRE(readOf(plan, "emissive"));
   CHECK(readOf(plan, "emissive")->sources == std::vector<Attachment>{Attachment::GbufferEmissive});
+}
+
+TEST_CASE("frame plan: the ids target is the G-buffer's last attachment, only when wanted and when it fits") {
+  SceneSummary scene = litScene();
+  FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
+  REQUIRE(plan.allocates(Attachment::GbufferIds));
+  CHECK(plan.gbuffer.colorAttachments.back() == Attachment::GbufferIds);
+  CHECK(plan.formatOf(Attachment::GbufferIds) == GpuFormat::Rgba32Ui);
+  REQUIRE(readOf(plan, "ids"));
+  CHECK(readOf(plan, "ids")->sources == std::vector<Attachment>{Attachment::GbufferIds});
+  CHECK(readOf(plan, "ids")->channels ==
+        std::vector<std::string>{"instance.id", "mesh.id", "material.id", "primitive.id"});
+
+  // Not asked for: no attachment, no define.
+  const std::vector<std::string> litOnly{"lit"};
+  plan = planFrame(scene, test::resolvedPlanSettings(), litOnly);
+  CHECK(!plan.allocates(Attachment::GbufferIds));
+  CHECK(std::find(plan.gbuffer.defines.begin(), plan.gbuffer.defines.end(), "HAS_IDS_TARGET") ==
+        plan.gbuffer.defines.end());
+
+  // Every lobe and emission take GL's 8 attachments: lit keeps them, ids is named.
+  scene.emissive = true;
+  scene.lobes = lobeBit(Lobe::Count) - 1;
+  plan = planFrame(scene, test::resolvedPlanSettings(), {});
+  CHECK(!plan.allocates(Attachment::GbufferIds));
+  CHECK(plan.gbuffer.colorAttachments.size() == kMaxGbufferColorAttachments);
+  CHECK(skips(plan, "gbuffer.ids", "no colour attachment left"));
+
+  // More of one kind than a float holds exactly: named, not rounded.
+  scene = litScene();
+  scene.largestId = kLargestExactId + 1;
+  plan = planFrame(scene, test::resolvedPlanSettings(), {});
+  CHECK(!plan.allocates(Attachment::GbufferIds));
+  CHECK(skips(plan, "gbuffer.ids", "beyond what a float holds exactly"));
+  REQUIRE(!plan.unrendered.empty());
+  CHECK(plan.unrendered.back().find("ids is not rendered") != std::string::npos);
 }
 
 TEST_CASE("frame plan: the emissive target asked for by name without emission is written as zeros") {

@@ -33,7 +33,7 @@ TEST_CASE("lobes: a scene without sheen or anisotropy pays nothing for them") {
   CHECK(!plan.allocates(Attachment::GbufferSheen));
   CHECK(!plan.allocates(Attachment::GbufferAnisotropy));
   CHECK(plan.gbuffer.lobes == 0);
-  CHECK(plan.gbuffer.colorAttachments.size() == 4);
+  CHECK(plan.gbuffer.colorAttachments.size() == 5);  // the four fixed ones and ids
   CHECK(!defines(plan, "HAS_SHEEN_LOBE"));
   REQUIRE(plan.direct);
   REQUIRE(plan.composite);
@@ -54,7 +54,8 @@ TEST_CASE("lobes: sheen and anisotropy get an attachment each, their defines and
   // After the four fixed attachments (no emission here), in row order.
   CHECK(plan.gbuffer.colorAttachments ==
         std::vector<Attachment>{Attachment::GbufferPosition, Attachment::GbufferNormal, Attachment::GbufferAlbedo,
-                                Attachment::GbufferMaterial, Attachment::GbufferSheen, Attachment::GbufferAnisotropy});
+                                Attachment::GbufferMaterial, Attachment::GbufferSheen, Attachment::GbufferAnisotropy,
+                                Attachment::GbufferIds});
   CHECK(defines(plan, "HAS_SHEEN_TARGET"));
   CHECK(defines(plan, "SHEEN_TARGET_LOCATION 4"));
   CHECK(defines(plan, "HAS_ANISOTROPY_TARGET"));

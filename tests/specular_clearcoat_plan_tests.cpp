@@ -48,7 +48,8 @@ TEST_CASE("lobes plan: each lobe gets its attachment at the next location, its d
   CHECK(plan.gbuffer.colorAttachments ==
         std::vector<Attachment>{Attachment::GbufferPosition, Attachment::GbufferNormal, Attachment::GbufferAlbedo,
                                 Attachment::GbufferMaterial, Attachment::GbufferEmissive,
-                                Attachment::GbufferSpecularLobe, Attachment::GbufferClearcoatLobe});
+                                Attachment::GbufferSpecularLobe, Attachment::GbufferClearcoatLobe,
+                                Attachment::GbufferIds});
   for (const char* define : {"HAS_SPECULAR_TARGET", "SPECULAR_TARGET_LOCATION 5", "HAS_CLEARCOAT_TARGET",
                              "CLEARCOAT_TARGET_LOCATION 6", "HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}) {
     CAPTURE(define);

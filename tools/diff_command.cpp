@@ -214,6 +214,8 @@ std::string describeMetric(const DiffResult& r) {
       return "error = angle between the normals of A and B, in degrees";
     case DiffMetric::Flip:
       return flipDescription(r);
+    case DiffMetric::Mismatch:
+      return "error = 1 where a != b, else 0";
   }
   return "";
 }

@@ -36,6 +36,8 @@ std::string_view metricName(DiffMetric metric) {
       return "angle-degrees";
     case DiffMetric::Flip:
       return "flip";
+    case DiffMetric::Mismatch:
+      return "mismatch";
   }
   return "?";
 }
@@ -44,7 +46,7 @@ std::span<const std::string_view> metricNames() {
   static const std::vector<std::string_view> names = [] {
     std::vector<std::string_view> list;
     for (DiffMetric metric : {DiffMetric::Absolute, DiffMetric::RelativeToScene, DiffMetric::RelativeToValue,
-                              DiffMetric::AngleDegrees, DiffMetric::Flip})
+                              DiffMetric::AngleDegrees, DiffMetric::Flip, DiffMetric::Mismatch})
       list.push_back(metricName(metric));
     return list;
   }();

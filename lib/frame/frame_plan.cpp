@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "scene/ids.hpp"
 #include "settings/preview_background.hpp"
 #include "shared_layout.h"
 
@@ -166,6 +167,13 @@ constexpr AttachmentRow kAttachmentRows[] = {
     // float32 whatever lit's precision: 64 samples' running mean in half would round at every step.
     {.id = Attachment::LitAccumulation, .name = "lit.accumulation", .format = F::Rgba32F},
     {.id = Attachment::LitForeground, .name = "lit.foreground", .format = F::Rgba32F},
+    // Last of the G-buffer's: where a scene's lobes fill GL's 8 attachments, lit keeps them and ids is named.
+    {.id = Attachment::GbufferIds,
+     .name = "gbuffer.ids",
+     .format = F::Rgba32Ui,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "IDS_TARGET",
+     .target = &Frame::ids},
 };
 static_assert(std::size(kAttachmentRows) == kAttachmentCount);
 
@@ -411,12 +419,22 @@ void planAttachments(FramePlan& plan) {
 // The G-buffer's colour attachments, in row order: the fixed ones, then each
 // optional one the frame needs (emission, the scene's lobes) at the next
 // location, while GL's guaranteed 8 last; a lobe beyond them is named.
-void planGBuffer(FramePlan& plan, const SceneSummary& scene, bool emissive) {
+void planGBuffer(FramePlan& plan, const SceneSummary& scene, bool emissive, const TargetWanted& wanted) {
   GBufferVariant& gbuffer = plan.gbuffer;
   for (const AttachmentRow& row : kAttachmentRows) {
     if (row.gbufferLocation == -1) continue;
     if (row.id == Attachment::GbufferEmissive && !emissive) continue;
     if (row.lobe && !(scene.lobes & lobeBit(*row.lobe))) continue;
+    if (row.id == Attachment::GbufferIds) {
+      if (!wanted("ids")) continue;
+      if (scene.largestId > kLargestExactId) {
+        plan.skipped.push_back({std::string(row.name), "an id reaches " + std::to_string(scene.largestId) +
+                                                           ", beyond what a float holds exactly (2^24)"});
+        plan.unrendered.push_back("ids is not rendered: the scene has " + std::to_string(scene.largestId) +
+                                  " of one kind, more than 2^24 (16777216)");
+        continue;
+      }
+    }
     const std::size_t location = gbuffer.colorAttachments.size();
     if (location == kMaxGbufferColorAttachments) {
       plan.skipped.push_back({std::string(row.name), "the G-buffer has no colour attachment left (GL 4.5 guarantees " +
@@ -492,6 +510,7 @@ SceneSummary summarizeScene(const Scene& scene) {
     summary.lobes |= materialLobes(material);
     summary.transmission |= material.transmissive();  // KHR_materials_volume alone transmits nothing
   }
+  summary.largestId = largestId(scene);
   return summary;
 }
 
@@ -600,7 +619,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
 
   plan.dropShadowMaps = !facts.shadowsOn;
   if (skips.runs(Work::Shadows)) plan.shadows = ShadowStep{settings.lighting.shadowMapSize.value_or(0)};
-  planGBuffer(plan, scene, skips.runs(Work::Emissive));
+  planGBuffer(plan, scene, skips.runs(Work::Emissive), wanted);
   // What a scene without a lobe does not pay for, named once.
   if (const std::uint32_t absent = ~scene.lobes & (lobeBit(Lobe::Count) - 1))
     plan.skipped.push_back({"lobes", "no material uses " + lobeNames(absent) + " (no attachment, no shader code)"});

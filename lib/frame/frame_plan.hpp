@@ -55,6 +55,7 @@ struct SceneSummary {
   bool unlit = false;           // a material is KHR_materials_unlit: material.exr gains kMaterialUnlitChannel
   std::uint32_t lobes = 0;      // the lobes its materials use (lobeBit)
   bool transmission = false;    // a material is KHR_materials_transmission or _volume (a forward pass)
+  std::size_t largestId = 0;    // the ids target's largest value (largestId())
 };
 
 // material.exr's fourth channel, written only for scenes with an unlit
@@ -122,6 +123,7 @@ enum class Attachment {
   SsgiSurface,           // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
   LitAccumulation,       // the running mean of lit's antialias samples; lit.exr's source when antialiased
   LitForeground,         // the running mean of their RGB x A and A (Frame::litForeground)
+  GbufferIds,            // mesh instance, mesh, material and mesh primitive ids; only when the ids target is wanted
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);

@@ -46,6 +46,7 @@ constexpr std::string_view kSpecularChannels[] = {"specularF0.R", "specularF0.G"
 constexpr std::string_view kClearcoatChannels[] = {"clearcoat", "clearcoatRoughness", "clearcoatNormal.U",
                                                    "clearcoatNormal.V"};
 constexpr std::string_view kSheenChannels[] = {"sheen.R", "sheen.G", "sheen.B", "sheenRoughness"};
+constexpr std::string_view kIdsChannels[] = {"instance.id", "mesh.id", "material.id", "primitive.id"};
 constexpr std::string_view kAnisotropyChannels[] = {"anisotropy.X", "anisotropy.Y", "anisotropy.Z",
                                                     "anisotropyStrength"};
 
@@ -146,6 +147,14 @@ const FrameTarget kTargets[] = {
      "textures (step 3.9e-3), like material: any step warns, more than two fail. 1e-2 in U or V turns the normal "
      "by at most ~0.6 degrees, below normal.exr's 1 degree; a coat normal-map bug costs far more.",
      L::Values},
+    {"ids", &Frame::ids, kIdsChannels, E::Uint32, M::Mismatch, thresholds(0.5, 0.5, 0.5, 5e-3),
+     "what each pixel shows, as integers: the mesh instance (a node's placement of a mesh, one per "
+     "EXT_mesh_gpu_instancing copy), the glTF mesh, the material and the mesh primitive, each 1 + its index in "
+     "frame.json's ids tables; 0 on background. uint32 in the file. A label has no nearer or farther wrong "
+     "value, so a pixel is right or wrong: any wrong pixel warns, and more than 0.5 % fail (a silhouette pixel "
+     "flips between surfaces on another rasterizer, as in the other targets); the mean error is the share of "
+     "wrong pixels, held to the same 0.5 %. Opaque and masked surfaces only.",
+     L::Labels},
 };
 
 // preview.png: what a person looks at, 8-bit sRGB after tone mapping.

@@ -11,6 +11,7 @@ enum class GpuFormat {
   Srgb8Alpha8,  // 8-bit sRGB: albedo, like the textures it comes from
   Rgba8,        // 8-bit: material factors, like the textures they come from
   Depth32F,     // depth, read back as view depth
+  Rgba32Ui,     // unsigned integers: the ids target, exact
 };
 
 }  // namespace headlight

@@ -6,6 +6,7 @@
 #include <span>
 #include <tuple>
 
+#include "scene/ids.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
@@ -165,13 +166,14 @@ GpuMaterial uploadMaterial(const Material& material, TextureCache& textures) {
   return gpu;
 }
 
-// Every instance's transforms, in Scene::instances order. At least one
-// entry: a zero-sized buffer cannot be bound.
+// Every instance's transforms and ids, in Scene::instances order. At least
+// one entry: a zero-sized buffer cannot be bound.
 gl::Buffer uploadObjects(const Scene& scene) {
   std::vector<gpu::GpuObject> objects(std::max<std::size_t>(1, scene.instances.size()));
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     objects[i].worldFromLocal = scene.instances[i].worldFromLocal;
     objects[i].normalFromLocal = glm::mat4(normalMatrix(objects[i].worldFromLocal));
+    objects[i].ids = instanceIds(scene, scene.instances[i]);
   }
   return makeBuffer(objects);
 }

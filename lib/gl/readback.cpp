@@ -37,7 +37,7 @@ const std::array<float, 65536>& halfDecodeTable() {
 }
 
 std::size_t componentBytes(ComponentType type) {
-  return type == ComponentType::Half ? 2 : type == ComponentType::Unorm8 ? 1 : 4;
+  return type == ComponentType::Half ? 2 : type == ComponentType::Unorm8 ? 1 : 4;  // Float, Uint32: 4
 }
 
 // Components first..last-1 of an image of `count` channels from one texture's
@@ -92,6 +92,8 @@ ComponentType transferType(GLenum internalFormat) {
     case GL_RGBA8:
     case GL_SRGB8_ALPHA8:
       return ComponentType::Unorm8;
+    case GL_RGBA32UI:
+      return ComponentType::Uint32;
     default:
       return ComponentType::Float;
   }
@@ -101,9 +103,10 @@ PixelRead::PixelRead(const gl::Texture& texture, GLenum format, int components, 
     : width_(texture.width()),
       height_(texture.height()),
       internalFormat_(texture.internalFormat()),
-      type_(format == GL_RGBA ? transferType(texture.internalFormat()) : ComponentType::Float) {
+      type_(format == GL_DEPTH_COMPONENT ? ComponentType::Float : transferType(texture.internalFormat())) {
   const GLenum glType = type_ == ComponentType::Half     ? GL_HALF_FLOAT
                         : type_ == ComponentType::Unorm8 ? GL_UNSIGNED_BYTE
+                        : type_ == ComponentType::Uint32 ? GL_UNSIGNED_INT
                                                          : GL_FLOAT;
   const std::size_t bytes =
       std::size_t(width_) * std::size_t(height_) * std::size_t(components) * componentBytes(type_);
@@ -178,7 +181,9 @@ PendingImage PendingImage::color(std::span<const gl::Texture* const> textures, s
       throw GlError("readColor: texture " + std::to_string(k) + " is " + std::to_string(texture.width()) + "x" +
                     std::to_string(texture.height()) + ", texture 0 is " + std::to_string(textures.front()->width()) +
                     "x" + std::to_string(textures.front()->height()));
-    if (k * 4 < channels.size()) image.parts_.emplace_back(texture, GL_RGBA, 4, path, buffers);
+    // An integer texture is read as integers (GL refuses GL_RGBA for it).
+    const GLenum format = transferType(texture.internalFormat()) == ComponentType::Uint32 ? GL_RGBA_INTEGER : GL_RGBA;
+    if (k * 4 < channels.size()) image.parts_.emplace_back(texture, format, 4, path, buffers);
   }
   image.channels_ = std::move(channels);
   return image;
@@ -216,6 +221,10 @@ ImageF PendingImage::finish() {
         case ComponentType::Float:
           interleaveRows(static_cast<const float*>(read.data()), 4, width, height, count, first, last, to,
                          [](float value, std::size_t) { return value; });
+          break;
+        case ComponentType::Uint32:  // ids: exact below kLargestExactId, which the plan ensures
+          interleaveRows(static_cast<const std::uint32_t*>(read.data()), 4, width, height, count, first, last, to,
+                         [](std::uint32_t value, std::size_t) { return float(value); });
           break;
         case ComponentType::Half: {
           const std::array<float, 65536>& halves = halfDecodeTable();

@@ -49,7 +49,8 @@ class ReadbackBuffers {
 // the CPU while the image is assembled. Asked for as floats, a driver converts
 // them itself: on an H200 queueing a 1080x1080 frame's copies took ~48 ms
 // of the CPU's time, and the copies carried 2-4x the bytes.
-enum class ComponentType { Float, Half, Unorm8 };
+// Integer textures come back as their integers (Uint32).
+enum class ComponentType { Float, Half, Unorm8, Uint32 };
 ComponentType transferType(GLenum internalFormat);
 
 // A texture's level 0 on its way back.

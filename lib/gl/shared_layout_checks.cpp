@@ -21,7 +21,7 @@ static_assert(sizeof(FrameBlock) == 3 * 64 + 3 * 16);
 static_assert(offsetof(FrameBlock, projection) == 64);
 static_assert(offsetof(FrameBlock, cameraPosition) == 192);
 static_assert(offsetof(FrameBlock, depthToViewZ) == 224);
-static_assert(sizeof(GpuObject) == 128);  // std430 array stride: two mat4
+static_assert(sizeof(GpuObject) == 144);                         // std430 array stride: two mat4 and a uvec4
 static_assert(sizeof(MaterialBlock) == 224 + 7 * 16 + 24 * 16);  // + the KHR_materials_* factors and transforms
 static_assert(offsetof(MaterialBlock, factors) == 32);
 static_assert(offsetof(MaterialBlock, alphaCutoff) == 48);

@@ -20,6 +20,8 @@ inline GLenum internalFormat(GpuFormat format) {
       return GL_RGBA8;
     case GpuFormat::Depth32F:
       return GL_DEPTH_COMPONENT32F;
+    case GpuFormat::Rgba32Ui:
+      return GL_RGBA32UI;
   }
   return GL_NONE;
 }

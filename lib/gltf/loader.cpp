@@ -72,6 +72,14 @@ class GltfReader {
     for (std::size_t material = 0; material < model_.materials.size(); ++material) {
       scene_.materials.push_back(gltf::readMaterial(source_, static_cast<int>(material)));
     }
+    // The ids target's tables: every mesh and mesh primitive of the file,
+    // so that an id is the file's index + 1 (primitives numbered mesh by mesh).
+    for (std::size_t mesh = 0; mesh < model_.meshes.size(); ++mesh) {
+      firstMeshPrimitive_.push_back(int(scene_.meshPrimitiveNames.size()));
+      scene_.meshNames.push_back({model_.meshes[mesh].name, int(mesh), -1});
+      for (std::size_t primitive = 0; primitive < model_.meshes[mesh].primitives.size(); ++primitive)
+        scene_.meshPrimitiveNames.push_back({"", int(mesh), int(primitive)});
+    }
     lights_ = gltf::punctualLights(model_);
     const gltf::NodeWalk walk(source_);
     walk_ = &walk;
@@ -212,21 +220,25 @@ class GltfReader {
       };
       std::vector<glm::mat4> placements =
           gltf::instanceTransforms(geometry_.accessors(), source_, nodeIndex, checkInstances);
+      const bool copies = !placements.empty();  // EXT_mesh_gpu_instancing: each copy is a mesh instance
       if (placements.empty()) {
         placements.push_back(glm::mat4(1.0f));
       }
       checkInstances(placements.size());
-      for (const glm::mat4& placement : placements) {
-        const glm::mat4 worldFromLocal = worldFromMesh * placement;
+      for (std::size_t copy = 0; copy < placements.size(); ++copy) {
+        const glm::mat4 worldFromLocal = worldFromMesh * placements[copy];
+        const int meshInstance = int(scene_.meshInstanceNames.size());
+        scene_.meshInstanceNames.push_back({node.name, nodeIndex, copies ? int(copy) : -1});
         for (int column = 0; column < 4; ++column) {
           if (!(glm::all(glm::lessThanEqual(glm::abs(worldFromLocal[column]), glm::vec4(kMaxWorldMagnitude))))) {
             source_.fail(nodeName + " EXT_mesh_gpu_instancing places an instance beyond magnitude " +
                          std::to_string(static_cast<long long>(kMaxWorldMagnitude)));
           }
         }
-        for (const PlacedPrimitive& placed : placedPrimitives) {
-          scene_.instances.push_back({placed.geometry, worldFromLocal, placed.material});
-        }
+        for (std::size_t primitive = 0; primitive < placedPrimitives.size(); ++primitive)
+          scene_.instances.push_back({placedPrimitives[primitive].geometry, worldFromLocal,
+                                      placedPrimitives[primitive].material, meshInstance, node.mesh,
+                                      firstMeshPrimitive_[std::size_t(node.mesh)] + int(primitive)});
       }
     }
     if (node.camera >= 0) {
@@ -249,6 +261,7 @@ class GltfReader {
   std::map<int, std::vector<glm::mat4>> jointCache_;
   std::map<MeshKey, std::vector<PlacedPrimitive>> meshCache_;
   std::map<GeometryKey, int> geometryCache_;
+  std::vector<int> firstMeshPrimitive_;  // per glTF mesh: its first primitive's index in Scene::meshPrimitiveNames
 };
 
 // --scene: an index, or the name of one of the file's scenes; -1 when not given.

@@ -274,6 +274,19 @@ MetricImages metricImages(const OIIO::ImageBuf& a, const OIIO::ImageBuf& b, cons
     case DiffMetric::Flip:
       m = flipImages(a, b, channels, rgbChannels(channels), integerPixels, maxFlipExposures, result);
       break;
+    case DiffMetric::Mismatch: {
+      // B holds 1 where the values differ, A zeros: their difference is the error.
+      std::vector<float> va(a.roi().npixels() * std::size_t(n)), vb(va.size());
+      a.get_pixels(a.roi(), OIIO::TypeDesc::FLOAT, va.data());
+      b.get_pixels(b.roi(), OIIO::TypeDesc::FLOAT, vb.data());
+      for (std::size_t i = 0; i < va.size(); ++i) vb[i] = va[i] == vb[i] ? 0.0f : 1.0f;
+      OIIO::ImageSpec spec = a.spec();
+      spec.set_format(OIIO::TypeDesc::FLOAT);
+      m.b = OIIO::ImageBuf(spec);
+      m.b.set_pixels(m.b.roi(), OIIO::TypeDesc::FLOAT, vb.data());
+      m.a = iba::zero(m.b.roi());
+      break;
+    }
   }
   checkOk(m.a, "metric (A)");
   checkOk(m.b, "metric (B)");

@@ -1,6 +1,7 @@
 #include "image_io/image_files.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "headlight/error.hpp"
 #include "io/bounded_read.hpp"
@@ -47,11 +48,24 @@ double declaredFloatBytes(const OIIO::ImageSpec& spec) {
 // Reads subimage 0 into memory as float through ImageInput (not ImageBuf's
 // shared ImageCache, which may hand back an older copy of a file that was
 // rewritten under the same name, as regression suites do).
+// 32-bit unsigned channels (ids.exr) hold integers and come back as those
+// integers: read as float, OpenImageIO would scale them to 0..1.
 std::optional<OIIO::ImageBuf> readImage(OIIO::ImageInput& input, const fs::path& path, std::string& problem) {
   OIIO::ImageSpec spec = input.spec();
+  const bool integers = spec.format == OIIO::TypeDesc::UINT && spec.channelformats.empty();
   spec.set_format(OIIO::TypeDesc::FLOAT);
+  spec.channelformats.clear();
   OIIO::ImageBuf buffer(spec);
-  if (!input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels())) {
+  bool read = false;
+  if (integers) {
+    std::vector<std::uint32_t> values(std::size_t(spec.width) * std::size_t(spec.height) * std::size_t(spec.nchannels));
+    read = input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, values.data());
+    std::vector<float> floats(values.begin(), values.end());
+    if (read) buffer.set_pixels(buffer.roi(), OIIO::TypeDesc::FLOAT, floats.data());
+  } else {
+    read = input.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.localpixels());
+  }
+  if (!read) {
     problem = path.string() + ": cannot read the pixels: " + input.geterror();
     return std::nullopt;
   }

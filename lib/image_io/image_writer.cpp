@@ -148,13 +148,27 @@ void runParallel(const std::vector<std::function<void()>>& tasks, int threads) {
     if (error) std::rethrow_exception(error);
 }
 
+// How an EXR stores a target's values.
+enum class Stored { Half, Float, Uint32 };
+
 // Light is half unless the frame was rendered with float radiance: then its
 // GPU target held float32, and half would clamp what it kept. A target that
-// is half where it fits is float when its image holds a finite value beyond half.
-bool halfStorage(const FrameTarget& target, const Frame& frame, const ImageStats& stats) {
-  if (target.storage == ExrStorage::Radiance) return frame.settings.radiancePrecision != RadiancePrecision::Float;
-  if (target.storage == ExrStorage::HalfWhereItFits) return stats.saturatedPixels == 0;
-  return target.storage == ExrStorage::Half;
+// is half where it fits is float when its image holds a finite value beyond
+// half. Ids are integers and stay integers.
+Stored storedAs(const FrameTarget& target, const Frame& frame, const ImageStats& stats) {
+  switch (target.storage) {
+    case ExrStorage::Radiance:
+      return frame.settings.radiancePrecision == RadiancePrecision::Float ? Stored::Float : Stored::Half;
+    case ExrStorage::HalfWhereItFits:
+      return stats.saturatedPixels == 0 ? Stored::Half : Stored::Float;
+    case ExrStorage::Half:
+      return Stored::Half;
+    case ExrStorage::Float:
+      return Stored::Float;
+    case ExrStorage::Uint32:
+      return Stored::Uint32;
+  }
+  return Stored::Float;
 }
 
 bool wanted(const OutputOptions& options, std::string_view name) {
@@ -162,9 +176,10 @@ bool wanted(const OutputOptions& options, std::string_view name) {
          std::find(options.targets.begin(), options.targets.end(), name) != options.targets.end();
 }
 
-WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
+WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::path& path, Stored stored,
                             const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy policy,
                             const ImageStats& stats) {
+  const bool halfFloat = stored == Stored::Half;
   if (stats.nonFinite && policy == NonFinitePolicy::Error)
     throw IoError(nonFiniteMessage(path.string(), stats.nonFinite, image.pixels.size()), {"clamp-nonfinite"});
   const ImageF* source = &image;
@@ -173,8 +188,10 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
     clamped = clampedCopy(image, halfFloat ? kHalfMax : std::numeric_limits<float>::max());
     source = &clamped;
   }
-  OIIO::ImageSpec spec(image.width, image.height, image.channelCount(),
-                       halfFloat ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  const OIIO::TypeDesc fileType = stored == Stored::Half     ? OIIO::TypeDesc::HALF
+                                  : stored == Stored::Uint32 ? OIIO::TypeDesc::UINT
+                                                             : OIIO::TypeDesc::FLOAT;
+  OIIO::ImageSpec spec(image.width, image.height, image.channelCount(), fileType);
   spec.channelnames = image.channels;
   spec.alpha_channel = -1;
   for (int c = 0; c < image.channelCount(); ++c)
@@ -182,12 +199,24 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
   spec.attribute("compression", std::string(exrCompressionName(compression)));
   addMetadata(spec, frame);
   for (const auto& [name, value] : extra) spec.attribute(name, value);
-  detail::writePixelsAtomically(path, source->pixels.data(), OIIO::TypeDesc::FLOAT, spec, "openexr");
+  if (stored == Stored::Uint32) {
+    // Handed over as integers: OpenImageIO would scale floats to 0..2^32-1.
+    std::vector<std::uint32_t> values(source->pixels.size());
+    std::transform(source->pixels.begin(), source->pixels.end(), values.begin(),
+                   [](float value) { return std::uint32_t(std::clamp(value, 0.0f, 4294967040.0f)); });
+    detail::writePixelsAtomically(path, values.data(), OIIO::TypeDesc::UINT, spec, "openexr");
+  } else {
+    detail::writePixelsAtomically(path, source->pixels.data(), OIIO::TypeDesc::FLOAT, spec, "openexr");
+  }
   // Only a half target saturates (a float one holds 3.4e38): counted after
   // the readback, where the GPU's half texture has already clamped.
   const std::size_t saturated = halfFloat ? stats.saturatedPixels : 0;
   WrittenFile file{path,
-                   summarize(path, image, halfFloat ? "half" : "float", stats, policy) +
+                   summarize(path, image,
+                             halfFloat                  ? "half"
+                             : stored == Stored::Uint32 ? "uint32"
+                                                        : "float",
+                             stats, policy) +
                        (saturated ? saturationNote(saturated) : ""),
                    stats.nonFinite, 0, saturated};
   std::error_code error;
@@ -199,7 +228,8 @@ WrittenFile writeExrChecked(const Frame& frame, const ImageF& image, const fs::p
 
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const fs::path& path, bool halfFloat,
                      const ExrAttributes& extra, ExrCompression compression, NonFinitePolicy nonFinite) {
-  return writeExrChecked(frame, image, path, halfFloat, extra, compression, nonFinite, imageStats(image));
+  return writeExrChecked(frame, image, path, halfFloat ? Stored::Half : Stored::Float, extra, compression, nonFinite,
+                         imageStats(image));
 }
 
 std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, const OutputOptions& options) {
@@ -267,9 +297,8 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const fs::path& outDir, 
       const fs::path path = outDir / job.file();
       switch (job.kind) {
         case Kind::Exr:
-          written[i] =
-              writeExrChecked(frame, frame.*job.target->image, path, halfStorage(*job.target, frame, job.stats), {},
-                              options.compression, options.nonFinite, job.stats);
+          written[i] = writeExrChecked(frame, frame.*job.target->image, path, storedAs(*job.target, frame, job.stats),
+                                       {}, options.compression, options.nonFinite, job.stats);
           break;
         case Kind::Png:
           written[i] = writeTargetPng(frame, *job.target, path);

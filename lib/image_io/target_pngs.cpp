@@ -33,6 +33,30 @@ float radianceToDisplay(float linear, const RenderSettings& settings) {
   return linearToSrgb(std::clamp(settings.tonemap == Tonemap::Aces ? tonemapAces(v) : tonemapReinhard(v), 0.0f, 1.0f));
 }
 
+// Label k's colour: hues a golden-ratio turn apart, so neighbouring ids (a
+// mesh's instances, numbered in file order) differ most; three brightness
+// levels in turn tell apart ids whose hues come close.
+std::array<float, 3> labelColor(std::uint32_t id) {
+  const float hue = float(std::fmod(double(id) * 0.6180339887, 1.0)) * 6.0f;
+  const float value = 1.0f - 0.25f * float(id % 3), saturation = 0.7f;
+  const float f = hue - std::floor(hue), p = value * (1.0f - saturation), q = value * (1.0f - saturation * f),
+              t = value * (1.0f - saturation * (1.0f - f));
+  switch (int(hue) % 6) {
+    case 0:
+      return {value, t, p};
+    case 1:
+      return {q, value, p};
+    case 2:
+      return {p, value, t};
+    case 3:
+      return {p, q, value};
+    case 4:
+      return {t, p, value};
+    default:
+      return {value, p, q};
+  }
+}
+
 // How `image` shows through `look`, one pixel at a time, so that encoding
 // needs no image-sized buffer beside the 8-bit one (an 8192x8192 preview
 // would take 805 MB of floats): what the whole image decides is computed
@@ -104,6 +128,9 @@ class Look {
           for (std::size_t c = 0; c < 3; ++c) shown[c] = palette_[step * 3 + c];
         }
         break;
+      case PngLook::Labels:
+        if (const float id = value(p, 0); id > 0.0f) shown = labelColor(std::uint32_t(id));
+        break;
     }
     return shown;
   }
@@ -156,6 +183,8 @@ std::string_view lookName(PngLook look) {
       return "first channel as grey";
     case PngLook::Values:
       return "first three channels as they are";
+    case PngLook::Labels:
+      return "each instance id a colour, background black";
   }
   return "";
 }

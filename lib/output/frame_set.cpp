@@ -94,6 +94,36 @@ json cameraJson(const Frame& frame) {
   return camera;
 }
 
+// ids.exr's tables: one entry per id, with its name and where it is in the
+// file (keys left out where it is from no file).
+json idsJson(const IdNames& names) {
+  auto table = [](const std::vector<IdName>& entries, const char* indexKey, const char* subIndexKey) {
+    json rows = json::array();
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      json row{{"id", k + 1}, {"name", entries[k].name}};
+      if (entries[k].index >= 0) row[indexKey] = entries[k].index;
+      if (entries[k].subIndex >= 0 && subIndexKey) row[subIndexKey] = entries[k].subIndex;
+      rows.push_back(std::move(row));
+    }
+    return rows;
+  };
+  json j;
+  j["background"] = 0;
+  j["channels"] = {
+      {"instance.id", "instance"}, {"mesh.id", "mesh"}, {"material.id", "material"}, {"primitive.id", "primitive"}};
+  j["instance"] = table(names.meshInstances, "node", "copy");
+  j["mesh"] = table(names.meshes, "mesh", nullptr);
+  j["material"] = table(names.materials, "material", nullptr);
+  j["primitive"] = table(names.meshPrimitives, "mesh", "primitive");
+  return j;
+}
+
+}  // namespace
+
+std::string idNamesJson(const IdNames& names) { return idsJson(names).dump(); }
+
+namespace {
+
 json manifestJson(const Frame& frame, const OutputOptions& options, bool complete) {
   const std::map<std::string, std::string> settings = settingsAsText(frame.settings);
   std::string settingsText;
@@ -116,6 +146,9 @@ json manifestJson(const Frame& frame, const OutputOptions& options, bool complet
     if (!pass.form.empty()) forms[pass.pass] = pass.form;
   j["forms"] = forms;
   j["camera"] = cameraJson(frame);
+  const bool idsWritten = options.targets.empty() ||
+                          std::find(options.targets.begin(), options.targets.end(), "ids") != options.targets.end();
+  if (frame.idNames && !frame.ids.empty() && idsWritten) j["ids"] = idsJson(*frame.idNames);
   j["files"] = json::array();
   return j;
 }

@@ -30,9 +30,17 @@ GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
 void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant) {
   attach(targets);
   // Zero everywhere: position.a = 0 marks background for every later pass.
+  // An integer target (ids) is cleared as integers: a float clear of it is undefined.
   const float zero[] = {0.0f, 0.0f, 0.0f, 0.0f};
-  for (std::size_t location = 0; location < targets.colors.size(); ++location)
-    if (targets.colors[location]) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, GLint(location), zero);
+  const GLuint zeroIds[] = {0, 0, 0, 0};
+  for (std::size_t location = 0; location < targets.colors.size(); ++location) {
+    const gl::Texture* color = targets.colors[location];
+    if (!color) continue;
+    if (color->internalFormat() == GL_RGBA32UI)
+      glClearNamedFramebufferuiv(framebuffer_.id(), GL_COLOR, GLint(location), zeroIds);
+    else
+      glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, GLint(location), zero);
+  }
   const float farDepth = 1.0f;
   glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
   draw(scene, variant, variant.deferTransmissive ? Draws::Opaque : Draws::All);

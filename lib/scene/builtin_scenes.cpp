@@ -38,33 +38,35 @@ Scene makeCornell() {
   struct Wall {
     glm::vec3 corner, edgeU, edgeV;  // front face = cross(edgeU, edgeV), inward
     int material;
+    const char* name;  // the ids target's
   };
   const std::array<Wall, 5> walls{{
-      {{-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white},  // floor, faces +Y
-      {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white},  // ceiling, faces -Y
-      {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white},  // back wall, faces +Z
-      {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, red},    // left wall, faces +X
-      {{1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green},   // right wall, faces -X
+      {{-1, 0, -1}, {0, 0, 2}, {2, 0, 0}, white, "floor"},      // faces +Y
+      {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, white, "ceiling"},    // faces -Y
+      {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, white, "back wall"},  // faces +Z
+      {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, red, "left wall"},    // faces +X
+      {{1, 0, -1}, {0, 0, 2}, {0, 2, 0}, green, "right wall"},  // faces -X
   }};
   for (const Wall& wall : walls) {
-    addInstance(scene, makeQuad(wall.corner, wall.edgeU, wall.edgeV), wall.material);
+    addInstance(scene, makeQuad(wall.corner, wall.edgeU, wall.edgeV), wall.material, glm::mat4(1.0f), wall.name);
   }
 
   struct Block {
     glm::vec3 size, center;
     float yawDegrees;
+    const char* name;
   };
   const std::array<Block, 2> blocks{{
-      {{0.6f, 1.2f, 0.6f}, {-0.33f, 0.6f, -0.3f}, 17.0f},  // tall
-      {{0.6f, 0.6f, 0.6f}, {0.33f, 0.3f, 0.3f}, -17.0f},   // short
+      {{0.6f, 1.2f, 0.6f}, {-0.33f, 0.6f, -0.3f}, 17.0f, "tall block"},
+      {{0.6f, 0.6f, 0.6f}, {0.33f, 0.3f, 0.3f}, -17.0f, "short block"},
   }};
   for (const Block& block : blocks) {
-    addInstance(scene, makeBox(block.size), white, rotatedAboutYThenMoved(block.yawDegrees, block.center));
+    addInstance(scene, makeBox(block.size), white, rotatedAboutYThenMoved(block.yawDegrees, block.center), block.name);
   }
 
   // 1.999: a millimetre below the ceiling, enough for 32-bit depth to keep
   // them apart, and too little for the lamp to shadow the ceiling round it.
-  addInstance(scene, makeQuad({-0.25f, 1.999f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}), lamp);
+  addInstance(scene, makeQuad({-0.25f, 1.999f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}), lamp, glm::mat4(1.0f), "lamp");
 
   Light light;
   light.name = "cornell lamp light";

@@ -3,6 +3,7 @@
 // was rendered from, the settings it used (auto values resolved) and where
 // the time went. Nothing here touches the GL, so a caller may keep frames
 // after the renderer is gone.
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -47,6 +48,16 @@ struct PassTime {
   std::string form;
 };
 
+// The names behind the ids target's values (Frame::ids): id k >= 1 of a
+// kind is entry k - 1 of its table; 0 is the background (and an instance
+// that nothing names).
+struct IdNames {
+  std::vector<IdName> meshInstances;   // Scene::meshInstanceNames
+  std::vector<IdName> meshes;          // Scene::meshNames
+  std::vector<IdName> materials;       // Scene::materials (index = material), then glTF's default (index -1)
+  std::vector<IdName> meshPrimitives;  // Scene::meshPrimitiveNames
+};
+
 struct Frame {
   ImageF position;  // position.X/Y/Z world, A = 1 on geometry, 0 on background
   ImageF normal;    // normal.X/Y/Z world, unit length; 0 on background
@@ -83,6 +94,14 @@ struct Frame {
   // clearcoat, clearcoatRoughness, clearcoatNormal.U/V (the coat's world
   // normal, octahedral-encoded); only for scenes with KHR_materials_clearcoat.
   ImageF clearcoat;
+  // instance.id, mesh.id, material.id, primitive.id: what each pixel shows,
+  // as integers (exact in float up to 2^24; uint32 in ids.exr), 0 on
+  // background; names in idNames. The opaque and masked surfaces the other
+  // G-buffer targets hold (alphaMode BLEND's are not in them). Only when
+  // wanted (all targets, or named).
+  ImageF ids;
+  // The ids' names; shared by every frame of one scene. Null without ids.
+  std::shared_ptr<const IdNames> idNames;
 
   CameraView view;
   RenderSettings settings;  // as used: "auto" values resolved to numbers

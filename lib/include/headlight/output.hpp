@@ -80,6 +80,12 @@ std::vector<std::string_view> outputTargetNames();
 std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::path& outDir,
                                     const OutputOptions& options = {});
 
+// frame.json's "ids" object as JSON text: for each kind ("instance",
+// "mesh", "material", "primitive") a list of {"id", "name", and where it is
+// in the file}; writeFrame writes it beside ids.exr, Python's Frame.id_names
+// parses it.
+std::string idNamesJson(const IdNames& names);
+
 // Extra string attributes for an EXR, e.g. {"headlight:reference:samples", "4096"}.
 using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 

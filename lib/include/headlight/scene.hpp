@@ -216,6 +216,22 @@ struct Instance {
   int primitive = 0;
   glm::mat4 worldFromLocal{1.0f};
   int material = -1;  // index into Scene::materials; -1 = glTF's default material
+  // What the ids target numbers the instance by: indices into Scene's
+  // meshInstanceNames, meshNames and meshPrimitiveNames (-1: none, id 0 like
+  // the background). A mesh instance is one placement of a mesh (a glTF
+  // node, or one EXT_mesh_gpu_instancing copy of it): a segmentation mask's
+  // object.
+  int meshInstance = -1;
+  int mesh = -1;
+  int meshPrimitive = -1;  // the glTF mesh primitive, numbered across all meshes
+};
+
+// One entry of an ids table: a name, and where it is in the file (-1 where
+// not from a file: built-in scenes, SceneBuilder).
+struct IdName {
+  std::string name;
+  int index = -1;     // glTF node (mesh instances), mesh (meshes, primitives) or material index
+  int subIndex = -1;  // mesh instances: the EXT_mesh_gpu_instancing copy; primitives: the index within the mesh
 };
 
 // The matrix that carries normals from local to world space: the cofactor
@@ -305,6 +321,11 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<ImageData> images;
   std::vector<Instance> instances;
+  // The ids target's names (Frame::idNames): what Instance::meshInstance,
+  // mesh and meshPrimitive index.
+  std::vector<IdName> meshInstanceNames;
+  std::vector<IdName> meshNames;
+  std::vector<IdName> meshPrimitiveNames;
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   Sky sky;

@@ -38,10 +38,14 @@ int addMaterial(Scene& scene, Material material);    // returns its index in sce
 int addGeometry(Scene& scene, Primitive primitive);  // returns its index in scene.primitives
 
 // Places geometry `geometry` (an index from addGeometry) with `material` (an
-// index from addMaterial, or -1 for the default material).
-void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f));
+// index from addMaterial, or -1 for the default material). For the ids
+// target each placement is a mesh instance named `name`, and each geometry
+// a mesh of one primitive ("geometry <index>").
+void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f),
+                 std::string name = {});
 
 // Geometry used once: added and placed in one step.
-void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f));
+void addInstance(Scene& scene, Primitive primitive, int material, const glm::mat4& worldFromLocal = glm::mat4(1.0f),
+                 std::string name = {});
 
 }  // namespace HEADLIGHT_PUBLIC

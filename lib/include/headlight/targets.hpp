@@ -27,6 +27,7 @@ enum class DiffMetric {
   Flip,             // perceived difference of the R, G, B channels (lib/diff/flip.hpp), one channel
                     // "flip" in 0..1: HDR-FLIP of float images, LDR-FLIP of integer (sRGB-encoded)
                     // ones; other channels (coverage A) compared absolutely
+  Mismatch,         // 1 where a != b, else 0, per channel: labels (the ids), where no value is nearer than another
 };
 
 // idiff's options and idiff's defaults, plus a bound on the mean error. Units
@@ -49,7 +50,8 @@ struct DiffThresholds {
 // HalfWhereItFits: half, or float32 for a frame whose image holds a finite
 // value beyond half's 65504 (transmission's path lengths: a volume's thickness
 // is unbounded), so nothing saturates or turns into inf in the file.
-enum class ExrStorage { Half, Float, Radiance, HalfWhereItFits };
+// Uint32: integers (the ids), written as EXR's UINT channels.
+enum class ExrStorage { Half, Float, Radiance, HalfWhereItFits, Uint32 };
 
 // How a target looks as an 8-bit PNG (render --png; OutputOptions::pngTargets).
 enum class PngLook {
@@ -60,6 +62,7 @@ enum class PngLook {
   Depth,     // viridis, near (yellow) to far (purple) over the geometry's depths; background black
   Grey,      // the first channel, 0..1, as grey (ssgi: ambient occlusion)
   Values,    // the first three channels, 0..1, as they are (material: metallic, roughness, occlusion)
+  Labels,    // the first channel's integers as distinct colours (ids: one per mesh instance); 0 black
 };
 
 struct FrameTarget {
