@@ -454,13 +454,18 @@ std::shared_ptr<Frame> frameFromState(const py::tuple& state) {
 
 py::array imageArray(const ImageF& image, py::handle owner) {
   const py::ssize_t c = image.channelCount(), h = image.height, w = image.width;
-  // The ids are labels: uint32 as in ids.exr (a copy; the frame holds them as exact floats).
+  // The ids are labels: uint32 as in ids.exr. The frame holds them as exact
+  // floats, so the array is a copy, made once and kept on the Frame object.
   if (&image == &owner.cast<const Frame&>().ids) {
-    py::array_t<std::uint32_t> ids({h, w, c});
-    std::uint32_t* to = ids.mutable_data();
-    for (std::size_t i = 0; i < image.pixels.size(); ++i) to[i] = std::uint32_t(image.pixels[i]);
-    ids.attr("setflags")(py::arg("write") = false);
-    return ids;
+    py::dict kept = owner.attr("__dict__");
+    if (!kept.contains("_ids")) {
+      py::array_t<std::uint32_t> ids({h, w, c});
+      std::uint32_t* to = ids.mutable_data();
+      for (std::size_t i = 0; i < image.pixels.size(); ++i) to[i] = std::uint32_t(image.pixels[i]);
+      ids.attr("setflags")(py::arg("write") = false);
+      kept["_ids"] = ids;
+    }
+    return kept["_ids"];
   }
   const py::ssize_t rowStride = py::ssize_t(sizeof(float)) * w * c, pixelStride = py::ssize_t(sizeof(float)) * c;
   py::array array = c == 1 ? py::array_t<float>({h, w}, {rowStride, pixelStride}, image.pixels.data(), owner)
@@ -518,9 +523,10 @@ PYBIND11_MODULE(headlight, m) {
     }
   });
 
-  py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame",
+  py::class_<Frame, std::shared_ptr<Frame>>(m, "Frame", py::dynamic_attr(),
                                             "One render: every target as a numpy array (H x W x C float32, rows top "
-                                            "first, sharing the frame's memory), the camera and the pass times.")
+                                            "first, sharing the frame's memory; ids uint32), the camera and the "
+                                            "pass times.")
       // Picklable, so a multiprocessing pool can return frames: every field, images as bytes.
       .def(py::pickle([](const Frame& frame) { return frameState(frame); },
                       [](const py::tuple& state) { return frameFromState(state); }))

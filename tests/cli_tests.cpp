@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -496,6 +497,31 @@ TEST_CASE(
     CHECK(restarted.output.find("memory: transparent huge pages ") != std::string::npos);
     CHECK(restarted.output.find("GLIBC_TUNABLES=glibc.malloc.hugetlb=1") == std::string::npos);
   }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("render --targets ids --png ids: a segmentation mask, its colours and its names, without lighting") {
+  const fs::path folder = freshFolder("ids");
+  const fs::path out = folder / "out";
+  const Run run = runHeadlight(
+      "render builtin:cornell --width 48 --height 36 --targets ids --png ids --verbose --out " + quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  CHECK(fs::exists(out / "ids.exr"));
+  CHECK_FALSE(fs::exists(out / "lit.exr"));
+  CHECK(run.output.find("ids.exr: 48x36 uint32 instance.id [0, ") != std::string::npos);
+  CHECK(run.output.find("8-bit PNG of ids (each instance id a colour, background black)") != std::string::npos);
+  CHECK(run.output.find("composite") != std::string::npos);  // --verbose names it as skipped: lit not asked for
+  std::ifstream manifest(out / "frame.json");
+  const nlohmann::json json = nlohmann::json::parse(manifest);
+  REQUIRE(json.contains("ids"));
+  CHECK(json["ids"]["instance"][0]["name"] == "floor");
+  CHECK(json["ids"]["material"].back()["name"] == "glTF default material");
+  // diff compares the labels exactly: the set against itself passes, row "ids", metric mismatch.
+  const Run diff = runHeadlight("diff " + quote((out / "ids.exr").string()) + " " + quote((out / "ids.exr").string()));
+  INFO(diff.output);
+  CHECK(diff.exitCode == 0);
+  CHECK(diff.output.find("error = 1 where a != b, else 0") != std::string::npos);
   fs::remove_all(folder);
 }
 

@@ -26,10 +26,13 @@ def test_render_gives_arrays_over_the_frames_memory():
     targets = frame.targets
     assert {"position", "normal", "albedo", "material", "depth", "lit"} <= set(targets)
     for name, array in targets.items():
-        assert array.dtype == np.float32, name
         channels = len(frame.channels[name])
         assert array.shape == ((48, 64) if channels == 1 else (48, 64, channels)), name
         assert not array.flags.writeable, name  # a view of the frame's memory: read-only
+        if name == "ids":  # labels: uint32, as in ids.exr (a copy)
+            assert array.dtype == np.uint32
+            continue
+        assert array.dtype == np.float32, name
         assert not array.flags.owndata, name  # a view of the frame's pixels, no copy
     assert frame.channels["normal"] == ["normal.X", "normal.Y", "normal.Z"]
     lit = frame["lit"]
@@ -486,6 +489,31 @@ def test_targets_bounds_and_orbit():
     expect(headlight.SettingsError, lambda: empty.bounds, "no scene")
 
 
+def test_ids_are_uint32_labels_named_by_id_names():
+    r = osmesa_renderer()
+    r.set_scene("builtin:cornell")
+    frame = r.render(width=64, height=48, antialias=1)
+    ids = frame["ids"]
+    assert ids.dtype == np.uint32 and ids.shape == (48, 64, 4)
+    assert frame.channels["ids"] == ["instance.id", "mesh.id", "material.id", "primitive.id"]
+    names = frame.id_names
+    assert set(names) == {"background", "channels", "instance", "mesh", "material", "primitive"}
+    assert names["background"] == 0
+    # Background pixels are 0, geometry pixels name a mesh instance; a segmentation mask is one comparison.
+    geometry = frame["position"][..., 3] > 0
+    assert (ids[~geometry] == 0).all() and (ids[geometry, 0] > 0).all()
+    by_name = {entry["name"]: entry["id"] for entry in names["instance"]}
+    left_wall = ids[..., 0] == by_name["left wall"]
+    assert left_wall.sum() > 64 * 48 // 20
+    # The left wall's pixels are its material's colour, cornell red.
+    red = [entry for entry in names["material"] if entry["name"] == "cornell red"][0]
+    assert (ids[left_wall, 2] == red["id"]).all()
+    assert (frame["albedo"][left_wall, 0] > frame["albedo"][left_wall, 1]).all()
+    # Not asked for: no ids and no names.
+    lit_only = r.render(width=32, height=24, targets=["lit"])
+    assert "ids" not in lit_only and lit_only.id_names is None
+
+
 def test_frames_pickle_for_multiprocessing():
     import pickle
     r = osmesa_renderer()
@@ -500,6 +528,7 @@ def test_frames_pickle_for_multiprocessing():
     assert np.array_equal(copy.view, frame.view) and np.array_equal(copy.projection, frame.projection)
     assert (copy.near, copy.far, copy.camera_position) == (frame.near, frame.far, frame.camera_position)
     assert copy.gl_renderer == frame.gl_renderer and copy.scene_source == frame.scene_source
+    assert copy.id_names == frame.id_names and copy["ids"].dtype == np.uint32
     # A copy writes the same set as the original.
     import tempfile, os
     with tempfile.TemporaryDirectory() as folder:
