@@ -125,7 +125,7 @@ bool compareGolden(const Golden& golden, const std::string& form) {
                               test::shellQuote(actual.string()) +
                               // The targets tools/update_goldens.sh writes: every EXR (emissive as
                               // zeros where nothing emits), no preview.
-                              " --targets position,normal,albedo,material,depth,emissive,ssgi,lit";
+                              " --targets position,normal,albedo,material,depth,emissive,ssgi,lit,ids";
   const test::ProcessResult run = test::runCommand(command);
   INFO(command);
   INFO(run.output);

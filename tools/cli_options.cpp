@@ -16,6 +16,16 @@
 namespace headlight::cli {
 namespace {
 
+// --targets' help: every name it takes, from the target table.
+std::string_view targetsHelp() {
+  static const std::string help = [] {
+    std::string names;
+    for (std::string_view name : outputTargetNames()) (names += names.empty() ? "" : ",") += name;
+    return "write only these (" + names + "); passes only other targets need are skipped";
+  }();
+  return help;
+}
+
 constexpr std::string_view kBackendNames[] = {"auto", "egl", "osmesa"};
 
 std::string text(const OptionValue& value) { return std::get<std::string>(value); }
@@ -168,11 +178,7 @@ std::vector<Option<RenderCommand>> batchOptions() {
            .type = T::Switch,
            .help = "skip a job whose folder holds a complete set (frame.json) of the same job hash"},
           [](auto& c) -> auto& { return c.resume; }),
-      actionOption<C>({.name = "targets",
-                       .type = T::Text,
-                       .help = "write only these (position,normal,albedo,material,depth,emissive,ssgi,lit,preview); "
-                               "passes only other targets need are skipped",
-                       .valueName = "LIST"},
+      actionOption<C>({.name = "targets", .type = T::Text, .help = targetsHelp(), .valueName = "LIST"},
                       [](C& c, const OptionValue& v) {
                         c.output.targets = detail::splitList("targets", text(v));
                         const auto names = outputTargetNames();

@@ -19,7 +19,7 @@ sed 's/#.*//' reference_images/goldens.txt | while read -r name scene flags; do
   # always written), no preview; frame.json makes the golden a checked set.
   # tests/regression_tests.cpp renders with the same list.
   build/headlight render "$scene" $flags --out "$fresh" --quiet --strict \
-    --targets position,normal,albedo,material,depth,emissive,ssgi,lit
+    --targets position,normal,albedo,material,depth,emissive,ssgi,lit,ids
   if [ -d "reference_images/$name" ]; then
     echo "== $name: changes against the current golden"
     build/headlight diff "reference_images/$name" "$fresh" || true
