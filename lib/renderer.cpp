@@ -460,6 +460,10 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
       makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);
 
   const FramePlan plan = planFrame(impl.summary, used, targets);
+  // Each antialias sample draws the view again: bounded like the rest, before any of it.
+  const int viewDraws = plan.antialias ? 1 + plan.antialias->samples : 1;
+  if (plan.antialias) checkDrawBudget(impl.scene, impl.limits, viewDraws);
+  if (plan.blend) checkBlendBudget(impl.scene, frame.view, used.width, used.height, viewDraws, impl.limits);
   frame.skipped = plan.skipped;
   impl.ensureAttachments(plan, used.width, used.height);
   const gpu::FrameBlock frameBlock = makeFrameBlock(frame.view, used.width, used.height);

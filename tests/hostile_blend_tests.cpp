@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hostile_cli.hpp"
 #include "hostile_inputs.hpp"
 #include "support/encoding.hpp"
 #include "support/process.hpp"
@@ -20,8 +21,6 @@ using nlohmann::json;
 using namespace headlight::test;
 
 namespace {
-
-std::string quote(const fs::path& path) { return shellQuote(path.string()); }
 
 // The base triangle with one BLEND material of base colour alpha `alpha`
 // (written as is, so "1e39" stays text that overflows a float).
@@ -37,7 +36,7 @@ std::string blendedTriangle(const std::string& alpha) {
 }
 
 ProcessResult render(const fs::path& scene, const fs::path& out, const std::string& extra = "") {
-  return runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
+  return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
 }
 
 // The smallest and largest value of the one-channel EXR at `path`.
@@ -100,6 +99,36 @@ TEST_SUITE("hostile") {
     CHECK(high <= 1.0f);
   }
 
+  TEST_CASE("blend: the pixels blended layers cover, times the antialias views, meet --max-blended-fragments") {
+    TempFolder folder("hostile-blend-fill");
+    json document = json::parse(blendedTriangle("0.5"));
+    // 10,000 layers of one triangle over much of the image (12 s at 64x48
+    // with 15,000 and the default antialiasing before the budget counted them).
+    json primitive = document["meshes"][0]["primitives"][0];
+    document["meshes"][0]["primitives"] = json::array();
+    for (int i = 0; i < 1000; ++i) document["meshes"][0]["primitives"].push_back(primitive);
+    document["nodes"] = json::array();
+    document["scenes"][0]["nodes"] = json::array();
+    for (int node = 0; node < 10; ++node) {
+      document["nodes"].push_back({{"mesh", 0}, {"translation", {0.01 * node, 0, -0.01 * node}}});
+      document["scenes"][0]["nodes"].push_back(node);
+    }
+    const fs::path scene = folder.write("layers.gltf", document.dump());
+    const ProcessResult refused = render(scene, folder.path() / "refused", "--max-blended-fragments 20000000");
+    INFO(refused.output);
+    CHECK(refused.exitCode == 1);
+    CHECK(refused.output.find("10000 alphaMode BLEND instances covering") != std::string::npos);
+    CHECK(refused.output.find("x 9 views: the pixel centre and 8 antialias samples") != std::string::npos);
+    CHECK(refused.output.find("raise --max-blended-fragments, or lower --antialias") != std::string::npos);
+    CHECK(folderEmptyOrAbsent(folder.path() / "refused"));
+    // One view shades a ninth of it, within the same budget.
+    const ProcessResult drawn =
+        render(scene, folder.path() / "drawn", "--max-blended-fragments 20000000 --antialias 1 --no-ssgi");
+    INFO(drawn.output);
+    CHECK(drawn.exitCode == 0);
+    CHECK(fs::exists(folder.path() / "drawn" / "coverage.exr"));
+  }
+
   TEST_CASE("blend: 100,000 blended instances count against --max-draws, and render within a raised budget") {
     TempFolder folder("hostile-blend");
     json document = json::parse(blendedTriangle("0.5"));
@@ -119,10 +148,19 @@ TEST_SUITE("hostile") {
     const ProcessResult refused = render(scene, folder.path() / "refused");
     INFO(refused.output);
     CHECK(refused.exitCode == 1);
-    CHECK(refused.output.find("100000 instances x 2 passes") != std::string::npos);
+    CHECK(refused.output.find("100000 instances x (1 shadow view + the view)") != std::string::npos);
     CHECK(refused.output.find("--max-draws") != std::string::npos);
+    // Each antialias sample draws the view again (the blend pass too): the
+    // raised budget covers one view, not nine (16 s at 32x24 when it was not counted).
+    const ProcessResult antialiased = render(scene, folder.path() / "antialiased", "--max-draws 200000 --no-ssgi");
+    INFO(antialiased.output);
+    CHECK(antialiased.exitCode == 1);
+    CHECK(antialiased.output.find("x (1 shadow view + 9 views: the pixel centre and 8 antialias samples) = 1000000 "
+                                  "draws") != std::string::npos);
+    CHECK(antialiased.output.find("raise --max-draws, or lower --antialias") != std::string::npos);
+    CHECK(folderEmptyOrAbsent(folder.path() / "antialiased"));
     const ProcessResult drawn =
-        render(scene, folder.path() / "drawn", "--max-draws 200000 --no-ssgi --strict --verbose");
+        render(scene, folder.path() / "drawn", "--max-draws 200000 --antialias 1 --no-ssgi --strict --verbose");
     INFO(drawn.output);
     CHECK(drawn.exitCode == 0);
     CHECK(drawn.output.find("pass blend") != std::string::npos);

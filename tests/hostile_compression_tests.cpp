@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compressed_inputs.hpp"
+#include "hostile_cli.hpp"
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
 
@@ -17,19 +18,6 @@ using namespace headlight::test;
 using nlohmann::json;
 
 namespace {
-
-std::string quote(const fs::path& path) { return shellQuote(path.string()); }
-
-void expectRefused(const fs::path& scene, const std::vector<std::string>& fragments, const std::string& extra = "") {
-  const fs::path out = scene.parent_path() / (scene.stem().string() + "-out");
-  const ProcessResult run =
-      runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
-  INFO(run.output);
-  CHECK(run.exitCode == 1);
-  CHECK(run.output.find(scene.string()) != std::string::npos);
-  for (const std::string& fragment : fragments) CHECK(run.output.find(fragment) != std::string::npos);
-  CHECK((!fs::exists(out) || fs::is_empty(out)));
-}
 
 // The Draco file with `stream` as its bytes.
 json withDracoStream(const std::vector<unsigned char>& stream) {

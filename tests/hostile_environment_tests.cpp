@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hostile_cli.hpp"
 #include "support/environment_maps.hpp"
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
@@ -29,9 +30,8 @@ fs::path hdrDeclaring(const TempFolder& folder, const std::string& name, long wi
 }
 
 ProcessResult renderWith(const TempFolder& folder, const fs::path& environment, const std::string& extra = {}) {
-  return runHeadlight("render builtin:cornell --width 32 --height 24 --environment " +
-                      shellQuote(environment.string()) + " --out " + shellQuote((folder.path() / "out").string()) +
-                      " " + extra);
+  return runHostile("render builtin:cornell --width 32 --height 24 --environment " + shellQuote(environment.string()) +
+                    " --out " + shellQuote((folder.path() / "out").string()) + " " + extra);
 }
 
 }  // namespace
@@ -95,7 +95,7 @@ TEST_CASE("hostile environment maps: texels brighter than half floats hold light
   const TempFolder folder("hostile-environment");
   const fs::path map =
       writeEnvironmentMap(folder.path() / "bright.hdr", 64, 32, [](int, int) { return glm::vec3(100000.0f); });
-  const ProcessResult run = runHeadlight(
+  const ProcessResult run = runHostile(
       "render builtin:spheres --width 32 --height 24 --radiance-precision float "
       "--environment " +
       shellQuote(map.string()) + " --out " + shellQuote((folder.path() / "out").string()));

@@ -56,7 +56,7 @@ TEST_SUITE("hostile") {
     extras["materials"][0]["extras"] = {{"extensions", {{"counter", 4294967297}}}};
     const auto scene = writeGltf(folder, extras, "extras.gltf");
     const ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+        runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
   }
@@ -67,7 +67,7 @@ TEST_SUITE("hostile") {
         writeGltf(folder, withMaterialExtensions({{"KHR_materials_ior", {{"ior", 0}}},
                                                   {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}));
     const auto out = folder.path() / "out";
-    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+    const ProcessResult run = runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(std::filesystem::exists(out / "lit.exr"));
@@ -82,7 +82,7 @@ TEST_SUITE("hostile") {
         writeGltf(folder, withMaterialExtensions({{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
                                                   {"KHR_materials_volume", {{"thicknessFactor", 1e20}}}}));
     const auto out = folder.path() / "out";
-    const ProcessResult run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+    const ProcessResult run = runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(run.output.find("transmission.exr: 32x24 float ") != std::string::npos);
@@ -93,7 +93,7 @@ TEST_SUITE("hostile") {
                                                         {"KHR_materials_volume", {{"thicknessFactor", 0.5}}}}),
                                 "thin.gltf");
     const ProcessResult half =
-        runHeadlight("render " + quote(thin) + " --width 32 --height 24 --out " + quote(folder.path() / "thin"));
+        runHostile("render " + quote(thin) + " --width 32 --height 24 --out " + quote(folder.path() / "thin"));
     INFO(half.output);
     CHECK(half.exitCode == 0);
     CHECK(half.output.find("transmission.exr: 32x24 half ") != std::string::npos);

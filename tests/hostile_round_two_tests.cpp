@@ -80,7 +80,7 @@ TEST_SUITE("hostile") {
     const fs::path jobs = folder.write("d.jsonl", deep + "\n" + R"({"scene": "builtin:cornell", "out": ")" +
                                                       (folder.path() / "ok").string() +
                                                       R"(", "size": "32x24", "settings": )" + deep + "}\n");
-    const ProcessResult run = runHeadlight("render --jobs " + quote(jobs));
+    const ProcessResult run = runHostile("render --jobs " + quote(jobs));
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("d.jsonl:1 failed: JSON nests deeper than 64 levels") != std::string::npos);
@@ -97,7 +97,7 @@ TEST_SUITE("hostile") {
     REQUIRE(fd >= 0);
     REQUIRE(::flock(fd, LOCK_EX) == 0);
     const std::string render = "render builtin:cornell --width 32 --height 24 --out " + quote(out);
-    ProcessResult run = runHeadlight(render);
+    ProcessResult run = runHostile(render);
     INFO(run.output);
     CHECK(run.exitCode == 1);
     // The holder is named: this process, from /proc/locks (where the system keeps one).
@@ -108,7 +108,7 @@ TEST_SUITE("hostile") {
     CHECK(fs::is_empty(out));
     // --wait gives up after --wait-timeout, saying first whom it waits for, then that it stopped (issue 32).
     const auto timed = std::chrono::steady_clock::now();
-    run = runHeadlight(render + " --wait --wait-timeout 0.5");
+    run = runHostile(render + " --wait --wait-timeout 0.5");
     CHECK(run.exitCode == 1);
     CHECK(std::chrono::steady_clock::now() - timed < std::chrono::seconds(20));
     CHECK(run.output.find("still holds the folder's lock after 0.5 s of waiting") != std::string::npos);
@@ -121,7 +121,7 @@ TEST_SUITE("hostile") {
       ::close(fd);
     });
     const auto start = std::chrono::steady_clock::now();
-    run = runHeadlight(render + " --wait");
+    run = runHostile(render + " --wait");
     release.join();
     CHECK(run.exitCode == 0);
     CHECK(std::chrono::steady_clock::now() - start >= std::chrono::seconds(1));
@@ -138,19 +138,19 @@ TEST_SUITE("hostile") {
     REQUIRE(::flock(fd, LOCK_EX) == 0);
     const std::string reference =
         "reference builtin:cornell --width 16 --height 12 --reference-samples 4 --out " + quote(out);
-    ProcessResult run = runHeadlight(reference);
+    ProcessResult run = runHostile(reference);
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds this folder's lock") != std::string::npos);
     CHECK(fs::is_empty(out));
     ::close(fd);
-    run = runHeadlight(reference);
+    run = runHostile(reference);
     CHECK(run.exitCode == 0);
     CHECK(fs::exists(out / "lit_ref.exr"));
     // The scene's own folder is refused, as render refuses it.
     const fs::path scene = writeGltf(folder, hostile::triangleScene(), "scenes/triangle.gltf");
-    run = runHeadlight("reference " + quote(scene) + " --width 16 --height 12 --reference-samples 4 --out " +
-                       quote(scene.parent_path()));
+    run = runHostile("reference " + quote(scene) + " --width 16 --height 12 --reference-samples 4 --out " +
+                     quote(scene.parent_path()));
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds the scene") != std::string::npos);
     CHECK(!fs::exists(scene.parent_path() / "lit_ref.exr"));
@@ -165,7 +165,7 @@ TEST_SUITE("hostile") {
                                                         R"({"scene": "builtin:spheres", "out": ")" + dup +
                                                         R"(/./", "size": "32x24"})"
                                                         "\n");
-    const ProcessResult run = runHeadlight("render --jobs " + quote(jobs));
+    const ProcessResult run = runHostile("render --jobs " + quote(jobs));
     INFO(run.output);
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("dup.jsonl:1 and ") != std::string::npos);
@@ -176,8 +176,7 @@ TEST_SUITE("hostile") {
   TEST_CASE("render, diff and tune leave other files alone") {
     TempFolder folder("hostile");
     const fs::path scene = writeGltf(folder, hostile::triangleScene());
-    ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path()));
+    ProcessResult run = runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path()));
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds the scene") != std::string::npos);
@@ -185,24 +184,24 @@ TEST_SUITE("hostile") {
     const fs::path out = folder.path() / "out";
     fs::create_directories(out);
     folder.write("out/lit.exr", "a user's file");
-    run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+    run = runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds lit.exr, which no earlier Headlight set in this folder wrote") != std::string::npos);
     CHECK(readFileText(out / "lit.exr") == "a user's file");
-    run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --force --out " + quote(out));
+    run = runHostile("render " + quote(scene) + " --width 32 --height 24 --force --out " + quote(out));
     CHECK(run.exitCode == 0);
 
-    run = runHeadlight("diff " + quote(out / "lit.exr") + " " + quote(out / "lit.exr") + " --out " +
-                       quote(out / "lit.exr"));
+    run = runHostile("diff " + quote(out / "lit.exr") + " " + quote(out / "lit.exr") + " --out " +
+                     quote(out / "lit.exr"));
     CHECK(run.exitCode == 5);
     CHECK(run.output.find("would overwrite the input") != std::string::npos);
     CHECK(checkFrameSet(out).state == FrameSetState::Complete);
 
     const std::string sceneBytes = readFileText(scene);
-    run = runHeadlight("tune " + quote(scene) + " --max-ao-error 0.05 --out " + quote(scene));
+    run = runHostile("tune " + quote(scene) + " --max-ao-error 0.05 --out " + quote(scene));
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("is the scene being tuned") != std::string::npos);
-    run = runHeadlight("tune " + quote(scene) + " --max-ao-error 0.05 --out " + quote(folder.path()));
+    run = runHostile("tune " + quote(scene) + " --max-ao-error 0.05 --out " + quote(folder.path()));
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("is a folder, expected the settings file to write") != std::string::npos);
     CHECK(readFileText(scene) == sceneBytes);
@@ -221,13 +220,13 @@ TEST_SUITE("hostile") {
     }
     for (const auto& [b, message] : cases) {
       CAPTURE(b);
-      const ProcessResult run = runHeadlight("diff " + quote(a) + " " + quote(b));  // returns: nothing blocks
+      const ProcessResult run = runHostile("diff " + quote(a) + " " + quote(b));  // returns: nothing blocks
       CHECK(run.exitCode == 4);
       CHECK(run.output.find(message) != std::string::npos);
     }
     const fs::path huge = exrDeclaring(folder, "huge.exr", 20000);
     CHECK(fs::file_size(huge) < 200000);
-    const ProcessResult run = runHeadlight("diff " + quote(huge) + " " + quote(huge) + " --max-memory 256");
+    const ProcessResult run = runHostile("diff " + quote(huge) + " " + quote(huge) + " --max-memory 256");
     INFO(run.output);
     CHECK(run.exitCode == 4);
     CHECK(run.output.find("20000x20000x4") != std::string::npos);
@@ -254,22 +253,22 @@ TEST_SUITE("hostile") {
     if (fs::exists("/dev/zero")) inputs.push_back("/dev/zero");
     for (const std::string& input : inputs) {
       CAPTURE(input);
-      ProcessResult run = runHeadlight("render --settings " + quote(input) + " --out " + quote(folder.path() / "o"));
+      ProcessResult run = runHostile("render --settings " + quote(input) + " --out " + quote(folder.path() / "o"));
       CHECK(run.exitCode == 2);
       CHECK(run.output.find(input + ": cannot read the settings file: is ") != std::string::npos);
-      run = runHeadlight("render --jobs " + quote(input));
+      run = runHostile("render --jobs " + quote(input));
       CHECK(run.exitCode == 1);
       CHECK(run.output.find(input + ": cannot read the job file: is ") != std::string::npos);
-      run = runHeadlight("tune --settings " + quote(input));
+      run = runHostile("tune --settings " + quote(input));
       CHECK(run.exitCode == 2);
       CHECK(run.output.find("cannot read the settings file") != std::string::npos);
       const fs::path jobs =
           folder.write("z.jsonl", R"({"scene": "builtin:cornell", "out": "x", "settings_file": ")" + input + "\"}\n");
-      run = runHeadlight("render --jobs " + quote(jobs));
+      run = runHostile("render --jobs " + quote(jobs));
       CHECK(run.exitCode == 1);
       CHECK(run.output.find("z.jsonl:1 failed: " + input + ": cannot read the settings file") != std::string::npos);
     }
-    ProcessResult run = runHeadlight("render --settings /etc/passwd");
+    ProcessResult run = runHostile("render --settings /etc/passwd");
     if (fs::exists("/etc/passwd")) {
       CHECK(run.exitCode == 2);
       CHECK(run.output.find("root") == std::string::npos);  // the file's contents are not echoed
@@ -279,7 +278,7 @@ TEST_SUITE("hostile") {
   TEST_CASE("invalid shard options are usage errors, not shard 0") {
     for (const char* args : {"--shard /4", "--shard-index-env ''", "--shard /4 --shard-index-env ''"}) {
       CAPTURE(args);
-      const ProcessResult run = runHeadlight(std::string("render ") + args);
+      const ProcessResult run = runHostile(std::string("render ") + args);
       CHECK(run.exitCode == 2);
     }
   }
@@ -320,7 +319,7 @@ TEST_SUITE("hostile") {
     CHECK(fs::file_size(scene) < 150000);
     // Refused before any GL work (0.94 s on the 2-core machine, most of it the
     // loader: docs/RELIABILITY.md; timings are measured there, not asserted).
-    expectRefused(scene, {"999000 instances x 2 passes", "--max-draws"});
+    expectRefused(scene, {"999000 instances x (1 shadow view + the view)", "--max-draws"});
 
     ResourceLimits limits;
     Scene small = loadGltf(writeGltf(folder, hostile::triangleScene(), "one.gltf"), {}, limits);
@@ -337,14 +336,14 @@ TEST_SUITE("hostile") {
         writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 1e8), "bright.gltf");
     // radiance-precision auto: a light this bright makes lit, emissive and ssgi float.
     ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+        runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(run.output.find("out/lit.exr: 32x24 float") != std::string::npos);
     CHECK(run.output.find("saturated") == std::string::npos);
     // Half asked for: what it clamps is counted, and the warning says how to keep it.
-    run = runHeadlight("render " + quote(scene) + " --width 32 --height 24 --radiance-precision half --out " +
-                       quote(folder.path() / "half"));
+    run = runHostile("render " + quote(scene) + " --width 32 --height 24 --radiance-precision half --out " +
+                     quote(folder.path() / "half"));
     CHECK(run.exitCode == 0);
     CHECK(run.output.find("pixels saturated at half float's 65504") != std::string::npos);
     CHECK(run.output.find("warning: " + (folder.path() / "half" / "lit.exr").string()) != std::string::npos);
@@ -352,7 +351,7 @@ TEST_SUITE("hostile") {
     // A light within half's range: half, and no note.
     const fs::path dim = writeGltf(folder, hostile::withLight(hostile::triangleScene(), {1, 1, 1}, 10), "dim.gltf");
     const ProcessResult dimRun =
-        runHeadlight("render " + quote(dim) + " --width 32 --height 24 --out " + quote(folder.path() / "dim"));
+        runHostile("render " + quote(dim) + " --width 32 --height 24 --out " + quote(folder.path() / "dim"));
     CHECK(dimRun.exitCode == 0);
     CHECK(dimRun.output.find("dim/lit.exr: 32x24 half") != std::string::npos);
     CHECK(dimRun.output.find("saturated") == std::string::npos);
@@ -361,7 +360,7 @@ TEST_SUITE("hostile") {
 
 TEST_SUITE("hostile") {
   TEST_CASE("bench and tune: an empty --resolutions and a sweep product past the bound are usage errors") {
-    ProcessResult run = runHeadlight("bench --resolutions ''");
+    ProcessResult run = runHostile("bench --resolutions ''");
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("--resolutions: expected WxH,..., got an empty value") != std::string::npos);
     std::string sweeps;
@@ -370,11 +369,10 @@ TEST_SUITE("hostile") {
       for (int value = 1; value <= 16; ++value) sweeps += (value > 1 ? "," : "") + std::to_string(value);
     }
     const auto start = std::chrono::steady_clock::now();
-    run = runHeadlight("bench" + sweeps);
+    run = runHostile("bench" + sweeps);
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("16 x 16 x 16 x 16 x 16 values make 1.05e+06 configurations") != std::string::npos);
-    run =
-        runHeadlight("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
+    run = runHostile("tune --max-ao-error 0.05 --out " + quote(fs::temp_directory_path() / "never.settings") + sweeps);
     CHECK(run.exitCode != 0);
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(20));  // refused, not enumerated
   }
@@ -408,7 +406,7 @@ TEST_SUITE("hostile") {
     };
     for (const auto& c : cases) {
       CAPTURE(c.arguments);
-      const ProcessResult run = runHeadlight(c.arguments);
+      const ProcessResult run = runHostile(c.arguments);
       CHECK(run.exitCode == 2);
       CHECK(run.output.find(c.message) != std::string::npos);
     }
@@ -417,11 +415,11 @@ TEST_SUITE("hostile") {
     const fs::path file = fs::temp_directory_path() / "headlight-hostile-bench-out-file";
     std::ofstream(file) << "a file\n";
     const auto start = std::chrono::steady_clock::now();
-    const ProcessResult bench = runHeadlight("bench --no-reference --out " + quote(file));
+    const ProcessResult bench = runHostile("bench --no-reference --out " + quote(file));
     CHECK(bench.exitCode == 1);
     CHECK(bench.output.find(file.string() + ": cannot create the output folder: " + file.string() +
                             " is not a folder") != std::string::npos);
-    CHECK(runHeadlight("bench --no-reference --out " + quote(file / "sub")).output.find(" is not a folder") !=
+    CHECK(runHostile("bench --no-reference --out " + quote(file / "sub")).output.find(" is not a folder") !=
           std::string::npos);
     CHECK(std::chrono::steady_clock::now() - start < std::chrono::seconds(5));
     fs::remove(file);
@@ -432,16 +430,16 @@ TEST_SUITE("hostile") {
     const fs::path settings = folder.write("start.settings", "ssgi-steps = 8\n");
     const fs::path map = writeEnvironmentMap(folder.path() / "sky.hdr", 16, 8, uniformRadiance);
     const std::uintmax_t mapBytes = fs::file_size(map);
-    ProcessResult run = runHeadlight("tune --max-flip 0.5 --settings " + quote(settings) + " --out " + quote(settings));
+    ProcessResult run = runHostile("tune --max-flip 0.5 --settings " + quote(settings) + " --out " + quote(settings));
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("is the --settings file the run starts from") != std::string::npos);
     // The map by its own name (an image's: refused as such), and through a link without an image's name.
-    run = runHeadlight("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(map));
+    run = runHostile("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(map));
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("names an image file, but tune writes a settings file") != std::string::npos);
     const fs::path link = folder.path() / "sky-link";
     fs::create_symlink(map, link);
-    run = runHeadlight("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(link));
+    run = runHostile("tune --max-flip 0.5 --environment " + quote(map) + " --out " + quote(link));
     CHECK(run.exitCode == 2);
     CHECK(run.output.find("is the --environment map the run reads") != std::string::npos);
     CHECK(fs::file_size(map) == mapBytes);  // untouched
@@ -455,7 +453,7 @@ TEST_SUITE("hostile") {
     REQUIRE(fd >= 0);
     REQUIRE(::flock(fd, LOCK_EX) == 0);
     const auto start = std::chrono::steady_clock::now();
-    ProcessResult run = runHeadlight("bench builtin:cornell --no-reference --resolutions 16x12 --out " + quote(out));
+    ProcessResult run = runHostile("bench builtin:cornell --no-reference --resolutions 16x12 --out " + quote(out));
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds this folder's lock") != std::string::npos);
@@ -463,8 +461,8 @@ TEST_SUITE("hostile") {
     CHECK(fs::is_empty(out));
     ::close(fd);
     const fs::path scene = writeGltf(folder, hostile::triangleScene(), "scenes/triangle.gltf");
-    run = runHeadlight("bench " + quote(scene) + " --no-reference --resolutions 16x12 --out " +
-                       quote(scene.parent_path()));
+    run =
+        runHostile("bench " + quote(scene) + " --no-reference --resolutions 16x12 --out " + quote(scene.parent_path()));
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("holds the scene") != std::string::npos);
     CHECK(!fs::exists(scene.parent_path() / "bench.csv"));

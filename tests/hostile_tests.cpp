@@ -45,7 +45,7 @@ TEST_SUITE("hostile") {
     TempFolder folder("hostile");
     const fs::path scene = writeGltf(folder, hostile::triangleScene());
     const ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+        runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
@@ -204,8 +204,8 @@ TEST_SUITE("hostile") {
     expectRefused(scene, {"outside the asset folder", "pass --allow-external-paths"});
 
     const ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --allow-external-paths --width 32 --height 24 --out " +
-                     quote(folder.path() / "out"));
+        runHostile("render " + quote(scene) + " --allow-external-paths --width 32 --height 24 --out " +
+                   quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(fs::exists(folder.path() / "out" / "lit.exr"));
@@ -269,7 +269,7 @@ TEST_SUITE("hostile") {
                                 ": KHR_materials_dispersion on 2 materials (first: material 0 'Cloth') is not rendered";
     const fs::path out = folder.path() / "out";
     const ProcessResult run =
-        runHeadlight("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " + quote(out));
+        runHostile("render " + quote(scene) + " --width 32 --height 24 --views 2 --orbit --out " + quote(out));
     INFO(run.output);
     CHECK(run.exitCode == 0);
     const auto first = run.output.find(warning);
@@ -315,7 +315,7 @@ TEST_SUITE("hostile") {
     limits.maxInstances = 3;
     CHECK_THROWS_WITH_AS(loadGltf(path, {}, limits), doctest::Contains("max-instances 3"), LimitError);
     const ProcessResult run =
-        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+        runHostile("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);
   }
@@ -425,7 +425,7 @@ TEST_SUITE("hostile") {
     for (const glm::vec4& tangent : scene.primitives[0].tangents)
       CHECK(std::abs(glm::length(glm::vec3(tangent)) - 1.0f) < 1e-5f);
     const ProcessResult run =
-        runHeadlight("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
+        runHostile("render " + quote(path) + " --width 32 --height 24 --out " + quote(folder.path() / "out"));
     INFO(run.output);
     CHECK(run.exitCode == 0);  // exit 1 if any target held NaN or inf
   }

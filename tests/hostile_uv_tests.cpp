@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hostile_cli.hpp"
 #include "hostile_inputs.hpp"
 #include "support/process.hpp"
 #include "support/temp_folder.hpp"
@@ -19,8 +20,6 @@ using nlohmann::json;
 using namespace headlight::test;
 
 namespace {
-
-std::string quote(const fs::path& path) { return shellQuote(path.string()); }
 
 // The hostile base triangle with a 1x1 texture on material 0's base colour,
 // the texture reference being `textureInfo`, and the material `extensions`.
@@ -39,7 +38,7 @@ json transformed(const json& transform) {
 }
 
 ProcessResult render(const fs::path& scene, const fs::path& out) {
-  return runHeadlight("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
+  return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
 }
 
 void expectRefused(const TempFolder& folder, const std::string& text, const std::vector<std::string>& fragments) {

@@ -52,7 +52,8 @@ std::span<const Option<ResourceLimits>> limitOptions() {
       bindOption<L>(
           {.name = "max-draws",
            .type = T::Int,
-           .help = "most instance draws a frame (instances x passes: the G-buffer and each shadow view)",
+           .help = "most instance draws a frame (instances x passes: each shadow view, and the G-buffer once a view: "
+                   "the pixel centre and each antialias sample)",
            .minimum = 1,
            .maximum = double(std::int64_t(1) << 40)},
           [](auto& l) -> auto& { return l.maxDraws; }),
@@ -63,6 +64,14 @@ std::span<const Option<ResourceLimits>> limitOptions() {
            .minimum = 1,
            .maximum = double(std::int64_t(1) << 40)},
           [](auto& l) -> auto& { return l.maxDrawnTriangles; }),
+      bindOption<L>(
+          {.name = "max-blended-fragments",
+           .type = T::Int,
+           .help = "most pixels the blend pass shades a frame (each alphaMode BLEND instance's screen rectangle x "
+                   "views), estimated from the camera before drawing",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 50)},
+          [](auto& l) -> auto& { return l.maxBlendedFragments; }),
   };
   return rows;
 }
@@ -311,8 +320,9 @@ int drawPassCount(const Scene& scene) {
   return passes;
 }
 
-void checkDrawBudget(const Scene& scene, const ResourceLimits& limits) {
-  const std::uint64_t passes = std::uint64_t(drawPassCount(scene));
+void checkDrawBudget(const Scene& scene, const ResourceLimits& limits, int viewDraws) {
+  const std::uint64_t shadowViews = std::uint64_t(drawPassCount(scene) - 1);
+  const std::uint64_t views = std::uint64_t(std::max(1, viewDraws));
   // The transmission pass draws each transmissive instance once more (lib/passes/transmission.hpp).
   std::uint64_t redraws = 0, redrawnTriangles = 0;
   for (const Instance& instance : scene.instances) {
@@ -321,20 +331,81 @@ void checkDrawBudget(const Scene& scene, const ResourceLimits& limits) {
     const Primitive& primitive = scene.primitives[std::size_t(instance.primitive)];
     if (primitive.mode == PrimitiveMode::Triangles) redrawnTriangles += primitive.indices.size() / 3;
   }
-  const std::string perFrame = " x " + std::to_string(passes) + " passes (the G-buffer and " +
-                               std::to_string(passes - 1) + " shadow views)" +
-                               (redraws ? " + " + std::to_string(redraws) + " transmission redraws" : "") + " = ";
-  const std::uint64_t draws = std::uint64_t(scene.instances.size()) * passes + redraws;
+  // "x (1 shadow view + 9 views: the pixel centre and 8 antialias samples)"
+  const std::string passes =
+      " x (" + std::to_string(shadowViews) + " shadow view" + (shadowViews == 1 ? "" : "s") + " + " +
+      (views == 1 ? std::string("the view")
+                  : std::to_string(views) + " views: the pixel centre and " + std::to_string(views - 1) +
+                        " antialias samples") +
+      ")" + (redraws ? " + " + std::to_string(redraws) + " transmission redraws" + (views > 1 ? " a view" : "") : "") +
+      " = ";
+  const std::string orFewerSamples = views > 1 ? ", or lower --antialias" : "";
+  const std::uint64_t instances = scene.instances.size();
+  const std::uint64_t draws = instances * shadowViews + (instances + redraws) * views;
   if (draws > std::uint64_t(limits.maxDraws))
-    throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.instances.size()) + " instances" +
-                     perFrame + std::to_string(draws) + " draws, more than --max-draws allows (" +
-                     std::to_string(limits.maxDraws) +
-                     "; about 50 us a shadow-view draw on llvmpipe); raise --max-draws");
-  const std::uint64_t triangles = std::uint64_t(scene.triangleCount()) * passes + redrawnTriangles;
+    throw LimitError(scene.source + ": a frame would draw " + std::to_string(instances) + " instances" + passes +
+                         std::to_string(draws) + " draws, more than --max-draws allows (" +
+                         std::to_string(limits.maxDraws) + "; about 50 us a shadow-view draw on llvmpipe); raise " +
+                         "--max-draws" + orFewerSamples,
+                     {"max-draws"});
+  const std::uint64_t sceneTriangles = scene.triangleCount();
+  const std::uint64_t triangles = sceneTriangles * shadowViews + (sceneTriangles + redrawnTriangles) * views;
   if (triangles > std::uint64_t(limits.maxDrawnTriangles))
-    throw LimitError(scene.source + ": a frame would draw " + std::to_string(scene.triangleCount()) + " triangles" +
-                     perFrame + std::to_string(triangles) + ", more than --max-drawn-triangles allows (" +
-                     std::to_string(limits.maxDrawnTriangles) + "); raise --max-drawn-triangles");
+    throw LimitError(scene.source + ": a frame would draw " + std::to_string(sceneTriangles) + " triangles" + passes +
+                         std::to_string(triangles) + ", more than --max-drawn-triangles allows (" +
+                         std::to_string(limits.maxDrawnTriangles) + "); raise --max-drawn-triangles" + orFewerSamples,
+                     {"max-drawn-triangles"});
+}
+
+namespace {
+
+// The pixels of a width x height image that `bounds` (world space) can
+// cover through `view`: the rectangle of its projected corners, clipped to
+// the image; the whole image when a corner is not in front of the eye.
+std::uint64_t screenRectanglePixels(const Bounds& bounds, const glm::mat4& clipFromWorld, int width, int height) {
+  glm::vec2 low(1.0f), high(-1.0f);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+                      (corner & 4) ? bounds.max.z : bounds.min.z);
+    const glm::vec4 clip = clipFromWorld * glm::vec4(p, 1.0f);
+    if (!(clip.w > 1e-6f)) return std::uint64_t(width) * std::uint64_t(height);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    low = corner == 0 ? ndc : glm::min(low, ndc);
+    high = corner == 0 ? ndc : glm::max(high, ndc);
+  }
+  low = glm::clamp(low, glm::vec2(-1.0f), glm::vec2(1.0f));
+  high = glm::clamp(high, glm::vec2(-1.0f), glm::vec2(1.0f));
+  const double columns = std::ceil(double(high.x - low.x) * 0.5 * width) + 1.0;
+  const double rows = std::ceil(double(high.y - low.y) * 0.5 * height) + 1.0;
+  return std::uint64_t(std::min(columns, double(width)) * std::min(rows, double(height)));
+}
+
+}  // namespace
+
+void checkBlendBudget(const Scene& scene, const CameraView& view, int width, int height, int viewDraws,
+                      const ResourceLimits& limits) {
+  const glm::mat4 clipFromWorld = view.projection * view.view;
+  std::uint64_t layers = 0, fragments = 0;
+  for (const Instance& instance : scene.instances) {
+    if (instance.material < 0 || scene.materials[std::size_t(instance.material)].alphaMode != AlphaMode::Blend)
+      continue;
+    ++layers;
+    const Bounds local = scene.primitives[std::size_t(instance.primitive)].bounds;
+    fragments += screenRectanglePixels(local.transformed(instance.worldFromLocal), clipFromWorld, width, height);
+  }
+  const std::uint64_t views = std::uint64_t(std::max(1, viewDraws));
+  if (fragments * views <= std::uint64_t(limits.maxBlendedFragments)) return;
+  throw LimitError(scene.source + ": the blend pass would shade about " + std::to_string(fragments * views) +
+                       " pixels a frame (" + std::to_string(layers) + " alphaMode BLEND instances covering " +
+                       std::to_string(fragments) + " pixels of the " + std::to_string(width) + "x" +
+                       std::to_string(height) + " image" +
+                       (views > 1 ? ", x " + std::to_string(views) + " views: the pixel centre and " +
+                                        std::to_string(views - 1) + " antialias samples"
+                                  : std::string()) +
+                       "), more than --max-blended-fragments allows (" + std::to_string(limits.maxBlendedFragments) +
+                       "; about 80 ns a blended pixel on llvmpipe); raise --max-blended-fragments" +
+                       (views > 1 ? ", or lower --antialias" : ""),
+                   {"max-blended-fragments"});
 }
 
 std::uint64_t estimateSceneBytes(const Scene& scene) {

@@ -7,6 +7,8 @@ namespace headlight::test {
 struct ProcessResult {
   int exitCode = -1;   // -1 when the process did not exit normally (a signal)
   std::string output;  // stdout and stderr together, in the order written
+  double seconds = 0;  // wall time from start to exit
+  long peakRssKb = 0;  // the peak resident memory of the shell and what it ran (wait4's rusage)
 };
 
 // `text` in single quotes for /bin/sh (a quote inside is escaped).

@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 
+#include "headlight/camera.hpp"
 #include "headlight/export.hpp"
 #include "headlight/options.hpp"
 #include "headlight/scene.hpp"
@@ -30,6 +31,10 @@ struct ResourceLimits {
   // G-buffer and 48 in a shadow view; 0.075 and 0.12 us a triangle.
   std::int64_t maxDraws = 150'000;              // instances x passes per frame, 1..2^40
   std::int64_t maxDrawnTriangles = 50'000'000;  // triangles x passes per frame, 1..2^40
+  // The blend pass's fill: alphaMode BLEND instances x the pixels their
+  // screen rectangles cover x views (checkBlendBudget). About 80 ns a pixel
+  // on llvmpipe, 2 cores, draws included (docs/RELIABILITY.md).
+  std::int64_t maxBlendedFragments = 100'000'000;  // 1..2^50
 };
 
 // The rows: max-memory, max-instances, max-triangles, max-texels, max-draws,
@@ -78,11 +83,24 @@ void checkSceneRanges(const Scene& scene);
 // map); a scene without lights gets the renderer's default key light (one).
 int drawPassCount(const Scene& scene);
 
-// Throws LimitError "<scene.source>: ..." when instances x passes exceeds
-// maxDraws or triangles x passes exceeds maxDrawnTriangles, naming the
-// counts, the limit and the flag that raises it. Renderer::setScene and the
-// CLI (before it creates a context) call it.
-void checkDrawBudget(const Scene& scene, const ResourceLimits& limits);
+// Throws LimitError "<scene.source>: ..." when a frame's draws (instances x
+// shadow views, plus instances and transmission redraws x `viewDraws`)
+// exceed maxDraws, or its triangles counted alike exceed maxDrawnTriangles,
+// naming the counts, the limit and the flag that raises it. `viewDraws`: how
+// often the view's own passes (G-buffer, transmission, blend) draw the
+// scene, 1 + the antialias samples when antialiased. Renderer::setScene and
+// the CLI (before it creates a context) call it with 1, the least any frame
+// draws; Renderer::render again with the frame's count.
+void checkDrawBudget(const Scene& scene, const ResourceLimits& limits, int viewDraws = 1);
+
+// Throws LimitError when the blend pass would shade more than
+// maxBlendedFragments pixels in a frame: for each alphaMode BLEND instance
+// the rectangle its world bounds project to through `view` (clipped to the
+// width x height image; all of it where a corner is behind the eye), summed,
+// times `viewDraws` as for checkDrawBudget. Renderer::render calls it once
+// the camera is known, before drawing.
+void checkBlendBudget(const Scene& scene, const CameraView& view, int width, int height, int viewDraws,
+                      const ResourceLimits& limits);
 
 // Bytes the scene holds on the CPU and the GPU together (vertices, indices,
 // textures with mipmaps, instances); an estimate for max-memory.
