@@ -221,3 +221,34 @@ TEST_CASE(
   ::close(fd);
   fs::remove_all(folder);
 }
+
+TEST_CASE("the lock is the folder: a folder renamed during a render gets its set, the new one under its name none") {
+  // `mv out out.old; mkdir out` while a render holds `out` (issue 32): the
+  // render's files went by name into the new, empty `out`, and the folder it
+  // had locked stayed empty. Now they go where the lock is; messages keep
+  // the name the caller gave.
+  const Frame& frame = cornellFrame();
+  const fs::path parent = test::freshFolder("lock_follows_folder");
+  const fs::path out = parent / "out", moved = parent / "out.old";
+  OutputOptions options;
+  options.targets = {"lit"};
+  {
+    const detail::OutputFolderLock held(out, false);
+    fs::rename(out, moved);
+    fs::create_directory(out);
+    const std::vector<WrittenFile> written = writeFrame(frame, out, options);
+    REQUIRE(written.size() == 1);
+    CHECK(written[0].path == out / "lit.exr");
+    CHECK(written[0].summary.rfind(out.string() + "/lit.exr: ", 0) == 0);
+    CHECK(written[0].summary.find("/proc/self/fd") == std::string::npos);
+    // While the first still holds `out.old`, another lock on the new `out` is free.
+    std::thread([&] {
+      const detail::OutputFolderLock other(out, false);
+      CHECK(fs::exists(out));
+    }).join();
+  }
+  CHECK(fs::exists(moved / "lit.exr"));
+  CHECK(fs::exists(moved / "frame.json"));
+  CHECK(fs::is_empty(out));
+  fs::remove_all(parent);
+}

@@ -121,7 +121,25 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::p
   // Taken on this side of the module: the lock's per-process count must be
   // the one the CLI's own lock (held from before the render) added to.
   const detail::OutputFolderLock lock(outDir, options.waitForFolder, options.waitForFolderSeconds);
-  return imageModule().writeFrame(frame, outDir, options);
+  // Written through the lock's descriptor (the folder locked, even if its
+  // name moved), reported under the name the caller gave.
+  const std::string through = lock.directory().string(), named = outDir.string();
+  auto renamed = [&](std::string text) {
+    for (std::size_t at = text.find(through); at != std::string::npos; at = text.find(through, at + named.size()))
+      text.replace(at, through.size(), named);
+    return text;
+  };
+  std::vector<WrittenFile> written;
+  try {
+    written = imageModule().writeFrame(frame, lock.directory(), options);
+  } catch (const IoError& error) {
+    throw IoError(renamed(error.what()), error.settings());
+  }
+  for (WrittenFile& file : written) {
+    file.path = outDir / file.path.filename();
+    file.summary = renamed(file.summary);
+  }
+  return written;
 }
 
 WrittenFile writeExr(const Frame& frame, const ImageF& image, const std::filesystem::path& path, bool halfFloat,

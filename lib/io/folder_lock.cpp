@@ -38,6 +38,25 @@ struct HeldFolder {
 };
 std::mutex heldMutex;
 std::map<std::string, HeldFolder> held;
+// The spellings each held folder was locked by (absolute, normalised) -> its
+// key: a later lock on the same spelling by a sharing thread is the held
+// folder, even if the path now names another (the folder renamed, another
+// made in its place), so the files go where the lock is.
+std::map<std::string, std::string> heldSpellings;
+
+std::string spelling(const fs::path& folder) {
+  std::error_code error;
+  const fs::path absolute = fs::absolute(folder, error);
+  return (error ? folder : absolute).lexically_normal().string();
+}
+
+// Whether `folder` names the directory of `key` still (a renamed folder's
+// old name may name another now, or nothing).
+bool stillNames(const fs::path& folder, const std::string& key) {
+  struct stat status {};
+  return ::stat(folder.c_str(), &status) == 0 &&
+         std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino) == key;
+}
 
 std::string folderKey(int fd, const fs::path& folder) {
   struct stat status {};
@@ -127,6 +146,16 @@ std::string folderLockHolder(int fd) {
 OutputFolderLock::OutputFolderLock(const fs::path& folder, bool wait, double waitSeconds,
                                    const std::function<void(const std::string& holder)>& waiting)
     : folder_(folder) {
+  {
+    const std::lock_guard guard(heldMutex);
+    if (auto spelled = heldSpellings.find(spelling(folder)); spelled != heldSpellings.end())
+      if (HeldFolder& entry = held[spelled->second];
+          entry.holders > 0 && entry.sharedWith(std::this_thread::get_id())) {
+        ++entry.holders;  // the folder this thread locked by this name, wherever it is now
+        key_ = spelled->second;
+        return;
+      }
+  }
   std::error_code error;
   created_ = fs::create_directories(folder, error);
   if (error) throw IoError(folder.string() + ": cannot create the output folder: " + error.message());
@@ -165,6 +194,12 @@ OutputFolderLock::OutputFolderLock(const fs::path& folder, bool wait, double wai
   entry.owner = std::this_thread::get_id();
   ++entry.holders;
   key_ = key;
+  heldSpellings[spelling(folder)] = key;
+}
+
+std::filesystem::path OutputFolderLock::directory() const {
+  const std::lock_guard guard(heldMutex);
+  return "/proc/self/fd/" + std::to_string(held.at(key_).fd);
 }
 
 OutputFolderLock::ThreadShare::ThreadShare(const OutputFolderLock& lock) : key_(lock.key_) {
@@ -184,12 +219,15 @@ OutputFolderLock::~OutputFolderLock() {
   const std::lock_guard guard(heldMutex);
   auto found = held.find(key_);
   if (found == held.end() || --found->second.holders > 0) return;
-  if (created_) {
+  // Only the folder this lock made, if its name still names it.
+  if (created_ && stillNames(folder_, key_)) {
     std::error_code ignored;
     if (fs::is_empty(folder_, ignored) && !ignored) fs::remove(folder_, ignored);
   }
   ::close(found->second.fd);  // closing drops the flock
   held.erase(found);
+  for (auto it = heldSpellings.begin(); it != heldSpellings.end();)
+    it = it->second == key_ ? heldSpellings.erase(it) : std::next(it);
 }
 
 }  // namespace headlight::detail

@@ -7,6 +7,10 @@
 // Advisory: only Headlight processes (and anything else that flocks the
 // folder) honour it; a network file system without flock may not.
 //
+// The lock is the folder, not its name: a thread that locked `out` and
+// takes `out` again gets the same folder, whatever `out` names now, and
+// writes into it through directory().
+//
 // Within one process a lock is shared only where its holder allows: the
 // thread that took it may take it again (the CLI holds a folder's lock from
 // before the render, and writeFrame takes it again), and so may a thread
@@ -45,6 +49,12 @@ class OutputFolderLock {
   ~OutputFolderLock();
   OutputFolderLock(const OutputFolderLock&) = delete;
   OutputFolderLock& operator=(const OutputFolderLock&) = delete;
+
+  // The locked folder itself, as a path through its descriptor
+  // (/proc/self/fd/N): files written under it land in the folder the lock
+  // holds even when its name was moved meanwhile (`mv out out.old; mkdir
+  // out` while a render runs), where the name would send them elsewhere.
+  std::filesystem::path directory() const;
 
   // While it lives, the thread that makes it may take `lock`'s folder
   // again, sharing the lock (made on that thread; `lock` must outlive it).
