@@ -236,6 +236,29 @@ TEST_SUITE("hostile") {
     CHECK_THROWS_WITH_AS(checkFrameFits(8192, 8192, 0, limits), doctest::Contains("raise max-memory"), LimitError);
   }
 
+  TEST_CASE("an image declaring 16383^2 is refused by max-memory from its header, before a pixel is decoded") {
+    // The one-pixel PNG with its IHDR patched to 16383 x 16383 (and its CRC
+    // made again): a few bytes that decoded would reach 2.75 GB at the peak
+    // (as a 10 KB WebP of one colour did, issue 32). Refused from the header.
+    std::vector<unsigned char> png = hostile::onePixelPngBytes();
+    const auto bigEndian = [&](std::size_t at, std::uint32_t value) {
+      for (int i = 0; i < 4; ++i) png[at + std::size_t(i)] = (unsigned char)(value >> (24 - 8 * i));
+    };
+    bigEndian(16, 16383);  // IHDR width
+    bigEndian(20, 16383);  // IHDR height
+    std::uint32_t crc = 0xffffffffu;
+    for (std::size_t i = 12; i < 29; ++i) {  // "IHDR" and its 13 data bytes
+      crc ^= png[i];
+      for (int bit = 0; bit < 8; ++bit) crc = crc & 1 ? (crc >> 1) ^ 0xedb88320u : crc >> 1;
+    }
+    bigEndian(29, ~crc);
+    TempFolder folder("hostile-declared-image");
+    json textured = hostile::triangleScene();
+    textured["images"] = {{{"uri", "data:image/png;base64," + base64(png)}}};
+    const fs::path scene = writeGltf(folder, textured, "declared.gltf");
+    expectRefused(scene, {"image 0", "16383x16383", "MiB to decode and keep", "--max-memory"}, "--max-memory 1024");
+  }
+
   TEST_CASE("finite checks count, name and clamp non-finite values") {
     Frame frame;
     frame.sceneSource = "test.gltf";

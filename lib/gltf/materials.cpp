@@ -223,7 +223,8 @@ std::vector<ImageData> readImages(tinygltf::Model& model, const std::string& fil
                                   const ResourceLimits& limits) {
   const Source source{file, model};
   std::vector<ImageData> images;
-  detail::TextureDecodeLimits decodeLimits{kMaxImageSide, limits.maxTexels};
+  // The images together within max-memory (estimateSceneBytes then adds the geometry).
+  detail::TextureDecodeLimits decodeLimits{kMaxImageSide, limits.maxTexels, maxMemoryBytes(limits)};
   for (std::size_t index = 0; index < model.images.size(); ++index) {
     tinygltf::Image& encodedImage = model.images[index];
     // An external image tinygltf could not find is only a warning to it.
@@ -240,7 +241,7 @@ std::vector<ImageData> readImages(tinygltf::Model& model, const std::string& fil
     if (!problem.empty()) {
       const std::string message = "image " + std::to_string(index) +
                                   (encodedImage.name.empty() ? "" : " '" + encodedImage.name + "'") + ": " + problem;
-      overBudget ? source.failLimit(message, "max-texels") : source.fail(message);
+      overBudget ? source.failLimit(message, decodeLimits.refusedBy) : source.fail(message);
     }
     ImageData image;
     image.name = !encodedImage.name.empty() ? encodedImage.name : encodedImage.uri;

@@ -30,8 +30,8 @@ namespace headlight::detail {
 // 2: DiffOptions::maxMemoryMiB, WrittenFile::saturatedPixels; 3: decodeEnvironment; 4: OutputOptions::waitForFolder;
 // 5: OutputOptions::waitForFolderSeconds, DiffOptions::maxFlipExposures; 6: Frame::scenePose;
 // 7: OutputOptions::pngTargets, RenderSettings::previewBackground; 8: RenderSettings::antialiasSamples,
-// antialiasSsgi, Frame::litForeground
-inline constexpr std::uint32_t kImageModuleAbi = 8;
+// antialiasSsgi, Frame::litForeground; 9: Frame::ids, Frame::idNames, TextureDecodeLimits::byteBudget, refusedBy
+inline constexpr std::uint32_t kImageModuleAbi = 9;
 
 struct ImageModuleTable {
   std::uint32_t abi;

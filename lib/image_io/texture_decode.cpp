@@ -72,11 +72,21 @@ std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureD
   const std::int64_t texels = std::int64_t(spec.width) * spec.height;
   if (texels > limits.texelBudget) {
     overBudget = true;
+    limits.refusedBy = "max-texels";
     return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " (" + std::to_string(texels) +
            " texels), more than the " + std::to_string(limits.texelBudget) +
            " texels max-texels leaves for it; raise max-texels";
   }
+  // Before a pixel is decoded: a 50-byte WebP may declare 16383^2 (2.75 GB at its peak).
+  if (const std::uint64_t bytes = std::uint64_t(texels) * kDecodeBytesPerTexel; bytes > limits.byteBudget) {
+    overBudget = true;
+    limits.refusedBy = "max-memory";
+    return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " and needs about " +
+           std::to_string(bytes >> 20) + " MiB to decode and keep, more than the " +
+           std::to_string(limits.byteBudget >> 20) + " MiB max-memory leaves for it; raise max-memory";
+  }
   limits.texelBudget -= texels;
+  limits.byteBudget -= std::uint64_t(texels) * kDecodeBytesPerTexel;
   const int channels = std::min(spec.nchannels, 4);
   const std::size_t pixelCount = static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height);
   std::vector<std::uint8_t> pixels(pixelCount * static_cast<std::size_t>(std::max(channels, 0)));
