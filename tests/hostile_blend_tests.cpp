@@ -35,6 +35,22 @@ std::string blendedTriangle(const std::string& alpha) {
   return text;
 }
 
+// 1,000 blended primitives of alpha 0.5 in one mesh, placed by `nodes`
+// nodes a little apart: 1,000 x nodes layers over one triangle.
+json layeredTriangles(int nodes) {
+  json document = json::parse(blendedTriangle("0.5"));
+  json primitive = document["meshes"][0]["primitives"][0];
+  document["meshes"][0]["primitives"] = json::array();
+  for (int i = 0; i < 1000; ++i) document["meshes"][0]["primitives"].push_back(primitive);
+  document["nodes"] = json::array();
+  document["scenes"][0]["nodes"] = json::array();
+  for (int node = 0; node < nodes; ++node) {
+    document["nodes"].push_back({{"mesh", 0}, {"translation", {0.01 * node, 0, -0.01 * node}}});
+    document["scenes"][0]["nodes"].push_back(node);
+  }
+  return document;
+}
+
 ProcessResult render(const fs::path& scene, const fs::path& out, const std::string& extra = "") {
   return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
 }
@@ -101,19 +117,9 @@ TEST_SUITE("hostile") {
 
   TEST_CASE("blend: the pixels blended layers cover, times the antialias views, meet --max-blended-fragments") {
     TempFolder folder("hostile-blend-fill");
-    json document = json::parse(blendedTriangle("0.5"));
     // 10,000 layers of one triangle over much of the image (12 s at 64x48
     // with 15,000 and the default antialiasing before the budget counted them).
-    json primitive = document["meshes"][0]["primitives"][0];
-    document["meshes"][0]["primitives"] = json::array();
-    for (int i = 0; i < 1000; ++i) document["meshes"][0]["primitives"].push_back(primitive);
-    document["nodes"] = json::array();
-    document["scenes"][0]["nodes"] = json::array();
-    for (int node = 0; node < 10; ++node) {
-      document["nodes"].push_back({{"mesh", 0}, {"translation", {0.01 * node, 0, -0.01 * node}}});
-      document["scenes"][0]["nodes"].push_back(node);
-    }
-    const fs::path scene = folder.write("layers.gltf", document.dump());
+    const fs::path scene = folder.write("layers.gltf", layeredTriangles(10).dump());
     const ProcessResult refused = render(scene, folder.path() / "refused", "--max-blended-fragments 20000000");
     INFO(refused.output);
     CHECK(refused.exitCode == 1);
@@ -131,18 +137,7 @@ TEST_SUITE("hostile") {
 
   TEST_CASE("blend: 100,000 blended instances count against --max-draws, and render within a raised budget") {
     TempFolder folder("hostile-blend");
-    json document = json::parse(blendedTriangle("0.5"));
-    // 1,000 blended primitives in one mesh, placed by 100 nodes.
-    json primitive = document["meshes"][0]["primitives"][0];
-    document["meshes"][0]["primitives"] = json::array();
-    for (int i = 0; i < 1000; ++i) document["meshes"][0]["primitives"].push_back(primitive);
-    document["nodes"] = json::array();
-    document["scenes"][0]["nodes"] = json::array();
-    for (int node = 0; node < 100; ++node) {
-      document["nodes"].push_back({{"mesh", 0}, {"translation", {0.01 * node, 0, -0.01 * node}}});
-      document["scenes"][0]["nodes"].push_back(node);
-    }
-    const fs::path scene = folder.write("flood.gltf", document.dump());
+    const fs::path scene = folder.write("flood.gltf", layeredTriangles(100).dump());
     // Counted as every instance is (instances x passes): a bound on the
     // blend pass's one draw per blended instance.
     const ProcessResult refused = render(scene, folder.path() / "refused");
