@@ -121,12 +121,19 @@ int runReference(const std::vector<std::string>& args) {
       {"headlight:reference:aoMaxStandardError", std::to_string(reference.aoMaxStandardError)},
       {"headlight:reference:indirectMeanStandardError", std::to_string(reference.indirectMeanStandardError)},
       {"headlight:reference:seconds", std::to_string(reference.seconds)}};
-  const std::filesystem::path out(command.outDir);  // made by the lock
-  const WrittenFile files[] = {writeExr(frame, reference.ao, out / referenceFiles[0], true, metadata),
-                               writeExr(frame, reference.indirect, out / referenceFiles[1], true, metadata),
-                               writeExr(frame, reference.lit, out / referenceFiles[2], true, metadata)};
+  // Through the lock's descriptor: a trace takes minutes, and a folder
+  // renamed meanwhile keeps its files (the lock is the folder, not its name).
+  const std::filesystem::path out = lock.directory();
+  std::vector<WrittenFile> files;
+  try {
+    files = {writeExr(frame, reference.ao, out / referenceFiles[0], true, metadata),
+             writeExr(frame, reference.indirect, out / referenceFiles[1], true, metadata),
+             writeExr(frame, reference.lit, out / referenceFiles[2], true, metadata)};
+  } catch (const IoError& error) {
+    throw IoError(lock.named(error.what(), command.outDir), error.settings());
+  }
   if (command.verbosity != cli::Verbosity::Quiet) {
-    for (const WrittenFile& file : files) std::cout << file.summary << "\n";
+    for (const WrittenFile& file : files) std::cout << lock.named(file.summary, command.outDir) << "\n";
     std::cout << "reference: " << reference.samplesPerPixel << " rays/pixel in " << reference.seconds
               << " s; AO standard error mean " << reference.aoMeanStandardError << ", max "
               << reference.aoMaxStandardError << "\n";

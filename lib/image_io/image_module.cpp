@@ -123,21 +123,15 @@ std::vector<WrittenFile> writeFrame(const Frame& frame, const std::filesystem::p
   const detail::OutputFolderLock lock(outDir, options.waitForFolder, options.waitForFolderSeconds);
   // Written through the lock's descriptor (the folder locked, even if its
   // name moved), reported under the name the caller gave.
-  const std::string through = lock.directory().string(), named = outDir.string();
-  auto renamed = [&](std::string text) {
-    for (std::size_t at = text.find(through); at != std::string::npos; at = text.find(through, at + named.size()))
-      text.replace(at, through.size(), named);
-    return text;
-  };
   std::vector<WrittenFile> written;
   try {
     written = imageModule().writeFrame(frame, lock.directory(), options);
   } catch (const IoError& error) {
-    throw IoError(renamed(error.what()), error.settings());
+    throw IoError(lock.named(error.what(), outDir), error.settings());
   }
   for (WrittenFile& file : written) {
     file.path = outDir / file.path.filename();
-    file.summary = renamed(file.summary);
+    file.summary = lock.named(file.summary, outDir);
   }
   return written;
 }

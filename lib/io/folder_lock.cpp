@@ -202,6 +202,13 @@ std::filesystem::path OutputFolderLock::directory() const {
   return "/proc/self/fd/" + std::to_string(held.at(key_).fd);
 }
 
+std::string OutputFolderLock::named(std::string text, const std::filesystem::path& name) const {
+  const std::string through = directory().string(), spelled = name.string();
+  for (std::size_t at = text.find(through); at != std::string::npos; at = text.find(through, at + spelled.size()))
+    text.replace(at, through.size(), spelled);
+  return text;
+}
+
 OutputFolderLock::ThreadShare::ThreadShare(const OutputFolderLock& lock) : key_(lock.key_) {
   const std::lock_guard guard(heldMutex);
   held[key_].sharers.insert(std::this_thread::get_id());

@@ -55,6 +55,9 @@ class OutputFolderLock {
   // holds even when its name was moved meanwhile (`mv out out.old; mkdir
   // out` while a render runs), where the name would send them elsewhere.
   std::filesystem::path directory() const;
+  // `text` (a message, a file's summary) with directory() spelled as `name`,
+  // the folder's name as the caller gave it.
+  std::string named(std::string text, const std::filesystem::path& name) const;
 
   // While it lives, the thread that makes it may take `lock`'s folder
   // again, sharing the lock (made on that thread; `lock` must outlive it).
