@@ -50,11 +50,10 @@ void addInstance(Scene& scene, int geometry, int material, const glm::mat4& worl
   // Each placement is a mesh instance of its own; a geometry is a mesh of one primitive.
   const int meshInstance = int(scene.meshInstanceNames.size());
   scene.meshInstanceNames.push_back({std::move(name), -1, -1});
-  if (scene.meshNames.size() < scene.primitives.size())
-    for (std::size_t mesh = scene.meshNames.size(); mesh < scene.primitives.size(); ++mesh) {
-      scene.meshNames.push_back({"geometry " + std::to_string(mesh), -1, -1});
-      scene.meshPrimitiveNames.push_back({"geometry " + std::to_string(mesh), -1, -1});
-    }
+  for (std::size_t mesh = scene.meshNames.size(); mesh < scene.primitives.size(); ++mesh) {
+    scene.meshNames.push_back({"geometry " + std::to_string(mesh), -1, -1});
+    scene.meshPrimitiveNames.push_back({"geometry " + std::to_string(mesh), -1, -1});
+  }
   scene.instances.push_back({geometry, worldFromLocal, material, meshInstance, geometry, geometry});
 }
 
