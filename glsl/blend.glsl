@@ -71,7 +71,7 @@ void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, fl
     vec3 toLight;
     const float attenuation = lightAttenuation(light, position, toLight);
     if (attenuation <= 0.0) continue;
-    const float visibility = shadowVisibility(light, position, surface.normal, toLight);
+    const vec3 visibility = shadowVisibility(light, position, surface.normal, toLight);
     vec3 brdf = cookTorrance(surface, toLight);
 #ifdef HAS_CLEARCOAT_LOBE
     brdf = clearcoatLayer(coat, brdf, vec3(clearcoatSpecular(coat, surface.view, toLight)));

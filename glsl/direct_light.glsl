@@ -41,7 +41,7 @@ PassOutputs shadePixel(ivec2 pixel) {
     vec3 toLight;
     const float attenuation = lightAttenuation(light, worldPosition.xyz, toLight);
     if (attenuation <= 0.0) continue;
-    const float visibility = shadowVisibility(light, worldPosition.xyz, surface.normal, toLight);
+    const vec3 visibility = shadowVisibility(light, worldPosition.xyz, surface.normal, toLight);
     const vec3 incoming = light.radiance * (attenuation * visibility);
     vec3 brdf = cookTorrance(surface, toLight);
 #ifdef HAS_CLEARCOAT_LOBE

@@ -98,7 +98,9 @@ using mat4 = glm::mat4;
   X(kUnitPassAccumulated2, 45)            \
   X(kUnitPassAccumulated3, 46)            \
   X(kUnitSsgiSurface, 47)                 \
-  X(kUnitLit, 48)
+  X(kUnitLit, 48)                         \
+  X(kUnitShadowTransmittance2D, 49)       \
+  X(kUnitShadowTransmittanceCube, 50)
 
 // Image units (X(name, unit)), for image load/store: a fullscreen pass's
 // compute form writes its outputs 0..3 to these (glsl/fullscreen_entry.comp).
@@ -340,6 +342,10 @@ HL_BLOCK_END(lighting)
 HL_BLOCK_BEGIN(ShadowBlock, kBindingShadow)
   mat4 lightViewProjection;
   vec4 lightPositionFar;    // point lights: world position and far distance; w = 0 otherwise
+  // The transmittance maps' distances are measured from here: point and spot
+  // lights' world position with w = 1; directional lights' direction of
+  // travel with w = 0 (the distance along it from the world's origin).
+  vec4 lightOrigin;
 HL_BLOCK_END(shadowView)
 
 // The procedural sky, for the passes that tabulate it once per scene.

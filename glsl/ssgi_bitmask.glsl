@@ -329,7 +329,8 @@ LightShadows lightShadowsAt(vec3 worldPosition, vec3 worldNormal) {
     if (light.type == kLightDirectional || light.castsShadows == 0 || light.shadowLayer < 0) continue;
     const vec3 toLight = normalize(light.position - worldPosition);
     if (dot(worldNormal, toLight) <= 0.0) continue;
-    shadows.positionVisible[i].w = shadowVisibility(light, worldPosition, worldNormal, toLight);
+    // Behind transmissive casters: the mean of the channels' tint.
+    shadows.positionVisible[i].w = dot(shadowVisibility(light, worldPosition, worldNormal, toLight), vec3(1.0 / 3.0));
   }
   return shadows;
 }

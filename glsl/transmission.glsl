@@ -101,7 +101,7 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
     // A light behind the surface is seen through it: its shadow is looked
     // up on that side.
     const vec3 facing = dot(surface.normal, toLight) < 0.0 ? -surface.normal : surface.normal;
-    const float visibility = shadowVisibility(light, position, facing, toLight);
+    const vec3 visibility = shadowVisibility(light, position, facing, toLight);
     radiance += transmissiveCookTorrance(surface, toLight, share, blur) * light.radiance * (attenuation * visibility);
   }
   const vec3 specularAlbedo = specularAlbedoOf(surface);

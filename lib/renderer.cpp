@@ -215,8 +215,9 @@ struct Renderer::Impl {
     lightBuffer.update(lights.data(), lights.size() * sizeof(gpu::GpuLight));
   }
 
-  void renderShadows(int size, const CameraView& view) {
-    ShadowOutputs shadows = shadow.run(*gpuScene, scene.lights, size, &view);
+  void renderShadows(const ShadowStep& step, const CameraView& view) {
+    ShadowOutputs shadows = shadow.run(*gpuScene, scene.lights, step.mapSize, &view, step.transmittance);
+    const int size = step.mapSize;
     shadowMaps = std::move(shadows.maps);
     shadowMapSize = size;
     shadowCoverage = directionalCoverage(scene.lights, gpuScene->bounds, &view);
@@ -225,8 +226,9 @@ struct Renderer::Impl {
 
   // The maps are kept across views unless their size or a directional
   // light's fit to the view would change.
-  bool shadowsCurrent(int size, const CameraView& view) const {
-    return shadowMapSize == size && directionalCoverage(scene.lights, gpuScene->bounds, &view) == shadowCoverage;
+  bool shadowsCurrent(const ShadowStep& step, const CameraView& view) const {
+    return shadowMapSize == step.mapSize && shadowMaps.transmittance() == step.transmittance &&
+           directionalCoverage(scene.lights, gpuScene->bounds, &view) == shadowCoverage;
   }
 
   // Each light's views drawn into small G-buffers and read back as virtual
@@ -454,7 +456,16 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   const std::uint64_t transmissionBytes =
       impl.summary.transmission ? std::uint64_t(used.width) * std::uint64_t(used.height) * kTransmissionBytesPerPixel
                                 : 0;
-  checkFrameFits(used.width, used.height, impl.sceneBytes + transmissionBytes, impl.limits);
+  // And the lights' shadow maps: a file's many point lights would hold 24 MiB each at 2048.
+  std::uint64_t shadowBytes = 0;
+  if (used.lighting.shadows) {
+    const ShadowCasters casters{impl.summary.planarShadowCasters, impl.summary.cubeShadowCasters};
+    const int size = used.lighting.shadowMapSize.value_or(0);
+    checkShadowMapsFit(impl.scene.source, casters, size, impl.summary.transmission,
+                       estimateFrameBytes(used.width, used.height) + impl.sceneBytes + transmissionBytes, impl.limits);
+    shadowBytes = shadowMapBytes(casters, size, impl.summary.transmission);
+  }
+  checkFrameFits(used.width, used.height, impl.sceneBytes + transmissionBytes + shadowBytes, impl.limits);
   Camera fitted;
   frame.view =
       makeCameraView(impl.chooseCamera(used, camera, fitted), impl.scene.worldBounds(), used.width, used.height);
@@ -478,8 +489,8 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   // Shadow maps are remade only when their size or what the directional
   // ones cover changes; with shadows off the lights read "no map".
   if (plan.dropShadowMaps) impl.dropShadows();
-  if (plan.shadows && !impl.shadowsCurrent(plan.shadows->mapSize, frame.view))
-    timer.run("shadows", [&] { impl.renderShadows(plan.shadows->mapSize, frame.view); });
+  if (plan.shadows && !impl.shadowsCurrent(*plan.shadows, frame.view))
+    timer.run("shadows", [&] { impl.renderShadows(*plan.shadows, frame.view); });
   if (plan.ssgi && plan.ssgi->virtualLights > 0 && impl.virtualLightBudget != plan.ssgi->virtualLights)
     timer.run("virtual-lights", [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
   // The split-sum BRDF table once per renderer, the sky tables on the first

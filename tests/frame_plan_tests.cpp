@@ -53,7 +53,7 @@ TEST_CASE("frame plan: the default frame runs every pass and reads every target 
   CHECK(plan.shadows->mapSize == 1024);
   REQUIRE(plan.direct);
   CHECK(*plan.direct ==
-        DirectLightVariant{.planarShadows = true, .diffuseTarget = true});  // bitmask gathers direct light
+        DirectLightVariant{.shadows = {.planar = true}, .diffuseTarget = true});  // bitmask gathers direct light
   REQUIRE(plan.ssgi);
   CHECK(plan.ssgi->method->method == SsgiMethod::Bitmask);
   CHECK(plan.ssgi->blur);
@@ -80,7 +80,7 @@ TEST_CASE("frame plan: a scene that blends gets the blend pass after the composi
   FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.blend);
   CHECK(*plan.blend ==
-        BlendVariant{.planarShadows = true, .sky = true});  // the planar caster's map, the sky term, no map
+        BlendVariant{.shadows = {.planar = true}, .sky = true});  // the planar caster's map, the sky term, no map
   CHECK(!skips(plan, "blend"));
   CHECK(plan.passNames() == std::vector<std::string_view>{"shadows", "virtual-lights", "sky", "gbuffer", "direct",
                                                           "ssgi-surface", "ssgi", "ssgi-blur", "composite", "blend",
@@ -219,12 +219,12 @@ TEST_CASE("frame plan: no shadow caster, shadows off, sky intensity 0") {
   CHECK(!plan.shadows);
   CHECK(!plan.dropShadowMaps);
   CHECK(skips(plan, "shadows", "no light casts shadows"));
-  CHECK(!plan.direct->planarShadows);
+  CHECK(!plan.direct->shadows.planar);
   settings.lighting.shadows = false;
   plan = planFrame(litScene(), settings, {});
   CHECK(plan.dropShadowMaps);
   CHECK(skips(plan, "shadows", "setting shadows is off"));
-  CHECK(!plan.direct->planarShadows);
+  CHECK(!plan.direct->shadows.planar);
   settings.lighting.skyIntensity = 0.0f;
   plan = planFrame(litScene(), settings, {});
   CHECK(!plan.skyTables);

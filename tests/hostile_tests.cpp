@@ -259,6 +259,26 @@ TEST_SUITE("hostile") {
     expectRefused(scene, {"image 0", "16383x16383", "MiB to decode and keep", "--max-memory"}, "--max-memory 1024");
   }
 
+  TEST_CASE("a file of 4,000 shadow-casting point lights: their maps count against max-memory before any is made") {
+    // Each point light's depth cube is 6 x 512^2 x 4 bytes at this size's
+    // auto map size (1024): 6 MiB, 24000 MiB for the lot; with a transmissive
+    // material, 30 MiB each (the transmittance cubes). Before the maps were
+    // counted, a render started allocating them.
+    TempFolder folder("hostile-many-lights");
+    json lit = hostile::triangleScene();
+    lit["extensionsUsed"] = {"KHR_lights_punctual"};
+    json lights = json::array();
+    for (int i = 0; i < 4000; ++i) {
+      lights.push_back({{"type", "point"}, {"intensity", 1.0}});
+      lit["nodes"].push_back({{"translation", {0, 0, 2}}, {"extensions", {{"KHR_lights_punctual", {{"light", i}}}}}});
+      lit["scenes"][0]["nodes"].push_back(lit["nodes"].size() - 1);
+    }
+    lit["extensions"]["KHR_lights_punctual"]["lights"] = lights;
+    const fs::path scene = writeGltf(folder, lit, "lights.gltf");
+    expectRefused(scene, {"4000 shadow-casting lights (4000 point", "24000 MiB at 1024", "--shadow-map-size"},
+                  "--max-memory 4096");
+  }
+
   TEST_CASE("finite checks count, name and clamp non-finite values") {
     Frame frame;
     frame.sceneSource = "test.gltf";

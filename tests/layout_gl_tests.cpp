@@ -47,6 +47,10 @@ const std::vector<ProgramSource>& programSources() {
       {{"shadow.vert", "shadow.frag"},
        {"ALPHA_MASK", "HAS_TEXCOORDS", "HAS_BASE_COLOR_TEXTURE", "HAS_TEXCOORDS_1", "BASE_COLOR_TEXCOORD_1",
         "HAS_TEXTURE_TRANSFORM"}},
+      // Transmissive casters into the transmittance maps (lib/passes/shadow.hpp).
+      {{"shadow.vert", "shadow_transmittance.frag"},
+       {"SHADOW_TRANSMITTANCE", "ALPHA_MASK", "HAS_TEXCOORDS", "HAS_BASE_COLOR_TEXTURE", "HAS_TRANSMISSION_TEXTURE",
+        "HAS_VERTEX_COLORS", "HAS_TEXCOORDS_1", "TRANSMISSION_TEXCOORD_1", "HAS_TEXTURE_TRANSFORM"}},
       // The specular and clearcoat lobes (glsl/lobe_*.glsl): their textures and attachments (the lighting
       // passes' reads of them: passSources()).
       {{"gbuffer.vert", "gbuffer.frag"},
@@ -82,7 +86,9 @@ struct PassSource {
 };
 const std::vector<PassSource>& passSources() {
   static const std::vector<PassSource> sources = {
-      {"direct_light.glsl", {"towardEye", "diffuse"}, {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS"}},
+      {"direct_light.glsl",
+       {"towardEye", "diffuse"},
+       {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "HAS_SHADOW_TRANSMITTANCE"}},
       {"direct_light.glsl", {"towardEye"}, {"HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
       {"direct_light.glsl", {"towardEye"}, {"HAS_IRIDESCENCE_LOBE"}},
       {"direct_light.glsl", {"towardEye"}, {"HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
@@ -151,6 +157,7 @@ bool isSampler(GLenum type) {
     case GL_SAMPLER_2D:
     case GL_SAMPLER_2D_ARRAY_SHADOW:
     case GL_SAMPLER_CUBE_MAP_ARRAY_SHADOW:
+    case GL_SAMPLER_CUBE_MAP_ARRAY:
     case GL_SAMPLER_2D_ARRAY:
     case GL_SAMPLER_CUBE:
     case GL_SAMPLER_3D:

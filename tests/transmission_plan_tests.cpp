@@ -90,7 +90,8 @@ TEST_CASE("transmission plan: a transmitting scene runs the pass after the compo
   scene.blended = true;
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
   REQUIRE(plan.transmission);
-  CHECK(*plan.transmission == TransmissionVariant{.planarShadows = true, .sky = true});  // planar map, sky term, no map
+  // The planar map and its transmittance map (the glass tints its shadow), the sky term, no map.
+  CHECK(*plan.transmission == TransmissionVariant{.shadows = {.planar = true, .transmittance = true}, .sky = true});
   CHECK(plan.gbuffer.deferTransmissive);
   CHECK(plan.allocates(Attachment::Transmission));
   CHECK(reads(plan, "transmission"));

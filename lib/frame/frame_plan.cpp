@@ -618,7 +618,14 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
     if (skips.reason[w]) plan.skipped.push_back({std::string(kWorkNames[w]), std::string(*skips.reason[w])});
 
   plan.dropShadowMaps = !facts.shadowsOn;
-  if (skips.runs(Work::Shadows)) plan.shadows = ShadowStep{settings.lighting.shadowMapSize.value_or(0)};
+  if (skips.runs(Work::Shadows))
+    plan.shadows =
+        ShadowStep{.mapSize = settings.lighting.shadowMapSize.value_or(0),
+                   .transmittance = scene.transmission && scene.planarShadowCasters + scene.cubeShadowCasters > 0};
+  // Every lighting pass reads the same maps.
+  const ShadowLookups shadowLookups{.planar = plan.shadows && scene.planarShadowCasters > 0,
+                                    .cube = plan.shadows && scene.cubeShadowCasters > 0,
+                                    .transmittance = plan.shadows && plan.shadows->transmittance};
   planGBuffer(plan, scene, skips.runs(Work::Emissive), wanted);
   // What a scene without a lobe does not pay for, named once.
   if (const std::uint32_t absent = ~scene.lobes & (lobeBit(Lobe::Count) - 1))
@@ -637,8 +644,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   }
   if (skips.runs(Work::Direct))
     plan.direct = DirectLightVariant{.emissive = skips.runs(Work::Emissive),
-                                     .planarShadows = plan.shadows && scene.planarShadowCasters > 0,
-                                     .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
+                                     .shadows = shadowLookups,
                                      .diffuseTarget = plan.ssgi && method.readsDirectDiffuse,
                                      .lobes = plan.gbuffer.lobes};
   plan.skyTables = skips.runs(Work::Sky) && !scene.environment;
@@ -651,17 +657,14 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   // Transmissive surfaces refract the composite's lit image and are lit as
   // blended ones are; they wait for it only when it is drawn.
   if (scene.transmission && skips.runs(Work::Transmission)) {
-    plan.transmission = TransmissionVariant{.planarShadows = plan.shadows && scene.planarShadowCasters > 0,
-                                            .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
-                                            .sky = skips.runs(Work::Sky),
-                                            .environment = plan.environmentTables};
+    plan.transmission = TransmissionVariant{
+        .shadows = shadowLookups, .sky = skips.runs(Work::Sky), .environment = plan.environmentTables};
     plan.gbuffer.deferTransmissive = true;
   }
   // Blended surfaces are drawn over the composite's lit target, with the
   // same shadow maps and ambient term (the direct pass's variant decides both).
   if (scene.blended && skips.runs(Work::Blend))
-    plan.blend = BlendVariant{.planarShadows = plan.shadows && scene.planarShadowCasters > 0,
-                              .cubeShadows = plan.shadows && scene.cubeShadowCasters > 0,
+    plan.blend = BlendVariant{.shadows = shadowLookups,
                               .sky = skips.runs(Work::Sky),
                               .environment = plan.environmentTables,
                               .lobes = scene.lobes};

@@ -179,8 +179,19 @@ struct GBufferVariant {
   bool deferTransmissive = false;
 };
 
+// The shadow maps a lighting shader reads (HAS_PLANAR_SHADOWS,
+// HAS_CUBE_SHADOWS, HAS_SHADOW_TRANSMITTANCE): the planar array for
+// directional and spot casters, the cube array for point casters and, beside
+// each, what transmissive casters let through (lib/passes/shadow.hpp).
+struct ShadowLookups {
+  bool planar = false, cube = false, transmittance = false;
+  auto operator<=>(const ShadowLookups&) const = default;
+};
+
 struct DirectLightVariant {
-  bool emissive = false, planarShadows = false, cubeShadows = false, diffuseTarget = false;
+  bool emissive = false;
+  ShadowLookups shadows;
+  bool diffuseTarget = false;
   std::uint32_t lobes = 0;  // the G-buffer's lobes (GBufferVariant::lobes)
   auto operator<=>(const DirectLightVariant&) const = default;
 };
@@ -195,8 +206,8 @@ struct CompositeVariant {
 // The forward pass of alphaMode BLEND surfaces over lit (lib/passes/blend.hpp):
 // lit by the lights, shadows and sky the composite uses.
 struct BlendVariant {
-  bool planarShadows = false, cubeShadows = false, sky = false,
-       environment = false;  // sky, environment: the composite's
+  ShadowLookups shadows;
+  bool sky = false, environment = false;  // the composite's
   std::uint32_t lobes = 0;  // the scene's lobes (a blended material's own data; no G-buffer read)
   auto operator<=>(const BlendVariant&) const = default;
 };
@@ -205,12 +216,14 @@ struct BlendVariant {
 // (lib/passes/transmission.hpp): lit by the lights, shadows and sky the
 // composite uses, refracting the opaque lit image.
 struct TransmissionVariant {
-  bool planarShadows = false, cubeShadows = false, sky = false, environment = false;  // as BlendVariant's
+  ShadowLookups shadows;
+  bool sky = false, environment = false;  // as BlendVariant's
   auto operator<=>(const TransmissionVariant&) const = default;
 };
 
 struct ShadowStep {
-  int mapSize = 0;  // texels per side
+  int mapSize = 0;             // texels per side
+  bool transmittance = false;  // transmissive casters tint and dim light (a map beside each depth map)
 };
 
 struct SsgiStep {

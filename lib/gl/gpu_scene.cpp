@@ -205,7 +205,7 @@ std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMateria
     // Points and lines are in no run: the shadow pass draws runs only.
     const bool casts = gpu.primitives[std::size_t(key.primitive)].mode == GL_TRIANGLES;
     if (casts && (gpu.primitiveRuns.empty() || gpu.primitiveRuns.back().primitive != key.primitive))
-      gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0, gpu.drawGroups.size(), 0, false});
+      gpu.primitiveRuns.push_back({key.primitive, GLuint(position), 0, gpu.drawGroups.size(), 0, false, false});
     if (casts) ++gpu.primitiveRuns.back().instanceCount;
     if (gpu.drawGroups.empty() ||
         Key{gpu.drawGroups.back().primitive, gpu.drawGroups.back().material, gpu.drawGroups.back().mirrored} != key) {
@@ -214,6 +214,7 @@ std::vector<std::uint32_t> groupInstances(const Scene& scene, int defaultMateria
         GpuPrimitiveRun& run = gpu.primitiveRuns.back();
         ++run.groupCount;
         run.masked = run.masked || gpu.materials[std::size_t(key.material)].alphaFeatures != 0;
+        run.transmissive = run.transmissive || gpu.materials[std::size_t(key.material)].transmissive;
       }
     }
     ++gpu.drawGroups.back().instanceCount;

@@ -74,7 +74,8 @@ struct GpuPrimitiveRun {
   GLsizei instanceCount = 0;
   std::size_t firstGroup = 0;  // the run's draw groups: drawGroups[firstGroup, firstGroup + groupCount)
   std::size_t groupCount = 0;
-  bool masked = false;  // some group's material is alphaMode MASK
+  bool masked = false;        // some group's material is alphaMode MASK
+  bool transmissive = false;  // some group's material transmits (GpuMaterial::transmissive): not in the depth maps
 };
 
 // One instance of an alphaMode BLEND material: the blend pass sorts these

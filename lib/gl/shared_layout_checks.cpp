@@ -45,7 +45,7 @@ static_assert(offsetof(LightingBlock, environmentRotationCos) == 20);
 static_assert(offsetof(LightingBlock, environmentBackground) == 28);
 static_assert(sizeof(SsgiBlurBlock) == 32);
 static_assert(offsetof(SsgiBlurBlock, ssgiDownsample) == 4);
-static_assert(sizeof(ShadowBlock) == 80);
+static_assert(sizeof(ShadowBlock) == 96);
 static_assert(sizeof(SkyBlock) == 48);
 // std430: a vec3 starts a 16-byte row and the scalar after it fills the row;
 // the array stride is the struct's size, five rows and a mat4.

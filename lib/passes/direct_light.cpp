@@ -8,8 +8,7 @@ DirectLightPass::DirectLightPass()
     : FullscreenPass("direct_light.glsl", [](const DirectLightVariant& variant) {
         std::vector<std::string> defines;
         if (variant.emissive) defines.emplace_back("HAS_EMISSIVE");
-        if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
-        if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
+        appendShadowDefines(variant.shadows, defines);
         if (variant.diffuseTarget) defines.emplace_back("WRITE_DIFFUSE_RADIANCE");
         for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
         return defines;
@@ -17,8 +16,7 @@ DirectLightPass::DirectLightPass()
 
 void DirectLightPass::execute(const FrameInputs& inputs, const PassAttachments& attachments, PassForm form) {
   const DirectLightVariant& variant = *inputs.plan.direct;
-  if (variant.planarShadows) inputs.shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (variant.cubeShadows) inputs.shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  bindShadowMaps(inputs.shadows, variant.shadows);
   const PassOutput outputs[] = {
       {"towardEye", &attachments.write(Attachment::DirectTowardEye)},
       {"diffuse", variant.diffuseTarget ? &attachments.write(Attachment::DirectDiffuse) : nullptr}};

@@ -13,11 +13,10 @@
 
 namespace headlight {
 
-// HAS_PLANAR_SHADOWS, HAS_CUBE_SHADOWS, HAS_SKY, HAS_ENVIRONMENT, as the variant says.
+// The shadow lookups' defines (appendShadowDefines), HAS_SKY, HAS_ENVIRONMENT, as the variant says.
 template <class Variant>
 void appendForwardLightingDefines(const Variant& variant, std::vector<std::string>& defines) {
-  if (variant.planarShadows) defines.emplace_back("HAS_PLANAR_SHADOWS");
-  if (variant.cubeShadows) defines.emplace_back("HAS_CUBE_SHADOWS");
+  appendShadowDefines(variant.shadows, defines);
   if (variant.sky) defines.emplace_back("HAS_SKY");
   if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
 }
@@ -25,8 +24,7 @@ void appendForwardLightingDefines(const Variant& variant, std::vector<std::strin
 // The shadow maps and ambient tables those defines read.
 template <class Variant>
 void bindForwardLighting(const ShadowMaps& shadows, const EnvironmentTables& environment, const Variant& variant) {
-  if (variant.planarShadows) shadows.planar.bind(gpu::kUnitShadowMaps2D);
-  if (variant.cubeShadows) shadows.cube.bind(gpu::kUnitShadowMapsCube);
+  bindShadowMaps(shadows, variant.shadows);
   bindAmbientTables(environment, variant.sky, variant.environment);
 }
 

@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl/shader_library.hpp"
+#include "headlight/error.hpp"
 
 namespace headlight {
 namespace {
@@ -112,12 +113,46 @@ glm::mat4 cubeFaceView(const glm::vec3& position, int face) {
 
 int cubeFaceSize(int size) { return std::max(size / 2, 1); }
 
+void appendShadowDefines(const ShadowLookups& lookups, std::vector<std::string>& defines) {
+  if (lookups.planar) defines.emplace_back("HAS_PLANAR_SHADOWS");
+  if (lookups.cube) defines.emplace_back("HAS_CUBE_SHADOWS");
+  if (lookups.transmittance) defines.emplace_back("HAS_SHADOW_TRANSMITTANCE");
+}
+
+void bindShadowMaps(const ShadowMaps& maps, const ShadowLookups& lookups) {
+  if (lookups.planar) maps.planar.bind(gpu::kUnitShadowMaps2D);
+  if (lookups.cube) maps.cube.bind(gpu::kUnitShadowMapsCube);
+  if (lookups.transmittance && lookups.planar) maps.planarTransmittance.bind(gpu::kUnitShadowTransmittance2D);
+  if (lookups.transmittance && lookups.cube) maps.cubeTransmittance.bind(gpu::kUnitShadowTransmittanceCube);
+}
 
 ShadowCasters countShadowCasters(const std::vector<Light>& lights) {
   ShadowCasters casters;
   for (const Light& light : lights)
     if (light.castsShadows) (light.type == Light::Type::Point ? casters.cube : casters.planar)++;
   return casters;
+}
+
+std::uint64_t shadowMapBytes(const ShadowCasters& casters, int size, bool transmittance) {
+  const std::uint64_t texelBytes = transmittance ? 4 + 16 : 4;
+  const std::uint64_t planar = std::uint64_t(size) * std::uint64_t(size);
+  const std::uint64_t cube = 6 * std::uint64_t(cubeFaceSize(size)) * std::uint64_t(cubeFaceSize(size));
+  return texelBytes * (std::uint64_t(casters.planar) * planar + std::uint64_t(casters.cube) * cube);
+}
+
+void checkShadowMapsFit(const std::string& source, const ShadowCasters& casters, int size, bool transmittance,
+                        std::uint64_t otherBytes, const ResourceLimits& limits) {
+  const std::uint64_t bytes = shadowMapBytes(casters, size, transmittance);
+  const std::uint64_t limit = maxMemoryBytes(limits);
+  if (bytes + otherBytes <= limit) return;
+  auto mib = [](std::uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
+  throw LimitError(source + ": the shadow maps of its " + std::to_string(casters.planar + casters.cube) +
+                       " shadow-casting lights (" + std::to_string(casters.cube) + " point, " +
+                       std::to_string(casters.planar) + " directional or spot) need " + mib(bytes) + " at " +
+                       std::to_string(size) + " texels a side" + (transmittance ? " with transmittance maps" : "") +
+                       ", and the frame and scene " + mib(otherBytes) + ": more than max-memory allows (" + mib(limit) +
+                       "); lower --shadow-map-size, render with --no-shadows or raise --max-memory",
+                   {"max-memory"});
 }
 
 std::vector<glm::vec4> directionalCoverage(const std::vector<Light>& lights, const Bounds& bounds,
@@ -155,19 +190,40 @@ std::vector<gpu::GpuLight> packLights(const std::vector<Light>& lights, std::spa
 ShadowPass::ShadowPass()
     : program_(detail::buildProgram(std::array<std::string_view, 2>{"shadow.vert", "shadow.frag"})),
       maskedPrograms_("shadow.vert", "shadow.frag", featureDefines),
+      transmittancePrograms_("shadow.vert", "shadow_transmittance.frag",
+                             [](FeatureBits features) {
+                               std::vector<std::string> defines = featureDefines(features);
+                               defines.emplace_back("SHADOW_TRANSMITTANCE");
+                               return defines;
+                             }),
       block_(gl::Buffer::create(sizeof(gpu::ShadowBlock))),
       framebuffer_(gl::Framebuffer::create()) {
   framebuffer_.setDrawBuffers({});
 }
 
 ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& lights, int size,
-                             const CameraView* camera) {
+                              const CameraView* camera, bool transmittance) {
   const ShadowCasters casters = countShadowCasters(lights);
   ShadowOutputs out;
   ShadowMaps& maps = out.maps;
   maps.size = size;
-  if (casters.planar > 0) maps.planar = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, casters.planar);
-  if (casters.cube > 0) maps.cube = gl::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, cubeFaceSize(size), casters.cube);
+  if (casters.planar > 0) {
+    maps.planar = gl::Texture::create2DArray(GL_DEPTH_COMPONENT32F, size, size, casters.planar);
+    if (transmittance) maps.planarTransmittance = gl::Texture::create2DArray(GL_RGBA32F, size, size, casters.planar);
+  }
+  if (casters.cube > 0) {
+    maps.cube = gl::Texture::createCubeArray(GL_DEPTH_COMPONENT32F, cubeFaceSize(size), casters.cube);
+    if (transmittance)
+      maps.cubeTransmittance = gl::Texture::createCubeArray(GL_RGBA32F, cubeFaceSize(size), casters.cube);
+  }
+  // Read texel by texel: a layer's depth (a) must not blend with its neighbour's.
+  for (const gl::Texture* map : {&maps.planarTransmittance, &maps.cubeTransmittance}) {
+    if (!*map) continue;
+    glTextureParameteri(map->id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(map->id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(map->id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(map->id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
   for (const gl::Texture* map : {&maps.planar, &maps.cube}) {
     if (!*map) continue;
     glTextureParameteri(map->id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -188,8 +244,9 @@ ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& l
       const float far = std::max(farDistance(light.position, scene.bounds), 1e-30f);
       const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, far * 1e-4f, far);
       for (int face = 0; face < 6; ++face)
-        renderView(scene, maps.cube, 6 * cubeLayer + face, projection * cubeFaceView(light.position, face),
-                   glm::vec4(light.position, far));
+        renderView(scene, maps, true, 6 * cubeLayer + face,
+                   {projection * cubeFaceView(light.position, face), glm::vec4(light.position, far),
+                    glm::vec4(light.position, 1.0f)});
       slot.layer = cubeLayer++;
       slot.far = far;
     } else {
@@ -197,7 +254,9 @@ ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& l
                                            ? directionalViewProjection(light, scene.bounds, directionalRectangle(light, scene.bounds, camera),
                                                                        size, slot.texelSize)
                                            : spotViewProjection(light, scene.bounds, size, slot.texelSize);
-      renderView(scene, maps.planar, planarLayer, viewProjection, glm::vec4(0.0f));
+      const glm::vec4 origin = light.type == Light::Type::Directional ? glm::vec4(glm::normalize(light.direction), 0.0f)
+                                                                      : glm::vec4(light.position, 1.0f);
+      renderView(scene, maps, false, planarLayer, {viewProjection, glm::vec4(0.0f), origin});
       slot.viewProjection = viewProjection;
       slot.layer = planarLayer++;
     }
@@ -207,9 +266,9 @@ ShadowOutputs ShadowPass::run(const GpuScene& scene, const std::vector<Light>& l
   return out;
 }
 
-void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, int layer,
-                            const glm::mat4& viewProjection, const glm::vec4& positionFar) {
-  gpu::ShadowBlock block{viewProjection, positionFar};
+void ShadowPass::renderView(const GpuScene& scene, const ShadowMaps& maps, bool cube, int layer,
+                            const gpu::ShadowBlock& block) {
+  const gl::Texture& target = cube ? maps.cube : maps.planar;
   block_.update(block);
   block_.bindUniform(gpu::ShadowBlock::kBinding);
   framebuffer_.attach(GL_DEPTH_ATTACHMENT, target, layer);
@@ -224,10 +283,10 @@ void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, in
   glDisable(GL_CULL_FACE);
   scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
   // Every instance of a primitive in one draw, whatever its material, unless
-  // one of its materials cuts out (alphaMode MASK).
+  // one of its materials cuts out (alphaMode MASK) or transmits.
   for (const GpuPrimitiveRun& run : scene.primitiveRuns) {
-    if (run.masked) {
-      drawMaskedRun(scene, run);
+    if (run.masked || run.transmissive) {
+      drawGroups(scene, run, false);
       continue;
     }
     const GpuPrimitive& primitive = scene.primitives[std::size_t(run.primitive)];
@@ -236,28 +295,60 @@ void ShadowPass::renderView(const GpuScene& scene, const gl::Texture& target, in
     glDrawElementsInstancedBaseInstance(GL_TRIANGLES, primitive.indexCount, GL_UNSIGNED_INT, nullptr,
                                         run.instanceCount, run.firstInstance);
   }
+
+  const gl::Texture& transmittance = cube ? maps.cubeTransmittance : maps.planarTransmittance;
+  if (!transmittance) return;
+  // The transmissive layers in front of the depth map's surfaces: summed
+  // optical depth (rgb, added) and the nearest layer's depth (a, the least).
+  framebuffer_.attach(GL_COLOR_ATTACHMENT0, transmittance, layer);
+  const GLenum drawBuffers[] = {GL_COLOR_ATTACHMENT0};
+  framebuffer_.setDrawBuffers(drawBuffers);
+  framebuffer_.checkComplete("shadow transmittance map");
+  const float noLayers[] = {0.0f, 0.0f, 0.0f, 1.0f};
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, noLayers);
+  glDepthMask(GL_FALSE);
+  glEnablei(GL_BLEND, 0);
+  glBlendEquationSeparatei(0, GL_FUNC_ADD, GL_MIN);
+  glBlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  for (const GpuPrimitiveRun& run : scene.primitiveRuns)
+    if (run.transmissive) drawGroups(scene, run, true);
+  glDisablei(GL_BLEND, 0);
+  glDepthMask(GL_TRUE);
+  framebuffer_.detach(GL_COLOR_ATTACHMENT0);
+  framebuffer_.setDrawBuffers({});
 }
 
-// A run with a masked material, group by group: masked groups sample their
-// base colour alpha and discard below the cutoff, the others stay depth only.
-void ShadowPass::drawMaskedRun(const GpuScene& scene, const GpuPrimitiveRun& run) {
+// A run group by group: with `transmissive`, only its transmissive groups
+// (into the transmittance map); else the others, masked groups sampling
+// their base colour alpha and discarding below the cutoff, the rest depth
+// only.
+void ShadowPass::drawGroups(const GpuScene& scene, const GpuPrimitiveRun& run, bool transmissive) {
   const GpuPrimitive& primitive = scene.primitives[std::size_t(run.primitive)];
   primitive.vertexArray.bind();
+  const MaterialTextureRow& transmissionRow = materialTextureRows()[std::size_t(MaterialTexture::Transmission)];
   for (std::size_t g = run.firstGroup; g < run.firstGroup + run.groupCount; ++g) {
     const GpuDrawGroup& group = scene.drawGroups[g];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
-    const FeatureBits features =
-        drawFeatures(primitive, material) &
-        (kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture | kFeatureVertexColors |
-         kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 | kFeatureTextureTransform);
-    if (features & kFeatureAlphaMask) {
+    if (material.transmissive != transmissive) continue;
+    constexpr FeatureBits kMaskFeatures = kFeatureAlphaMask | kFeatureTexcoords | kFeatureBaseColorTexture |
+                                          kFeatureVertexColors | kFeatureTexcoords1 | kFeatureBaseColorTexcoord1 |
+                                          kFeatureTextureTransform;
+    const FeatureBits all = drawFeatures(primitive, material);
+    auto bindTexture = [&](MaterialTexture id, int unit) {
+      const GpuTexture& texture = scene.textures[std::size_t(material.textures[std::size_t(id)])];
+      texture.texture.bind(unit);
+      texture.sampler.bind(unit);
+    };
+    if (transmissive) {
+      const FeatureBits features = all & (kMaskFeatures | transmissionRow.feature | transmissionRow.texcoord1);
+      transmittancePrograms_.get(features).use();
+      material.block.bindUniform(gpu::MaterialBlock::kBinding);
+      if (features & kFeatureBaseColorTexture) bindTexture(MaterialTexture::BaseColor, gpu::kUnitBaseColorTexture);
+      if (features & transmissionRow.feature) bindTexture(MaterialTexture::Transmission, transmissionRow.unit);
+    } else if (const FeatureBits features = all & kMaskFeatures; features & kFeatureAlphaMask) {
       maskedPrograms_.get(features).use();
       material.block.bindUniform(gpu::MaterialBlock::kBinding);
-      if (features & kFeatureBaseColorTexture) {
-        const GpuTexture& texture = scene.textures[std::size_t(material.textures[std::size_t(MaterialTexture::BaseColor)])];
-        texture.texture.bind(gpu::kUnitBaseColorTexture);
-        texture.sampler.bind(gpu::kUnitBaseColorTexture);
-      }
+      if (features & kFeatureBaseColorTexture) bindTexture(MaterialTexture::BaseColor, gpu::kUnitBaseColorTexture);
     } else {
       program_.use();
     }

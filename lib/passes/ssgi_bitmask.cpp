@@ -11,8 +11,7 @@ SsgiBitmaskPass::SsgiBitmaskPass()
     : FullscreenPass("ssgi_bitmask.glsl",
                      [](const SsgiBitmaskVariant& variant) {
                        std::vector<std::string> defines;
-                       if (variant.planarShadows) defines.push_back("HAS_PLANAR_SHADOWS");
-                       if (variant.cubeShadows) defines.push_back("HAS_CUBE_SHADOWS");
+                       appendShadowDefines(variant.shadows, defines);
                        return defines;
                      }),
       block_(gl::Buffer::create(sizeof(gpu::SsgiBitmaskBlock))) {}
@@ -34,10 +33,8 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
     // The lights' shadow maps: a virtual light near its light is hidden
     // where the light is.
     if (inputs.shadows) {
-      variant.planarShadows = bool(inputs.shadows->planar);
-      variant.cubeShadows = bool(inputs.shadows->cube);
-      if (variant.planarShadows) inputs.shadows->planar.bind(gpu::kUnitShadowMaps2D);
-      if (variant.cubeShadows) inputs.shadows->cube.bind(gpu::kUnitShadowMapsCube);
+      variant.shadows = inputs.shadows->lookups();
+      bindShadowMaps(*inputs.shadows, variant.shadows);
     }
   }
   if (inputs.farDownsample <= inputs.downsample) {

@@ -27,7 +27,7 @@ struct SsgiInputs;  // passes/ssgi.hpp: the SSGI pass's inputs, whichever method
 // The program's variant: the shadow maps its virtual lights' visibility
 // reads (none without virtual lights).
 struct SsgiBitmaskVariant {
-  bool planarShadows = false, cubeShadows = false;
+  ShadowLookups shadows;
   auto operator<=>(const SsgiBitmaskVariant&) const = default;
 };
 

@@ -97,4 +97,49 @@ inline float transmissionLod(float transmissionRoughnessValue, float width, floa
   return std::log2(std::max(width, height)) * transmissionRoughnessValue;
 }
 
+// glsl/shadow_transmittance.glsl, ported: what transmissive casters let
+// through to what they shadow (the model is described there).
+inline constexpr float kOpaqueOpticalDepth = 30.0f;
+
+// shadow_transmittance.glsl shadowCrossing.
+inline glm::vec3 shadowCrossing(const glm::vec3& baseColor, float metallic, float transmission, float ior, float cosine,
+                                bool tints) {
+  const float relative = (std::max(ior, 1.0f) - 1.0f) / (std::max(ior, 1.0f) + 1.0f);
+  const float f0 = relative * relative;
+  const float fresnel = f0 + (1.0f - f0) * std::pow(1.0f - std::clamp(std::abs(cosine), 0.0f, 1.0f), 5.0f);
+  const float share =
+      std::clamp(transmission, 0.0f, 1.0f) * (1.0f - std::clamp(metallic, 0.0f, 1.0f)) * (1.0f - fresnel);
+  return share * (tints ? glm::clamp(baseColor, 0.0f, 1.0f) : glm::vec3(1.0f));
+}
+
+// shadow_transmittance.glsl crossingOpticalDepth.
+inline glm::vec3 crossingOpticalDepth(const glm::vec3& crossing) {
+  return glm::min(-glm::log(glm::max(crossing, glm::vec3(std::exp(-kOpaqueOpticalDepth)))),
+                  glm::vec3(kOpaqueOpticalDepth));
+}
+
+// shadow_transmittance.glsl volumeExtinction.
+inline glm::vec3 volumeExtinction(const glm::vec3& attenuationColor, float attenuationDistance) {
+  if (attenuationDistance <= 0.0f) return glm::vec3(0.0f);
+  return glm::min(-glm::log(glm::max(attenuationColor, glm::vec3(std::exp(-kOpaqueOpticalDepth)))),
+                  glm::vec3(kOpaqueOpticalDepth)) /
+         attenuationDistance;
+}
+
+// shadow_transmittance.glsl shadowLayerOpticalDepth.
+inline glm::vec3 shadowLayerOpticalDepth(const glm::vec3& baseColor, float metallic, float transmission, float ior,
+                                         float cosine, bool volume, const glm::vec3& extinction,
+                                         float distanceFromLight) {
+  const bool enters = cosine > 0.0f;
+  const glm::vec3 crossing = shadowCrossing(baseColor, metallic, transmission, ior, cosine, !volume || enters);
+  glm::vec3 depth = crossingOpticalDepth(crossing);
+  if (volume) depth += (enters ? -1.0f : 1.0f) * extinction * distanceFromLight;
+  return depth;
+}
+
+// shadow_transmittance.glsl shadowTransmittance.
+inline glm::vec3 shadowTransmittance(const glm::vec3& opticalDepth) {
+  return glm::exp(-glm::max(opticalDepth, glm::vec3(0.0f)));
+}
+
 }  // namespace headlight::reference

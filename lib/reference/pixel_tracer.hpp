@@ -51,7 +51,7 @@ class Tracer {
                        float& alpha);
   IridescenceInputs materialIridescence(const Material& material, const Primitive* textured,
                                         const std::uint32_t* corner, float u, float v) const;
-  float lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance);
+  glm::vec3 lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance);
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
                         const Clearcoat& coat, const TransmissiveSurface& transmissive = {});
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,

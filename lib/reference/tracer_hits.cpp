@@ -193,14 +193,19 @@ IridescenceInputs Tracer::materialIridescence(const Material& material, const Pr
           std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor)};
 }
 
-// Fraction of a light's radiance that arrives: 1, or 0 behind an occluder.
-// Lights that cast no shadow in the renderer cast none here either.
-float Tracer::lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance) {
-  if (!light.castsShadows) return 1.0f;
+// Fraction of a light's radiance that arrives, per channel: 1, 0 behind an
+// occluder, tinted behind transmissive surfaces (the renderer's
+// transmittance maps). Lights that cast no shadow in the renderer cast
+// none here either.
+glm::vec3 Tracer::lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight,
+                                  float distance) {
+  if (!light.castsShadows) return glm::vec3(1.0f);
   // Stop short of a point or spot light by epsilon: geometry at the light's
   // position (a bulb's own mesh) must not shadow it.
   const float far = std::isfinite(distance) ? std::max(distance - in_.epsilon, 0.0f) : distance;
-  return unoccluded(origin, toLight, far) ? 1.0f : 0.0f;
+  if (!in_.transmissiveScene) return glm::vec3(unoccluded(origin, toLight, far) ? 1.0f : 0.0f);
+  if (!isFinite(origin) || !isFinite(toLight)) return glm::vec3(0.0f);  // as unoccluded: Embree asserts on them
+  return shadowRayTransmittance(in_.scene, in_.instances, in_.rtcScene, context_, light, origin, toLight, far);
 }
 
 // direct_light.frag with shadow rays from `origin` for the maps, the coat
@@ -222,7 +227,7 @@ glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position,
     if (brdf == glm::vec3(0.0f)) continue;
     const bool behind = glm::dot(surface.normal, toLight) < 0.0f;
     const glm::vec3 from = behind ? position - surface.normal * in_.epsilon : origin;
-    const float visibility = lightVisibility(light, from, toLight, distance);
+    const glm::vec3 visibility = lightVisibility(light, from, toLight, distance);
     sum += brdf * light.color * light.intensity * (attenuation * visibility);
   }
   return sum;
@@ -399,7 +404,7 @@ glm::vec3 Tracer::radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayD
     const float attenuation = lightAttenuation(light, hitPosition, toLight, distance);
     const float nDotL = glm::dot(normal, toLight);
     if (attenuation <= 0.0f || nDotL <= 0.0f) continue;
-    const float visibility = lightVisibility(light, shadowOrigin, toLight, distance);
+    const glm::vec3 visibility = lightVisibility(light, shadowOrigin, toLight, distance);
     irradiance += light.color * light.intensity * (attenuation * nDotL * visibility);
   }
   return radiance + diffuse * irradiance;

@@ -41,4 +41,15 @@ TransmissiveSurface transmissiveSurfaceAt(const Scene& scene, const std::vector<
 RTCRayHit firstOpaqueHit(const std::vector<InstanceShading>& instances, RTCScene rtcScene, RTCIntersectContext& context,
                          const glm::vec3& origin, const glm::vec3& direction, float tnear);
 
+// What a shadow ray from `origin` along unit `direction` brings of `light`
+// over `far` (the light's distance; infinite for directional lights): 0
+// where it meets a surface the transmission pass does not draw, else what
+// the transmissive surfaces it crosses let through (lobe_transmission.hpp's
+// shadowLayerOpticalDepth summed, as the renderer's transmittance maps sum
+// them). More than kMaxShadowLayers crossings count as blocked.
+glm::vec3 shadowRayTransmittance(const Scene& scene, const std::vector<InstanceShading>& instances, RTCScene rtcScene,
+                                 RTCIntersectContext& context, const Light& light, const glm::vec3& origin,
+                                 const glm::vec3& direction, float far);
+inline constexpr int kMaxShadowLayers = 64;
+
 }  // namespace headlight::reference
