@@ -82,9 +82,27 @@ vec3 transmissionThroughput(Surface s, vec3 specularAlbedo, float transmission, 
   return transmission * (1.0 - specularAlbedo) * (1.0 - s.metallic) * s.albedo * attenuation;
 }
 
+// How far the transmitted lobe spreads: the tangent of its half-width
+// angle, kTransmissionSpread x transmissionRoughness^1.5, at most 60
+// degrees. Both are fitted to the Embree reference's sampled lobe (two rough
+// interfaces refracting each ray, lib/reference/tracer.cpp): a wall's edge
+// behind glass of ior 1.5 spreads over about as many pixels in both at
+// roughness 0.4 and 0.6 (GGX's alpha, roughness^2, grew too fast: 7 pixels
+// against 12 at 0.4; tests/transmission_parity_tests.cpp).
+const float kTransmissionSpread = 1.1;
+float transmissionSpread(float transmissionRoughnessValue) {
+  return min(kTransmissionSpread * pow(transmissionRoughnessValue, 1.5), 1.732);
+}
+
 // The mip level of the background copy that the transmission roughness
-// reads: 0 for a smooth surface, the 1 x 1 average of the largest side at
-// roughness 1 (as the glTF Sample Viewer's log2(size) * roughness).
-float transmissionLod(float transmissionRoughnessValue, vec2 imageSize) {
-  return log2(max(imageSize.x, imageSize.y)) * transmissionRoughnessValue;
+// reads: texels as wide as the lobe's footprint on what lies behind, which
+// grows with the distance from where light leaves the surface to what it
+// meets (`distanceBehind`, world units) and is seen there at
+// `pixelsPerUnit` (pixels a world unit). 0 for a smooth surface, and for a
+// background touching the glass. (The glTF Sample Viewer's log2(size) x
+// roughness ignores the distance: TransmissionRoughnessTest's wall, just
+// behind its tiles, came out blurred past recognition.)
+float transmissionLod(float transmissionRoughnessValue, float distanceBehind, float pixelsPerUnit) {
+  const float radius = transmissionSpread(transmissionRoughnessValue) * distanceBehind * pixelsPerUnit;
+  return log2(max(2.0 * radius, 1.0));
 }

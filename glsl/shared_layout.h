@@ -100,7 +100,8 @@ using mat4 = glm::mat4;
   X(kUnitSsgiSurface, 47)                 \
   X(kUnitLit, 48)                         \
   X(kUnitShadowTransmittance2D, 49)       \
-  X(kUnitShadowTransmittanceCube, 50)
+  X(kUnitShadowTransmittanceCube, 50)     \
+  X(kUnitTransmissionBackgroundPosition, 51)
 
 // Image units (X(name, unit)), for image load/store: a fullscreen pass's
 // compute form writes its outputs 0..3 to these (glsl/fullscreen_entry.comp).

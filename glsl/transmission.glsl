@@ -55,6 +55,8 @@ float thicknessAt() {
 
 // The opaque lit image with its mip chain (TransmissionPass copies it).
 layout(binding = kUnitTransmissionBackground) uniform sampler2D transmissionBackground;
+// Where each of its pixels lies (world; a = 0: nothing, the sky).
+layout(binding = kUnitTransmissionBackgroundPosition) uniform sampler2D transmissionBackgroundPosition;
 // The instance's scale per axis (gbuffer.vert): thickness is in mesh units.
 layout(location = 6) flat in vec3 vModelScale;
 
@@ -73,11 +75,26 @@ vec3 specularAlbedoOf(Surface s) {
 
 // The opaque image where the path through the volume leaves it, seen from
 // the eye; a thin wall's own pixel. Clamped at the image's edges: what
-// lies off-screen is not in the copy.
-vec3 refractedBackground(vec3 exitPoint, bool thin, float lod) {
+// lies off-screen is not in the copy. Blurred by `blur` (the transmission
+// roughness) as wide as its lobe spreads over the distance to what lies
+// there (transmissionLod); the sky, at no distance, by its angle alone.
+vec3 refractedBackground(vec3 exitPoint, bool thin, float blur) {
   vec2 uv = gl_FragCoord.xy * frame.viewport.zw;
   const vec4 clip = frame.viewProjection * vec4(exitPoint, 1.0);
   if (!thin && clip.w > 0.0) uv = clip.xy / clip.w * 0.5 + 0.5;
+  const ivec2 size = textureSize(transmissionBackgroundPosition, 0);
+  const vec4 behind = texelFetch(transmissionBackgroundPosition, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0);
+  // Pixels a world unit: at unit view distance (perspective), or anywhere (orthographic).
+  const float pixelsPerUnit = 0.5 * frame.viewport.y * frame.projection[1][1];
+  const bool orthographic = frame.cameraPosition.w > 0.5;
+  float lod;
+  if (behind.a == 0.0)  // the sky: its footprint in pixels is the lobe's angle's (d / z = 1); unbounded orthographic
+    lod = orthographic ? 1e4 * blur : transmissionLod(blur, 1.0, pixelsPerUnit);
+  else {
+    const float viewDistance = max(-(frame.view * vec4(behind.xyz, 1.0)).z, 1e-6);
+    lod = transmissionLod(blur, length(behind.xyz - exitPoint),
+                          orthographic ? pixelsPerUnit : pixelsPerUnit / viewDistance);
+  }
   return textureLod(transmissionBackground, uv, lod).rgb;
 }
 
@@ -121,8 +138,7 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
   const vec3 attenuation =
       volumeAttenuation(pathLength, material.attenuationColor.rgb, material.transmissionFactors.w);
   const vec3 throughput = transmissionThroughput(surface, specularAlbedo, share, attenuation);
-  const float lod = transmissionLod(blur, frame.viewport.xy);
-  radiance += throughput * refractedBackground(position + path, pathThickness == 0.0, lod);
+  radiance += throughput * refractedBackground(position + path, pathThickness == 0.0, blur);
   outLit = vec4(radiance, 1.0);
   outTransmission = vec4(throughput, pathLength);
 }

@@ -271,6 +271,35 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("reference takes render's explicit camera: --eye, --target, --up and --fov trace render's pixels" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  // Looking past the spheres' edge: a third of the view is sky, where the
+  // fitted camera sees geometry everywhere.
+  const fs::path out = freshFolder("reference-camera") / "out";
+  const std::string camera = "builtin:spheres --width 32 --height 24 --eye 3,1.2,3 --target 1.5,0.4,0 --fov 50 ";
+  // At the pixel centres, as the reference traces them.
+  REQUIRE(runHeadlight("render " + camera + "--antialias 1 --out " + quote(out.string())).exitCode == 0);
+  const Run run = runHeadlight("reference " + camera + "--reference-samples 4 --out " + quote(out.string()));
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  OIIO::ImageBuf rendered((out / "lit.exr").string()), traced((out / "lit_ref.exr").string());
+  REQUIRE(rendered.read());
+  REQUIRE(traced.read());
+  int sky = 0, differ = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const int ra = rendered.spec().channelindex("A"), rb = traced.spec().channelindex("A");
+      const float a = rendered.getchannel(x, y, 0, ra), b = traced.getchannel(x, y, 0, rb);
+      sky += a == 0.0f ? 1 : 0;
+      differ += (a > 0.5f) != (b > 0.5f) ? 1 : 0;
+    }
+  CHECK(sky > 32 * 24 / 10);
+  CHECK(differ == 0);
+  CHECK(runHeadlight("reference builtin:spheres --eye 1,1,1 --out " + quote(out.string())).exitCode ==
+        2);  // no --target
+  fs::remove_all(out.parent_path());
+}
+
 TEST_CASE("reference on a terminal draws its progress with the time left" *
           doctest::skip(!HEADLIGHT_HAS_EMBREE || !fs::exists("/usr/bin/script"))) {
   const fs::path folder = freshFolder("reference-progress");

@@ -253,3 +253,87 @@ TEST_CASE("transmission: the Embree reference sees the wall through the squares 
     }
   CHECK(compared > 200);
 }
+
+namespace {
+
+// A glass square in front of a wall whose left half glows and right half
+// is black; sky 0 and no light, so lit through the glass is the wall's
+// emission, spread by the glass's roughness. The number of pixels along the
+// middle row whose lit lies between a tenth and nine tenths of the glowing
+// half's: how wide the glass blurs the wall's edge.
+int blurredEdgeWidth(float roughness, float ior, const ImageF& lit, const Frame& frame) {
+  const int y = frame.lit.height / 2;
+  float bright = 0.0f;
+  for (int x = 0; x < lit.width; ++x) bright = std::max(bright, lit.at(x, y, 0));
+  int between = 0;
+  for (int x = 0; x < lit.width; ++x) {
+    if (frame.transmission.at(x, y, 0) == 0.0f) continue;  // through the glass only
+    const float value = lit.at(x, y, 0);
+    if (value > 0.1f * bright && value < 0.9f * bright) ++between;
+  }
+  MESSAGE("roughness " << roughness << ", ior " << ior << ": " << between << " pixels across the edge");
+  return between;
+}
+
+Scene edgeBehindGlass(float roughness, float ior, float wallDistance) {
+  Scene scene;
+  scene.source = "test:rough-transmission";
+  scene.sky.intensity = 0.0f;
+  Material glow = makeMaterial(glm::vec3(0.0f), 1.0f, 1.0f);
+  glow.emissiveFactor = {1.0f, 1.0f, 1.0f};
+  addInstance(scene, makeQuad({-2.0f, -1.0f, -wallDistance}, {2.0f, 0.0f, 0.0f}, {0.0f, 2.0f, 0.0f}),
+              addMaterial(scene, glow));
+  addInstance(scene, makeQuad({0.0f, -1.0f, -wallDistance}, {2.0f, 0.0f, 0.0f}, {0.0f, 2.0f, 0.0f}),
+              addMaterial(scene, makeMaterial(glm::vec3(0.0f), 1.0f, 1.0f)));
+  Material glass = makeMaterial({1.0f, 1.0f, 1.0f}, roughness);
+  glass.transmission = MaterialTransmission{1.0f, {}};
+  glass.ior = ior;
+  addInstance(scene, makeSquare({0.0f, 0.0f, 0.0f}, {0, 0, 1}, 0.6f), addMaterial(scene, glass));
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 0.0f, 2.0f}, {0.0f, 0.0f, 0.0f}, 0.7f));
+  Light sun;  // grazing every surface: no direct light, and the scene is not "unlit"
+  sun.type = Light::Type::Directional;
+  sun.direction = {0.0f, 1.0f, 0.0f};
+  scene.lights.push_back(sun);
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("transmission: rough glass blurs what lies behind it as far as it lies, except at ior 1" *
+          doctest::skip(!referenceAvailable())) {
+  // TransmissionRoughnessTest's rule: microfacets bend light by refraction,
+  // so a rough surface blurs at ior 1.5 and not at all at ior 1; and the
+  // blur's width on screen grows with the distance to what lies behind.
+  // Before, the reference's one straight ray made every case sharp and the
+  // renderer blurred by the image's size whatever the distance (11 pixels
+  // where the reference now has 22 at 1 unit, and the same 11 at 0.25).
+  struct Widths {
+    int renderer, reference;
+  };
+  auto widths = [](float roughness, float ior, float wallDistance) {
+    const Scene scene = edgeBehindGlass(roughness, ior, wallDistance);
+    RenderSettings settings = test::smallSettings(64, 48);
+    settings.ssgi.enabled = false;
+    const Frame frame = test::renderFresh(scene, settings);
+    ReferenceSettings referenceSettings;
+    referenceSettings.samplesPerPixel = 64;
+    referenceSettings.radius = 1.0f;
+    const ImageF lit = traceReference(scene, frame, referenceSettings).lit;
+    MESSAGE("wall " << wallDistance << " behind the glass:");
+    return Widths{blurredEdgeWidth(roughness, ior, frame.lit, frame), blurredEdgeWidth(roughness, ior, lit, frame)};
+  };
+  const Widths smooth = widths(0.0f, 1.5f, 1.0f);
+  CHECK(smooth.reference <= 1);  // the pixel on the edge at most
+  CHECK(smooth.renderer <= 1);
+  const Widths air = widths(0.6f, 1.0f, 1.0f);  // rough, but ior 1 bends nothing
+  CHECK(air.reference <= 1);
+  CHECK(air.renderer <= 1);
+  for (const auto& [roughness, distance] : {std::pair{0.6f, 1.0f}, std::pair{0.6f, 0.25f}, std::pair{0.4f, 1.0f}}) {
+    CAPTURE(roughness);
+    CAPTURE(distance);
+    const Widths rough = widths(roughness, 1.5f, distance);
+    CHECK(rough.reference >= 3);
+    // Within a third of the reference's width, and 2 pixels.
+    CHECK(std::abs(rough.renderer - rough.reference) <= std::max(2, rough.reference / 3));
+  }
+}

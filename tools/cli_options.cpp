@@ -73,7 +73,8 @@ glm::vec3 parsePoint(const std::string& flag, const std::string& value) {
   return point;
 }
 
-std::vector<Option<RenderCommand>> batchOptions() {
+// An explicit camera: `render` and `reference` (which traces the pixels render draws).
+std::vector<Option<RenderCommand>> cameraOptions() {
   using T = OptionType;
   using C = RenderCommand;
   return {
@@ -98,6 +99,13 @@ std::vector<Option<RenderCommand>> batchOptions() {
                        .minimum = 0.01,
                        .maximum = 179.99},
                       [](C& c, const OptionValue& v) { c.fovDegrees = float(std::get<double>(v)); }),
+  };
+}
+
+std::vector<Option<RenderCommand>> batchOptions() {
+  using T = OptionType;
+  using C = RenderCommand;
+  return {
       actionOption<C>({.name = "jobs",
                        .type = T::Text,
                        .help = "a job file: JSON Lines, one job per line (docs/BATCH.md); repeatable",
@@ -252,6 +260,7 @@ std::vector<Option<RenderCommand>> renderCommandOptions(CommandKind kind) {
                  "earlier headlight reference wrote"},
         [](auto& c) -> auto& { return c.force; }));
   }
+  for (auto& row : cameraOptions()) rows.push_back(std::move(row));
   if (kind == CommandKind::Render)
     for (auto& row : batchOptions()) rows.push_back(std::move(row));
   for (auto& row : liftOptions(settingOptions(), &C::settings)) rows.push_back(std::move(row));

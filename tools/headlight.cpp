@@ -20,6 +20,7 @@
 #include "headlight/scene_loader.hpp"
 #include "headlight/version.hpp"
 #include "io/folder_lock.hpp"
+#include "job_file.hpp"
 #include "progress.hpp"
 #include "tooling/large_pages.hpp"
 #include "tune_command.hpp"
@@ -102,7 +103,10 @@ int runReference(const std::vector<std::string>& args) {
   Renderer renderer(context);
   renderer.setLimits(command.limits);
   renderer.setScene(std::move(scene));
-  const Frame frame = renderer.render(command.settings);
+  // An explicit camera (--eye, --target) places the view as render's does.
+  const std::optional<Camera> camera = cli::commandLineCamera(command).build(
+      renderer.scene(), float(command.settings.width) / float(command.settings.height));
+  const Frame frame = renderer.render(command.settings, camera ? &*camera : nullptr);
   ReferenceSettings settings = command.reference;
   settings.radius = *frame.settings.ssgi.radius;
   // Minutes at 640x480 and 4096 rays: a bar with the time left (on a terminal; issue 30).

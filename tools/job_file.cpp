@@ -235,6 +235,17 @@ std::vector<Job> readJobFile(const fs::path& path, const RenderSettings& base) {
   return parseJobLines(detail::readRegularFile(path, detail::kMaxJobFileBytes, "the job file"), path.string(), base);
 }
 
+JobCamera commandLineCamera(const RenderCommand& command) {
+  JobCamera camera;
+  if (!command.eye) return camera;  // checked by parseRenderArgs: with --target, not with --orbit or --cameras
+  camera.kind = JobCamera::Kind::LookAt;
+  camera.eye = *command.eye;
+  camera.target = *command.target;
+  if (command.up) camera.up = *command.up;
+  if (command.fovDegrees) camera.fovDegrees = *command.fovDegrees;
+  return camera;
+}
+
 std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount,
                             const std::function<float(const std::string&)>& animationLength) {
   std::vector<Job> jobs;
@@ -253,13 +264,7 @@ std::vector<Job> expandJobs(const RenderCommand& command, const std::function<in
     base.scene = scene;
     base.settings = command.settings;
     base.origin = "command line: " + scene;
-    if (command.eye) {  // checked by parseRenderArgs: with --target, not with --orbit or --cameras
-      base.camera.kind = JobCamera::Kind::LookAt;
-      base.camera.eye = *command.eye;
-      base.camera.target = *command.target;
-      if (command.up) base.camera.up = *command.up;
-      if (command.fovDegrees) base.camera.fovDegrees = *command.fovDegrees;
-    }
+    base.camera = commandLineCamera(command);
     if (command.orbit || command.throughTime) {
       // --through-time: view v poses the animation at v / N of its length
       // (a loop's last view is a step before its first again).

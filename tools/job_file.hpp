@@ -70,6 +70,9 @@ std::vector<Job> parseJobLines(const std::string& text, const std::string& name,
 // detail::kMaxJobFileBytes (IoError naming it otherwise), then parseJobLines.
 std::vector<Job> readJobFile(const std::filesystem::path& path, const RenderSettings& base);
 
+// The camera --eye, --target, --up and --fov place (Kind::Settings without --eye).
+JobCamera commandLineCamera(const RenderCommand& command);
+
 // Jobs from the command: its scenes (x --views/--cameras all; `cameraCount`
 // tells how many cameras a scene has, `animationLength` how long the
 // animation --through-time steps through lasts, each loading the scene if

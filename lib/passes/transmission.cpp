@@ -49,7 +49,12 @@ void TransmissionPass::prepare(const GpuScene& scene, const TransmissionVariant&
   }
 }
 
-void TransmissionPass::copyBackground(const gl::Texture& lit) {
+void TransmissionPass::copyBackground(const gl::Texture& lit, const gl::Texture& position) {
+  if (backgroundPosition_.width() != position.width() || backgroundPosition_.height() != position.height() ||
+      backgroundPosition_.internalFormat() != position.internalFormat())
+    backgroundPosition_ = gl::Texture::create2D(position.internalFormat(), position.width(), position.height());
+  glCopyImageSubData(position.id(), GL_TEXTURE_2D, 0, 0, 0, 0, backgroundPosition_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                     position.width(), position.height(), 1);
   if (background_.width() != lit.width() || background_.height() != lit.height() ||
       background_.internalFormat() != lit.internalFormat())
     background_ =
@@ -61,7 +66,8 @@ void TransmissionPass::copyBackground(const gl::Texture& lit) {
 
 void TransmissionPass::run(const TransmissionInputs& inputs, const TransmissionTargets& targets,
                            const TransmissionVariant& variant) {
-  copyBackground(targets.lit);
+  // G-buffer location 0 is the position (the attachment table's first row).
+  copyBackground(targets.lit, *inputs.gbufferTargets.colors.at(0));
   inputs.gbuffer.drawTransmissive(inputs.scene, inputs.gbufferTargets, inputs.gbufferVariant);
   shade(inputs, targets, variant);
 }
@@ -80,6 +86,7 @@ void TransmissionPass::shade(const TransmissionInputs& inputs, const Transmissio
   bindLightingInputs(inputs, variant);
   background_.bind(gpu::kUnitTransmissionBackground);
   backgroundSampler_.bind(gpu::kUnitTransmissionBackground);
+  backgroundPosition_.bind(gpu::kUnitTransmissionBackgroundPosition);
   scene.objects.bindStorage(gpu::ObjectBuffer::kBinding);
 
   for (const GpuDrawGroup& group : scene.drawGroups) {

@@ -41,9 +41,9 @@ namespace headlight {
 
 // GPU memory the pass adds per pixel, for the renderer's pre-flight
 // (--max-memory): lit's copy with its mip chain (RGBA32F under
-// radiance-precision float: 16 bytes x 4/3) and the transmission target
-// (RGBA32F, 16), rounded up.
-inline constexpr std::uint64_t kTransmissionBytesPerPixel = 40;
+// radiance-precision float: 16 bytes x 4/3), the positions' copy (RGBA32F,
+// 16) and the transmission target (RGBA32F, 16), rounded up.
+inline constexpr std::uint64_t kTransmissionBytesPerPixel = 56;
 
 struct TransmissionInputs {
   const GpuScene& scene;
@@ -69,7 +69,7 @@ class TransmissionPass {
   void run(const TransmissionInputs& inputs, const TransmissionTargets& targets, const TransmissionVariant& variant);
 
  private:
-  void copyBackground(const gl::Texture& lit);
+  void copyBackground(const gl::Texture& lit, const gl::Texture& position);
   void shade(const TransmissionInputs& inputs, const TransmissionTargets& targets, const TransmissionVariant& variant);
 
   struct ProgramKey {
@@ -80,6 +80,9 @@ class TransmissionPass {
   ProgramCache<ProgramKey> programs_;
   gl::Framebuffer framebuffer_ = gl::Framebuffer::create();
   gl::Texture background_;  // lit's copy with its mip chain, remade when lit's size or format changes
+  // The G-buffer's positions before step 2: where each pixel of background_
+  // lies, so the blur can follow the distance behind the surface.
+  gl::Texture backgroundPosition_;
   gl::Sampler backgroundSampler_ = gl::Sampler::create();
 };
 

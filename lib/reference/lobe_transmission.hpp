@@ -92,9 +92,14 @@ inline glm::vec3 iorF0(float ior, const glm::vec3& albedo, float metallic) {
   return glm::mix(glm::vec3(r * r), albedo, metallic);
 }
 
-// lobe_transmission.glsl transmissionLod.
-inline float transmissionLod(float transmissionRoughnessValue, float width, float height) {
-  return std::log2(std::max(width, height)) * transmissionRoughnessValue;
+// lobe_transmission.glsl transmissionSpread and transmissionLod.
+inline constexpr float kTransmissionSpread = 1.1f;
+inline float transmissionSpread(float transmissionRoughnessValue) {
+  return std::min(kTransmissionSpread * std::pow(transmissionRoughnessValue, 1.5f), 1.732f);
+}
+inline float transmissionLod(float transmissionRoughnessValue, float distanceBehind, float pixelsPerUnit) {
+  const float radius = transmissionSpread(transmissionRoughnessValue) * distanceBehind * pixelsPerUnit;
+  return std::log2(std::max(2.0f * radius, 1.0f));
 }
 
 // glsl/shadow_transmittance.glsl, ported: what transmissive casters let

@@ -47,16 +47,17 @@ class Tracer {
 
   // Blended layers and the light at what rays meet (tracer_hits.cpp).
   void compositeBlended(int x, int y, const glm::vec3* opaque, float* lit, Pcg32& random);
+  // `rays`: its cosine rays (0: samplesPerPixel) and, over 4, its GGX rays.
   bool shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirection, Pcg32& random, glm::vec3& radiance,
-                       float& alpha);
+                       float& alpha, int rays = 0);
   IridescenceInputs materialIridescence(const Material& material, const Primitive* textured,
                                         const std::uint32_t* corner, float u, float v) const;
   glm::vec3 lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance);
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
                         const Clearcoat& coat, const TransmissiveSurface& transmissive = {});
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
-                         Pcg32& random, glm::vec3* specularAlbedoOut = nullptr,
-                         float* specularVisibilityOut = nullptr);
+                         Pcg32& random, glm::vec3* specularAlbedoOut = nullptr, float* specularVisibilityOut = nullptr,
+                         int specularRays = 0);
   glm::vec3 sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random);
   glm::vec3 environmentIrradianceOverPi(const Surface& surface, const glm::vec3& origin, int count, Pcg32& random);
   glm::vec3 radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayDirection);

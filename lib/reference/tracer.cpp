@@ -257,6 +257,9 @@ TransmissiveSurface Tracer::transmissiveSurfaceHere(int x, int y) {
   return transmissiveSurfaceAt(in_.scene, in_.instances, in_.rtcScene, context_, origin, direction);
 }
 
+// makeSurface's roughness floor: a surface at it is smooth, and sends one ray.
+constexpr float kSmoothTransmissionRoughness = 0.03f;
+
 // What reaches the eye through a transmissive surface (transmission_trace.hpp's model): the first opaque
 // surface along the view direction from where the volume's path leaves, shaded in full (as a blended
 // layer is), or the background, times the renderer's throughput.
@@ -264,16 +267,48 @@ glm::vec3 Tracer::transmittedLight(const Surface& surface, const glm::vec3& posi
                                    const glm::vec3& specularAlbedo, Pcg32& random) {
   const glm::vec3 path = volumeTransmissionRay(surface.normal, surface.view, t.thickness, t.ior, t.modelScale);
   const glm::vec3 attenuation = volumeAttenuation(glm::length(path), t.attenuationColor, t.attenuationDistance);
-  const glm::vec3 direction = -surface.view;
-  const RTCRayHit hit =
-      firstOpaqueHit(in_.instances, in_.rtcScene, context_, position + path, direction, in_.epsilon);
-  glm::vec3 behind(0.0f);
-  float alpha = 0.0f;
-  if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-    behind = backgroundRadiance(direction);
-  else if (!shadeBlendedHit(hit, direction, random, behind, alpha))
-    behind = glm::vec3(0.0f);  // the back of a single-sided surface: never drawn
-  return transmissionThroughput(surface, specularAlbedo, t.share, attenuation) * behind;
+  // A rough surface spreads what it lets through: each of the specular
+  // samples crosses two uncorrelated rough interfaces, the front's and the
+  // back's (parallel to it; a thin wall's two sides), microfacet normals
+  // drawn from GGX's D(m) (n.m) at the surface's roughness and refracted by
+  // Snell's law at each, so ior 1 bends nothing at any roughness
+  // (TransmissionRoughnessTest's model). The samples weigh alike: they give
+  // the lobe's shape; its energy is the throughput's. A smooth surface, or
+  // ior 1, sends one ray straight on, shading what it meets with the
+  // pixel's rays; a rough one shares them among its directions.
+  const float eta = std::max(t.ior, 1.0f);
+  const bool rough = surface.roughness > kSmoothTransmissionRoughness && eta > 1.0f;
+  const int count = rough ? std::max(in_.specularSamples, 1) : 1;
+  const int raysEach = rough ? std::max(in_.settings.samplesPerPixel / count, 1) : 0;
+  const float alpha = surface.roughness * surface.roughness;
+  const Basis basis = basisAround(surface.normal);
+  glm::vec3 sum(0.0f);
+  int crossed = 0;
+  for (int i = 0; i < count; ++i) {
+    glm::vec3 direction = -surface.view;
+    if (rough) {
+      const glm::vec3 front = basis.toWorld(importanceSampleGgx(random.uniform(), random.uniform(), alpha));
+      const glm::vec3 back = basis.toWorld(importanceSampleGgx(random.uniform(), random.uniform(), alpha));
+      if (glm::dot(surface.view, front) <= 0.0f) continue;  // a facet the eye cannot see
+      const glm::vec3 inside = refractGlsl(-surface.view, front, 1.0f / eta);
+      if (glm::dot(inside, back) >= 0.0f) continue;  // meets the back facet from behind
+      const glm::vec3 out = refractGlsl(glm::normalize(inside), back, eta);
+      if (out == glm::vec3(0.0f)) continue;  // reflected inside at the back: not this lobe's light
+      direction = glm::normalize(out);
+    }
+    const RTCRayHit hit =
+        firstOpaqueHit(in_.instances, in_.rtcScene, context_, position + path, direction, in_.epsilon);
+    glm::vec3 behind(0.0f);
+    float alphaBehind = 0.0f;
+    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      behind = backgroundRadiance(direction);
+    else if (!shadeBlendedHit(hit, direction, random, behind, alphaBehind, raysEach))
+      behind = glm::vec3(0.0f);  // the back of a single-sided surface: never drawn
+    sum += behind;
+    ++crossed;
+  }
+  if (crossed == 0) return glm::vec3(0.0f);
+  return transmissionThroughput(surface, specularAlbedo, t.share, attenuation) * (sum / float(crossed));
 }
 
 // composite.frag's background ray, for this top-first pixel.

@@ -94,7 +94,7 @@ void Tracer::compositeBlended(int x, int y, const glm::vec3* opaque, float* lit,
 // G-buffer pixel). False for the back of a single-sided surface, which
 // the rasteriser culls. Normal maps are not read (as radianceLeaving).
 bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirection, Pcg32& random, glm::vec3& radiance,
-                             float& alpha) {
+                             float& alpha, int rays) {
   const InstanceShading& instance = in_.instances[rayHit.hit.geomID];
   const Primitive& primitive = *instance.primitive;
   const Material& material = *instance.material;
@@ -140,7 +140,7 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   const glm::vec3 origin = position + normal * in_.epsilon;
   const Basis basis = basisAround(normal);
   const glm::vec3 diffuseWeight = (1.0f - metallic) * glm::vec3(baseColor);
-  const int n = in_.settings.samplesPerPixel;
+  const int n = rays > 0 ? rays : in_.settings.samplesPerPixel;
   glm::dvec3 skySum(0.0), indirectSum(0.0);
   for (int i = 0; i < n; ++i) {
     const float xi0 = random.uniform(), xi1 = random.uniform();
@@ -168,7 +168,9 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
     coat = makeClearcoat(clearcoatLobeOfMaterial(*clearcoat, texel(clearcoat->clearcoatTexture, false),
                                                  texel(clearcoat->clearcoatRoughnessTexture, false), normal),
                          view);
-  const glm::vec3 under = emission + ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random) +
+  const glm::vec3 under = emission +
+                          ambientLight(surface, origin, basis, glm::vec3(skySum / double(n)), random, nullptr, nullptr,
+                                       rays > 0 ? std::max(rays / 4, 1) : 0) +
                           glm::vec3(indirectSum / double(n));
   radiance = directLight(surface, position, origin, coat) +
              clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
@@ -248,8 +250,8 @@ glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position,
 // the SSGI's specular.Y).
 glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis,
                                const glm::vec3& skyMean, Pcg32& random, glm::vec3* specularAlbedoOut,
-                               float* specularVisibilityOut) {
-  const int m = in_.specularSamples;
+                               float* specularVisibilityOut, int specularRays) {
+  const int m = specularRays > 0 ? specularRays : in_.specularSamples;
   const float alpha = surface.roughness * surface.roughness;
   const bool stretched = surface.anisotropyStrength > 0.0f;
   const Basis frame = stretched ? Basis{surface.anisotropyTangent,
