@@ -198,3 +198,45 @@ TEST_CASE("shadow transmittance: the Embree reference's shadow rays see through 
       CHECK(compared > 10);
     }
 }
+
+TEST_CASE("shadow transmittance: the reference's sky reaches a floor through a glass roof, tinted as a light is" *
+          doctest::skip(!referenceAvailable())) {
+  // A white floor under a clear glass roof, lit only by the sky (a sun
+  // grazing everything). Glass blocked every cosine ray before: the floor
+  // under it got no sky at all. Now each ray goes on through the roof and
+  // brings the sky times what the roof lets through, (1 - F) for clear
+  // glass: about 0.9 of the open floor's sky light, less where rays cross
+  // the roof at a slant.
+  auto floorSky = [](bool roof) {
+    Scene scene;
+    scene.source = "test:glass-roof";
+    scene.sky.intensity = 1.0f;
+    addInstance(scene, makeFloor(4.0f), addMaterial(scene, makeMaterial({1.0f, 1.0f, 1.0f}, 0.9f)));
+    if (roof) {
+      Material glass = makeMaterial({1.0f, 1.0f, 1.0f}, 0.0f);
+      glass.transmission = MaterialTransmission{1.0f, {}};
+      addInstance(scene, makeSquare({0.0f, 0.3f, 0.0f}, {0, 1, 0}, 4.0f), addMaterial(scene, glass));
+    }
+    scene.cameras.push_back(makeLookAtCamera({0.0f, 0.25f, 0.01f}, {0.0f, 0.0f, 0.0f}, 0.5f));
+    Light sun;
+    sun.type = Light::Type::Directional;
+    sun.direction = {1.0f, 0.0f, 0.0f};
+    scene.lights.push_back(sun);
+    RenderSettings settings = test::smallSettings(16, 16);
+    settings.ssgi.enabled = false;
+    const Frame frame = test::renderFresh(scene, settings);
+    ReferenceSettings referenceSettings;
+    referenceSettings.samplesPerPixel = 256;
+    referenceSettings.radius = 1.0f;
+    const ReferenceImages reference = traceReference(scene, frame, referenceSettings);
+    double sum = 0.0;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) sum += reference.lit.at(x, y, 1);
+    return sum / 256.0;
+  };
+  const double open = floorSky(false), covered = floorSky(true);
+  MESSAGE("floor's sky light: open " << open << ", under the glass roof " << covered);
+  REQUIRE(open > 0.05);
+  CHECK(covered / open > 0.75);
+  CHECK(covered / open < 0.97);
+}

@@ -38,6 +38,10 @@ class Tracer {
   void readLobes(int x, int y, Surface& surface) const;
   RTCRayHit traceFromSurface(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& toEye);
   bool unoccluded(const glm::vec3& origin, const glm::vec3& direction, float far);
+  // A cosine ray's first hit `first`, walked on through transmissive
+  // surfaces (passTransmissive) in a scene that has them: what sends the
+  // ray its light, and how much of that comes through.
+  PassedHit pastTransmissive(const glm::vec3& origin, const glm::vec3& direction, const RTCRayHit& first);
   bool shownOnScreen(const glm::vec3& point);
   TransmissiveSurface transmissiveSurfaceHere(int x, int y);
   glm::vec3 transmittedLight(const Surface& surface, const glm::vec3& position, const TransmissiveSurface& t,

@@ -88,7 +88,18 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
       continue;
     }
     if (t >= radius) ++open;
-    const glm::dvec3 contribution = glm::dvec3(diffuseWeight * radianceLeaving(rayHit, direction));
+    // Glass is geometry to AO (above), but the sky and the surfaces behind
+    // it light the pixel through it, tinted as a light is through it (it
+    // sends no Lambertian light of its own: its transmitted share's).
+    const PassedHit through = pastTransmissive(origin, direction, rayHit);
+    if (through.hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      if (!in_.environment)
+        skySum += glm::dvec3(through.transmittance * skyRadiance(in_.scene.sky, direction) *
+                             sheenBaseScale(surface, direction));
+      continue;
+    }
+    const glm::dvec3 contribution =
+        glm::dvec3(through.transmittance * diffuseWeight * radianceLeaving(through.hit, direction));
     sum += contribution;
     sumSquares += contribution * contribution;
     if (t < radius) sumWithinRadius += contribution;
@@ -220,6 +231,13 @@ RTCRayHit Tracer::traceFromSurface(const glm::vec3& origin, const glm::vec3& dir
   }
   if (rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID) rayHit.ray.tfar = std::max(rayHit.ray.tfar - epsilon, 0.0f);
   return rayHit;
+}
+
+PassedHit Tracer::pastTransmissive(const glm::vec3& origin, const glm::vec3& direction, const RTCRayHit& first) {
+  if (!in_.transmissiveScene || first.hit.geomID == RTC_INVALID_GEOMETRY_ID ||
+      !in_.instances[first.hit.geomID].material->transmissive())
+    return {first, glm::vec3(1.0f)};
+  return passTransmissive(in_.scene, in_.instances, in_.rtcScene, context_, origin, direction, first);
 }
 
 // True when nothing lies between `origin` and `far` along `direction`.

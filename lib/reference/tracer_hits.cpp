@@ -145,11 +145,12 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   for (int i = 0; i < n; ++i) {
     const float xi0 = random.uniform(), xi1 = random.uniform();
     const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
-    const RTCRayHit bounce = traceFromSurface(origin, direction, view);
-    if (bounce.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction));
+    // Through glass as the pixel's own cosine rays (tracer.cpp).
+    const PassedHit bounce = pastTransmissive(origin, direction, traceFromSurface(origin, direction, view));
+    if (bounce.hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      skySum += glm::dvec3(bounce.transmittance * skyRadiance(in_.scene.sky, direction));
     else
-      indirectSum += glm::dvec3(diffuseWeight * radianceLeaving(bounce, direction));
+      indirectSum += glm::dvec3(bounce.transmittance * diffuseWeight * radianceLeaving(bounce.hit, direction));
   }
   Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
   if (material.iridescence)

@@ -52,4 +52,18 @@ glm::vec3 shadowRayTransmittance(const Scene& scene, const std::vector<InstanceS
                                  const glm::vec3& direction, float far);
 inline constexpr int kMaxShadowLayers = 64;
 
+// A ray's first hit `first` (from `origin` along unit `direction`, found by
+// the caller), walked on through transmissive surfaces: the first other
+// surface it meets (geomID RTC_INVALID_GEOMETRY_ID: none, the sky) and
+// what the crossed ones let through of the light coming back along it (the
+// shadow rays' model). For the cosine rays: sky and indirect light reach a
+// surface through glass as a light does.
+struct PassedHit {
+  RTCRayHit hit;
+  glm::vec3 transmittance{1.0f};
+};
+PassedHit passTransmissive(const Scene& scene, const std::vector<InstanceShading>& instances, RTCScene rtcScene,
+                           RTCIntersectContext& context, const glm::vec3& origin, const glm::vec3& direction,
+                           const RTCRayHit& first);
+
 }  // namespace headlight::reference
