@@ -380,6 +380,29 @@ std::vector<std::map<std::string, std::string>> readBenchCsv(const fs::path& pat
   return rows;
 }
 
+TEST_CASE("bench writes into the folder it locked, even when its name is moved during the run (issue 32)" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  // The folder is renamed as soon as bench has made it, and a new one takes
+  // the name: the run's CSV, JSON and chart (drawn by a python3 child) land
+  // in the renamed folder, nothing in the new one.
+  const fs::path parent = freshFolder("bench-moved");
+  const fs::path out = parent / "out", moved = parent / "out.old";
+  const Run run = headlight::test::runCommand(quote(HEADLIGHT_EXE) +
+                                              " bench builtin:cornell --resolutions 32x24 --repetitions 3 --warmup 1 "
+                                              "--reference-samples 64 --quiet --out " +
+                                              quote(out.string()) + " & pid=$!; while [ ! -d " + quote(out.string()) +
+                                              " ]; do sleep 0.02; done; mv " + quote(out.string()) + " " +
+                                              quote(moved.string()) + "; mkdir " + quote(out.string()) + "; wait $pid");
+  INFO(run.output);
+  REQUIRE(run.exitCode == 0);
+  for (const char* name : {"bench.csv", "bench.json", "bench.png"}) {
+    CAPTURE(name);
+    CHECK(fs::exists(moved / name));
+    CHECK(!fs::exists(out / name));
+  }
+  fs::remove_all(parent);
+}
+
 TEST_CASE("bench --no-reference times both fullscreen forms with GPU columns, and needs no reference") {
   const fs::path out = freshFolder("bench-forms") / "out";
   const Run run = runHeadlight(

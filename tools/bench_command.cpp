@@ -473,14 +473,24 @@ int runBenchCommand(const std::vector<std::string>& args) {
   progress.finish();
   markParetoFronts(rows);
 
-  std::error_code folderError;
-  std::filesystem::create_directories(out, folderError);
-  if (folderError) throw IoError(out.string() + ": cannot create the output folder: " + folderError.message());
-  writeBenchCsv(rows, out / "bench.csv");
-  writeBenchJson(rows, joinArgs(args), out / "bench.json");
+  // Into the folder the lock holds, through its descriptor (issue 32): a
+  // folder renamed or replaced during the run keeps this run's files, as
+  // render's and reference's do. The chart's python3 child reaches it
+  // through this process's /proc entry (/proc/self would be the child's).
+  const std::filesystem::path folder = lock.directory();
+  try {
+    writeBenchCsv(rows, folder / "bench.csv");
+    writeBenchJson(rows, joinArgs(args), folder / "bench.json");
+  } catch (const Error& error) {
+    throw IoError(lock.named(error.what(), out), error.settings());
+  }
   if (!quiet) std::cout << (out / "bench.csv").string() << "\n" << (out / "bench.json").string() << "\n";
+  std::string childFolder = folder.string();
+  if (childFolder.rfind("/proc/self/", 0) == 0)
+    childFolder = "/proc/" + std::to_string(getpid()) + childFolder.substr(std::string("/proc/self").size());
   // The chart plots errors: none without a reference.
-  if (command.chart && command.traceReference && !drawChart(out / "bench.csv", out))
+  if (command.chart && command.traceReference &&
+      !drawChart(std::filesystem::path(childFolder) / "bench.csv", childFolder))
     throw IoError((out / "bench.png").string() + ": the chart script failed (is python3-matplotlib installed?)");
   return 0;
 }
