@@ -21,20 +21,13 @@ layout(location = 5) in vec2 vTexcoord1;  // TEXCOORD_1
 #endif
 
 #ifdef HAS_TEXCOORDS
-// The UV a texture samples: its set (TEXCOORD_1 where the material names it;
-// (0, 0) if the primitive has none, as for TEXCOORD_0), through its
-// KHR_texture_transform rows. Variants without HAS_TEXTURE_TRANSFORM skip the
-// matrix: most materials have none, and identity rows would cost the same.
+#include "texture_uv.glsl"
+// The UV a texture samples at this fragment (texture_uv.glsl).
 vec2 textureUv(bool secondSet, vec4 rowU, vec4 rowV) {
 #ifdef HAS_TEXCOORDS_1
-  const vec2 uv = secondSet ? vTexcoord1 : vTexcoord;
+  return textureUvOf(vTexcoord, vTexcoord1, secondSet, rowU, rowV);
 #else
-  const vec2 uv = secondSet ? vec2(0.0) : vTexcoord;
-#endif
-#ifdef HAS_TEXTURE_TRANSFORM
-  return vec2(dot(rowU.xyz, vec3(uv, 1.0)), dot(rowV.xyz, vec3(uv, 1.0)));
-#else
-  return uv;
+  return textureUvOf(vTexcoord, vec2(0.0), secondSet, rowU, rowV);
 #endif
 }
 #endif

@@ -31,18 +31,13 @@ layout(binding = kUnitTransmissionTexture) uniform sampler2D transmissionTexture
 layout(location = 0) out vec4 outLayer;
 
 #ifdef HAS_TEXCOORDS
-// gbuffer.frag's textureUv: the set a texture names ((0, 0) where the
-// primitive lacks it), through its KHR_texture_transform rows.
+#include "texture_uv.glsl"
+// The UV a texture samples at this fragment, as gbuffer.frag's (texture_uv.glsl).
 vec2 textureUv(bool secondSet, vec4 rowU, vec4 rowV) {
 #ifdef HAS_TEXCOORDS_1
-  const vec2 uv = secondSet ? vTexcoord1 : vTexcoord0;
+  return textureUvOf(vTexcoord0, vTexcoord1, secondSet, rowU, rowV);
 #else
-  const vec2 uv = secondSet ? vec2(0.0) : vTexcoord0;
-#endif
-#ifdef HAS_TEXTURE_TRANSFORM
-  return vec2(dot(rowU.xyz, vec3(uv, 1.0)), dot(rowV.xyz, vec3(uv, 1.0)));
-#else
-  return uv;
+  return textureUvOf(vTexcoord0, vec2(0.0), secondSet, rowU, rowV);
 #endif
 }
 #endif

@@ -461,9 +461,9 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
   if (used.lighting.shadows) {
     const ShadowCasters casters{impl.summary.planarShadowCasters, impl.summary.cubeShadowCasters};
     const int size = used.lighting.shadowMapSize.value_or(0);
-    checkShadowMapsFit(impl.scene.source, casters, size, impl.summary.transmission,
-                       estimateFrameBytes(used.width, used.height) + impl.sceneBytes + transmissionBytes, impl.limits);
-    shadowBytes = shadowMapBytes(casters, size, impl.summary.transmission);
+    shadowBytes = checkShadowMapsFit(impl.scene.source, casters, size, impl.summary.transmission,
+                                     estimateFrameBytes(used.width, used.height) + impl.sceneBytes + transmissionBytes,
+                                     impl.limits);
   }
   checkFrameFits(used.width, used.height, impl.sceneBytes + transmissionBytes + shadowBytes, impl.limits);
   Camera fitted;

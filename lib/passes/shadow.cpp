@@ -140,11 +140,11 @@ std::uint64_t shadowMapBytes(const ShadowCasters& casters, int size, bool transm
   return texelBytes * (std::uint64_t(casters.planar) * planar + std::uint64_t(casters.cube) * cube);
 }
 
-void checkShadowMapsFit(const std::string& source, const ShadowCasters& casters, int size, bool transmittance,
-                        std::uint64_t otherBytes, const ResourceLimits& limits) {
+std::uint64_t checkShadowMapsFit(const std::string& source, const ShadowCasters& casters, int size, bool transmittance,
+                                 std::uint64_t otherBytes, const ResourceLimits& limits) {
   const std::uint64_t bytes = shadowMapBytes(casters, size, transmittance);
   const std::uint64_t limit = maxMemoryBytes(limits);
-  if (bytes + otherBytes <= limit) return;
+  if (bytes + otherBytes <= limit) return bytes;
   auto mib = [](std::uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
   throw LimitError(source + ": the shadow maps of its " + std::to_string(casters.planar + casters.cube) +
                        " shadow-casting lights (" + std::to_string(casters.cube) + " point, " +

@@ -42,9 +42,9 @@ std::uint64_t shadowMapBytes(const ShadowCasters& casters, int size, bool transm
 // Throws LimitError naming `source` (the scene), its casting lights and the
 // map size when their maps and `otherBytes` (the frame, the scene) would not
 // fit in max-memory: a file's thousands of point lights are refused before
-// any map is made.
-void checkShadowMapsFit(const std::string& source, const ShadowCasters& casters, int size, bool transmittance,
-                        std::uint64_t otherBytes, const ResourceLimits& limits);
+// any map is made. Returns the maps' bytes (shadowMapBytes).
+std::uint64_t checkShadowMapsFit(const std::string& source, const ShadowCasters& casters, int size, bool transmittance,
+                                 std::uint64_t otherBytes, const ResourceLimits& limits);
 
 // A point light's cube faces get half the texels per side of the planar
 // maps: six of them cover its whole surroundings, where a directional map
