@@ -49,8 +49,11 @@ vec3 bentReflection(vec3 reflected, vec3 normal, float angle) {
 // reflection that escapes (ssgi_bitmask.frag; the same number where no pass
 // estimates it), and `specularBend` turns the reflection toward the normal
 // by that many radians, to the mean direction of the part that escapes.
-vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, float specularVisibility,
-                  float specularBend, vec3 indirect) {
+// The split-sum specular albedo: the share of light from every direction
+// the specular lobe reflects toward the eye (f0 scale + f90 bias from the
+// BRDF table). What it leaves enters the surface: the diffuse lobe's and
+// the BTDF's weight (lobe_transmission.glsl transmissionThroughput).
+vec3 specularAlbedoOf(Surface surface) {
   const float size = float(kBrdfLutSize);
   float tableRoughness = surface.roughness;
 #ifdef HAS_ANISOTROPY_LOBE
@@ -65,7 +68,14 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
   // split-sum integral whole: F (scale + bias).
   specularAlbedo = mix(specularAlbedo, surface.iridescenceFresnel * (scaleBias.x + scaleBias.y), surface.iridescence);
 #endif
-  const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic);
+  return specularAlbedo;
+}
+
+vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, float specularVisibility,
+                  float specularBend, vec3 indirect) {
+  const vec3 specularAlbedo = specularAlbedoOf(surface);
+  // A transmissive surface's diffuse lobe keeps the share not transmitted.
+  const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic) * (1.0 - surface.transmission);
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
   vec3 reflected = reflect(-surface.view, surface.normal);
 #ifdef HAS_ANISOTROPY_LOBE

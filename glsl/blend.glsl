@@ -15,52 +15,19 @@
 #include "lobe_clearcoat_ambient.glsl"
 #endif
 
-// The lobes' values for the blended fragment, as a G-buffer attachment
-// would hold them: set by gbuffer.frag's main before shadeBlended.
-#ifdef HAS_SPECULAR_LOBE
-vec4 blendedSpecularLobe;
-#endif
-#ifdef HAS_CLEARCOAT_LOBE
-vec4 blendedClearcoatLobe;
-#endif
-
 // Blended by BlendPass: lit with (src alpha, 1 - src alpha) on colour and
 // (1, 1 - src alpha) on alpha; coverage with (1, 1 - src alpha), so each
 // holds 1 - prod(1 - a) of the layers drawn over it.
 layout(location = 0) out vec4 outLit;
 layout(location = 1) out vec4 outCoverage;
 
-// The material's lobes, evaluated as the G-buffer pass does
-// (lobe_*_material.glsl, defined later in gbuffer.frag).
-#ifdef HAS_SHEEN_LOBE
-vec4 sheenMaterial();
-#endif
-#ifdef HAS_ANISOTROPY_LOBE
-vec4 anisotropyMaterial(vec3 shadingNormal);
-#endif
-
 void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, float roughness, float occlusion,
                   vec3 emission) {
   Surface surface = makeSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
                                 viewDirection(position));
-#ifdef HAS_SHEEN_LOBE
-  const vec4 sheen = sheenMaterial();
-  surface.sheenColor = sheen.rgb;
-  surface.sheenRoughness = sheen.a;
-#endif
-#ifdef HAS_ANISOTROPY_LOBE
-  const vec4 anisotropy = anisotropyMaterial(normal);
-  surface.anisotropyTangent = anisotropy.xyz;
-  surface.anisotropyStrength = anisotropy.w;
-#endif
-#ifdef HAS_IRIDESCENCE_LOBE
-  applyIridescence(surface, materialIridescence());  // lobe_iridescence_material.glsl
-#endif
-#ifdef HAS_SPECULAR_LOBE
-  applySpecularLobe(surface, blendedSpecularLobe);
-#endif
+  applyLobes(surface, forwardLobes(normal));
 #ifdef HAS_CLEARCOAT_LOBE
-  const Clearcoat coat = makeClearcoat(blendedClearcoatLobe, surface.view);
+  const Clearcoat coat = makeClearcoat(forwardClearcoatLobe, surface.view);
   vec3 radiance = clearcoatLayer(coat, emission, vec3(0.0));
 #else
   vec3 radiance = emission;

@@ -19,6 +19,9 @@ struct Surface {
   float nDotV;
   vec3 f0;      // reflectance at normal incidence
   float f90;    // at grazing incidence: 1, or less with the specular lobe's weight (lobe_specular.glsl)
+  // KHR_materials_transmission's share (lobe_transmission.glsl): the part of
+  // the diffuse lobe its BTDF replaces; 0 on an opaque surface.
+  float transmission;
 #ifdef HAS_IRIDESCENCE_LOBE
   // KHR_materials_iridescence (lobe_iridescence.glsl applyIridescence): the
   // film's Fresnel at N.V, and its strength (0: no film, Schlick's alone).
@@ -46,6 +49,7 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
   s.nDotV = max(dot(normal, view), 1e-4);
   s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
   s.f90 = 1.0;
+  s.transmission = 0.0;
 #ifdef HAS_IRIDESCENCE_LOBE
   s.iridescenceFresnel = vec3(0.0);
   s.iridescence = 0.0;
@@ -65,6 +69,29 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
 #include "lobe_iridescence.glsl"
 #endif
 
+// The surface's Fresnel at the angle between the view and a half vector
+// (V.H): Schlick's over f0 and f90, or the iridescent film's where it has one
+// (the specification's F). What reflects is F; what enters the surface,
+// toward its diffuse lobe or its BTDF, 1 - F.
+vec3 surfaceFresnel(Surface s, float vDotH) {
+  vec3 fresnel = s.f0 + (s.f90 - s.f0) * pow(1.0 - vDotH, 5.0);
+#ifdef HAS_IRIDESCENCE_LOBE
+  fresnel = mix(fresnel, s.iridescenceFresnel, s.iridescence);
+#endif
+  return fresnel;
+}
+
+// What the layers over the base (KHR_materials_sheen) leave of the light
+// the base sends from a direction at `nDotL` (absolute) toward the eye; 1
+// without a layer. Clearcoat, with its own normal, layers in the passes
+// (lobe_clearcoat.glsl clearcoatLayer).
+float baseLayerScale(Surface s, float nDotL) {
+#ifdef HAS_SHEEN_LOBE
+  if (s.sheenColor != vec3(0.0)) return sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL);
+#endif
+  return 1.0;
+}
+
 vec3 cookTorrance(Surface s, vec3 toLight) {
   const float nDotL = dot(s.normal, toLight);
   if (nDotL <= 0.0) return vec3(0.0);
@@ -75,10 +102,7 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0) + 1.0;
   const float distribution = a2 / (kPi * d * d);
-  vec3 fresnel = s.f0 + (s.f90 - s.f0) * pow(1.0 - vDotH, 5.0);
-#ifdef HAS_IRIDESCENCE_LOBE
-  fresnel = mix(fresnel, s.iridescenceFresnel, s.iridescence);  // the specification's F
-#endif
+  const vec3 fresnel = surfaceFresnel(s, vDotH);
   float specularTerm = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
 #ifdef HAS_ANISOTROPY_LOBE
   if (s.anisotropyStrength > 0.0)
@@ -86,12 +110,11 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
                                        halfVector, s.nDotV, nDotL);
 #endif
   const vec3 specular = specularTerm * fresnel;
-  const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi;
-  vec3 reflected = (diffuse + specular) * nDotL;
+  // A transmissive surface's diffuse lobe keeps the share not transmitted.
+  const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.albedo / kPi;
+  vec3 reflected = (diffuse + specular) * (nDotL * baseLayerScale(s, nDotL));
 #ifdef HAS_SHEEN_LOBE
-  if (s.sheenColor != vec3(0.0))
-    reflected = reflected * sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL) +
-                sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
+  if (s.sheenColor != vec3(0.0)) reflected += sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
 #endif
   return reflected;
 }

@@ -4,6 +4,12 @@
 // samples (<NAME>_TEXCOORD_1) and whether the material transforms its UVs
 // (HAS_TEXTURE_TRANSFORM, KHR_texture_transform) or is unlit (UNLIT).
 #include "shared_layout.h"
+#if defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
+// A forward pass shades the material here (blend.glsl, transmission.glsl):
+// its lobes come from the material (surface.glsl forwardLobes), not from
+// the G-buffer's lobe targets.
+#define FORWARD_SHADING
+#endif
 
 layout(location = 0) in vec3 vWorldPosition;
 layout(location = 1) in vec3 vWorldNormal;
@@ -77,7 +83,7 @@ layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 // and the blend pass's (blend.glsl) both use it, and a file is expanded once,
 // where it is first included.
 #include "lobe_clearcoat.glsl"
-#if defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
+#ifdef FORWARD_SHADING
 // The forward passes' lighting, for blend.glsl and transmission.glsl alike:
 // the loader expands each file once, wherever it is first named, so both
 // must meet these outside their own #ifdef.
@@ -220,7 +226,7 @@ void main() {
   normal = mappedNormal(tangentFrame(normal, normalUv), tangentNormal, normal);
 #endif
 
-#if defined(HAS_EMISSIVE_TARGET) || defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
+#if defined(HAS_EMISSIVE_TARGET) || defined(FORWARD_SHADING)
   vec3 emissive = material.emissiveFactor.rgb;
 #ifdef HAS_EMISSIVE_TEXTURE
   emissive *= texture(emissiveTexture, textureUv(EMISSIVE_SET, material.emissiveTransformU,
@@ -230,13 +236,13 @@ void main() {
 #ifdef HAS_SPECULAR_LOBE
   const vec4 specularLobe = specularLobeOfMaterial();
 #endif
+#if defined(FORWARD_SHADING) && defined(HAS_SPECULAR_LOBE)
+  forwardSpecularLobe = specularLobe;
+#endif
+#if defined(FORWARD_SHADING) && defined(HAS_CLEARCOAT_LOBE)
+  forwardClearcoatLobe = clearcoatLobe;
+#endif
 #if defined(BLEND_FORWARD)
-#ifdef HAS_SPECULAR_LOBE
-  blendedSpecularLobe = specularLobe;
-#endif
-#ifdef HAS_CLEARCOAT_LOBE
-  blendedClearcoatLobe = clearcoatLobe;
-#endif
   shadeBlended(vWorldPosition, normal, baseColor, metallic, roughness, occlusion, emissive);
 #elif defined(TRANSMISSION_FORWARD)
   shadeTransmissive(vWorldPosition, normal, baseColor.rgb, metallic, roughness, occlusion, emissive, transmissionAt(),

@@ -62,7 +62,7 @@ float clearcoatSpecular(Clearcoat c, vec3 view, vec3 toLight) {
 // What the coated surface sends, from what the base sends and the coat's lobe.
 vec3 clearcoatLayer(Clearcoat c, vec3 base, vec3 coat) { return base * (1.0 - c.weight) + coat * c.weight; }
 
-#if defined(HAS_CLEARCOAT_LOBE) && !defined(BLEND_FORWARD)
+#if defined(HAS_CLEARCOAT_LOBE) && !defined(FORWARD_SHADING)
 layout(binding = kUnitClearcoatLobe) uniform sampler2D clearcoatLobeTarget;
 
 Clearcoat clearcoatAt(ivec2 pixel, vec3 view) { return makeClearcoat(texelFetch(clearcoatLobeTarget, pixel, 0), view); }

@@ -1,6 +1,6 @@
 // KHR_materials_specular and KHR_materials_ior in the lighting passes
 // (direct_light.frag and composite.frag through surface.glsl, and
-// blend.glsl; docs/PIPELINE.md, "Material lobes"). The specular lobe's
+// the forward passes; docs/PIPELINE.md, "Material lobes"). The specular lobe's
 // attachment holds the dielectric F0 colour, min(((ior - 1) / (ior + 1))^2 *
 // specularColor, 1), in rgb and the specular weight in a
 // (lobe_specular_material.glsl). The specification's dielectric Fresnel
@@ -14,7 +14,7 @@
 // specification takes the largest channel: a coloured F0 tints the diffuse
 // lobe toward its complement instead of darkening it evenly). Needs brdf.glsl.
 #ifdef HAS_SPECULAR_LOBE
-#ifndef BLEND_FORWARD
+#ifndef FORWARD_SHADING
 layout(binding = kUnitSpecularLobe) uniform sampler2D specularLobeTarget;
 #endif
 

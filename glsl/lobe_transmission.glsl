@@ -50,36 +50,32 @@ float specularBtdf(vec3 normal, vec3 view, float nDotV, vec3 toLight, float roug
   return a2 / (kPi * d * d) * smithGgxVisibility(nDotV, -nDotL, alpha) * -nDotL;
 }
 
-// Schlick's Fresnel of `s` at the angle between the view and `halfVector`.
-vec3 schlickFresnel(Surface s, vec3 halfVector) {
-  return s.f0 + (1.0 - s.f0) * pow(1.0 - max(dot(s.view, halfVector), 0.0), 5.0);
-}
-
-// cookTorrance for a transmissive surface: the specification's
-// mix(diffuse, btdf * baseColor, transmission) under the Fresnel layer.
-// From the front, the diffuse lobe loses the transmitted share (the BTDF
-// sends nothing back toward a light on the eye's side); from behind, only
-// the tinted BTDF, weighted like the diffuse lobe by (1 - F) (1 - metallic).
+// cookTorrance for a transmissive surface (s.transmission > 0): the
+// specification's mix(diffuse, btdf * baseColor, transmission) under the
+// Fresnel layer. From the front it is cookTorrance, whose diffuse lobe keeps
+// the share not transmitted (the BTDF sends nothing back toward a light on
+// the eye's side); from behind, only the tinted BTDF, weighted like the
+// diffuse lobe by (1 - F) (1 - metallic), F the surface's (iridescent where
+// it has a film), under the layers over the base (sheen). The BTDF is
+// isotropic: anisotropy shapes the reflection only.
 // `transmissionRoughnessValue` is transmissionRoughness(roughness, ior).
-vec3 transmissiveCookTorrance(Surface s, vec3 toLight, float transmission, float transmissionRoughnessValue) {
+vec3 transmissiveCookTorrance(Surface s, vec3 toLight, float transmissionRoughnessValue) {
   const float nDotL = dot(s.normal, toLight);
-  if (nDotL > 0.0) {
-    const vec3 fresnel = schlickFresnel(s, normalize(toLight + s.view));
-    const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo / kPi * nDotL;
-    return cookTorrance(s, toLight) - transmission * diffuse;
-  }
+  if (nDotL > 0.0) return cookTorrance(s, toLight);
   const vec3 mirrored = toLight - 2.0 * nDotL * s.normal;
-  const vec3 fresnel = schlickFresnel(s, normalize(mirrored + s.view));
-  return transmission * (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo *
-         specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue);
+  const vec3 fresnel = surfaceFresnel(s, max(dot(s.view, normalize(mirrored + s.view)), 0.0));
+  return s.transmission * (1.0 - fresnel) * (1.0 - s.metallic) * s.albedo *
+         (specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue) * baseLayerScale(s, -nDotL));
 }
 
 // How much of the background arriving through the surface reaches the eye,
 // per channel: the transmitted share of what the Fresnel layer lets in
-// (split-sum specular albedo, as the ambient term's), tinted by the base
-// colour, through the volume (Beer-Lambert over the path's length).
-vec3 transmissionThroughput(Surface s, vec3 specularAlbedo, float transmission, vec3 attenuation) {
-  return transmission * (1.0 - specularAlbedo) * (1.0 - s.metallic) * s.albedo * attenuation;
+// (`specularAlbedo`: ambient.glsl specularAlbedoOf), tinted by the base
+// colour, through the volume (Beer-Lambert over the path's length), under
+// the layers over the base (sheen, along the view: light goes straight on).
+vec3 transmissionThroughput(Surface s, vec3 specularAlbedo, vec3 attenuation) {
+  return s.transmission * (1.0 - specularAlbedo) * (1.0 - s.metallic) * s.albedo * attenuation *
+         baseLayerScale(s, s.nDotV);
 }
 
 // How far the transmitted lobe spreads: the tangent of its half-width

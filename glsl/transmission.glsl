@@ -2,9 +2,10 @@
 // gbuffer.frag built with TRANSMISSION_FORWARD evaluates a
 // KHR_materials_transmission material exactly as for the G-buffer, then
 // calls shadeTransmissive() instead of writing the G-buffer: the surface's
-// whole radiance (the direct pass's lights and shadows, the composite's
-// ambient, both with the diffuse lobe's transmitted share replaced by the
-// BTDF, plus the opaque image behind it through lobe_transmission.glsl),
+// whole radiance with every lobe it has (the direct pass's lights and
+// shadows, the composite's ambient, both with the diffuse lobe's
+// transmitted share replaced by the BTDF, plus the opaque image behind it
+// through lobe_transmission.glsl, under the coat where it has one),
 // written over lit where the surface is the nearest (depth-equal). The
 // surface is in no screen-space buffer when SSGI runs, so it gets no SSGI:
 // sky visibility 1, no indirect light (as a blended surface).
@@ -15,6 +16,9 @@
 #include "surface.glsl"
 #include "ambient.glsl"
 #include "lobe_transmission.glsl"
+#ifdef HAS_CLEARCOAT_LOBE
+#include "lobe_clearcoat_ambient.glsl"
+#endif
 
 #ifdef HAS_TRANSMISSION_TEXTURE
 layout(binding = kUnitTransmissionTexture) uniform sampler2D transmissionTexture;
@@ -65,14 +69,6 @@ layout(location = 6) flat in vec3 vModelScale;
 layout(location = 0) out vec4 outLit;
 layout(location = 1) out vec4 outTransmission;
 
-// The split-sum specular albedo, as ambient.glsl's ambientLight has it.
-vec3 specularAlbedoOf(Surface s) {
-  const float size = float(kBrdfLutSize);
-  const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(s.nDotV, 0.0, 1.0, size),
-                                               tableCoordinate(s.roughness, 0.0, 1.0, size))).rg;
-  return s.f0 * scaleBias.x + scaleBias.y;
-}
-
 // The opaque image where the path through the volume leaves it, seen from
 // the eye; a thin wall's own pixel. Clamped at the image's edges: what
 // lies off-screen is not in the copy. Blurred by `blur` (the transmission
@@ -102,13 +98,21 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
                        vec3 emission, float transmission, float thickness) {
   Surface surface = makeSurface(baseColor, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
                                 viewDirection(position));
-  // KHR_materials_ior sets the dielectric's reflectance: ((ior - 1) / (ior + 1))^2, 0.04 at glTF's 1.5.
+  // KHR_materials_ior sets the dielectric's reflectance: ((ior - 1) / (ior + 1))^2, 0.04 at glTF's 1.5
+  // (the specular lobe, where the scene has one, applies the same with its colour and weight).
   const float ior = material.transmissionFactors.z;
   const float iorF0 = (ior - 1.0) / (ior + 1.0);
   surface.f0 = mix(vec3(iorF0 * iorF0), surface.albedo, surface.metallic);
-  const float share = clamp(transmission, 0.0, 1.0);
-  const float blur = transmissionRoughness(clamp(roughness, 0.0, 1.0), ior);
+  surface.transmission = clamp(transmission, 0.0, 1.0);
+  // Every lobe the material has, as on an opaque surface; the coat over all the surface sends.
+  applyLobes(surface, forwardLobes(normal));
+#ifdef HAS_CLEARCOAT_LOBE
+  const Clearcoat coat = makeClearcoat(forwardClearcoatLobe, surface.view);
+  vec3 radiance = clearcoatLayer(coat, emission, vec3(0.0));
+#else
   vec3 radiance = emission;
+#endif
+  const float blur = transmissionRoughness(clamp(roughness, 0.0, 1.0), ior);
   const int lightCount = lighting.lightCount;
   for (int i = 0; i < lightCount; ++i) {
     const GpuLight light = lights.lightList[i];
@@ -119,15 +123,21 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
     // up on that side.
     const vec3 facing = dot(surface.normal, toLight) < 0.0 ? -surface.normal : surface.normal;
     const vec3 visibility = shadowVisibility(light, position, facing, toLight);
-    radiance += transmissiveCookTorrance(surface, toLight, share, blur) * light.radiance * (attenuation * visibility);
+    vec3 brdf = transmissiveCookTorrance(surface, toLight, blur);
+#ifdef HAS_CLEARCOAT_LOBE
+    brdf = clearcoatLayer(coat, brdf, vec3(clearcoatSpecular(coat, surface.view, toLight)));
+#endif
+    radiance += brdf * light.radiance * (attenuation * visibility);
   }
-  const vec3 specularAlbedo = specularAlbedoOf(surface);
 #ifdef HAS_SKY
-  // ambient.glsl's term, its diffuse part reduced to the share not transmitted.
+  // The composite's ambient term; its diffuse part keeps the share not transmitted.
   const float materialOcclusion = clamp(occlusion, 0.0, 1.0);
-  const vec3 diffuseIbl = (1.0 - specularAlbedo) * (1.0 - surface.metallic) * surface.albedo *
-                          skyIrradianceOverPi(surface.normal) * (lighting.skyIntensity * materialOcclusion);
-  radiance += ambientLight(surface, materialOcclusion, 1.0, vec3(0.0)) - share * diffuseIbl;
+#ifdef HAS_CLEARCOAT_LOBE
+  radiance += clearcoatLayer(coat, ambientLight(surface, materialOcclusion, 1.0, vec3(0.0)),
+                             clearcoatAmbient(coat, surface.view, materialOcclusion, 1.0));
+#else
+  radiance += ambientLight(surface, materialOcclusion, 1.0, vec3(0.0));
+#endif
 #endif
   const float pathThickness = max(thickness, 0.0);
   // The length of the unit-thickness ray times the thickness, not length(path):
@@ -137,7 +147,10 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
   const float pathLength = length(unitPath) * pathThickness;
   const vec3 attenuation =
       volumeAttenuation(pathLength, material.attenuationColor.rgb, material.transmissionFactors.w);
-  const vec3 throughput = transmissionThroughput(surface, specularAlbedo, share, attenuation);
+  vec3 throughput = transmissionThroughput(surface, specularAlbedoOf(surface), attenuation);
+#ifdef HAS_CLEARCOAT_LOBE
+  throughput = clearcoatLayer(coat, throughput, vec3(0.0));  // what the coat does not reflect goes on through
+#endif
   radiance += throughput * refractedBackground(position + path, pathThickness == 0.0, blur);
   outLit = vec4(radiance, 1.0);
   outTransmission = vec4(throughput, pathLength);

@@ -68,35 +68,6 @@ Scene glassScene(bool withGlass) {
   return scene;
 }
 
-// brdf_lut.frag's split-sum (scale, bias) at exactly (nDotV, roughness):
-// the same 512 Hammersley samples, without the table's interpolation.
-glm::vec2 splitSum(float nDotV, float roughness) {
-  const float alpha = roughness * roughness;
-  nDotV = std::max(nDotV, 1e-4f);
-  const glm::vec3 view(std::sqrt(1.0f - nDotV * nDotV), 0.0f, nDotV);
-  constexpr unsigned kSamples = 512;
-  glm::vec2 sum(0.0f);
-  for (unsigned i = 0; i < kSamples; ++i) {
-    std::uint32_t bits = i;
-    bits = (bits << 16u) | (bits >> 16u);
-    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    const glm::vec3 halfVector =
-        reference::importanceSampleGgx(float(i) / float(kSamples), float(bits) * 2.3283064365386963e-10f, alpha);
-    const glm::vec3 light = 2.0f * glm::dot(view, halfVector) * halfVector - view;
-    const float nDotL = light.z, nDotH = std::max(halfVector.z, 0.0f);
-    const float vDotH = std::max(glm::dot(view, halfVector), 0.0f);
-    if (nDotL <= 0.0f) continue;
-    const float weight =
-        4.0f * reference::smithGgxVisibility(nDotV, nDotL, alpha) * vDotH * nDotL / std::max(nDotH, 1e-7f);
-    const float fresnel = std::pow(1.0f - vDotH, 5.0f);
-    sum += glm::vec2((1.0f - fresnel) * weight, fresnel * weight);
-  }
-  return sum / float(kSamples);
-}
-
 }  // namespace
 
 TEST_CASE("transmission on the GPU matches the CPU ports per pixel") {
@@ -128,9 +99,10 @@ TEST_CASE("transmission on the GPU matches the CPU ports per pixel") {
           reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0),
                                  frame.material.at(x, y, 1), normal, glm::normalize(frame.view.position - position));
       surface.f0 = reference::iorF0(material.ior, surface.albedo, surface.metallic);
+      surface.transmission = transmission;
       const float blur = reference::transmissionRoughness(frame.material.at(x, y, 1), material.ior);
       const auto transmissive = [&](const glm::vec3& toLight) {
-        return reference::transmissiveCookTorrance(surface, toLight, transmission, blur);
+        return reference::transmissiveCookTorrance(surface, toLight, blur);
       };
       glm::vec3 expected = test::punctualLight(scene, position, transmissive);
       // The light that reaches the pixel through the glass, from lights behind it.
@@ -138,11 +110,11 @@ TEST_CASE("transmission on the GPU matches the CPU ports per pixel") {
         return glm::dot(normal, toLight) < 0.0f ? transmissive(toLight) : glm::vec3(0.0f);
       });
       if (fromBehind.r > 1e-4f) ++litFromBehind;
-      const glm::vec2 scaleBias = splitSum(surface.nDotV, surface.roughness);
+      const glm::vec2 scaleBias = test::splitSum(surface.nDotV, surface.roughness);
       const glm::vec3 specularAlbedo = surface.f0 * scaleBias.x + scaleBias.y;
       const float path = isVolume ? kVolumeThickness * kVolumeScale : 0.0f;
       const glm::vec3 throughput = reference::transmissionThroughput(
-          surface, specularAlbedo, transmission,
+          surface, specularAlbedo,
           reference::volumeAttenuation(path, material.volume ? material.volume->attenuationColor : glm::vec3(1.0f),
                                        material.volume ? material.volume->attenuationDistance : 0.0f));
       CHECK(pathLength == doctest::Approx(path).epsilon(1e-3));

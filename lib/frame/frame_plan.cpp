@@ -657,8 +657,10 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
   // Transmissive surfaces refract the composite's lit image and are lit as
   // blended ones are; they wait for it only when it is drawn.
   if (scene.transmission && skips.runs(Work::Transmission)) {
-    plan.transmission = TransmissionVariant{
-        .shadows = shadowLookups, .sky = skips.runs(Work::Sky), .environment = plan.environmentTables};
+    plan.transmission = TransmissionVariant{.shadows = shadowLookups,
+                                            .sky = skips.runs(Work::Sky),
+                                            .environment = plan.environmentTables,
+                                            .lobes = scene.lobes};
     plan.gbuffer.deferTransmissive = true;
   }
   // Blended surfaces are drawn over the composite's lit target, with the

@@ -40,7 +40,7 @@ constexpr std::uint32_t lobeBit(Lobe lobe) { return std::uint32_t{1} << unsigned
 // The lobes a material uses (a bit per Lobe).
 std::uint32_t materialLobes(const Material& material);
 // HAS_SPECULAR_LOBE, ...: one per bit of `lobes`, for the G-buffer, direct,
-// composite and blend programs.
+// composite, blend and transmission programs.
 std::vector<std::string> lobeDefines(std::uint32_t lobes);
 // "specular (KHR_materials_specular, _ior), clearcoat, ...": the lobes of `lobes`, for --verbose.
 std::string lobeNames(std::uint32_t lobes);
@@ -218,6 +218,7 @@ struct BlendVariant {
 struct TransmissionVariant {
   ShadowLookups shadows;
   bool sky = false, environment = false;  // as BlendVariant's
+  std::uint32_t lobes = 0;                // as BlendVariant's: every lobe lights a transmissive material too
   auto operator<=>(const TransmissionVariant&) const = default;
 };
 

@@ -239,37 +239,11 @@ void findUndrawnTransmission(const tinygltf::Model& model, int /*playedAnimation
   }
 }
 
-// The lobes the transmission pass does not light (docs/PIPELINE.md §2.9:
-// of them it applies only KHR_materials_ior's F0): on a material it draws,
-// each is written to the G-buffer but has no effect on lit (IridescenceLamp
-// and StainedGlassLamp's glass, issue 34), so it is named, not dropped in
-// silence. A material the pass does not draw keeps its lobes.
-void findUnlitLobesOnTransmission(const tinygltf::Model& model, int /*playedAnimation*/, Tally& tally) {
-  static constexpr const char* kUnlitLobes[] = {"KHR_materials_specular", "KHR_materials_clearcoat",
-                                                "KHR_materials_sheen", "KHR_materials_iridescence",
-                                                "KHR_materials_anisotropy"};
-  for (std::size_t index = 0; index < model.materials.size(); ++index) {
-    const tinygltf::Material& material = model.materials[index];
-    const auto transmission = material.extensions.find("KHR_materials_transmission");
-    if (transmission == material.extensions.end()) continue;
-    if (material.alphaMode == "BLEND" || material.extensions.count("KHR_materials_unlit") != 0) continue;
-    // Material::transmissive(): a factor above 0 (the default is 0).
-    const tinygltf::Value& factor = transmission->second.Get("transmissionFactor");
-    if (!factor.IsNumber() || !(factor.GetNumberAsDouble() > 0.0)) continue;
-    for (const char* lobe : kUnlitLobes)
-      if (material.extensions.count(lobe) != 0)
-        tally.add(lobe, "material", named("material", index, material.name),
-                  "is not lit on a transmissive material (the transmission pass applies KHR_materials_ior's F0 "
-                  "alone)");
-  }
-}
-
 // The table: remove a row when its feature becomes rendered.
 // `playedAnimation` is the animation the file is posed by (-1: none).
 constexpr void (*kDetectors[])(const tinygltf::Model&, int playedAnimation, Tally&){
-    findSecondaryTexcoords,       findVertexColors,     findAnimations,
-    findElementExtensions,        findListedExtensions, findUndrawnTransmission,
-    findUnlitLobesOnTransmission,
+    findSecondaryTexcoords, findVertexColors,     findAnimations,
+    findElementExtensions,  findListedExtensions, findUndrawnTransmission,
 };
 
 // " (texture 0, texture 2)": the textures that carry `extension`.

@@ -14,7 +14,6 @@ std::vector<std::string> blendDefines(FeatureBits features, const BlendVariant& 
   std::vector<std::string> defines = featureDefines(features);
   defines.emplace_back("BLEND_FORWARD");
   appendForwardLightingDefines(variant, defines);
-  for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
   return defines;
 }
 

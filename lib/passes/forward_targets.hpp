@@ -4,8 +4,10 @@
 // carry the same shadow, sky and environment flags), and their framebuffer.
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "frame/frame_plan.hpp"
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
 #include "passes/shadow.hpp"
@@ -13,12 +15,15 @@
 
 namespace headlight {
 
-// The shadow lookups' defines (appendShadowDefines), HAS_SKY, HAS_ENVIRONMENT, as the variant says.
+// The shadow lookups' defines (appendShadowDefines), HAS_SKY, HAS_ENVIRONMENT
+// and the lobes' (lobeDefines: the material's own values, surface.glsl
+// forwardLobes), as the variant says.
 template <class Variant>
 void appendForwardLightingDefines(const Variant& variant, std::vector<std::string>& defines) {
   appendShadowDefines(variant.shadows, defines);
   if (variant.sky) defines.emplace_back("HAS_SKY");
   if (variant.environment) defines.emplace_back("HAS_ENVIRONMENT");
+  for (std::string& define : lobeDefines(variant.lobes)) defines.push_back(std::move(define));
 }
 
 // The shadow maps and ambient tables those defines read.

@@ -59,31 +59,24 @@ inline float specularBtdf(const glm::vec3& normal, const glm::vec3& view, float 
   return a2 / (kPi * d * d) * smithGgxVisibility(nDotV, -nDotL, alpha) * -nDotL;
 }
 
-// lobe_transmission.glsl schlickFresnel.
-inline glm::vec3 schlickFresnel(const Surface& s, const glm::vec3& halfVector) {
-  return s.f0 + (1.0f - s.f0) * std::pow(1.0f - std::max(glm::dot(s.view, halfVector), 0.0f), 5.0f);
-}
-
-// lobe_transmission.glsl transmissiveCookTorrance: mix(diffuse, btdf x
-// baseColor, transmission) under the Fresnel layer.
-inline glm::vec3 transmissiveCookTorrance(const Surface& s, const glm::vec3& toLight, float transmission,
+// lobe_transmission.glsl transmissiveCookTorrance: cookTorrance from the
+// front (its diffuse lobe keeps 1 - s.transmission), the tinted BTDF under
+// (1 - F) and the sheen layer from behind.
+inline glm::vec3 transmissiveCookTorrance(const Surface& s, const glm::vec3& toLight,
                                           float transmissionRoughnessValue) {
   const float nDotL = glm::dot(s.normal, toLight);
-  if (nDotL > 0.0f) {
-    const glm::vec3 fresnel = schlickFresnel(s, glm::normalize(toLight + s.view));
-    const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi * nDotL;
-    return cookTorrance(s, toLight) - transmission * diffuse;
-  }
+  if (nDotL > 0.0f) return cookTorrance(s, toLight);
   const glm::vec3 mirrored = toLight - 2.0f * nDotL * s.normal;
-  const glm::vec3 fresnel = schlickFresnel(s, glm::normalize(mirrored + s.view));
-  return transmission * (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo *
-         specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue);
+  const glm::vec3 fresnel = surfaceFresnel(s, std::max(glm::dot(s.view, glm::normalize(mirrored + s.view)), 0.0f));
+  return s.transmission * (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo *
+         (specularBtdf(s.normal, s.view, s.nDotV, toLight, transmissionRoughnessValue) * baseLayerScale(s, -nDotL));
 }
 
 // lobe_transmission.glsl transmissionThroughput.
-inline glm::vec3 transmissionThroughput(const Surface& s, const glm::vec3& specularAlbedo, float transmission,
+inline glm::vec3 transmissionThroughput(const Surface& s, const glm::vec3& specularAlbedo,
                                         const glm::vec3& attenuation) {
-  return transmission * (1.0f - specularAlbedo) * (1.0f - s.metallic) * s.albedo * attenuation;
+  return s.transmission * (1.0f - specularAlbedo) * (1.0f - s.metallic) * s.albedo * attenuation *
+         baseLayerScale(s, s.nDotV);
 }
 
 // transmission.glsl's dielectric reflectance from KHR_materials_ior.

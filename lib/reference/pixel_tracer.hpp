@@ -33,9 +33,7 @@ class Tracer {
 
  private:
   // The per-pixel path and the rays it casts (tracer.cpp).
-  Clearcoat lobesAt(int x, int y, Surface& surface) const;
   glm::vec3 coatAmbient(const Clearcoat& coat, const glm::vec3& view, const glm::vec3& origin, Pcg32& random);
-  void readLobes(int x, int y, Surface& surface) const;
   RTCRayHit traceFromSurface(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& toEye);
   bool unoccluded(const glm::vec3& origin, const glm::vec3& direction, float far);
   // A cosine ray's first hit `first`, walked on through transmissive
@@ -45,7 +43,7 @@ class Tracer {
   bool shownOnScreen(const glm::vec3& point);
   TransmissiveSurface transmissiveSurfaceHere(int x, int y);
   glm::vec3 transmittedLight(const Surface& surface, const glm::vec3& position, const TransmissiveSurface& t,
-                             const glm::vec3& specularAlbedo, Pcg32& random);
+                             const glm::vec3& specularAlbedo, const Clearcoat& coat, Pcg32& random);
   glm::vec3 backgroundRay(int x, int y) const;
   std::pair<glm::vec3, glm::vec3> primaryRay(int x, int y) const;
 

@@ -113,6 +113,8 @@ struct Surface {
   float nDotV = 0;
   glm::vec3 f0{0.0f};
   float f90 = 1.0f;  // brdf.glsl: 1, or less with the specular lobe's weight (lobe_specular.hpp)
+  // KHR_materials_transmission's share: the part of the diffuse lobe its BTDF replaces (lobe_transmission.hpp).
+  float transmission = 0.0f;
   // KHR_materials_iridescence (applyIridescence): the film's Fresnel at N.V
   // and its strength; 0 leaves Schlick's alone, as without the lobe.
   glm::vec3 iridescenceFresnel{0.0f};
@@ -148,6 +150,18 @@ inline void applyIridescence(Surface& s, const IridescenceInputs& film) {
       s.iridescence > 0.0f ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : glm::vec3(0.0f);
 }
 
+// brdf.glsl surfaceFresnel: Schlick's over f0 and f90, or the film's.
+inline glm::vec3 surfaceFresnel(const Surface& s, float vDotH) {
+  const glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
+  return glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
+}
+
+// brdf.glsl baseLayerScale: what the sheen layer leaves of the base's light.
+inline float baseLayerScale(const Surface& s, float nDotL) {
+  if (s.sheenColor == glm::vec3(0.0f)) return 1.0f;
+  return sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL);
+}
+
 // brdf.glsl cookTorrance: (diffuse + specular) * N.L toward a unit `toLight`,
 // with the surface's anisotropy and sheen lobes.
 inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
@@ -160,18 +174,16 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float a2 = alpha * alpha;
   const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
   const float distribution = a2 / (kPi * d * d);
-  glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
-  fresnel = glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
+  const glm::vec3 fresnel = surfaceFresnel(s, vDotH);
   const float specularTerm = s.anisotropyStrength > 0.0f
                                  ? anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal,
                                                        s.view, toLight, halfVector, s.nDotV, nDotL)
                                  : distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
   const glm::vec3 specular = specularTerm * fresnel;
-  const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * s.albedo / kPi;
-  const glm::vec3 base = (diffuse + specular) * nDotL;
+  const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * (1.0f - s.transmission) * s.albedo / kPi;
+  const glm::vec3 base = (diffuse + specular) * (nDotL * baseLayerScale(s, nDotL));
   if (s.sheenColor == glm::vec3(0.0f)) return base;
-  return base * sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL) +
-         sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
+  return base + sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
 }
 
 // brdf.glsl lightAttenuation: inverse square, glTF's range window and the

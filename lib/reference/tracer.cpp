@@ -16,9 +16,9 @@
 #include <utility>
 
 #include "headlight/error.hpp"
-#include "reference/lobe_transmission.hpp"
+#include "reference/frame_lobes.hpp"
 #include "reference/lobe_clearcoat.hpp"
-#include "reference/lobe_specular.hpp"
+#include "reference/lobe_transmission.hpp"
 #include "reference/pixel_tracer.hpp"
 #include "reference/shading.hpp"
 #include "reference/transmission_trace.hpp"
@@ -62,8 +62,12 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
   Pcg32 random = pixelStream(in_.settings.seed, pixel);
   Surface surface = makeSurface(albedo, metallic, roughness, normal, view);
   TransmissiveSurface transmissive = transmissiveSurfaceHere(x, y);
-  // The transmission pass applies ior's F0 and no lobe (transmission.glsl).
-  if (transmissive.share <= 0.0f) readLobes(x, y, surface);
+  if (transmissive.share > 0.0f) {  // transmission.glsl: ior's F0, then every lobe as on an opaque surface
+    surface.f0 = iorF0(transmissive.ior, albedo, metallic);
+    surface.transmission = transmissive.share;
+    transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
+  }
+  const Clearcoat coat = frameLobesAt(frame, x, y, surface);
 
   // Cosine-weighted rays: AO, indirect, the diffuse sky.
   const int n = in_.settings.samplesPerPixel;
@@ -133,43 +137,23 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
     lit[0] = albedo.r, lit[1] = albedo.g, lit[2] = albedo.b, lit[3] = 1.0f;
     return;
   }
-  Clearcoat coat;  // none: a weight of 0 changes nothing
-  if (transmissive.share > 0.0f) {
-    surface.f0 = iorF0(transmissive.ior, albedo, metallic);
-    transmissive.blur = transmissionRoughness(roughness, transmissive.ior);
-  } else {
-    coat = lobesAt(x, y, surface);
-    applyIridescence(surface, iridescenceInputsAt(frame, x, y));  // no film without iridescence.exr
-  }
   const glm::vec3 skyMean =
       in_.environment ? environmentIrradianceOverPi(surface, origin, n, random) : glm::vec3(skySum / count);
-  // A transmissive surface's diffuse lobe keeps only the share not transmitted.
-  const float diffuseShare = 1.0f - transmissive.share;
   glm::vec3 specularAlbedo(0.0f);
-  glm::vec3 under = ambientLight(surface, origin, basis, skyMean * diffuseShare, random, &specularAlbedo, &ao[2]) +
-                    glm::vec3(indirectMean) * diffuseShare;
+  // A transmissive surface's diffuse lobe keeps only the share not transmitted (ambientLight's too).
+  glm::vec3 under = ambientLight(surface, origin, basis, skyMean, random, &specularAlbedo, &ao[2]) +
+                    glm::vec3(indirectMean) * (1.0f - surface.transmission);
   if (!frame.emissive.empty())
     under += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
   // The coat over all the base sends; directLight layers it per light.
   glm::vec3 radiance = directLight(surface, position, origin, coat, transmissive) +
                        clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
   if (transmissive.share > 0.0f)
-    radiance += transmittedLight(surface, position, transmissive, specularAlbedo, random);
+    radiance += transmittedLight(surface, position, transmissive, specularAlbedo, coat, random);
   lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
   // After the opaque surface's samples, so its numbers do not depend on
   // whether the scene blends.
   if (in_.blendedScene) compositeBlended(x, y, &position, lit, random);
-}
-
-// The lobe targets at a pixel (lobe_specular.hpp, lobe_clearcoat.hpp):
-// the specular lobe changes `surface`; the coat is returned (factor 0,
-// changing nothing, where the frame has no clearcoat target).
-Clearcoat Tracer::lobesAt(int x, int y, Surface& surface) const {
-  auto at = [&](const ImageF& image) {
-    return glm::vec4(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), image.at(x, y, 3));
-  };
-  if (!in_.frame.specular.empty()) applySpecularLobe(surface, at(in_.frame.specular));
-  return in_.frame.clearcoat.empty() ? Clearcoat{} : makeClearcoat(at(in_.frame.clearcoat), surface.view);
 }
 
 // The coat's reflection of the sky (or map) with true visibility, times
@@ -181,22 +165,6 @@ glm::vec3 Tracer::coatAmbient(const Clearcoat& coat, const glm::vec3& view, cons
                                                                                  : glm::vec3(0.0f);
   });
   return sum * in_.skyIntensity;
-}
-
-// The G-buffer's lobe targets at the pixel (KHR_materials_sheen and
-// _anisotropy), where the frame has them; the surface keeps its no-effect
-// values elsewhere.
-void Tracer::readLobes(int x, int y, Surface& surface) const {
-  const Frame& frame = in_.frame;
-  if (!frame.sheen.empty()) {
-    surface.sheenColor = glm::vec3(frame.sheen.at(x, y, 0), frame.sheen.at(x, y, 1), frame.sheen.at(x, y, 2));
-    surface.sheenRoughness = frame.sheen.at(x, y, 3);
-  }
-  if (!frame.anisotropy.empty()) {
-    surface.anisotropyTangent =
-        glm::vec3(frame.anisotropy.at(x, y, 0), frame.anisotropy.at(x, y, 1), frame.anisotropy.at(x, y, 2));
-    surface.anisotropyStrength = frame.anisotropy.at(x, y, 3);
-  }
 }
 
 // The first surface along `direction` from a shading point's offset origin
@@ -280,9 +248,9 @@ constexpr float kSmoothTransmissionRoughness = 0.03f;
 
 // What reaches the eye through a transmissive surface (transmission_trace.hpp's model): the first opaque
 // surface along the view direction from where the volume's path leaves, shaded in full (as a blended
-// layer is), or the background, times the renderer's throughput.
+// layer is), or the background, times the renderer's throughput under the coat.
 glm::vec3 Tracer::transmittedLight(const Surface& surface, const glm::vec3& position, const TransmissiveSurface& t,
-                                   const glm::vec3& specularAlbedo, Pcg32& random) {
+                                   const glm::vec3& specularAlbedo, const Clearcoat& coat, Pcg32& random) {
   const glm::vec3 path = volumeTransmissionRay(surface.normal, surface.view, t.thickness, t.ior, t.modelScale);
   const glm::vec3 attenuation = volumeAttenuation(glm::length(path), t.attenuationColor, t.attenuationDistance);
   // A rough surface spreads what it lets through: each of the specular
@@ -326,7 +294,9 @@ glm::vec3 Tracer::transmittedLight(const Surface& surface, const glm::vec3& posi
     ++crossed;
   }
   if (crossed == 0) return glm::vec3(0.0f);
-  return transmissionThroughput(surface, specularAlbedo, t.share, attenuation) * (sum / float(crossed));
+  // What the coat does not reflect goes on through (transmission.glsl).
+  return clearcoatLayer(coat, transmissionThroughput(surface, specularAlbedo, attenuation), glm::vec3(0.0f)) *
+         (sum / float(crossed));
 }
 
 // composite.frag's background ray, for this top-first pixel.

@@ -132,6 +132,12 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   if (textured && material.emissiveTexture.present() && material.emissive())
     emission *= glm::vec3(sampleTexture(in_.scene, material.emissiveTexture, uv, true));
   alpha = std::clamp(baseColor.a, 0.0f, 1.0f);  // as blend.glsl
+  // An opaque KHR_materials_unlit surface (seen through glass) shows its base
+  // colour, as the composite writes it; the blend pass lights blended ones.
+  if (material.unlit && !material.blended()) {
+    radiance = glm::vec3(baseColor);
+    return true;
+  }
   metallic = std::clamp(metallic, 0.0f, 1.0f);
   roughness = std::clamp(roughness, 0.0f, 1.0f);
 
@@ -212,8 +218,8 @@ glm::vec3 Tracer::lightVisibility(const Light& light, const glm::vec3& origin, c
 }
 
 // direct_light.frag with shadow rays from `origin` for the maps, the coat
-// layered per light; a transmissive surface's as transmission.glsl's (no
-// coat), a light behind it seen through it with its shadow ray from the back.
+// layered per light; a transmissive surface's as transmission.glsl's, a
+// light behind it seen through it with its shadow ray from the back.
 glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
                               const Clearcoat& coat, const TransmissiveSurface& transmissive) {
   glm::vec3 sum(0.0f);
@@ -222,11 +228,9 @@ glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position,
     float distance;
     const float attenuation = lightAttenuation(light, position, toLight, distance);
     if (attenuation <= 0.0f) continue;
-    const glm::vec3 brdf =
-        transmissive.share > 0.0f
-            ? transmissiveCookTorrance(surface, toLight, transmissive.share, transmissive.blur)
-            : clearcoatLayer(coat, cookTorrance(surface, toLight),
-                             glm::vec3(clearcoatSpecular(coat, surface.view, toLight)));
+    const glm::vec3 base = transmissive.share > 0.0f ? transmissiveCookTorrance(surface, toLight, transmissive.blur)
+                                                     : cookTorrance(surface, toLight);
+    const glm::vec3 brdf = clearcoatLayer(coat, base, glm::vec3(clearcoatSpecular(coat, surface.view, toLight)));
     if (brdf == glm::vec3(0.0f)) continue;
     const bool behind = glm::dot(surface.normal, toLight) < 0.0f;
     const glm::vec3 from = behind ? position - surface.normal * in_.epsilon : origin;
@@ -298,7 +302,7 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
       glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
                surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
   if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
-  const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic);
+  const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic) * (1.0f - surface.transmission);
   glm::vec3 ambient = diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m));
   if (surface.sheenColor != glm::vec3(0.0f)) ambient += sheenAmbient(surface, origin, basis, random);
   return ambient * in_.skyIntensity;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <glm/glm.hpp>
 
 #include "headlight/frame.hpp"
@@ -36,6 +37,35 @@ glm::vec3 punctualLight(const Scene& scene, const glm::vec3& position, Brdf brdf
     sum += brdf(toLight) * light.color * light.intensity * attenuation;
   }
   return sum;
+}
+
+// brdf_lut.frag's split-sum (scale, bias) at exactly (nDotV, roughness):
+// the same 512 Hammersley samples, without the table's interpolation.
+inline glm::vec2 splitSum(float nDotV, float roughness) {
+  const float alpha = roughness * roughness;
+  nDotV = std::max(nDotV, 1e-4f);
+  const glm::vec3 view(std::sqrt(1.0f - nDotV * nDotV), 0.0f, nDotV);
+  constexpr unsigned kSamples = 512;
+  glm::vec2 sum(0.0f);
+  for (unsigned i = 0; i < kSamples; ++i) {
+    std::uint32_t bits = i;
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    const glm::vec3 halfVector =
+        reference::importanceSampleGgx(float(i) / float(kSamples), float(bits) * 2.3283064365386963e-10f, alpha);
+    const glm::vec3 light = 2.0f * glm::dot(view, halfVector) * halfVector - view;
+    const float nDotL = light.z, nDotH = std::max(halfVector.z, 0.0f);
+    const float vDotH = std::max(glm::dot(view, halfVector), 0.0f);
+    if (nDotL <= 0.0f) continue;
+    const float weight =
+        4.0f * reference::smithGgxVisibility(nDotV, nDotL, alpha) * vDotH * nDotL / std::max(nDotH, 1e-7f);
+    const float fresnel = std::pow(1.0f - vDotH, 5.0f);
+    sum += glm::vec2((1.0f - fresnel) * weight, fresnel * weight);
+  }
+  return sum / float(kSamples);
 }
 
 // A GPU value passes when it is within relative * |cpu| + absolute of the
