@@ -4,6 +4,7 @@
 // tests themselves into a fresh temporary folder.
 #include <doctest/doctest.h>
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -101,6 +102,49 @@ TEST_CASE("glTF: nodes share a mesh, transforms accumulate, camera and light are
   CHECK(near(scene.lights[0].direction, {0, 0, -1}));
   CHECK(near(scene.lights[0].color, {1, 0.5f, 0.25f}));
   CHECK(scene.lights[0].outerConeAngle == doctest::Approx(0.5f));
+}
+
+TEST_CASE(
+    "glTF: a WebP data URI decodes though tinygltf knows not its type; an image URI naming a folder or a FIFO is "
+    "named (issue 32)") {
+  // A 1x1 red lossless WebP: its base64 holds a '+', which tinygltf's URL
+  // decoding of a URI it takes for a file name turns into a space; it was
+  // refused as "File not found".
+  const std::string webp = "UklGRhwAAABXRUJQVlA4TA8AAAAvAAAAAAcQ/Y/+ByKi/wEA";
+  REQUIRE(webp.find('+') != std::string::npos);
+  TempFolder folder;
+  auto withImage = [](const std::string& uri) {
+    GltfParts parts;
+    parts.primitive = R"({"attributes":{"POSITION":0},"indices":1,"material":0})";
+    parts.extra = R"(,"extensionsUsed":["EXT_texture_webp"],"extensionsRequired":["EXT_texture_webp"],
+                     "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
+                     "textures":[{"extensions":{"EXT_texture_webp":{"source":0}}}],
+                     "images":[{"uri":")" +
+                  uri + R"("}])";
+    return parts;
+  };
+  const Scene scene = loadGltf(writeTriangleGltf(folder, withImage("data:image/webp;base64," + webp)));
+  REQUIRE(scene.images.size() == 1);
+  CHECK(scene.images[0].width == 1);
+  CHECK(scene.images[0].rgba == std::vector<std::uint8_t>{255, 0, 0, 255});
+  // A data URI that is not base64, or whose payload is not, is named as such.
+  CHECK(loadError(writeTriangleGltf(folder, withImage("data:image/webp," + webp))).find("is not base64") !=
+        std::string::npos);
+  CHECK(loadError(writeTriangleGltf(folder, withImage("data:image/webp;base64,Ukl*GR")))
+            .find("payload that is not base64") != std::string::npos);
+  // Bytes that do not decode say what their signature claims: a truncated
+  // WebP (20 of its 36 bytes) was "Not a PNG file".
+  CHECK(loadError(writeTriangleGltf(folder, withImage("data:image/webp;base64,UklGRhwAAABXRUJQVlA4TA8AAAA=")))
+            .find("as the WEBP its signature says it is (truncated: 20 of the 36 bytes") != std::string::npos);
+  CHECK(loadError(writeTriangleGltf(folder, withImage("data:image/webp;base64,aGVsbG8sIG5vdCBhbiBpbWFnZQ==")))
+            .find("its 19 bytes start with no PNG, JPEG, GIF, BMP or WebP signature") != std::string::npos);
+  // A folder or a FIFO where a file should be: named, not "File not found" (and the FIFO never opened).
+  std::filesystem::create_directory(folder.path() / "folder.webp");
+  const std::string folderError = loadError(writeTriangleGltf(folder, withImage("folder.webp")));
+  CHECK(folderError.find("URI 'folder.webp' is a folder") != std::string::npos);
+  REQUIRE(::mkfifo((folder.path() / "fifo.webp").c_str(), 0600) == 0);
+  const std::string fifoError = loadError(writeTriangleGltf(folder, withImage("fifo.webp")));
+  CHECK(fifoError.find("URI 'fifo.webp' is a FIFO") != std::string::npos);
 }
 
 TEST_CASE("glTF: an embedded PNG is decoded to RGBA, top row first") {

@@ -3,10 +3,12 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 
 namespace headlight::gltf {
 
@@ -35,6 +37,7 @@ struct FileAccess {
   std::string uriPrefix;  // assetFolder + "/": what tinygltf puts before a URI
   bool allowExternalPaths = false;
   std::string refusal;  // set when a URI was refused; reported after parsing
+  std::string problem;  // set when a URI names something that is not a file, or a data URI is malformed
 };
 
 bool isInside(const fs::path& path, const fs::path& folder) {
@@ -75,21 +78,99 @@ bool refuseOutside(const std::string& path, FileAccess& access) {
   return true;
 }
 
+// tinygltf decodes data URIs of six MIME types itself (PNG, JPEG, BMP, GIF,
+// octet-stream, gltf-buffer); any other (image/webp, image/ktx2, ...) it
+// takes for a file name, URL-decoded, and joins to the asset folder. Such a
+// path reaches the callbacks below as <assetFolder>/data:...: its payload is
+// decoded here. The URL decoding turned each '+' of the base64 into a space
+// (a WebP data URI was refused as "File not found"); base64 has no space,
+// so a space is a '+'.
+std::optional<std::string> dataUriOf(const std::string& path, const FileAccess& access) {
+  if (path.rfind(access.uriPrefix, 0) != 0 || path.compare(access.uriPrefix.size(), 5, "data:") != 0) {
+    return std::nullopt;
+  }
+  return path.substr(access.uriPrefix.size());
+}
+
+// The bytes of `uri` ("data:<type>;base64,<payload>"), or the problem.
+std::string decodeDataUri(std::string uri, std::vector<unsigned char>& bytes) {
+  const std::string shown = uri.substr(0, std::min<std::size_t>(uri.size(), 40)) + (uri.size() > 40 ? "..." : "");
+  const std::size_t comma = uri.find(',');
+  if (comma == std::string::npos || comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0) {
+    return "data URI '" + shown + "' is not base64 (expected data:<type>;base64,<payload>)";
+  }
+  std::string payload = uri.substr(comma + 1);
+  std::replace(payload.begin(), payload.end(), ' ', '+');
+  const std::size_t end = payload.find_last_not_of('=');
+  const bool alphabet =
+      std::all_of(payload.begin(), end == std::string::npos ? payload.begin() : payload.begin() + long(end) + 1,
+                  [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/'; });
+  if (payload.empty() || !alphabet || payload.size() - (end + 1) > 2) {
+    return "data URI '" + shown + "' has a payload that is not base64";
+  }
+  // tinygltf's decoder, through the one type it decodes whatever the bytes are.
+  std::string mimeType;
+  if (!tinygltf::DecodeDataURI(&bytes, mimeType, "data:application/octet-stream;base64," + payload, 0, false)) {
+    return "data URI '" + shown + "' decodes to nothing";
+  }
+  return {};
+}
+
+// What a path that exists but is not a regular file is, for the message.
+std::string kindOf(const fs::file_status& status) {
+  switch (status.type()) {
+    case fs::file_type::directory:
+      return "a folder";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::block:
+    case fs::file_type::character:
+      return "a device";
+    default:
+      return "not a regular file";
+  }
+}
+
 bool fileExists(const std::string& path, void* userData) {
   auto& access = *static_cast<FileAccess*>(userData);
   // tinygltf also tries "./<uri>"; only the asset-relative candidate counts.
   if (path.rfind(access.uriPrefix, 0) != 0) {
     return false;
   }
+  if (dataUriOf(path, access)) {
+    return true;  // readWholeFile decodes it
+  }
   if (refuseOutside(path, access)) {
     return false;
   }
   std::error_code error;
-  return fs::is_regular_file(effectivePath(path, access), error);
+  const fs::file_status status = fs::status(effectivePath(path, access), error);
+  if (fs::is_regular_file(status)) {
+    return true;
+  }
+  // Named, where tinygltf would say "File not found" of a folder or a FIFO.
+  if (!error && fs::exists(status) && access.problem.empty()) {
+    access.problem =
+        "URI '" + path.substr(access.uriPrefix.size()) + "' is " + kindOf(status) + ", not a file that can be read";
+  }
+  return false;
 }
 
 bool readWholeFile(std::vector<unsigned char>* bytes, std::string* error, const std::string& path, void* userData) {
   auto& access = *static_cast<FileAccess*>(userData);
+  if (const std::optional<std::string> uri = dataUriOf(path, access)) {
+    const std::string problem = decodeDataUri(*uri, *bytes);
+    if (problem.empty()) {
+      return true;
+    }
+    if (access.problem.empty()) {
+      access.problem = problem;
+    }
+    *error = problem;
+    return false;
+  }
   if (refuseOutside(path, access)) {
     *error = access.refusal;
     return false;
@@ -225,6 +306,9 @@ void parseSandboxed(tinygltf::Model& model, const std::vector<unsigned char>& by
   // tinygltf's follow-on messages may not.
   if (!access.refusal.empty()) {
     throw SceneError(file + ": " + access.refusal, {"allow-external-paths"});
+  }
+  if (!access.problem.empty()) {
+    throw SceneError(file + ": " + access.problem);
   }
   if (!decoding.failure.empty()) {
     throw SceneError(file + ": " + decoding.failure);

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <string_view>
 
@@ -20,17 +21,39 @@ std::string oneLine(std::string text) {
 }
 
 // OpenImageIO picks its reader by file extension; embedded images have none,
-// so the signature bytes name the format.
-std::string formatHintName(const unsigned char* bytes, std::size_t size) {
+// so the signature bytes name the format: "png", "jpg", "gif", "bmp",
+// "webp", or "" for none of them.
+std::string_view signatureFormat(const unsigned char* bytes, std::size_t size) {
   auto startsWith = [&](std::string_view magic, std::size_t at = 0) {
     return size >= at + magic.size() && std::memcmp(bytes + at, magic.data(), magic.size()) == 0;
   };
-  if (startsWith("\x89PNG")) return "embedded.png";
-  if (startsWith("\xFF\xD8\xFF")) return "embedded.jpg";
-  if (startsWith("GIF8")) return "embedded.gif";
-  if (startsWith("BM")) return "embedded.bmp";
-  if (startsWith("RIFF") && startsWith("WEBP", 8)) return "embedded.webp";
-  return "embedded.png";
+  if (startsWith("\x89PNG")) return "png";
+  if (startsWith("\xFF\xD8\xFF")) return "jpg";
+  if (startsWith("GIF8")) return "gif";
+  if (startsWith("BM")) return "bmp";
+  if (startsWith("RIFF") && startsWith("WEBP", 8)) return "webp";
+  return "";
+}
+
+// Why OpenImageIO could not open `bytes` (signature format `format`), in the
+// user's terms: what their signature says they are (where there is none,
+// OpenImageIO's "Not a PNG file" named a format the bytes never claimed)
+// and, for a WebP, whether its RIFF header declares more bytes than there are.
+std::string undecodable(const unsigned char* bytes, std::size_t size, std::string_view format) {
+  if (format.empty())
+    return "OpenImageIO cannot decode it: its " + std::to_string(size) +
+           " bytes start with no PNG, JPEG, GIF, BMP or WebP signature";
+  std::string name(format);
+  for (char& c : name) c = char(std::toupper(static_cast<unsigned char>(c)));
+  std::string why = "OpenImageIO cannot decode it as the " + name + " its signature says it is";
+  if (format == "webp" && size >= 8) {
+    const std::uint64_t declared = std::uint64_t(bytes[4]) | std::uint64_t(bytes[5]) << 8 |
+                                   std::uint64_t(bytes[6]) << 16 | std::uint64_t(bytes[7]) << 24;
+    if (declared + 8 > size)
+      why += " (truncated: " + std::to_string(size) + " of the " + std::to_string(declared + 8) +
+             " bytes its RIFF header declares)";
+  }
+  return why;
 }
 
 // Any 1..4 channel image becomes RGBA: grey is copied to RGB, and a missing
@@ -62,8 +85,9 @@ std::string decodeTexture(const unsigned char* bytes, std::size_t size, TextureD
   // the proxy must travel inside the config instead.
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto input = OIIO::ImageInput::open(formatHintName(bytes, size), &config);
-  if (!input) return "OpenImageIO cannot decode it: " + oneLine(OIIO::geterror());
+  const std::string_view format = signatureFormat(bytes, size);
+  auto input = OIIO::ImageInput::open("embedded." + std::string(format.empty() ? "png" : format), &config);
+  if (!input) return undecodable(bytes, size, format) + ": " + oneLine(OIIO::geterror());
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.width < 1 || spec.height < 1 || spec.width > limits.maxSide || spec.height > limits.maxSide) {
     return "it is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", expected 1.." +
