@@ -150,6 +150,18 @@ TEST_CASE("EXT_lights_image_based: a malformed light is refused, naming it and t
   CHECK(blinding.find("(EXT_lights_image_based light 0)") != std::string::npos);
   CHECK(blinding.find("so that float rendering stays finite") != std::string::npos);
   CHECK(error({{"rotation", {0, 0, 0, 0}}}).find("rotation is not a quaternion") != std::string::npos);
+  // Declared wrongly, though not read (issue 32: accepted in silence before).
+  json notNumbers = json::array();
+  for (int row = 0; row < 9; ++row) notNumbers.push_back(json::array({1, row == 4 ? json("y") : json(2), 3}));
+  for (const json& coefficients : {json("x"), json::array({json::array({1, 2, 3})}), notNumbers}) {
+    CAPTURE(coefficients.dump());
+    CHECK(error({{"irradianceCoefficients", coefficients}}).find("irradianceCoefficients is not 9 rows of 3") !=
+          std::string::npos);
+  }
+  for (const json& size : {json(0), json(-4), json(2.5), json("4")}) {
+    CAPTURE(size.dump());
+    CHECK(error({{"specularImageSize", size}}).find("specularImageSize is not an integer >= 1") != std::string::npos);
+  }
   CHECK(error({{"specularImages", json::array()}}).find("has no specularImages level") != std::string::npos);
   CHECK(error(json::object()).find("(loaded)") != std::string::npos);
   CHECK(error({{"intensity", -1}}).find("scene.gltf") != std::string::npos);

@@ -96,6 +96,18 @@ TEST_SUITE("hostile") {
                     d["bufferViews"][3]["byteLength"] = 767 * 2;
                   }),
                   {"bufferView 3 EXT_meshopt_compression: count 767 for TRIANGLES, expected a multiple of 3"});
+    // The index stream's stride must be its accessor's size: 4-byte indices read as UNSIGNED_SHORT were accepted.
+    expectRefused(mutated("index-size.glb",
+                          [](json& d) {
+                            auto& extension = d["bufferViews"][3]["extensions"]["EXT_meshopt_compression"];
+                            const int count = extension["count"].get<int>();
+                            extension["byteStride"] = 4;
+                            d["bufferViews"][3]["byteLength"] = count * 4;
+                            for (json& accessor : d["accessors"])
+                              if (accessor["bufferView"] == 3) accessor["componentType"] = 5123;  // UNSIGNED_SHORT
+                          }),
+                  {"bufferView 3 EXT_meshopt_compression: byteStride 4 for TRIANGLES, but accessor",
+                   "reads the view as 2-byte components"});
     expectRefused(mutated("short.glb", [](json& d) {
                     auto& extension = d["bufferViews"][0]["extensions"]["EXT_meshopt_compression"];
                     extension["byteLength"] = extension["byteLength"].get<int>() / 2;
@@ -125,6 +137,19 @@ TEST_SUITE("hostile") {
     const fs::path scene = folder.write("variants.gltf", document.dump());
     expectRefused(scene, {"material variant 'Day' is not in the file: its variants are 'Night'"},
                   "--material-variant Day");
+    // 200,000 variants and a 100 KB name: a 3.4 MB message before (issue 32); now 20 names and the name's start.
+    json many = document;
+    many["extensions"]["KHR_materials_variants"]["variants"] = json::array();
+    for (int i = 0; i < 200000; ++i)
+      many["extensions"]["KHR_materials_variants"]["variants"].push_back({{"name", "v" + std::to_string(i)}});
+    const fs::path manyScene = folder.write("many.gltf", many.dump());
+    const ProcessResult longName = runHostile("render " + quote(manyScene) + " --material-variant " +
+                                              std::string(100000, 'x') + " --out " + quote(folder.path() / "o"));
+    CHECK(longName.exitCode == 1);
+    CHECK(longName.output.size() < 2000);
+    CHECK(longName.output.find("'v0', 'v1'") != std::string::npos);
+    CHECK(longName.output.find("... and 199980 more") != std::string::npos);
+    CHECK(longName.output.find("...' (100000 bytes)") != std::string::npos);
     document["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"][0]["variants"] = {3};
     expectRefused(folder.write("range.gltf", document.dump()),
                   {"mesh 0 primitive 0 KHR_materials_variants mapping 0 lists variant 3, but the file has 1 variant"});

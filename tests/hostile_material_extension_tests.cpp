@@ -38,7 +38,9 @@ TEST_SUITE("hostile") {
                   {"KHR_materials_clearcoat clearcoatFactor is 1e+40"});
   }
 
-  TEST_CASE("extension integers outside 32 bits refuse the file, naming the value as written (issue 32)") {
+  TEST_CASE(
+      "extension integers outside 32 bits, and extensions that are not objects, refuse the file, naming the value as "
+      "written (issue 32)") {
     // The glTF parser keeps JSON integers as int: these read as 1 and as -2147483648 before the check.
     TempFolder folder("hostile-extension-integers");
     expectRefused(writeGltf(folder, withMaterialExtensions(
@@ -51,6 +53,17 @@ TEST_SUITE("hostile") {
     expectRefused(writeGltf(folder, transformed, "texcoord.gltf"), {"KHR_texture_transform.texCoord is 2147483648"});
     json below = withMaterialExtensions({{"KHR_materials_volume", {{"thicknessFactor", -2147483649}}}});
     expectRefused(writeGltf(folder, below, "below.gltf"), {"thicknessFactor is -2147483649"});
+    // An extension that is not an object: the glTF parser dropped it in silence (exit 0, untransformed).
+    json arrayed = withMaterialExtensions(json::object());
+    arrayed["materials"][0]["pbrMetallicRoughness"] = {
+        {"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", {1, 2}}}}}}};
+    expectRefused(writeGltf(folder, arrayed, "arrayed.gltf"),
+                  {"materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform is an array, "
+                   "expected an object"});
+    json notObject = withMaterialExtensions(json::object());
+    notObject["materials"][0]["extensions"] = "KHR_materials_ior";
+    expectRefused(writeGltf(folder, notObject, "string.gltf"),
+                  {"materials[0].extensions is \"KHR_materials_ior\" (a string), expected an object"});
     // Extras are the file's own: not read, not checked.
     json extras = withMaterialExtensions(json::object());
     extras["materials"][0]["extras"] = {{"extensions", {{"counter", 4294967297}}}};

@@ -59,7 +59,17 @@ TEST_CASE("render options: table-driven flags, presets, and clear errors") {
   CHECK(message({"--views", "4"}).find("needs --orbit") != std::string::npos);
   CHECK(message({"--shard", "3/3"}).find("expected 0 <= I < N") != std::string::npos);
   CHECK(message({"--targets", "lit,glow"}).find("unknown target 'glow'") != std::string::npos);
+  // Every target in the list of known ones (it had fallen behind by eight).
+  CHECK(message({"--targets", "glow"}).find("specular, clearcoat, ids, preview)") != std::string::npos);
   CHECK(message({"--no-ssgi=1"}) == "--no-ssgi takes no value");
+  // A long value is quoted by its start and its size, not echoed whole (issue 32: 100 KB messages).
+  const std::string longValue(100000, 'x');
+  for (const char* flag : {"--width", "--ssgi-method", "--targets", "--png"}) {
+    CAPTURE(flag);
+    const std::string text = message({flag, longValue});
+    CHECK(text.size() < 400);
+    CHECK(text.find("...' (100000 bytes)") != std::string::npos);
+  }
 }
 
 TEST_CASE("\"auto\" is its own value: 0 is a number like any other") {

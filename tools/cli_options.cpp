@@ -11,6 +11,7 @@
 #include "headlight/error.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/targets.hpp"
+#include "io/message_text.hpp"
 #include "tune_command.hpp"
 
 namespace headlight::cli {
@@ -191,10 +192,13 @@ std::vector<Option<RenderCommand>> batchOptions() {
                         c.output.targets = detail::splitList("targets", text(v));
                         const auto names = outputTargetNames();
                         for (const std::string& name : c.output.targets)
-                          if (std::find(names.begin(), names.end(), name) == names.end())
-                            throw SettingsError("--targets: unknown target '" + name +
-                                                "' (known: position, normal, albedo, material, depth, emissive, "
-                                                "ssgi, lit, preview)");
+                          if (std::find(names.begin(), names.end(), name) == names.end()) {
+                            std::string known;
+                            for (std::string_view target : names)
+                              known += (known.empty() ? "" : ", ") + std::string(target);
+                            throw SettingsError("--targets: unknown target " + quotedName(name) + " (known: " + known +
+                                                ")");
+                          }
                         if (c.output.targets.empty()) throw SettingsError("--targets: expected a list of targets");
                       }),
       actionOption<C>({.name = "png",
@@ -211,7 +215,7 @@ std::vector<Option<RenderCommand>> batchOptions() {
                             std::string known;
                             for (const FrameTarget& target : frameTargets())
                               known += (known.empty() ? "" : ", ") + std::string(target.name);
-                            throw SettingsError("--png: unknown target '" + name + "' (known: " + known +
+                            throw SettingsError("--png: unknown target " + quotedName(name) + " (known: " + known +
                                                 "; preview.png is always written)");
                           }
                         if (c.output.pngTargets.empty()) throw SettingsError("--png: expected a list of targets");

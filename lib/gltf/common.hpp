@@ -12,6 +12,7 @@
 #include <string>
 
 #include "headlight/error.hpp"
+#include "io/message_text.hpp"
 
 namespace headlight::gltf {
 

@@ -119,6 +119,31 @@ std::array<Face, 6> firstLevel(const Source& source, const tinygltf::Value& ligh
   return faces;
 }
 
+// irradianceCoefficients and specularImageSize, which the specification
+// requires: the irradiance is computed from the cube and the size read from
+// its images, so neither is used, but a file that declares them wrongly is
+// malformed and is refused, named, not accepted in silence (issue 32).
+void checkDeclaredTables(const Source& source, const tinygltf::Value& light, const std::string& user) {
+  if (light.Has("irradianceCoefficients")) {
+    const tinygltf::Value& rows = light.Get("irradianceCoefficients");
+    bool wellFormed = rows.IsArray() && rows.ArrayLen() == 9;
+    for (int row = 0; wellFormed && row < 9; ++row) {
+      const tinygltf::Value& coefficients = rows.Get(row);
+      wellFormed = coefficients.IsArray() && coefficients.ArrayLen() == 3;
+      for (int channel = 0; wellFormed && channel < 3; ++channel) {
+        const tinygltf::Value& value = coefficients.Get(channel);
+        wellFormed = (value.IsNumber() || value.IsInt()) && std::isfinite(value.GetNumberAsDouble());
+      }
+    }
+    if (!wellFormed)
+      source.fail(user + " irradianceCoefficients is not 9 rows of 3 finite numbers (spherical harmonics to order 2)");
+  }
+  if (light.Has("specularImageSize")) {
+    const tinygltf::Value& size = light.Get("specularImageSize");
+    if (!size.IsInt() || size.GetNumberAsInt() < 1) source.fail(user + " specularImageSize is not an integer >= 1");
+  }
+}
+
 }  // namespace
 
 std::shared_ptr<const EnvironmentMap> readImageBasedLight(const Source& source, int sceneIndex,
@@ -145,6 +170,7 @@ std::shared_ptr<const EnvironmentMap> readImageBasedLight(const Source& source, 
   if (!std::isfinite(intensity) || intensity < 0.0) {
     source.fail(user + " intensity is " + std::to_string(intensity) + ", expected a finite number >= 0");
   }
+  checkDeclaredTables(source, light, user);
   const glm::quat toWorld = rotationOf(source, light, user);
   const std::array<Face, 6> faces = firstLevel(source, light, user, images);
 

@@ -50,7 +50,7 @@ class ViewDecoder {
       name_ = "bufferView " + std::to_string(index);
       const auto found = view.extensions.find(kMeshopt);
       if (found != view.extensions.end()) {
-        decode(view, parse(found->second));
+        decode(view, parse(found->second), int(index));
       } else if (isPlaceholder(view.buffer)) {
         source_.fail(name_ + " refers to buffer " + std::to_string(view.buffer) +
                      ", a placeholder without data (no uri), but has no " + kMeshopt + " to decode");
@@ -173,8 +173,25 @@ class ViewDecoder {
     return bytes;
   }
 
-  void decode(tinygltf::BufferView& parent, const MeshoptView& view) {
+  // TRIANGLES and INDICES streams decode to indices of byteStride bytes,
+  // which the specification asks to match the index accessors' size: a
+  // 4-byte stream read as UNSIGNED_SHORT drew every other index as 0 (issue 32).
+  void checkIndexAccessors(int viewIndex, const MeshoptView& view) const {
+    if (view.mode == Mode::Attributes) return;
+    for (std::size_t index = 0; index < model_.accessors.size(); ++index) {
+      const tinygltf::Accessor& accessor = model_.accessors[index];
+      if (accessor.bufferView != viewIndex) continue;
+      const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
+      if (size != int(view.byteStride))
+        fail("byteStride " + std::to_string(view.byteStride) + " for " +
+             (view.mode == Mode::Triangles ? "TRIANGLES" : "INDICES") + ", but accessor " + std::to_string(index) +
+             " reads the view as " + std::to_string(size) + "-byte components; expected the same size");
+    }
+  }
+
+  void decode(tinygltf::BufferView& parent, const MeshoptView& view, int viewIndex) {
     checkLayout(parent, view);
+    checkIndexAccessors(viewIndex, view);
     const std::span<const unsigned char> input = compressed(view);
     const std::size_t bytes = reserve(parent, view);
     tinygltf::Buffer output;

@@ -108,6 +108,10 @@ std::vector<glm::mat4> jointMatrices(const AccessorReader& accessors, const Node
   if (skin.joints.empty()) {
     source.fail(name + " has no joints");
   }
+  // Not read (the joints' own nodes place them), but an index past the nodes is a malformed file.
+  if (skin.skeleton != -1) {
+    source.checkIndex(skin.skeleton, source.model.nodes, name + " skeleton", "node");
+  }
   std::vector<glm::mat4> inverseBind(skin.joints.size(), glm::mat4(1.0f));  // glTF: identity when absent
   if (skin.inverseBindMatrices >= 0) {
     const CheckedAccessor accessor =

@@ -110,7 +110,7 @@ class StructureCheck {
     forEach(root, "cameras", "camera", nothingMore);
     forEach(root, "skins", "skin", nothingMore);
     forEach(root, "animations", "animation", nothingMore);
-    checkExtensionIntegers(root, "", false);
+    checkExtensions(root, "", false);
   }
 
  private:
@@ -161,21 +161,26 @@ class StructureCheck {
     numberArray(material, "emissiveFactor", name);
   }
 
-  // tinygltf keeps a JSON integer as an int, so one outside 32 bits wraps
-  // (an emissiveStrength of 4294967297 was read as 1, an index of 2147483648
-  // as -2147483648). The core's integers are range-checked above by name;
-  // the extensions' are checked here wherever they are, so that no extension
-  // reader ever sees a wrapped value. A real number so large keeps its value
-  // written with a decimal point (tinygltf reads that as a double). Extras
-  // are the file's own data, not read.
-  void checkExtensionIntegers(const json& value, const std::string& path, bool inExtensions) {
+  // Extensions wherever they are. Each must be an object: tinygltf drops
+  // any other value in silence (a KHR_texture_transform written [1, 2]
+  // rendered untransformed, exit 0). tinygltf keeps a JSON integer as an
+  // int, so one outside 32 bits wraps (an emissiveStrength of 4294967297 was
+  // read as 1, an index of 2147483648 as -2147483648). The core's integers
+  // are range-checked above by name; the extensions' are checked here, so
+  // that no extension reader ever sees a wrapped value. A real number so
+  // large keeps its value written with a decimal point (tinygltf reads that
+  // as a double). Extras are the file's own data, not read.
+  void checkExtensions(const json& value, const std::string& path, bool inExtensions) {
     if (value.is_object()) {
-      for (const auto& [key, member] : value.items())
-        if (key != "extras")
-          checkExtensionIntegers(member, path.empty() ? key : path + "." + key, inExtensions || key == "extensions");
+      for (const auto& [key, member] : value.items()) {
+        if (key == "extras") continue;
+        const std::string where = path.empty() ? key : path + "." + key;
+        if (key == "extensions") checkExtensionObjects(member, where);
+        checkExtensions(member, where, inExtensions || key == "extensions");
+      }
     } else if (value.is_array()) {
       for (std::size_t index = 0; index < value.size(); ++index)
-        checkExtensionIntegers(value[index], path + "[" + std::to_string(index) + "]", inExtensions);
+        checkExtensions(value[index], path + "[" + std::to_string(index) + "]", inExtensions);
     } else if (inExtensions && (value.is_number_integer() || value.is_number_unsigned())) {
       const bool fits = value.is_number_unsigned()
                             ? value.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<std::int32_t>::max())
@@ -187,6 +192,15 @@ class StructureCheck {
                         "number this large is read as such written with a decimal point: " +
                         value.dump() + ".0)");
     }
+  }
+
+  // An element's "extensions" (`where`): an object of objects.
+  void checkExtensionObjects(const json& extensions, const std::string& where) {
+    if (!extensions.is_object()) fail(file_, where + " is " + describe(extensions) + ", expected an object");
+    for (const auto& [name, extension] : extensions.items())
+      if (!extension.is_object())
+        fail(file_, where + "." + name + " is " + describe(extension) +
+                        ", expected an object (the extension's properties), which the glTF parser would drop");
   }
 
   // An optional member that must be an object; nullptr where absent.

@@ -76,10 +76,9 @@ std::vector<std::string> applyMaterialVariant(tinygltf::Model& model, const Sour
   if (!chosen.empty()) {
     const auto found = std::find(names.begin(), names.end(), chosen);
     if (found == names.end()) {
-      std::string list;
-      for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
-      source.fail("material variant '" + chosen + "' is not in the file: " +
-                      (names.empty() ? std::string("it has no KHR_materials_variants") : "its variants are " + list),
+      source.fail("material variant " + quotedName(chosen) + " is not in the file: " +
+                      (names.empty() ? std::string("it has no KHR_materials_variants")
+                                     : "its variants are " + quotedList(names)),
                   {"material-variant"});
     }
     chosenIndex = int(found - names.begin());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/message_text.hpp"
 #include "settings/option_binding.hpp"
 
 namespace headlight {
@@ -39,7 +40,7 @@ std::string rangeText(const OptionSpec& spec) {
 }
 
 [[noreturn]] void expected(const OptionSpec& spec, const std::string& what, std::string_view got) {
-  settingError(spec, "expected " + what + ", got '" + std::string(got) + "'");
+  settingError(spec, "expected " + what + ", got " + quotedName(got));
 }
 
 template <class Number>
