@@ -37,26 +37,29 @@ void GeometryReader::reserveVertices(std::size_t count, int accessorIndex, const
 
 // The deltas of every morph target that moves the primitive (a weight other
 // than 0) are decoded vertices as much as its own: they count against the
-// same budget before they are read. A 36 KB file of 300 targets over 30M
+// same budget, before the primitive's first vertex is read (`vertexCount`:
+// its POSITION accessor's count). A 36 KB file of 300 targets over 30M
 // vertices took 38 s and 1.8 GB before the frame's triangle count refused it
 // (issue 32).
 void GeometryReader::reserveMorphDeltas(const tinygltf::Primitive& source, const std::vector<float>& weights,
-                                        const Primitive& primitive, const std::string& primitiveName) {
+                                        std::size_t vertexCount, const std::string& primitiveName) {
   std::uint64_t deltas = 0;
   for (std::size_t k = 0; k < std::min(weights.size(), source.targets.size()); ++k) {
     if (weights[k] == 0.0f) continue;
     const auto& target = source.targets[k];
-    const std::uint64_t sets = target.count("POSITION") + (primitive.normals.empty() ? 0 : target.count("NORMAL")) +
-                               (primitive.tangents.empty() ? 0 : target.count("TANGENT"));
-    deltas += sets * primitive.positions.size();
+    // As applyMorphTargets: NORMAL and TANGENT deltas only where the primitive has the attribute.
+    const std::uint64_t sets = target.count("POSITION") +
+                               (source.attributes.count("NORMAL") != 0 ? target.count("NORMAL") : 0) +
+                               (source.attributes.count("TANGENT") != 0 ? target.count("TANGENT") : 0);
+    deltas += sets * vertexCount;
   }
   if (deltas == 0) return;
   const auto allowed = static_cast<std::uint64_t>(limits_.maxTriangles) * 3;
   if (deltas > allowed - std::min<std::uint64_t>(allowed, decodedVertices_)) {
-    source_.failLimit(primitiveName + "'s morph targets move " + std::to_string(primitive.positions.size()) +
-                          " vertices by " + std::to_string(deltas) + " deltas, and with the " +
-                          std::to_string(decodedVertices_) + " vertices decoded before them that is more than the " +
-                          std::to_string(allowed) + " (3 x max-triangles " + std::to_string(limits_.maxTriangles) +
+    source_.failLimit(primitiveName + "'s morph targets move " + std::to_string(vertexCount) + " vertices by " +
+                          std::to_string(deltas) + " deltas, and with the " + std::to_string(decodedVertices_) +
+                          " vertices decoded before them that is more than the " + std::to_string(allowed) +
+                          " (3 x max-triangles " + std::to_string(limits_.maxTriangles) +
                           ") allowed; raise max-triangles",
                       "max-triangles");
   }
@@ -271,6 +274,9 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   if (positionAccessor < 0) {
     source_.fail(primitiveName + " has no POSITION attribute");
   }
+  if (std::size_t(positionAccessor) < source_.model.accessors.size())  // else readPositions names the index
+    reserveMorphDeltas(source, pose.weights, source_.model.accessors[std::size_t(positionAccessor)].count,
+                       primitiveName);
   primitive.positions = readPositions(positionAccessor, primitiveName);
   const std::size_t vertexCount = primitive.positions.size();
   primitive.mode = source.mode == TINYGLTF_MODE_POINTS       ? PrimitiveMode::Points
@@ -304,7 +310,6 @@ Primitive GeometryReader::read(const tinygltf::Primitive& source, const std::str
   if (const int colors = attributeAccessor(source, "COLOR_0"); colors >= 0) {
     primitive.colors = readColors(colors, primitiveName, vertexCount, positionAccessor);
   }
-  reserveMorphDeltas(source, pose.weights, primitive, primitiveName);
   applyMorphTargets(accessors_, source, primitiveName, pose.weights, primitive);
   if (normals >= 0) {
     repairNormals(primitive);

@@ -37,8 +37,8 @@ class GeometryReader {
  private:
   void reserveVertices(std::size_t count, int accessorIndex, const std::string& user);
   void reserveTriangles(std::size_t count, const std::string& primitiveName);
-  void reserveMorphDeltas(const tinygltf::Primitive& source, const std::vector<float>& weights,
-                          const Primitive& primitive, const std::string& primitiveName);
+  void reserveMorphDeltas(const tinygltf::Primitive& source, const std::vector<float>& weights, std::size_t vertexCount,
+                          const std::string& primitiveName);
   std::vector<glm::vec3> readPositions(int accessorIndex, const std::string& primitiveName);
   std::vector<glm::vec4> readColors(int accessorIndex, const std::string& primitiveName, std::size_t vertexCount,
                                     int positionAccessor);
