@@ -326,6 +326,12 @@ TEST_SUITE("hostile") {
     CHECK(drawPassCount(small) == 2);  // the G-buffer and the default key light's shadow view
     limits.maxDrawnTriangles = 1;
     CHECK_THROWS_WITH_AS(checkDrawBudget(small, limits), doctest::Contains("--max-drawn-triangles"), LimitError);
+    // A scene an embedder builds meets --max-lights where a file's does (Renderer::setScene calls this).
+    ResourceLimits fewLights;
+    fewLights.maxLights = 2;
+    small.lights.resize(3);
+    CHECK_THROWS_WITH_AS(checkDrawBudget(small, fewLights),
+                         doctest::Contains("3 punctual lights, more than --max-lights"), LimitError);
   }
 }
 

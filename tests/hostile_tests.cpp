@@ -277,7 +277,9 @@ TEST_SUITE("hostile") {
     expectRefused(scene, {"image 0", "16383x16383", "MiB to decode and keep", "--max-memory"}, "--max-memory 1024");
   }
 
-  TEST_CASE("a file of 4,000 shadow-casting point lights: their maps count against max-memory before any is made") {
+  TEST_CASE(
+      "a file of 4,000 point lights: past --max-lights, and with shadows their maps against max-memory, before any is "
+      "made") {
     // Each point light's depth cube is 6 x 512^2 x 4 bytes at this size's
     // auto map size (1024): 6 MiB, 24000 MiB for the lot; with a transmissive
     // material, 30 MiB each (the transmittance cubes). Before the maps were
@@ -294,7 +296,17 @@ TEST_SUITE("hostile") {
     lit["extensions"]["KHR_lights_punctual"]["lights"] = lights;
     const fs::path scene = writeGltf(folder, lit, "lights.gltf");
     expectRefused(scene, {"4000 shadow-casting lights (4000 point", "24000 MiB at 1024", "--shadow-map-size"},
-                  "--max-memory 4096");
+                  "--max-memory 4096 --max-lights 4096");
+    // Without shadows each light is still evaluated at every pixel of every
+    // view: past --max-lights (1024) the file is refused while it loads.
+    expectRefused(scene, {"node 1025 places light 1024, one more than the 1024 punctual lights", "--max-lights"},
+                  "--no-shadows");
+    const ProcessResult raised = runHostile("render " + quote(scene) +
+                                            " --no-shadows --max-lights 4000 --width 32 "
+                                            "--height 24 --out " +
+                                            quote(folder.path() / "raised"));
+    INFO(raised.output);
+    CHECK(raised.exitCode == 0);
   }
 
   TEST_CASE("finite checks count, name and clamp non-finite values") {

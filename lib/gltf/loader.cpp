@@ -246,6 +246,13 @@ class GltfReader {
       scene_.cameras.push_back(gltf::readCamera(source_, node.camera, worldFromNode, nodeName));
     }
     if (const int light = gltf::nodeLight(source_, node, nodeName, lights_); light >= 0) {
+      // Before the next is placed: a light listed once can be placed by any number of nodes.
+      if (scene_.lights.size() >= static_cast<std::uint64_t>(limits_.maxLights))
+        source_.failLimit(nodeName + " places light " + std::to_string(light) + ", one more than the " +
+                              std::to_string(limits_.maxLights) +
+                              " punctual lights max-lights allows (each is evaluated at every pixel of every "
+                              "view); raise max-lights",
+                          "max-lights");
       scene_.lights.push_back(
           gltf::readLight(source_, lights_[static_cast<std::size_t>(light)], light, worldFromNode, nodeName));
     }

@@ -72,6 +72,13 @@ std::span<const Option<ResourceLimits>> limitOptions() {
            .minimum = 1,
            .maximum = double(std::int64_t(1) << 50)},
           [](auto& l) -> auto& { return l.maxBlendedFragments; }),
+      bindOption<L>(
+          {.name = "max-lights",
+           .type = T::Int,
+           .help = "most punctual lights a scene places (each is evaluated at every pixel of every view)",
+           .minimum = 1,
+           .maximum = double(std::int64_t(1) << 24)},
+          [](auto& l) -> auto& { return l.maxLights; }),
   };
   return rows;
 }
@@ -321,6 +328,11 @@ int drawPassCount(const Scene& scene) {
 }
 
 void checkDrawBudget(const Scene& scene, const ResourceLimits& limits, int viewDraws) {
+  if (scene.lights.size() > std::uint64_t(limits.maxLights))
+    throw LimitError(scene.source + ": " + std::to_string(scene.lights.size()) +
+                         " punctual lights, more than --max-lights allows (" + std::to_string(limits.maxLights) +
+                         "; each is evaluated at every pixel of every view); raise --max-lights",
+                     {"max-lights"});
   const std::uint64_t shadowViews = std::uint64_t(drawPassCount(scene) - 1);
   const std::uint64_t views = std::uint64_t(std::max(1, viewDraws));
   // The transmission pass draws each transmissive instance once more (lib/passes/transmission.hpp).
