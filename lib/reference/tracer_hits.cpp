@@ -298,9 +298,13 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
     }
   }
   if (specularVisibilityOut && lobeWeight > 0.0) *specularVisibilityOut = float(escapedWeight / lobeWeight);
+  // At most 1: the sampled scale + bias can pass it at grazing angles (exactly, and in the renderer's
+  // table, it cannot), and 1 - it weighs the diffuse lobe and what glass lets through (an iridescent
+  // glass rim's reference pixel came out at -0.035).
   const glm::vec3 specularAlbedo =
-      glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
-               surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence);
+      glm::min(glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
+                        surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence),
+               glm::vec3(1.0f));
   if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
   const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic) * (1.0f - surface.transmission);
   glm::vec3 ambient = diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m));
