@@ -295,14 +295,12 @@ int findAnimation(const Source& source, const std::string& chosen) {
     const int index = std::stoi(chosen);
     if (std::size_t(index) < animations.size()) return index;
   }
-  constexpr std::size_t kShown = 20;  // as quotedList: a file may list thousands
-  std::string list;
-  for (std::size_t i = 0; i < std::min(animations.size(), kShown); ++i)
-    list += (list.empty() ? "" : ", ") + std::to_string(i) +
-            (animations[i].name.empty() ? "" : " " + quotedName(animations[i].name));
-  if (animations.size() > kShown) list += " ... and " + std::to_string(animations.size() - kShown) + " more";
+  std::vector<std::string> shown;  // "0 'Walk'": the index, and the name where there is one
+  for (std::size_t i = 0; i < std::min(animations.size(), kListShown); ++i)
+    shown.push_back(std::to_string(i) + (animations[i].name.empty() ? "" : " " + quotedName(animations[i].name)));
   source.fail("animation " + quotedName(chosen) + " is not in the file: " +
-                  (animations.empty() ? std::string("it has no animations") : "its animations are " + list),
+                  (animations.empty() ? std::string("it has no animations")
+                                      : "its animations are " + joinedList(shown, animations.size())),
               {"animation"});
 }
 

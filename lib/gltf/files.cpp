@@ -94,10 +94,10 @@ std::optional<std::string> dataUriOf(const std::string& path, const FileAccess& 
 
 // The bytes of `uri` ("data:<type>;base64,<payload>"), or the problem.
 std::string decodeDataUri(std::string uri, std::vector<unsigned char>& bytes) {
-  const std::string shown = uri.substr(0, std::min<std::size_t>(uri.size(), 40)) + (uri.size() > 40 ? "..." : "");
+  const std::string shown = quotedName(uri);
   const std::size_t comma = uri.find(',');
   if (comma == std::string::npos || comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0) {
-    return "data URI '" + shown + "' is not base64 (expected data:<type>;base64,<payload>)";
+    return "data URI " + shown + " is not base64 (expected data:<type>;base64,<payload>)";
   }
   std::string payload = uri.substr(comma + 1);
   std::replace(payload.begin(), payload.end(), ' ', '+');
@@ -106,12 +106,12 @@ std::string decodeDataUri(std::string uri, std::vector<unsigned char>& bytes) {
       std::all_of(payload.begin(), end == std::string::npos ? payload.begin() : payload.begin() + long(end) + 1,
                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/'; });
   if (payload.empty() || !alphabet || payload.size() - (end + 1) > 2) {
-    return "data URI '" + shown + "' has a payload that is not base64";
+    return "data URI " + shown + " has a payload that is not base64";
   }
   // tinygltf's decoder, through the one type it decodes whatever the bytes are.
   std::string mimeType;
   if (!tinygltf::DecodeDataURI(&bytes, mimeType, "data:application/octet-stream;base64," + payload, 0, false)) {
-    return "data URI '" + shown + "' decodes to nothing";
+    return "data URI " + shown + " decodes to nothing";
   }
   return {};
 }

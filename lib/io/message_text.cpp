@@ -10,12 +10,17 @@ std::string quotedName(std::string_view text) {
   return "'" + std::string(text.substr(0, kShown)) + "...' (" + std::to_string(text.size()) + " bytes)";
 }
 
-std::string quotedList(const std::vector<std::string>& items) {
-  constexpr std::size_t kShown = 20;
+std::string joinedList(const std::vector<std::string>& shown, std::size_t total) {
   std::string list;
-  for (std::size_t i = 0; i < std::min(items.size(), kShown); ++i) list += (i == 0 ? "" : ", ") + quotedName(items[i]);
-  if (items.size() > kShown) list += " ... and " + std::to_string(items.size() - kShown) + " more";
+  for (const std::string& item : shown) list += (list.empty() ? "" : ", ") + item;
+  if (total > shown.size()) list += " ... and " + std::to_string(total - shown.size()) + " more";
   return list;
+}
+
+std::string quotedList(const std::vector<std::string>& items) {
+  std::vector<std::string> shown;
+  for (std::size_t i = 0; i < std::min(items.size(), kListShown); ++i) shown.push_back(quotedName(items[i]));
+  return joinedList(shown, items.size());
 }
 
 }  // namespace headlight
