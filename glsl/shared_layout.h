@@ -143,7 +143,8 @@ using mat4 = glm::mat4;
 #define HL_STORAGE_BLOCKS(X)                \
   X(LightBuffer, kBindingLights, 0)         \
   X(ObjectBuffer, kBindingObjects, 1)       \
-  X(VirtualLightBuffer, kBindingVirtualLights, 2)
+  X(VirtualLightBuffer, kBindingVirtualLights, 2) \
+  X(LightFieldBuffer, kBindingLightField, 3)
 
 #define HL_UNIT_CONST(name, unit) HL_CONST(int, name, unit)
 #define HL_BINDING_CONST(block, name, binding) HL_CONST(int, name, binding)
@@ -291,6 +292,11 @@ HL_BLOCK_BEGIN(SsgiBitmaskBlock, kBindingSsgiBitmask)
   int part;                 // kBitmaskBoth, kBitmaskNearField or kBitmaskFarField: what the draw writes
   int virtualLightCount;    // entries of the virtual light buffer the far field gathers (0: none)
   int farLightSource;       // what the marches beyond R gather: kFarLightDirect, kFarLightEmission or kFarLightNone
+  // The light field (lib/passes/light_field.hpp) the far field reads: probe (0, 0, 0)'s position and the
+  // spacing between probes, world (w unused); probes per axis (all 0: no field), w unused.
+  vec4 lightFieldOrigin;
+  vec4 lightFieldSpacing;
+  ivec4 lightFieldCounts;
 HL_BLOCK_END(bitmask)
 
 // SsgiBitmaskBlock::farLightSource. Without virtual lights the marches
@@ -408,7 +414,7 @@ HL_STORAGE_END(objects)
 // Lambertian surface. Radiant intensity toward w: flux * max(n . w, 0) / pi.
 struct GpuVirtualLight {
   vec4 position;            // world; w = the index of its light in the light buffer
-  vec4 normal;              // world, unit, facing the light; w unused
+  vec4 normal;              // world, unit, facing the light; w = the texel's area on the surface
   vec4 flux;                // reflected flux (1 - metallic) albedo * received power, rgb; w unused
 };
 #ifdef __cplusplus
@@ -419,6 +425,26 @@ HL_STORAGE_END(virtualLights)
 HL_STORAGE_BEGIN(VirtualLightBuffer, kBindingVirtualLights)
   GpuVirtualLight virtualLightList[];
 HL_STORAGE_END(virtualLights)
+#endif
+
+// One probe of the light field (lib/passes/light_field.hpp), on two
+// kLightFieldMapSize^2 octahedral maps (texel (u, v) at u + v * size): the
+// irradiance it receives from the virtual lights for each normal (rgb), and
+// the mean and mean square of the distance to what it sees about each
+// direction, two texels to a vec4 (xy, zw).
+HL_CONST(int, kLightFieldMapSize, 8)
+struct GpuLightProbe {
+  vec4 irradiance[kLightFieldMapSize * kLightFieldMapSize];  // rgb; [0].w: 1 in use, 0 inside a closed mesh
+  vec4 moments[kLightFieldMapSize * kLightFieldMapSize / 2];
+};
+#ifdef __cplusplus
+HL_STORAGE_BEGIN(LightFieldBuffer, kBindingLightField)
+  // The C++ side uploads a std::vector<GpuLightProbe>; this struct only names the binding.
+HL_STORAGE_END(lightField)
+#else
+HL_STORAGE_BEGIN(LightFieldBuffer, kBindingLightField)
+  GpuLightProbe probes[];
+HL_STORAGE_END(lightField)
 #endif
 
 // Vertex attribute locations of the scene's primitives (lib/gl/gpu_scene.cpp).

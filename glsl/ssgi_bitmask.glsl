@@ -26,6 +26,7 @@
 #include "shared_layout.h"
 #include "ssgi_common.glsl"
 #include "shadows.glsl"  // with virtual lights: HAS_PLANAR_SHADOWS, HAS_CUBE_SHADOWS (SsgiBitmaskVariant)
+#include "light_field.glsl"
 
 layout(binding = kUnitGbufferDepth) uniform sampler2D gbufferDepth;
 layout(binding = kUnitGbufferNormal) uniform sampler2D gbufferNormal;
@@ -467,6 +468,19 @@ vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
               specularSum.y / float(max(sliceCount, 1)), bend, 0.0);
 }
 
+// The light the screen hides within R, from the light field (issue 33; docs/ACCURACY.md §3.3, "The light
+// field"). The field's irradiance is all of the one bounce, at the probes' resolution; of it, the share
+// through the directions the slices found covered within R, (1 - visibility), arrives from surfaces within
+// R. The near field gathered what the screen shows of those (`gathered`); the rest, never below 0, is what
+// it could not see: the lit sides of builtin:slats' bars, which face away from the camera. Light from
+// beyond R stays the virtual lights' (their gather is sharper than the probes: builtin:cornell's HDR-FLIP
+// 0.144 with them, 0.196 with the field's light through the open directions instead, at 64 probes).
+vec3 hiddenWithinRadius(LightFieldGrid grid, vec3 worldPosition, vec3 worldNormal, vec3 worldToEye, float visibility,
+                        vec3 gathered) {
+  const vec3 field = lightFieldIrradiance(grid, worldPosition, worldNormal, worldToEye) / kPi;
+  return max(field * (1.0 - visibility) - gathered, vec3(0.0));
+}
+
 // The slices' rotation (in units of pi / sliceCount: slice s lies at angle
 // (s + rotation) pi / sliceCount on screen) turned so that slice 0 holds the
 // reflection R, by `share` of the way from `random`. A polished metal is lit
@@ -596,6 +610,12 @@ PassOutputs shadePixel(ivec2 outputPixel) {
     const vec3 worldNormal = texelFetch(gbufferNormal, pixel, 0).xyz;
     const int subset = (bayer + int(tileHash & 15u)) & (kVirtualLightSubsets - 1);
     farGathered += virtualLightGather(worldPosition, worldNormal, subset, occluding, toEye);
+    if (bitmask.lightFieldCounts.x > 0) {
+      const LightFieldGrid grid = LightFieldGrid(bitmask.lightFieldOrigin.xyz, bitmask.lightFieldSpacing.xyz,
+                                                 bitmask.lightFieldCounts.xyz);
+      farGathered += hiddenWithinRadius(grid, worldPosition, worldNormal, transpose(mat3(frame.view)) * toEye,
+                                        visibility, gathered);
+    }
   }
   const vec4 farField = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),
                              farGathered * receiver * bitmask.indirectStrength);

@@ -71,15 +71,17 @@ class PassTimer {
     const auto end = std::chrono::steady_clock::now();
     context_.checkErrors(std::string(pass));
     const double wall = std::chrono::duration<double, std::milli>(end - start).count();
-    times_.push_back({std::string(pass), wall, -1, form ? std::string(passFormName(*form)) : std::string()});
+    times_.push_back({std::string(pass), wall, -1, form ? std::string(passFormName(*form)) : std::string(), {}});
     queries_.push_back(std::move(query));
     if (synchronous_) resolve(times_.size() - 1, wall * 1.5 + 1.0);
   }
   // Records `pass` as taking `milliseconds` of wall time, with no GPU time (the readback's wait).
   void record(std::string_view pass, double milliseconds) {
-    times_.push_back({std::string(pass), milliseconds, -1, {}});
+    times_.push_back({std::string(pass), milliseconds, -1, {}, {}});
     queries_.emplace_back();
   }
+  // Says what the last pass made (PassTime::detail).
+  void describeLast(std::string detail) { times_.back().detail = std::move(detail); }
   // The pipelined passes' GPU times, once the frame's work is done; none
   // may exceed `frameMilliseconds`, the wall time from submission to collection.
   std::vector<PassTime> collect(double frameMilliseconds) {
@@ -155,6 +157,7 @@ struct Renderer::Impl {
   BlendPass blend;
   TransmissionPass transmission;
   VirtualLightPass virtualLightPass;
+  LightFieldPass lightFieldPass;
   gl::Buffer frameBlock = gl::Buffer::create(sizeof(gpu::FrameBlock));
   gl::Buffer lightingBlock = gl::Buffer::create(sizeof(gpu::LightingBlock));
 
@@ -172,6 +175,9 @@ struct Renderer::Impl {
   // once per scene and budget (0 = none yet).
   VirtualLights virtualLights;
   int virtualLightBudget = 0;
+  // The light field they fill: also the scene's (0: none yet).
+  LightField lightField;
+  int lightFieldBudget = 0;
 
   // Per image size: the plan's attachments (attachmentRows()), by Attachment.
   FrameTextures textures;
@@ -238,6 +244,19 @@ struct Renderer::Impl {
         *gpuScene, *gbufferPass, variant, scene.lights, budget,
         [&](const CameraView& view, int size) { frameBlock.update(makeFrameBlock(view, size, size)); });
     virtualLightBudget = budget;
+    lightFieldBudget = 0;  // filled from the lights it had
+    frameBlock.update(frame);
+  }
+
+  // The light field's probes drawn and filled from the virtual lights; the
+  // frame block is the frame's again afterwards.
+  void makeLightField(int budget, const GBufferVariant& variant, const gpu::FrameBlock& frame) {
+    const int probes = lightFieldProbeBudget(budget, scene.instances.size(), scene.triangleCount(), limits);
+    lightField = lightFieldPass.run(
+        *gpuScene, *gbufferPass, variant, virtualLights.entries, probes,
+        [&](const CameraView& view, int size) { frameBlock.update(makeFrameBlock(view, size, size)); });
+    lightField.requested = budget;
+    lightFieldBudget = budget;
     frameBlock.update(frame);
   }
 
@@ -428,6 +447,8 @@ void Renderer::Impl::loadScene(Scene newScene) {
   impl.shadowMapSize = 0;
   impl.virtualLights = VirtualLights{};
   impl.virtualLightBudget = 0;
+  impl.lightField = LightField{};
+  impl.lightFieldBudget = 0;
   // A map's tables are kept across scenes that share it (a batch); a scene
   // without one releases them.
   if (!impl.scene.environment) impl.environment.dropEnvironment();
@@ -493,6 +514,10 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
     timer.run("shadows", [&] { impl.renderShadows(*plan.shadows, frame.view); });
   if (plan.ssgi && plan.ssgi->virtualLights > 0 && impl.virtualLightBudget != plan.ssgi->virtualLights)
     timer.run("virtual-lights", [&] { impl.makeVirtualLights(plan.ssgi->virtualLights, plan.gbuffer, frameBlock); });
+  if (plan.ssgi && plan.ssgi->lightFieldProbes > 0 && impl.lightFieldBudget != plan.ssgi->lightFieldProbes) {
+    timer.run("light-field", [&] { impl.makeLightField(plan.ssgi->lightFieldProbes, plan.gbuffer, frameBlock); });
+    timer.describeLast(describeLightField(impl.lightField));
+  }
   // The split-sum BRDF table once per renderer, the sky tables on the first
   // frame that needs them (and again only when the sky's colours change),
   // the environment's once per map: ahead of the passes that read them.
@@ -506,7 +531,7 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
     timer.run("environment", [&] { impl.environment.updateEnvironment(*impl.scene.environment); });
   impl.bindLighting(used.lighting);
   // The view at the pixel centres: every pass, each timed apart.
-  const FrameInputs inputs{plan, used, impl.shadowMaps, impl.environment.tables(), impl.virtualLights};
+  const FrameInputs inputs{plan, used, impl.shadowMaps, impl.environment.tables(), impl.virtualLights, impl.lightField};
   std::vector<std::size_t> allPasses(plan.passes.size());
   for (std::size_t index = 0; index < allPasses.size(); ++index) allPasses[index] = index;
   impl.drawView(plan, inputs, forms, frame.view, allPasses,
@@ -526,8 +551,9 @@ PendingFrame Renderer::Impl::submitFrame(const RenderSettings& settings, const C
         // A sample's own SSGI gets its own noise: the seed moved past the frames' rotations.
         RenderSettings sampleSettings = used;
         sampleSettings.ssgi.seed += unsigned((sample + 1) * used.ssgi.frames);
-        FrameInputs sampleInputs{plan,  sampleSettings, impl.shadowMaps, impl.environment.tables(), impl.virtualLights,
-                                 sample};
+        FrameInputs sampleInputs{
+            plan,  sampleSettings, impl.shadowMaps, impl.environment.tables(), impl.virtualLights, impl.lightField,
+            sample};
         impl.drawView(plan, sampleInputs, forms, view, plan.antialias->perSamplePasses,
                       [](std::string_view, auto&& work, std::optional<PassForm>) { work(); });
         runFramePass(impl.framePass(accumulateRow), plan.antialias->accumulate, sampleInputs, impl.textures,

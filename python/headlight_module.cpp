@@ -394,7 +394,8 @@ py::tuple frameState(const Frame& f) {
         py::bytes(reinterpret_cast<const char*>(image.pixels.data()), image.pixels.size() * sizeof(float)));
   }
   py::list timings, skipped;
-  for (const PassTime& t : f.timings) timings.append(py::make_tuple(t.pass, t.milliseconds, t.gpuMilliseconds, t.form));
+  for (const PassTime& t : f.timings)
+    timings.append(py::make_tuple(t.pass, t.milliseconds, t.gpuMilliseconds, t.form, t.detail));
   for (const SkippedWork& s : f.skipped) skipped.append(py::make_tuple(s.work, s.reason));
   const CameraView& v = f.view;
   return py::make_tuple(
@@ -437,8 +438,8 @@ std::shared_ptr<Frame> frameFromState(const py::tuple& state) {
   f->view.orthographic = view[5].cast<bool>();
   for (const py::handle& t : state[4].cast<py::list>()) {
     const py::tuple time = t.cast<py::tuple>();
-    f->timings.push_back(
-        {time[0].cast<std::string>(), time[1].cast<double>(), time[2].cast<double>(), time[3].cast<std::string>()});
+    f->timings.push_back({time[0].cast<std::string>(), time[1].cast<double>(), time[2].cast<double>(),
+                          time[3].cast<std::string>(), time.size() > 4 ? time[4].cast<std::string>() : std::string()});
   }
   for (const py::handle& s : state[5].cast<py::list>())
     f->skipped.push_back({s.cast<py::tuple>()[0].cast<std::string>(), s.cast<py::tuple>()[1].cast<std::string>()});

@@ -161,6 +161,7 @@ void printFrameDetails(const Frame& frame) {
     std::fprintf(stderr, "pass %-10s %9.2f ms", time.pass.c_str(), time.milliseconds);
     if (time.gpuMilliseconds >= 0) std::fprintf(stderr, "  gpu %9.3f ms", time.gpuMilliseconds);
     if (!time.form.empty()) std::fprintf(stderr, "  %s", time.form.c_str());
+    if (!time.detail.empty()) std::fprintf(stderr, "  %s", time.detail.c_str());
     std::fprintf(stderr, "\n");
     total += time.milliseconds;
   }

@@ -583,6 +583,7 @@ std::vector<std::string_view> FramePlan::passNames() const {
   std::vector<std::string_view> names;
   if (shadows) names.push_back("shadows");
   if (ssgi && ssgi->virtualLights > 0) names.push_back("virtual-lights");  // made once per scene
+  if (ssgi && ssgi->lightFieldProbes > 0) names.push_back("light-field");  // and from them, once per scene
   // The tables, made on demand ahead of the passes that read them.
   if (skyTables) names.push_back("sky");
   if (environmentTables) names.push_back("environment");
@@ -641,6 +642,7 @@ FramePlan planFrame(const SceneSummary& scene, const RenderSettings& settings, s
                  .blur = settings.ssgi.blur,
                  .farDownsample = farPass ? std::max(divisor, ssgiDivisor(settings.ssgi.farResolution)) : divisor};
     if (method.marchesBeyondRadius) plan.ssgi->virtualLights = settings.ssgi.virtualLightCount;
+    if (plan.ssgi->virtualLights > 0) plan.ssgi->lightFieldProbes = settings.ssgi.lightFieldProbes;
   }
   if (skips.runs(Work::Direct))
     plan.direct = DirectLightVariant{.emissive = skips.runs(Work::Emissive),

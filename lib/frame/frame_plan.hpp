@@ -240,6 +240,10 @@ struct SsgiStep {
   // The most virtual point lights the far field gathers its light from
   // beyond R from (lib/passes/virtual_lights.hpp); 0: the marches gather it.
   int virtualLights = 0;
+  // The most probes of the light field (lib/passes/light_field.hpp) the far
+  // field reads its light from beyond R in; 0: none. Only with virtual
+  // lights, which fill it.
+  int lightFieldProbes = 0;
   bool splitsFarField() const { return farDownsample > downsample; }
 };
 

@@ -32,7 +32,9 @@ static_assert(offsetof(SsgiBlock, radiusWorld) == kMaxKernelSamples * 16);
 static_assert(offsetof(SsgiBlock, indirectStrength) == kMaxKernelSamples * 16 + 12);
 static_assert(offsetof(SsgiBlock, sampleCount) == kMaxKernelSamples * 16 + 16);
 static_assert(offsetof(SsgiBlock, downsample) == kMaxKernelSamples * 16 + 20);
-static_assert(sizeof(SsgiBitmaskBlock) == 48);
+static_assert(sizeof(SsgiBitmaskBlock) == 48 + 3 * 16);  // + the light field's grid
+static_assert(offsetof(SsgiBitmaskBlock, lightFieldOrigin) == 48);
+static_assert(sizeof(GpuLightProbe) == kLightFieldMapSize * kLightFieldMapSize * 16 * 3 / 2);
 static_assert(offsetof(SsgiBitmaskBlock, indirectStrength) == 12);
 static_assert(offsetof(SsgiBitmaskBlock, sliceCount) == 16);
 static_assert(offsetof(SsgiBitmaskBlock, rotationIndex) == 28);

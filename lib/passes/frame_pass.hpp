@@ -17,6 +17,7 @@
 #include "gl/objects.hpp"
 #include "passes/environment.hpp"
 #include "passes/fullscreen.hpp"
+#include "passes/light_field.hpp"
 #include "passes/shadow.hpp"
 #include "passes/virtual_lights.hpp"
 
@@ -32,6 +33,7 @@ struct FrameInputs {
   const ShadowMaps& shadows;       // empty maps: no shadows
   const EnvironmentTables& environment;
   const VirtualLights& virtualLights;  // read where the plan's SSGI step gathers them
+  const LightField& lightField;        // and the light field they fill (SsgiStep::lightFieldProbes)
   int antialiasSample = 0;             // the antialias pass's sample (AntialiasStep)
 };
 

@@ -27,7 +27,8 @@ GBufferPass::GBufferPass(const GpuScene& scene, const GBufferVariant& variant)
                    variant.defines});
 }
 
-void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant) {
+void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant,
+                      Faces faces) {
   attach(targets);
   // Zero everywhere: position.a = 0 marks background for every later pass.
   // An integer target (ids) is cleared as integers: a float clear of it is undefined.
@@ -43,7 +44,10 @@ void GBufferPass::run(const GpuScene& scene, const GBufferTargets& targets, cons
   }
   const float farDepth = 1.0f;
   glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &farDepth);
-  draw(scene, variant, variant.deferTransmissive ? Draws::Opaque : Draws::All);
+  draw(scene, variant,
+       faces == Faces::Back        ? Draws::BackFaces
+       : variant.deferTransmissive ? Draws::Opaque
+                                   : Draws::All);
   detach(targets);
 }
 
@@ -81,7 +85,8 @@ void GBufferPass::draw(const GpuScene& scene, const GBufferVariant& variant, Dra
   for (const GpuDrawGroup& group : scene.drawGroups) {
     const GpuPrimitive& primitive = scene.primitives[std::size_t(group.primitive)];
     const GpuMaterial& material = scene.materials[std::size_t(group.material)];
-    if ((draws == Draws::Opaque && material.transmissive) || (draws == Draws::Transmissive && !material.transmissive))
+    if ((draws == Draws::Opaque && material.transmissive) || (draws == Draws::Transmissive && !material.transmissive) ||
+        (draws == Draws::BackFaces && material.doubleSided))
       continue;
     const FeatureBits features = drawFeatures(primitive, material);
     programs_.get({features, variant.defines}).use();
@@ -89,6 +94,7 @@ void GBufferPass::draw(const GpuScene& scene, const GBufferVariant& variant, Dra
       glDisable(GL_CULL_FACE);
     else
       glEnable(GL_CULL_FACE);
+    glCullFace(draws == Draws::BackFaces ? GL_FRONT : GL_BACK);
     // Also decides gl_FrontFacing, so a mirrored double-sided mesh keeps
     // its normals pointing the right way.
     glFrontFace(group.mirrored ? GL_CW : GL_CCW);
@@ -100,6 +106,7 @@ void GBufferPass::draw(const GpuScene& scene, const GBufferVariant& variant, Dra
   }
   glDisable(GL_FRAMEBUFFER_SRGB);
   glDisable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
 }
 

@@ -47,16 +47,21 @@ class GBufferPass {
  public:
   // Builds the programs the instances need for `variant` (the default frame's).
   GBufferPass(const GpuScene& scene, const GBufferVariant& variant);
+  // Which faces a draw keeps: the front faces (a double-sided material's
+  // both), or only the back faces of single-sided materials (what a light
+  // field probe inside a closed mesh sees first: lib/passes/light_field.hpp).
+  enum class Faces { Front, Back };
   // Draws every instance into `targets`, the attachments `variant` lists;
   // the frame block must be bound.
-  void run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant);
+  void run(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant,
+           Faces faces = Faces::Front);
   // Draws the transmissive instances (GpuMaterial::transmissive) over what
   // run() left, depth-tested: the transmission pass's step 2, after the
   // composite has lit the opaque image (GBufferVariant::deferTransmissive).
   void drawTransmissive(const GpuScene& scene, const GBufferTargets& targets, const GBufferVariant& variant);
 
  private:
-  enum class Draws { All, Opaque, Transmissive };
+  enum class Draws { All, Opaque, Transmissive, BackFaces };
   void attach(const GBufferTargets& targets);
   void draw(const GpuScene& scene, const GBufferVariant& variant, Draws draws);
   void detach(const GBufferTargets& targets);

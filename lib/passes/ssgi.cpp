@@ -74,6 +74,7 @@ void SsgiPass::execute(const FrameInputs& frame, const PassAttachments& attachme
   inputs.farDownsample = step.farDownsample;
   if (step.virtualLights > 0) {
     inputs.virtualLights = &frame.virtualLights;
+    if (step.lightFieldProbes > 0 && frame.lightField.grid.probeCount() > 0) inputs.lightField = &frame.lightField;
     inputs.shadows = &frame.shadows;
     inputs.emissive = attachments.declaresRead(Attachment::GbufferEmissive);
   }

@@ -18,6 +18,7 @@
 #include "passes/frame_pass.hpp"
 #include "passes/fullscreen.hpp"
 #include "passes/gbuffer.hpp"
+#include "passes/light_field.hpp"
 #include "passes/shadow.hpp"
 #include "passes/ssgi_bitmask.hpp"
 #include "passes/virtual_lights.hpp"
@@ -49,6 +50,7 @@ struct SsgiInputs {
   // The bitmask method's far field: the light from beyond R from these
   // (VirtualLightPass), or null: from what its marches find.
   const VirtualLights* virtualLights = nullptr;
+  const LightField* lightField = nullptr;  // with virtual lights: the probes they filled, or null
   const ShadowMaps* shadows = nullptr;  // the lights' maps: what hides a virtual light near its light
   bool emissive = false;                // the G-buffer has emission (bound): what glows beyond R with virtual lights
   int frameIndex = 0;                   // rotates the slices and step jitter between accumulated frames

@@ -30,6 +30,13 @@ void SsgiBitmaskPass::run(const SsgiInputs& inputs, const SsgiTextures& output) 
     block.virtualLightCount = inputs.virtualLights->count;
     inputs.virtualLights->buffer.bindStorage(gpu::VirtualLightBuffer::kBinding);
     block.farLightSource = inputs.emissive ? gpu::kFarLightEmission : gpu::kFarLightNone;
+    if (inputs.lightField) {
+      const LightFieldGrid& grid = inputs.lightField->grid;
+      block.lightFieldOrigin = glm::vec4(grid.origin, 0.0f);
+      block.lightFieldSpacing = glm::vec4(grid.spacing, 0.0f);
+      block.lightFieldCounts = glm::ivec4(grid.counts, 0);
+      inputs.lightField->buffer.bindStorage(gpu::LightFieldBuffer::kBinding);
+    }
     // The lights' shadow maps: a virtual light near its light is hidden
     // where the light is.
     if (inputs.shadows) {

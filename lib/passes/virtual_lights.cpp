@@ -18,19 +18,13 @@ glm::vec3 upFor(const glm::vec3& direction) {
   return std::abs(direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
 
-// A perspective view from `position` along `direction` that reaches past
-// the scene's far side.
+// A light's perspective view from `position` along `direction`.
 LightView perspectiveView(std::size_t light, const glm::vec3& position, const glm::vec3& direction, float fov,
                           const Bounds& bounds) {
   LightView view;
   view.light = light;
   view.tanHalfFov = std::tan(0.5f * fov);
-  CameraView& camera = view.camera;
-  camera.farPlane = std::max(glm::length(bounds.center() - position) + bounds.radius(), 1e-30f);
-  camera.nearPlane = camera.farPlane * 1e-4f;
-  camera.position = position;
-  camera.view = glm::lookAt(position, position + direction, upFor(direction));
-  camera.projection = glm::perspective(fov, 1.0f, camera.nearPlane, camera.farPlane);
+  view.camera = perspectiveCamera(position, direction, fov, bounds);
   return view;
 }
 
@@ -68,10 +62,33 @@ glm::vec3 reflectedFlux(const Light& light, const LightView& view, int x, int y,
   return diffuse * intensity * (attenuation * distance * distance * measure);
 }
 
+// The area of the surface texel (x, y) of `view` covers: its measure across
+// the light's rays, times the distance squared for a perspective view,
+// over the cosine to the light (no more than 20 times the texel's area
+// across the rays: a surface seen edge-on).
+float texelSurfaceArea(const Light& light, const LightView& view, int x, int y, int size, const glm::vec3& position,
+                       const glm::vec3& normal) {
+  glm::vec3 toLight;
+  float distance = 0.0f;
+  reference::lightAttenuation(light, position, toLight, distance);
+  const float across =
+      texelMeasure(view, x, y, size) * (light.type == Light::Type::Directional ? 1.0f : distance * distance);
+  return across / std::max(glm::dot(normal, toLight), 0.05f);
+}
+
 }  // namespace
 
+CameraView perspectiveCamera(const glm::vec3& position, const glm::vec3& direction, float fov, const Bounds& bounds) {
+  CameraView camera;
+  camera.farPlane = std::max(glm::length(bounds.center() - position) + bounds.radius(), 1e-30f);
+  camera.nearPlane = camera.farPlane * 1e-4f;
+  camera.position = position;
+  camera.view = glm::lookAt(position, position + direction, upFor(direction));
+  camera.projection = glm::perspective(fov, 1.0f, camera.nearPlane, camera.farPlane);
+  return camera;
+}
+
 std::vector<LightView> lightViews(const std::vector<Light>& lights, const Bounds& bounds) {
-  static const glm::vec3 kCubeFaces[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   std::vector<LightView> views;
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const Light& light = lights[i];
@@ -82,7 +99,7 @@ std::vector<LightView> lightViews(const std::vector<Light>& lights, const Bounds
     const glm::vec3 direction = glm::normalize(light.direction);
     switch (light.type) {
       case Light::Type::Point:
-        for (const glm::vec3& face : kCubeFaces)
+        for (const glm::vec3& face : kCubeFaceDirections)
           views.push_back(perspectiveView(i, light.position, face, glm::radians(90.0f), bounds));
         break;
       case Light::Type::Spot:
@@ -158,7 +175,9 @@ VirtualLights VirtualLightPass::run(const GpuScene& scene, GBufferPass& gbuffer,
             (1.0f - materials.at(x, y, 0)) * glm::vec3(albedos.at(x, y, 0), albedos.at(x, y, 1), albedos.at(x, y, 2));
         const glm::vec3 flux = reflectedFlux(lights[view.light], view, x, y, size, p, n, diffuse);
         if (flux == glm::vec3(0.0f)) continue;
-        virtualLights.push_back({glm::vec4(p, float(view.light)), glm::vec4(n, 0.0f), glm::vec4(flux, 0.0f)});
+        virtualLights.push_back({glm::vec4(p, float(view.light)),
+                                 glm::vec4(n, texelSurfaceArea(lights[view.light], view, x, y, size, p, n)),
+                                 glm::vec4(flux, 0.0f)});
       }
   }
   out.count = int(virtualLights.size());
@@ -166,6 +185,7 @@ VirtualLights VirtualLightPass::run(const GpuScene& scene, GBufferPass& gbuffer,
   out.buffer = gl::Buffer::create(std::max<std::size_t>(1, virtualLights.size()) * sizeof(gpu::GpuVirtualLight));
   if (!virtualLights.empty())
     out.buffer.update(virtualLights.data(), virtualLights.size() * sizeof(gpu::GpuVirtualLight));
+  out.entries = std::move(virtualLights);
   return out;
 }
 

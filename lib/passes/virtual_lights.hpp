@@ -18,6 +18,7 @@
 #include "headlight/camera.hpp"
 #include "headlight/scene.hpp"
 #include "passes/gbuffer.hpp"
+#include "shared_layout.h"
 
 namespace headlight {
 
@@ -30,6 +31,13 @@ struct LightView {
   float tanHalfFov = 0.0f;
   float halfWidth = 0.0f;  // orthographic (directional): half the square's side, world units
 };
+
+// A cube's faces, in GL's order: +X, -X, +Y, -Y, +Z, -Z.
+inline const glm::vec3 kCubeFaceDirections[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+// A square perspective view from `position` along `direction`, `fov`
+// radians across, that reaches past the far side of `bounds`.
+CameraView perspectiveCamera(const glm::vec3& position, const glm::vec3& direction, float fov, const Bounds& bounds);
 
 // Every view of every light that casts shadows, in the lights' order: six
 // for a point light, one for a spot or directional light.
@@ -45,8 +53,9 @@ float texelMeasure(const LightView& view, int x, int y, int size);
 int lightViewSize(int budget, std::size_t viewCount);
 
 struct VirtualLights {
-  gl::Buffer buffer;  // gpu::GpuVirtualLight entries; bound at kBindingVirtualLights
+  gl::Buffer buffer;  // the entries, bound at kBindingVirtualLights
   int count = 0;
+  std::vector<gpu::GpuVirtualLight> entries;  // what the buffer holds: the light field is filled from them
 };
 
 class VirtualLightPass {

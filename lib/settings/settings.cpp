@@ -194,6 +194,15 @@ const std::vector<Row>& table() {
            .maximum = 65536},
           [](auto& s) -> auto& { return s.ssgi.virtualLightCount; }),
       row(
+          {.name = "ssgi-light-field",
+           .type = T::Int,
+           .help = "bitmask SSGI with virtual lights: the most probes of a world-space light field over the scene "
+                   "(irradiance and what each probe sees, made once per scene from the virtual lights), from which "
+                   "the far field takes the light the screen does not show (0: none)",
+           .minimum = 0,
+           .maximum = 4096},
+          [](auto& s) -> auto& { return s.ssgi.lightFieldProbes; }),
+      row(
           {.name = "shadows", .type = T::Bool, .help = "shadow maps for the lights that cast shadows"},
           [](auto& s) -> auto& { return s.lighting.shadows; }),
       row(

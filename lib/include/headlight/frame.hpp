@@ -46,6 +46,8 @@ struct PassTime {
   // How a fullscreen pass ran ("fragment" or "compute", --fullscreen-form);
   // empty for the other passes.
   std::string form;
+  // What a pass made, where it says (the light field: its probes); `--verbose` prints it.
+  std::string detail;
 };
 
 // The names behind the ids target's values (Frame::ids): id k >= 1 of a

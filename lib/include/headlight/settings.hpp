@@ -85,6 +85,11 @@ struct SsgiSettings {
   // 0.001 on cornell and lost it on slats; 512 lost 0.0006 on slats
   // (docs/BENCHMARKS.md, "Virtual lights").
   int virtualLightCount = 1024;
+  // Bitmask with virtual lights: the most probes of a world-space light
+  // field over the scene (lib/passes/light_field.hpp), made once per scene,
+  // from which the far field takes the light the screen does not hold
+  // (0: none; the virtual lights are gathered directly).
+  int lightFieldProbes = 0;
   // Bitmask frames averaged, each with rotated slices and jittered steps
   // (with a still camera, exact temporal accumulation).
   int frames = 1;
