@@ -174,6 +174,7 @@ struct Slice {
   float projectedLength;  // the normal's length projected into the slice: the slice's weight
   uint occupied;          // sectors covered within R
   uint skyOccupied;       // sectors covered at any distance
+  uint hiddenOccupied;    // sectors first covered within R by a surface that faces away: what sends light there is hidden
   vec3 indirect;          // light gathered within R (weighted by projectedLength)
   vec3 farIndirect;       // light gathered beyond R (weighted by projectedLength)
 };
@@ -209,6 +210,7 @@ void marchWithinRadius(inout Slice slice, float edges[kSectors + 1], vec2 stepDi
                               : 0u;
     const uint fresh = mask & ~slice.occupied;
     slice.occupied |= mask;
+    if (!facing) slice.hiddenOccupied |= fresh;
     // The same slab uncut, for the sky: sectors no nearer sample took
     // gather its light as light from beyond R.
     const vec3 skySlabBack = offsetFront + point.awayFromEye * skySlabDepth(offsetFront);
@@ -469,16 +471,15 @@ vec4 specularOutput(vec3 specularSum, float skyVisibility, int sliceCount) {
 }
 
 // The light the screen hides within R, from the light field (issue 33; docs/ACCURACY.md §3.3, "The light
-// field"). The field's irradiance is all of the one bounce, at the probes' resolution; of it, the share
-// through the directions the slices found covered within R, (1 - visibility), arrives from surfaces within
-// R. The near field gathered what the screen shows of those (`gathered`); the rest, never below 0, is what
-// it could not see: the lit sides of builtin:slats' bars, which face away from the camera. Light from
-// beyond R stays the virtual lights' (their gather is sharper than the probes: builtin:cornell's HDR-FLIP
-// 0.144 with them, 0.196 with the field's light through the open directions instead, at 64 probes).
-vec3 hiddenWithinRadius(LightFieldGrid grid, vec3 worldPosition, vec3 worldNormal, vec3 worldToEye, float visibility,
-                        vec3 gathered) {
-  const vec3 field = lightFieldIrradiance(grid, worldPosition, worldNormal, worldToEye) / kPi;
-  return max(field * (1.0 - visibility) - gathered, vec3(0.0));
+// field"). A sector first covered within R by a surface that faces away from the point (the lit side of
+// builtin:slats' bars, which faces away from the camera) gathered nothing: what lights the point from there
+// is hidden. The field's irradiance, at the probes' resolution, stands in for it over those sectors'
+// cosine-weighted share, `hiddenShare`. Light from beyond R stays the virtual lights' (their gather is
+// sharper than the probes: builtin:cornell's HDR-FLIP 0.144 with them, 0.196 with the field's light
+// through the open directions instead, at 64 probes); the field over every covered sector less what the
+// near field gathered there lit the floor round cornell's blocks with the open room's light (0.166).
+vec3 hiddenWithinRadius(LightFieldGrid grid, vec3 worldPosition, vec3 worldNormal, vec3 worldToEye, float hiddenShare) {
+  return lightFieldIrradiance(grid, worldPosition, worldNormal, worldToEye) / kPi * hiddenShare;
 }
 
 // The slices' rotation (in units of pi / sliceCount: slice s lies at angle
@@ -543,7 +544,7 @@ PassOutputs shadePixel(ivec2 outputPixel) {
       turnedTowardReflection(randomRotation, reflected, toEye, diffuseAlbedo, metallicRoughness.y, sliceCount);
   vec3 specularSum = vec3(0.0);  // the slices' weighted open shares of the lobe, their weights, bends
 
-  float visibleSum = 0.0, skyVisibleSum = 0.0, totalSum = 0.0;
+  float visibleSum = 0.0, skyVisibleSum = 0.0, hiddenSum = 0.0, totalSum = 0.0;
   vec3 indirect = vec3(0.0), farIndirect = vec3(0.0);  // gathered within R, and beyond it
   OccludingSlices occluding;
   occluding.count = 0;
@@ -564,6 +565,7 @@ PassOutputs shadePixel(ivec2 outputPixel) {
     const float total = edges[kSectors] - edges[0];  // = cos(n) + n sin(n)
     slice.occupied = 0u;
     slice.skyOccupied = 0u;
+    slice.hiddenOccupied = 0u;
     slice.indirect = vec3(0.0);
     slice.farIndirect = vec3(0.0);
     for (int sign = -1; sign <= 1; sign += 2) {
@@ -585,6 +587,7 @@ PassOutputs shadePixel(ivec2 outputPixel) {
     indirect += slice.indirect;
     farIndirect += slice.farIndirect;
     visibleSum += slice.projectedLength * max(total - sectorWeight(slice.occupied, edges), 0.0);
+    hiddenSum += slice.projectedLength * sectorWeight(slice.hiddenOccupied, edges);
     // What is occluded within R is occluded from the sky too.
     const float skyOccludedWeight = sectorWeight(slice.skyOccupied | slice.occupied, edges);
     // The near field's own pass writes no specular (the far field's does).
@@ -613,8 +616,9 @@ PassOutputs shadePixel(ivec2 outputPixel) {
     if (bitmask.lightFieldCounts.x > 0) {
       const LightFieldGrid grid = LightFieldGrid(bitmask.lightFieldOrigin.xyz, bitmask.lightFieldSpacing.xyz,
                                                  bitmask.lightFieldCounts.xyz);
-      farGathered += hiddenWithinRadius(grid, worldPosition, worldNormal, transpose(mat3(frame.view)) * toEye,
-                                        visibility, gathered);
+      const float hiddenShare = totalSum > 0.0 ? clamp(hiddenSum / totalSum, 0.0, 1.0) : 0.0;
+      farGathered +=
+          hiddenWithinRadius(grid, worldPosition, worldNormal, transpose(mat3(frame.view)) * toEye, hiddenShare);
     }
   }
   const vec4 farField = vec4(clamp(1.0 - bitmask.intensity * (1.0 - skyVisibility), 0.0, 1.0),

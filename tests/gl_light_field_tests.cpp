@@ -20,6 +20,7 @@
 #include "passes/light_field.hpp"
 #include "passes/virtual_lights.hpp"
 #include "support/gl.hpp"
+#include "support/indirect_error.hpp"
 
 using namespace headlight;
 using namespace headlight::test;
@@ -202,42 +203,9 @@ TEST_CASE("light field on builtin:slats: the light the bars hide from the camera
   reference.samplesPerPixel = 256;
   reference.radius = *with.settings.ssgi.radius;
   const ReferenceImages truth = traceReference(renderer.scene(), with, reference);
-  REQUIRE(truth.indirect.channels.at(3) == "indirect.R");
-  // ssgi's indirect (1..3) and indirectFar (5..7) against the reference's
-  // unlimited indirect (3..5): the mean ratio and the RMSE of 8x8 block
-  // means over the reference's mean (per pixel, 256 rays' noise dominates).
-  constexpr int kBlock = 8;
-  const auto relativeError = [&](const Frame& frame, double& ratio) {
-    double squared = 0.0, ours = 0.0, theirs = 0.0;
-    long pixelCount = 0, blockCount = 0;
-    for (int by = 0; by + kBlock <= frame.ssgi.height; by += kBlock)
-      for (int bx = 0; bx + kBlock <= frame.ssgi.width; bx += kBlock) {
-        glm::dvec3 a(0.0), b(0.0);
-        int pixels = 0;
-        for (int y = by; y < by + kBlock; ++y)
-          for (int x = bx; x < bx + kBlock; ++x) {
-            if (frame.position.at(x, y, 3) == 0.0f) continue;
-            for (int c = 0; c < 3; ++c) {
-              a[c] += frame.ssgi.at(x, y, 1 + c) + frame.ssgi.at(x, y, 5 + c);
-              b[c] += truth.indirect.at(x, y, 3 + c);
-            }
-            ++pixels;
-          }
-        if (pixels == 0) continue;
-        for (int c = 0; c < 3; ++c) {
-          squared += (a[c] - b[c]) * (a[c] - b[c]) / (double(pixels) * pixels);
-          ours += a[c];
-          theirs += b[c];
-        }
-        pixelCount += pixels;
-        ++blockCount;
-      }
-    REQUIRE(theirs > 0.0);
-    ratio = ours / theirs;
-    return std::sqrt(squared / (3.0 * double(blockCount))) / (theirs / (3.0 * double(pixelCount)));
-  };
-  double ratioWith = 0.0, ratioWithout = 0.0;
-  const double errorWith = relativeError(with, ratioWith), errorWithout = relativeError(without, ratioWithout);
+  const IndirectError withField = blockIndirectError(with, truth), withoutField = blockIndirectError(without, truth);
+  const double errorWith = withField.relativeRmse, errorWithout = withoutField.relativeRmse,
+               ratioWith = withField.ratio, ratioWithout = withoutField.ratio;
   CAPTURE(errorWith);
   CAPTURE(errorWithout);
   CAPTURE(ratioWith);
@@ -245,4 +213,30 @@ TEST_CASE("light field on builtin:slats: the light the bars hide from the camera
   CHECK(ratioWithout < 0.35);
   CHECK(ratioWith > 1.8 * ratioWithout);
   CHECK(errorWith < 0.85 * errorWithout);
+}
+
+TEST_CASE("light field on builtin:cornell: no light where the screen shows what sends it" *
+          doctest::skip(!HEADLIGHT_HAS_EMBREE)) {
+  // The field's light goes only to sectors covered by surfaces facing away
+  // from the point. Over every covered sector (less what the near field
+  // gathered) it lit the floor round the blocks with the open room's light:
+  // the indirect light 1.07x the reference's, its error 11 % up
+  // (docs/ACCURACY.md §3.3, "The light field").
+  Renderer renderer(sharedContext());
+  renderer.setScene(loadScene("builtin:cornell"));
+  RenderSettings settings = smallSettings(128, 128);
+  const Frame without = renderer.render(settings);
+  settings.ssgi.lightFieldProbes = 64;
+  const Frame with = renderer.render(settings);
+  ReferenceSettings reference;
+  reference.samplesPerPixel = 256;
+  reference.radius = *with.settings.ssgi.radius;
+  const ReferenceImages truth = traceReference(renderer.scene(), with, reference);
+  const IndirectError withField = blockIndirectError(with, truth), withoutField = blockIndirectError(without, truth);
+  CAPTURE(withField.relativeRmse);
+  CAPTURE(withoutField.relativeRmse);
+  CAPTURE(withField.ratio);
+  CAPTURE(withoutField.ratio);
+  CHECK(withField.relativeRmse < 1.03 * withoutField.relativeRmse);
+  CHECK(withField.ratio < withoutField.ratio + 0.03);
 }

@@ -22,6 +22,7 @@
 #include "passes/virtual_lights.hpp"
 #include "shared_layout.h"
 #include "support/gl.hpp"
+#include "support/indirect_error.hpp"
 
 using namespace headlight;
 using namespace headlight::test;
@@ -177,43 +178,11 @@ TEST_CASE("virtual lights on builtin:cornell: the indirect light nearer the refe
   reference.samplesPerPixel = 256;
   reference.radius = *withLights.settings.ssgi.radius;
   const ReferenceImages truth = traceReference(renderer.scene(), withLights, reference);
-  REQUIRE(truth.indirect.channels.at(3) == "indirect.R");
   // ssgi: 1..3 the light within R, 5..7 from beyond it; the reference's
-  // indirect (3..5) has both. Compared as means over 8x8 blocks of
-  // geometry pixels: per pixel, 256 rays' noise is most of the difference.
-  constexpr int kBlock = 8;
-  const auto relativeError = [&](const Frame& frame, double& ratio) {
-    double squared = 0.0, ours = 0.0, theirs = 0.0;
-    long pixelCount = 0, blockCount = 0;
-    for (int by = 0; by + kBlock <= frame.ssgi.height; by += kBlock)
-      for (int bx = 0; bx + kBlock <= frame.ssgi.width; bx += kBlock) {
-        glm::dvec3 a(0.0), b(0.0);
-        int pixels = 0;
-        for (int y = by; y < by + kBlock; ++y)
-          for (int x = bx; x < bx + kBlock; ++x) {
-            if (frame.position.at(x, y, 3) == 0.0f) continue;
-            for (int c = 0; c < 3; ++c) {
-              a[c] += frame.ssgi.at(x, y, 1 + c) + frame.ssgi.at(x, y, 5 + c);
-              b[c] += truth.indirect.at(x, y, 3 + c);
-            }
-            ++pixels;
-          }
-        if (pixels == 0) continue;
-        for (int c = 0; c < 3; ++c) {
-          squared += (a[c] - b[c]) * (a[c] - b[c]) / (double(pixels) * pixels);
-          ours += a[c];
-          theirs += b[c];
-        }
-        pixelCount += pixels;
-        ++blockCount;
-      }
-    REQUIRE(theirs > 0.0);
-    ratio = ours / theirs;
-    // The blocks' RMSE over the reference's mean per pixel and channel.
-    return std::sqrt(squared / (3.0 * double(blockCount))) / (theirs / (3.0 * double(pixelCount)));
-  };
-  double ratioWith = 0.0, ratioMarches = 0.0;
-  const double errorWith = relativeError(withLights, ratioWith), errorMarches = relativeError(marches, ratioMarches);
+  // indirect (3..5) has both.
+  const IndirectError with = blockIndirectError(withLights, truth), without = blockIndirectError(marches, truth);
+  const double errorWith = with.relativeRmse, errorMarches = without.relativeRmse, ratioWith = with.ratio,
+               ratioMarches = without.ratio;
   CAPTURE(errorWith);
   CAPTURE(errorMarches);
   CAPTURE(ratioWith);
