@@ -125,8 +125,7 @@ int main(int argc, char** argv) {
       return 77;
     }
     const std::vector<RenderSettings> variants = variantsFromArguments(argc, argv, 3, size);
-    RenderSettings off;
-    off.width = off.height = size;
+    RenderSettings off = report::settingsFromArguments(argc, argv, argc, size);
     off.ssgi.enabled = false;
     Context context(ContextOptions{.backend = Backend::Auto, .errorPolicy = GlErrorPolicy::Throw, .eglDeviceName = {}});
     Renderer renderer(context);
