@@ -67,6 +67,7 @@ struct ShadingPoint {
   float metallic = 0.0f;
   float roughness = 1.0f;
   bool geometry = true;
+  float occlusion = 1.0f;  // the material's occlusion (texture x strength)
 };
 
 // A G-buffer whose pixel (x, y) holds point(x, y); sky intensity 0 unless
@@ -91,7 +92,7 @@ Frame syntheticFrame(int width, int height, const std::function<ShadingPoint(int
       frame.position.pixels[i * 4 + 3] = 1.0f;
       frame.material.pixels[i * 3 + 0] = p.metallic;
       frame.material.pixels[i * 3 + 1] = p.roughness;
-      frame.material.pixels[i * 3 + 2] = 1.0f;
+      frame.material.pixels[i * 3 + 2] = p.occlusion;
     }
   frame.view.projection = glm::perspective(0.8f, float(width) / float(height), 0.1f, 100.0f);
   frame.settings.lighting.skyIntensity = skyIntensity;
@@ -440,6 +441,35 @@ TEST_CASE("reference: a white surface under a uniform open sky reflects the sky"
   const ReferenceImages result = traceReference(scene, frame, settings);
   for (int c = 0; c < 3; ++c)
     CHECK(result.lit.at(0, 0, c) == doctest::Approx(2.0f * scene.sky.zenith[c]).epsilon(1e-4));
+}
+
+TEST_CASE("reference: the material's occlusion dims the sky's light as the composite's does" *
+          doctest::test_suite("reference") * kNeedsEmbree) {
+  // glTF's occlusionTexture: less ambient light where it is below 1. The
+  // composite scales the sky's ambient by it (ambient.glsl); a reference
+  // that left it out read every model with a baked occlusion map brighter
+  // than any render could be (NormalTangentMirrorTest: the default SSGI
+  // "worse than none", docs/BENCHMARKS.md "Session 23"). The furnace
+  // above, at occlusion 0.25, and a metal at 0.5.
+  Scene scene = emptyScene();
+  add(scene, makeSquare({0, 0, 0}, {0, 1, 0}, 10.0f), lambert(glm::vec3(1.0f)));
+  scene.sky.zenith = scene.sky.horizon = scene.sky.ground = glm::vec3(0.25f, 0.5f, 1.0f);
+  for (const auto& [metallic, occlusion] : {std::pair{0.0f, 0.25f}, std::pair{1.0f, 0.5f}}) {
+    CAPTURE(metallic);
+    ShadingPoint point;
+    point.albedo = glm::vec3(1.0f);
+    point.roughness = 0.5f;
+    point.metallic = metallic;
+    Frame frame = uniformFrame(2, 2, point, 2.0f);
+    frame.view.position = {0.0f, 1.0f, 2.0f};
+    const ReferenceSettings settings = referenceSettings(256, 1.0f);
+    const ReferenceImages open = traceReference(scene, frame, settings);
+    for (std::size_t i = 0; i < 4; ++i) frame.material.pixels[i * 3 + 2] = occlusion;
+    const ReferenceImages occluded = traceReference(scene, frame, settings);
+    for (int c = 0; c < 3; ++c)
+      CHECK(occluded.lit.at(0, 0, c) == doctest::Approx(occlusion * open.lit.at(0, 0, c)).epsilon(1e-4));
+    CHECK(occluded.ao.at(0, 0, 1) == open.ao.at(0, 0, 1));  // sky.Y stays the geometry's
+  }
 }
 
 TEST_CASE("reference: background pixels show the sky through the pixel" * doctest::test_suite("reference") *

@@ -140,14 +140,18 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
   const glm::vec3 skyMean =
       in_.environment ? environmentIrradianceOverPi(surface, origin, n, random) : glm::vec3(skySum / count);
   glm::vec3 specularAlbedo(0.0f);
+  // The material's occlusion (glTF's occlusionTexture x strength) dims the
+  // sky's light, the coat's too, as the composite does; not the one bounce
+  // (ambient.glsl adds SSGI's indirect light after it).
+  const float materialOcclusion = frame.material.channelCount() > 2 ? frame.material.at(x, y, 2) : 1.0f;
   // A transmissive surface's diffuse lobe keeps only the share not transmitted (ambientLight's too).
-  glm::vec3 under = ambientLight(surface, origin, basis, skyMean, random, &specularAlbedo, &ao[2]) +
+  glm::vec3 under = materialOcclusion * ambientLight(surface, origin, basis, skyMean, random, &specularAlbedo, &ao[2]) +
                     glm::vec3(indirectMean) * (1.0f - surface.transmission);
   if (!frame.emissive.empty())
     under += glm::vec3(frame.emissive.at(x, y, 0), frame.emissive.at(x, y, 1), frame.emissive.at(x, y, 2));
   // The coat over all the base sends; directLight layers it per light.
   glm::vec3 radiance = directLight(surface, position, origin, coat, transmissive) +
-                       clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
+                       clearcoatLayer(coat, under, materialOcclusion * coatAmbient(coat, view, origin, random));
   if (transmissive.share > 0.0f)
     radiance += transmittedLight(surface, position, transmissive, specularAlbedo, coat, random);
   lit[0] = radiance.r, lit[1] = radiance.g, lit[2] = radiance.b, lit[3] = 1.0f;
