@@ -21,6 +21,7 @@
 #include <set>
 
 #include "batch.hpp"
+#include "batch_plan.hpp"
 #include "headlight/diff.hpp"
 #include "headlight/error.hpp"
 #include "headlight/finite.hpp"

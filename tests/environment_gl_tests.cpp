@@ -10,10 +10,10 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "batch.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
+#include "job_file.hpp"
 #include "support/environment_maps.hpp"
 #include "support/gl.hpp"
 #include "support/temp_folder.hpp"

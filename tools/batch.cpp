@@ -1,10 +1,7 @@
-// headlight render, in three steps read top to bottom:
-//   plan:   jobs expanded (a scene is loaded only where the expansion must
-//           count its cameras or time its animation), folders checked for
-//           clashes, the shard chosen, each job's folder checked and, with
-//           --resume, its hash held against the set already there: a status
-//           per job (render, skip, refused, invalid);
-//   run:    for each job to render, its scene from the catalogue ->
+// headlight render, in three steps:
+//   plan:   batch_plan.cpp: jobs expanded, folders checked, the shard
+//           chosen, a status per job (render, skip, refused, invalid);
+//   run:    (here) for each job to render, its scene from the catalogue ->
 //           Renderer::submit -> collect -> writeFrame on a worker thread
 //           while the next job renders;
 //   report: a line per job as it ends, then the summary (lines or JSON).
@@ -26,6 +23,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "batch_plan.hpp"
 #include "frame/frame_plan.hpp"  // isSoftwareRasterizer
 #include "headlight/context.hpp"
 #include "headlight/error.hpp"
@@ -33,9 +31,7 @@
 #include "headlight/renderer.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/targets.hpp"
-#include "io/fingerprint.hpp"
 #include "io/folder_lock.hpp"
-#include "output/frame_set.hpp"
 #include "progress.hpp"
 #include "scene_catalogue.hpp"
 #include "tooling/command_line.hpp"
@@ -46,82 +42,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
-
-// True when the folder holds a complete set written for `hash`.
-bool setMatches(const std::string& outDir, const std::string& hash) {
-  try {
-    const std::optional<FrameManifest> manifest = readManifest(outDir);
-    if (!manifest || !manifest->complete || manifest->jobHash != hash) return false;
-    return checkFrameSet(outDir).state == FrameSetState::Complete;
-  } catch (const Error&) {
-    return false;  // unreadable: render it again
-  }
-}
-
-// ---- Plan --------------------------------------------------------------------------
-
-struct PlannedJob {
-  enum class Status { Render, Skip, Refused, Invalid } status = Status::Render;
-  Job job;
-  std::string hash;  // computed once: by the plan with --resume, else when the job's set is written
-};
-
-struct BatchPlan {
-  std::vector<PlannedJob> jobs;  // this shard's, in order
-  std::size_t allJobs = 0;       // every shard's
-  int shardIndex = 0;
-};
-
-// The job a command-line scene expands to before its views: the key its
-// jobs load the scene under (the command's --animation and --time).
-Job commandLineJob(const RenderCommand& command, const std::string& scene) {
-  Job job;
-  job.scene = scene;
-  if (!command.sceneLoad.animation.empty()) job.animation = command.sceneLoad.animation;
-  job.animationTime = command.sceneLoad.animationTime;
-  return job;
-}
-
-BatchPlan planBatch(const RenderCommand& command, SceneCatalogue& catalogue, bool single) {
-  auto cameraCount = [&](const std::string& scene) {
-    if (single) throw SettingsError("internal: a single render has no camera list");
-    return int(catalogue.scene(commandLineJob(command, scene)).cameras.size());
-  };
-  auto animationLength = [&](const std::string& name) {
-    const Scene& scene = catalogue.scene(commandLineJob(command, name));
-    if (scene.animations.empty())
-      throw SceneError(name + ": --through-time: the scene has no animations", {"through-time"});
-    return scene.animations[std::size_t(std::max(scene.animation, 0))].end;
-  };
-  const std::vector<Job> all = expandJobs(command, cameraCount, animationLength);
-  // Over all jobs, not the shard: every shard refuses a clash alike.
-  checkDistinctOutDirs(all);
-  BatchPlan plan;
-  plan.allJobs = all.size();
-  plan.shardIndex = resolveShardIndex(command);
-  for (Job& job : selectShard(all, plan.shardIndex, command.shardCount)) {
-    PlannedJob& planned = plan.jobs.emplace_back();
-    planned.job = std::move(job);
-    if (!planned.job.error.empty()) {
-      planned.status = PlannedJob::Status::Invalid;
-    } else if (const std::string refusal = outputFolderRefusal(planned.job, command.force); !refusal.empty()) {
-      planned.status = PlannedJob::Status::Refused;
-      planned.job.error = refusal;
-    } else if (command.resume) {
-      try {
-        planned.hash = catalogue.jobHash(planned.job, command.output, command.sceneLoad.environment);
-        if (setMatches(planned.job.outDir, planned.hash)) planned.status = PlannedJob::Status::Skip;
-      } catch (const Error&) {
-        planned.hash.clear();  // a scene that cannot be read: rendered, and its load names the problem
-      }
-    }
-  }
-  std::vector<const Job*> toRender;
-  for (const PlannedJob& planned : plan.jobs)
-    if (planned.status == PlannedJob::Status::Render) toRender.push_back(&planned.job);
-  catalogue.countRuns(toRender);
-  return plan;
-}
 
 // ---- Run ---------------------------------------------------------------------------
 
@@ -429,54 +349,6 @@ void reportSummary(const RenderCommand& command, const BatchPlan& plan, const Ba
 }
 
 }  // namespace
-
-bool jobAlreadyDone(const Job& job, const OutputOptions& output, const std::string& environment) {
-  return setMatches(job.outDir, jobHash(job, output, environment));
-}
-
-std::string outputFolderRefusal(const Job& job, bool force) {
-  const fs::path folder = normalizedOutDir(job.outDir);
-  if (job.scene.rfind("builtin:", 0) != 0 && normalizedOutDir(fs::path(job.scene).parent_path().string()) == folder)
-    return "the output folder " + folder.string() + " holds the scene " + job.scene +
-           " (and its buffers and textures): Headlight writes only into a folder of its own; choose another --out";
-  if (force) return "";
-  std::error_code error;
-  if (!fs::is_directory(folder, error)) return "";
-  std::vector<std::string> owned;
-  try {
-    owned = detail::ownedFileNames(folder);
-  } catch (const Error& problem) {
-    return std::string(problem.what()) + " (not a Headlight set's; pass --force to replace it)";
-  }
-  std::vector<std::string> names{std::string(kManifestName), "preview.png"};
-  for (const FrameTarget& target : frameTargets())
-    for (const char* extension : {".exr", ".png"}) names.push_back(std::string(target.name) + extension);
-  // frame.json, read above, is a set's; the other files are ours when it lists them.
-  return foreignFilesRefusal(
-      folder, names,
-      [&](const fs::path& file) {
-        std::error_code ignored;
-        if (file.filename() == kManifestName) return fs::is_regular_file(file, ignored);
-        return std::find(owned.begin(), owned.end(), file.filename().string()) != owned.end();
-      },
-      "Headlight set in this folder", false);
-}
-
-std::string foreignFilesRefusal(const fs::path& folder, std::span<const std::string> names,
-                                const std::function<bool(const fs::path&)>& ours, std::string_view writer, bool force) {
-  if (force) return "";
-  std::error_code error;
-  std::string foreign;
-  int count = 0;
-  for (const std::string& name : names) {
-    const fs::path file = folder / name;
-    if (!fs::exists(file, error) && !fs::is_symlink(file, error)) continue;
-    if (!ours(file)) (foreign += count++ ? ", " : "") += name;
-  }
-  if (foreign.empty()) return "";
-  return folder.string() + " holds " + foreign + ", which no earlier " + std::string(writer) +
-         " wrote; pass --force to replace " + (count == 1 ? "it" : "them") + ", or choose another --out";
-}
 
 bool isSingleRender(const RenderCommand& command) {
   return command.jobFiles.empty() && command.scenes.size() <= 1 && !command.orbit && !command.throughTime &&

@@ -1,6 +1,7 @@
 #include "bench_command.hpp"
 
 #include "batch.hpp"
+#include "batch_plan.hpp"
 #include "io/folder_lock.hpp"
 
 #include <unistd.h>

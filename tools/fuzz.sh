@@ -53,7 +53,8 @@ if (( ${#library[@]} == 0 )); then echo "fuzz.sh: headlight-no-gl has no sources
 case "$target" in
   # The image module's decoders linked directly, not through dlopen.
   gltf-loader) sources=(lib/image_io/texture_decode.cpp lib/image_io/environment_decode.cpp tests/fuzz/gltf_loader_fuzz.cpp) ;;
-  job-file) sources=(lib/tooling/command_line.cpp tools/job_file.cpp tests/fuzz/job_file_fuzz.cpp) ;;
+  job-file) sources=(lib/tooling/command_line.cpp tools/job_file.cpp tools/scene_catalogue.cpp tools/batch_plan.cpp
+              tests/fuzz/job_file_fuzz.cpp) ;;
   settings) sources=(tests/fuzz/settings_fuzz.cpp) ;;
   *) echo "fuzz.sh: unknown FUZZ_TARGET '$target' (gltf-loader, job-file, settings)" >&2; exit 2 ;;
 esac

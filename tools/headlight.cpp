@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "batch.hpp"
+#include "batch_plan.hpp"
 #include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "diff_command.hpp"

@@ -1,15 +1,11 @@
-// The job model (job_file.hpp): job lines -> Jobs, the command line's
-// scenes x views -> Jobs, output folders checked for clashes, shards, job
-// hashes. Pure: no context, no rendering, no writing.
+// The job model (job_file.hpp): job lines -> Jobs, the camera a job
+// places, job hashes. Pure: no context, no rendering, no writing.
 #include "job_file.hpp"
-
-#include <sys/stat.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -55,12 +51,6 @@ std::string settingText(const std::string& name, const json& value) {
   if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
   if (value.is_number()) return value.dump();
   throw SettingsError("setting \"" + excerpt(name) + "\": expected a string, number or boolean, got " + shown(value));
-}
-
-// "builtin:cornell" -> "cornell", "a/b/duck.glb" -> "duck".
-std::string sceneStem(const std::string& scene) {
-  if (scene.rfind("builtin:", 0) == 0) return scene.substr(8);
-  return fs::path(scene).stem().string();
 }
 
 Job parseJobLine(const std::string& line, const std::string& origin, const RenderSettings& base) {
@@ -233,169 +223,6 @@ std::vector<Job> parseJobLines(const std::string& text, const std::string& name,
 
 std::vector<Job> readJobFile(const fs::path& path, const RenderSettings& base) {
   return parseJobLines(detail::readRegularFile(path, detail::kMaxJobFileBytes, "the job file"), path.string(), base);
-}
-
-JobCamera commandLineCamera(const RenderCommand& command) {
-  JobCamera camera;
-  if (!command.eye) return camera;  // checked by parseRenderArgs: with --target, not with --orbit or --cameras
-  camera.kind = JobCamera::Kind::LookAt;
-  camera.eye = *command.eye;
-  camera.target = *command.target;
-  if (command.up) camera.up = *command.up;
-  if (command.fovDegrees) camera.fovDegrees = *command.fovDegrees;
-  return camera;
-}
-
-std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount,
-                            const std::function<float(const std::string&)>& animationLength) {
-  std::vector<Job> jobs;
-  std::vector<std::string> scenes = command.scenes;
-  if (scenes.empty() && command.jobFiles.empty()) scenes.push_back(command.scene);
-  std::map<std::string, int> stems;
-  for (const std::string& scene : scenes) ++stems[sceneStem(scene)];
-  const bool severalScenes = scenes.size() > 1;
-  for (std::size_t s = 0; s < scenes.size(); ++s) {
-    const std::string& scene = scenes[s];
-    // Each scene its own folder when there are several (two of one stem get their position).
-    fs::path folder = command.outDir;
-    if (severalScenes)
-      folder /= stems[sceneStem(scene)] > 1 ? sceneStem(scene) + "-" + std::to_string(s) : sceneStem(scene);
-    Job base;
-    base.scene = scene;
-    base.settings = command.settings;
-    base.origin = "command line: " + scene;
-    base.camera = commandLineCamera(command);
-    if (command.orbit || command.throughTime) {
-      // --through-time: view v poses the animation at v / N of its length
-      // (a loop's last view is a step before its first again).
-      float length = 0.0f;
-      if (command.throughTime) {
-        try {
-          length = animationLength(scene);
-        } catch (const Error& error) {
-          Job bad = base;
-          bad.error = commandLineMessage(error);
-          jobs.push_back(bad);
-          continue;
-        }
-        base.animation = command.sceneLoad.animation.empty() ? "0" : command.sceneLoad.animation;
-      }
-      for (int v = 0; v < command.views; ++v) {
-        Job job = base;
-        if (command.throughTime) job.animationTime = length * float(v) / float(command.views);
-        if (command.orbit) {
-          job.camera.kind = JobCamera::Kind::Orbit;
-          job.camera.orbitIndex = v;
-          job.camera.orbitViews = command.views;
-          job.camera.orbitElevationDegrees = command.orbitElevationDegrees;
-          job.camera.orbitDistanceScale = command.orbitDistanceScale.value_or(1.0f);
-        }
-        char name[32];
-        std::snprintf(name, sizeof name, "view_%03d", v);
-        job.outDir = (folder / name).string();
-        job.origin += " view " + std::to_string(v);
-        jobs.push_back(job);
-      }
-    } else if (command.camerasAll) {
-      int count = 0;
-      try {
-        count = cameraCount(scene);
-      } catch (const Error& error) {
-        Job bad = base;
-        bad.error = commandLineMessage(error);
-        jobs.push_back(bad);
-        continue;
-      }
-      for (int c = 0; c < count; ++c) {
-        Job job = base;
-        job.settings.camera = c;
-        job.outDir = (folder / ("camera_" + std::to_string(c))).string();
-        job.origin += " camera " + std::to_string(c);
-        jobs.push_back(job);
-      }
-      if (count == 0) {
-        Job bad = base;
-        bad.error = "--cameras all: the scene has no camera";
-        jobs.push_back(bad);
-      }
-    } else {
-      base.outDir = folder.string();
-      jobs.push_back(base);
-    }
-  }
-  for (const std::string& file : command.jobFiles)
-    for (Job& job : readJobFile(file, command.settings)) jobs.push_back(std::move(job));
-  // The command's --animation and --time are every job's unless it sets its
-  // own: the job's hash (--resume) and the scene cache then tell poses apart.
-  for (Job& job : jobs) {
-    if (!job.animation && !command.sceneLoad.animation.empty()) job.animation = command.sceneLoad.animation;
-    if (!job.animationTime && command.sceneLoad.animationTime) job.animationTime = command.sceneLoad.animationTime;
-  }
-  return jobs;
-}
-
-fs::path normalizedOutDir(const std::string& outDir) {
-  std::error_code error;
-  // Links in the part that exists are followed: a folder, a symlink to it
-  // and /proc/self/cwd/... are one folder.
-  fs::path path = fs::absolute(fs::path(outDir), error);
-  if (error) path = outDir;
-  if (fs::path resolved = fs::weakly_canonical(path, error); !error) path = resolved;
-  path = path.lexically_normal();
-  // "a/b/" normalises to "a/b/" (an empty last element): drop it.
-  if (!path.has_filename() && path.has_parent_path() && path != path.root_path()) path = path.parent_path();
-  return path;
-}
-
-void checkDistinctOutDirs(const std::vector<Job>& jobs) {
-  std::map<fs::path, const Job*> seen;
-  // Folders that exist, by identity: two paths that no link resolution
-  // joins (a bind mount) are still one folder.
-  std::map<std::pair<dev_t, ino_t>, const Job*> seenFolders;
-  auto clash = [](const Job& first, const Job& second, const fs::path& folder) {
-    return SettingsError(first.origin + " and " + second.origin + " both write into '" + folder.string() + "' (out \"" +
-                         excerpt(first.outDir) + "\" and \"" + excerpt(second.outDir) +
-                         "\"): their files would mix; give each job its own folder");
-  };
-  for (const Job& job : jobs) {
-    if (!job.error.empty()) continue;
-    const fs::path folder = normalizedOutDir(job.outDir);
-    const auto [at, inserted] = seen.emplace(folder, &job);
-    if (!inserted) throw clash(*at->second, job, at->first);
-    struct stat info {};
-    if (::stat(folder.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
-      const auto [same, firstTime] = seenFolders.emplace(std::pair{info.st_dev, info.st_ino}, &job);
-      if (!firstTime) throw clash(*same->second, job, folder);
-    }
-  }
-}
-
-std::vector<Job> selectShard(const std::vector<Job>& jobs, int index, int count) {
-  if (count < 1 || index < 0 || index >= count)
-    throw SettingsError("shard " + std::to_string(index) + "/" + std::to_string(count) + ": expected 0 <= I < N");
-  std::vector<Job> selected;
-  for (std::size_t k = 0; k < jobs.size(); ++k)
-    if (int(k % std::size_t(count)) == index) selected.push_back(jobs[k]);
-  return selected;
-}
-
-int resolveShardIndex(const RenderCommand& command) {
-  if (command.shardIndexEnv.empty()) return command.shardIndex;
-  const char* value = std::getenv(command.shardIndexEnv.c_str());
-  const std::string where = "--shard-index-env " + command.shardIndexEnv;
-  if (!value || !*value) throw SettingsError(where + ": the variable is not set");
-  int index = -1;
-  try {
-    std::size_t used = 0;
-    index = std::stoi(value, &used);
-    if (used != std::string(value).size()) index = -1;
-  } catch (const std::exception&) {
-  }
-  if (index < 0 || index >= command.shardCount)
-    throw SettingsError(where + ": expected an index 0.." + std::to_string(command.shardCount - 1) +
-                        " (the N of --shard /" + std::to_string(command.shardCount) + "), got '" + excerpt(value) +
-                        "'");
-  return index;
 }
 
 std::string jobHash(const Job& job, const OutputOptions& output, const std::string& environment,

@@ -1,9 +1,9 @@
 #pragma once
-// The job model of `headlight render` batches, pure and context-free: job
-// lines and files parsed into Jobs, the command line's scenes x views
-// expanded, output folders normalised and checked for clashes, shards
-// selected, job hashes computed. Nothing here renders or writes; the runner
-// (batch.hpp) does. docs/BATCH.md is the user's guide.
+// The job model of `headlight render` batches, pure and context-free: a
+// job (scene, camera, settings, folder), job lines and files parsed into
+// jobs, and the hash that tells a finished set is a job's. The plan
+// (batch_plan.hpp) builds the batch's jobs from these; nothing here renders
+// or writes. docs/BATCH.md is the user's guide.
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -12,8 +12,10 @@
 
 #include <glm/glm.hpp>
 
-#include "cli_options.hpp"
+#include "headlight/camera.hpp"
+#include "headlight/output.hpp"
 #include "headlight/scene.hpp"
+#include "headlight/settings.hpp"
 
 namespace headlight::cli {
 
@@ -69,32 +71,6 @@ std::vector<Job> parseJobLines(const std::string& text, const std::string& name,
 // A job file's jobs: read only when it is a regular file of at most
 // detail::kMaxJobFileBytes (IoError naming it otherwise), then parseJobLines.
 std::vector<Job> readJobFile(const std::filesystem::path& path, const RenderSettings& base);
-
-// The camera --eye, --target, --up and --fov place (Kind::Settings without --eye).
-JobCamera commandLineCamera(const RenderCommand& command);
-
-// Jobs from the command: its scenes (x --views/--cameras all; `cameraCount`
-// tells how many cameras a scene has, `animationLength` how long the
-// animation --through-time steps through lasts, each loading the scene if
-// needed) then every job file's lines, in order.
-std::vector<Job> expandJobs(const RenderCommand& command, const std::function<int(const std::string&)>& cameraCount,
-                            const std::function<float(const std::string&)>& animationLength = {});
-
-// The folder a job writes, as compared for clashes: absolute, normalised,
-// without a trailing separator ("dup", "./dup/" and "$PWD/dup" are one).
-std::filesystem::path normalizedOutDir(const std::string& outDir);
-
-// SettingsError naming both jobs when two jobs (errors aside) write into
-// one folder; nothing has rendered yet when it is called.
-void checkDistinctOutDirs(const std::vector<Job>& jobs);
-
-// Jobs k with k % count == index, in order.
-std::vector<Job> selectShard(const std::vector<Job>& jobs, int index, int count);
-
-// The shard index: `command.shardIndex`, or the value of the environment
-// variable command.shardIndexEnv (a SettingsError when it is unset or not
-// an index below shardCount).
-int resolveShardIndex(const RenderCommand& command);
 
 // What decides whether a finished set is this job's: the scene's bytes (or
 // builtin name), the requested settings, the camera, the output choices and,

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "headlight/scene.hpp"
+#include "headlight/scene_loader.hpp"
 #include "job_file.hpp"
 
 namespace headlight::cli {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "batch_plan.hpp"
 #include "headlight/error.hpp"
 #include "job_file.hpp"
 
