@@ -17,7 +17,7 @@
 namespace fs = std::filesystem;
 using headlight::test::runHeadlight;
 namespace {
-constexpr auto& quote = headlight::test::shellQuote;
+using headlight::test::quote;
 }  // namespace
 using Run = headlight::test::ProcessResult;
 

@@ -21,8 +21,8 @@
 namespace fs = std::filesystem;
 
 using headlight::test::freshFolder;
+using headlight::test::quote;
 using headlight::test::runHeadlight;
-constexpr auto& quote = headlight::test::shellQuote;
 using Run = headlight::test::ProcessResult;
 
 namespace {

@@ -42,10 +42,6 @@ RenderSettings ambientOnly(float intensity = 1.0f) {
   return settings;
 }
 
-bool timed(const Frame& frame, std::string_view pass) {
-  return std::any_of(frame.timings.begin(), frame.timings.end(), [&](const PassTime& t) { return t.pass == pass; });
-}
-
 }  // namespace
 
 TEST_CASE("environment: a white diffuse sphere under a uniform map is lit by the map's radiance within 1%, and the "

@@ -13,11 +13,7 @@
 namespace headlight {
 namespace {
 
-bool skips(const FramePlan& plan, std::string_view work, std::string_view reason) {
-  return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
-    return skipped.work == work && skipped.reason.find(reason) != std::string::npos;
-  });
-}
+using test::skips;
 
 bool runs(const FramePlan& plan, std::string_view pass) {
   const auto names = plan.passNames();

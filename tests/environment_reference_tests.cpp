@@ -12,6 +12,7 @@
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "headlight/shapes.hpp"
+#include "support/embree.hpp"
 #include "support/environment_maps.hpp"
 #include "support/images.hpp"
 #include "support/temp_folder.hpp"
@@ -20,8 +21,6 @@ using namespace headlight;
 using namespace headlight::test;
 
 namespace {
-
-const auto kNeedsEmbree = doctest::skip(!HEADLIGHT_HAS_EMBREE);
 
 // A width x height G-buffer of one shading point (a white rough dielectric
 // at the origin facing +Y) seen from above, or of background only. The

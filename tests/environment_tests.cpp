@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "environment/environment_prefilter.hpp"
@@ -23,21 +24,20 @@ using namespace headlight::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // E / pi from one texel (x0, y0) of a 64 x 32 map of radiance `radiance`,
 // exactly: the integral of n . w over the texel, every point of which must
 // face the normal. Over phi0..phi1 and theta0..theta1, with w = (sin t sin p,
 // cos t, -sin t cos p) and dw = sin t dt dp.
 double texelIrradianceOverPi(const glm::dvec3& n, int x0, int y0, double radiance) {
-  const double phi0 = 2.0 * kPi * (x0 / 64.0 - 0.5), phi1 = 2.0 * kPi * ((x0 + 1) / 64.0 - 0.5);
-  const double theta0 = kPi * y0 / 32.0, theta1 = kPi * (y0 + 1) / 32.0;
+  const double phi0 = 2.0 * std::numbers::pi * (x0 / 64.0 - 0.5),
+               phi1 = 2.0 * std::numbers::pi * ((x0 + 1) / 64.0 - 0.5);
+  const double theta0 = std::numbers::pi * y0 / 32.0, theta1 = std::numbers::pi * (y0 + 1) / 32.0;
   auto sinSquared = [](double t) { return t / 2.0 - std::sin(2.0 * t) / 4.0; };  // antiderivative of sin^2
   auto sinCos = [](double t) { return std::sin(t) * std::sin(t) / 2.0; };         // of sin cos
   const double a = sinSquared(theta1) - sinSquared(theta0), b = sinCos(theta1) - sinCos(theta0);
   const double integral = n.x * a * (std::cos(phi0) - std::cos(phi1)) + n.y * b * (phi1 - phi0) -
                           n.z * a * (std::sin(phi1) - std::sin(phi0));
-  return radiance * integral / kPi;
+  return radiance * integral / std::numbers::pi;
 }
 
 std::shared_ptr<const EnvironmentMap> generated(const TempFolder& folder, const std::string& name,
@@ -136,7 +136,7 @@ TEST_CASE("environment importance sampling: its density integrates to 1 and esti
       float pdf = 0.0f;
       const glm::vec3 d = sampler.sample((i + 0.5f) / count, (j + 0.5f) / count, pdf);
       const float cosine = glm::dot(normal, d);
-      if (cosine > 0.0f) sum += image.lookup(d).r * cosine / (kPi * pdf);
+      if (cosine > 0.0f) sum += image.lookup(d).r * cosine / (std::numbers::pi * pdf);
     }
   // The sampler reads the bilinear map, as the reference does: its integral
   // over the sphere equals the texel's to within the lookup's spread.

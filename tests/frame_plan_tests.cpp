@@ -18,22 +18,13 @@
 namespace headlight {
 namespace {
 
+using test::readOf;
+using test::skips;
+
 SceneSummary litScene() {
   SceneSummary scene;
   scene.planarShadowCasters = 1;
   return scene;
-}
-
-bool skips(const FramePlan& plan, std::string_view work, std::string_view reason = {}) {
-  return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
-    return skipped.work == work && skipped.reason.find(reason) != std::string::npos;
-  });
-}
-
-const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
-  for (const TargetRead& read : plan.reads)
-    if (read.target->name == name) return &read;
-  return nullptr;
 }
 
 }  // namespace

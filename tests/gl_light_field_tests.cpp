@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,6 @@ using namespace headlight::test;
 
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
-
 Bounds boundsOf(const glm::vec3& low, const glm::vec3& high) {
   Bounds bounds;
   bounds.extend(low);
@@ -44,7 +43,7 @@ ProbeView uniformView(const glm::vec3& position, float distance) {
   view.size = 16;
   const Bounds bounds = boundsOf(glm::vec3(-10.0f), glm::vec3(10.0f));
   for (const glm::vec3& face : kCubeFaceDirections) {
-    const CameraView camera = perspectiveCamera(position, face, 0.5f * kPi, bounds);
+    const CameraView camera = perspectiveCamera(position, face, 0.5f * std::numbers::pi_v<float>, bounds);
     view.clipFromWorld.push_back(camera.projection * camera.view);
   }
   view.distances.assign(std::size_t(6 * view.size * view.size), distance);
@@ -120,7 +119,7 @@ TEST_CASE("light field: one patch's irradiance at a probe, the distance moments,
   patch.position = glm::vec4(0.0f, 0.0f, 2.0f, 0.0f);
   patch.normal = glm::vec4(0.0f, 0.0f, -1.0f, 0.01f);
   patch.flux = glm::vec4(1.0f, 0.5f, 0.25f, 0.0f);
-  const float arriving = 1.0f / (kPi * 4.0f + 0.01f);
+  const float arriving = 1.0f / (std::numbers::pi_v<float> * 4.0f + 0.01f);
   const std::vector<gpu::GpuVirtualLight> lights{patch};
   const gpu::GpuLightProbe open =
       makeLightProbe(uniformView(glm::vec3(0.0f), std::numeric_limits<float>::infinity()), lights, 10.0f);

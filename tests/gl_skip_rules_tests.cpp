@@ -32,10 +32,6 @@ bool skips(const Frame& frame, std::string_view work, std::string_view reason = 
   });
 }
 
-bool timed(const Frame& frame, std::string_view pass) {
-  return std::any_of(frame.timings.begin(), frame.timings.end(), [&](const PassTime& t) { return t.pass == pass; });
-}
-
 float largestDifference(const ImageF& a, const ImageF& b) {
   REQUIRE(a.pixels.size() == b.pixels.size());
   float worst = 0;

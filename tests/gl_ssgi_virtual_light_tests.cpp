@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "frame/frame_plan.hpp"
@@ -28,8 +29,6 @@ using namespace headlight;
 using namespace headlight::test;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Light pointLight(const glm::vec3& position, float intensity) {
   Light light;
@@ -115,14 +114,14 @@ TEST_CASE("virtual lights: a light's views cover it whole") {
   CHECK(lightViewSize(4, 6) == 1);  // never none: one texel per view
   const std::vector<LightView> cube(views.begin(), views.begin() + 6);
   // The cube's texels' solid angles, midpoint rule: 4 pi within 0.5 %.
-  CHECK(totalMeasure(cube, 13) == doctest::Approx(4.0 * kPi).epsilon(0.005));
+  CHECK(totalMeasure(cube, 13) == doctest::Approx(4.0 * std::numbers::pi).epsilon(0.005));
   // The sun's square: the bounding sphere's, (2 r)^2 with r = sqrt(3).
   CHECK(totalMeasure({views[6]}, 32) == doctest::Approx(12.0).epsilon(1e-5));
   // The spot's cone of 2 x 0.6 rad: its square of texels spans more than
   // the cone's solid angle, 2 pi (1 - cos 0.6), and less than 2 pi.
   const double cone = totalMeasure({views[7]}, 32);
-  CHECK(cone > 2.0 * kPi * (1.0 - std::cos(0.6)));
-  CHECK(cone < 2.0 * kPi);
+  CHECK(cone > 2.0 * std::numbers::pi * (1.0 - std::cos(0.6)));
+  CHECK(cone < 2.0 * std::numbers::pi);
 }
 
 TEST_CASE("virtual lights: a point light inside a closed box: they carry the power its walls reflect") {
@@ -133,7 +132,7 @@ TEST_CASE("virtual lights: a point light inside a closed box: they carry the pow
       makeVirtualLights(closedBox(albedo, pointLight({0.3f, 0.2f, -0.1f}, intensity)), 1024);
   CHECK(lights.size() == 6 * 13 * 13);
   const glm::dvec3 flux = totalFlux(lights);
-  const double expected = albedo * 4.0 * kPi * intensity;
+  const double expected = albedo * 4.0 * std::numbers::pi * intensity;
   CHECK(flux.x == doctest::Approx(expected).epsilon(0.01));
   CHECK(flux.y == doctest::Approx(expected).epsilon(0.01));
   for (const gpu::GpuVirtualLight& light : lights) {

@@ -20,12 +20,6 @@ using namespace headlight::test;
 
 namespace {
 
-Frame renderScene(Scene scene, const RenderSettings& settings) {
-  Renderer renderer(sharedContext());
-  renderer.setScene(std::move(scene));
-  return renderer.render(settings);
-}
-
 // Black, fully rough metal that only emits: its radiance is its emission
 // exactly when no light reaches its front (the sun below shines on its back).
 Material emitter(const glm::vec3& emission, float alpha, AlphaMode mode) {
@@ -69,7 +63,7 @@ RenderSettings exactSettings(int size) {
 
 TEST_CASE("blend: two layers over an opaque wall and over background give the over operator's answer") {
   constexpr int size = 64;
-  const Frame frame = renderScene(twoLayerScene(), exactSettings(size));
+  const Frame frame = renderFresh(twoLayerScene(), exactSettings(size));
   REQUIRE(!frame.coverage.empty());
   const float coverage = 1.0f - (1.0f - kFarAlpha) * (1.0f - kNearAlpha);  // 0.625
   // World x = -0.5 (over the wall) and +0.5 (over background), y = 0.
@@ -89,7 +83,7 @@ TEST_CASE("blend: two layers over an opaque wall and over background give the ov
   // One layer alone: coverage is its alpha. Nothing blended: 0.
   Scene single = twoLayerScene();
   single.instances.erase(single.instances.begin());
-  const Frame one = renderScene(single, exactSettings(size));
+  const Frame one = renderFresh(single, exactSettings(size));
   CHECK(one.coverage.at(overBackground, row, 0) == doctest::Approx(kFarAlpha).epsilon(2e-3));
   CHECK(one.lit.at(overBackground, row, 3) == doctest::Approx(kFarAlpha).epsilon(2e-3));
   CHECK(frame.coverage.at(2, row, 0) == 0.0f);  // x = -1.45: the wall, no layer
@@ -128,11 +122,11 @@ TEST_CASE("blend: a blended surface casts no shadow and leaves unblended pixels 
   sun.direction = glm::normalize(glm::vec3(-1, 0, -1));
   sun.intensity = 3.0f;
   scene.lights.push_back(sun);
-  const Frame blended = renderScene(scene, exactSettings(size));
+  const Frame blended = renderFresh(scene, exactSettings(size));
   // Alpha 0 draws nothing, and keeps the bounds (camera, shadow maps) as they were.
   Scene without = scene;
   without.materials[1].baseColorFactor.a = 0.0f;
-  const Frame reference = renderScene(without, exactSettings(size));
+  const Frame reference = renderFresh(without, exactSettings(size));
   int covered = 0, same = 0, other = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
@@ -150,7 +144,7 @@ TEST_CASE("blend: a blended surface casts no shadow and leaves unblended pixels 
   // An opaque pane does shadow it: the test can fail.
   Scene opaque = scene;
   opaque.materials[1].alphaMode = AlphaMode::Opaque;
-  const Frame shadowed = renderScene(opaque, exactSettings(size));
+  const Frame shadowed = renderFresh(opaque, exactSettings(size));
   const int shadowX = int((0.75f - 1.0f + 1.5f) / 3.0f * size), shadowY = size / 2;
   CHECK(shadowed.lit.at(shadowX, shadowY, 0) < 0.5f * reference.lit.at(shadowX, shadowY, 0));
   CHECK(blended.lit.at(shadowX, shadowY, 0) == reference.lit.at(shadowX, shadowY, 0));
@@ -173,8 +167,8 @@ TEST_CASE("conformance: AlphaBlendModeTest's blend panel lies between what is be
   constexpr int width = 192, height = 96;
   RenderSettings settings = exactSettings(width);
   settings.height = height;
-  const Frame frame = renderScene(scene, settings), under = renderScene(behind, settings),
-              layer = renderScene(opaque, settings);
+  const Frame frame = renderFresh(scene, settings), under = renderFresh(behind, settings),
+              layer = renderFresh(opaque, settings);
   int blendedPixels = 0, between = 0, proportional = 0, unblended = 0, unchanged = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -216,7 +210,7 @@ TEST_CASE("blend: the Embree reference composites the same two layers along its 
           doctest::skip(!referenceAvailable())) {
   constexpr int size = 32;
   const Scene scene = twoLayerScene();
-  const Frame frame = renderScene(scene, exactSettings(size));
+  const Frame frame = renderFresh(scene, exactSettings(size));
   ReferenceSettings settings;
   settings.samplesPerPixel = 4;
   settings.radius = 1.0f;

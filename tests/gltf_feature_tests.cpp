@@ -30,13 +30,6 @@ using namespace headlight::test;
 
 // ---- Never silent: features that are not rendered are named ----------------
 
-const IgnoredFeature* findIgnored(const Scene& scene, const std::string& feature) {
-  for (const IgnoredFeature& ignored : scene.ignored) {
-    if (ignored.feature == feature) return &ignored;
-  }
-  return nullptr;
-}
-
 TEST_CASE("glTF: a texCoord past 1 loads, sampling TEXCOORD_0, and is named") {
   TempFolder folder;
   const std::string png =

@@ -79,7 +79,7 @@ json sceneWithLight(const test::TempFolder& folder, json light) {
           {"scene", 0}};
 }
 
-Scene load(const test::TempFolder& folder, const json& light) {
+Scene loadWithLight(const test::TempFolder& folder, const json& light) {
   return loadGltf(folder.write("scene.gltf", sceneWithLight(folder, light).dump()));
 }
 
@@ -100,7 +100,7 @@ void checkNear(glm::vec3 actual, glm::vec3 expected) {
 
 TEST_CASE("EXT_lights_image_based: each cube face lies where GL puts it, RGBD decoded, and nothing is named") {
   test::TempFolder folder;
-  const Scene scene = load(folder, json::object());
+  const Scene scene = loadWithLight(folder, json::object());
   REQUIRE(scene.environment);
   const EnvironmentMap& map = *scene.environment;
   CHECK(map.width == 16);  // four texels per face texel around the equator
@@ -119,11 +119,11 @@ TEST_CASE("EXT_lights_image_based: each cube face lies where GL puts it, RGBD de
 
 TEST_CASE("EXT_lights_image_based: intensity scales the light, rotation turns it") {
   test::TempFolder folder;
-  const Scene brighter = load(folder, {{"intensity", 2.5}});
+  const Scene brighter = loadWithLight(folder, {{"intensity", 2.5}});
   checkNear(seen(*brighter.environment, {-1, 0, 0}), 2.5f * linear(kFaceColors[1]));
   // 90 degrees about +Y (x, y, z, w): the light's +X now lies at world -Z.
   const float h = std::sqrt(0.5f);
-  const Scene turned = load(folder, {{"rotation", {0, h, 0, h}}});
+  const Scene turned = loadWithLight(folder, {{"rotation", {0, h, 0, h}}});
   checkNear(seen(*turned.environment, {0, 0, -1}), linear(kFaceColors[0]));
   checkNear(seen(*turned.environment, {1, 0, 0}), linear(kFaceColors[4]));
 }
@@ -132,7 +132,7 @@ TEST_CASE("EXT_lights_image_based: a malformed light is refused, naming it and t
   test::TempFolder folder;
   const auto error = [&](const json& light) {
     try {
-      load(folder, light);
+      loadWithLight(folder, light);
     } catch (const SceneError& e) {
       return std::string(e.what());
     }

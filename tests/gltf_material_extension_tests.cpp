@@ -50,13 +50,13 @@ json triangleWith(const json& extensions) {
           {"scene", 0}};
 }
 
-Scene load(const test::TempFolder& folder, const json& extensions) {
+Scene loadWithExtensions(const test::TempFolder& folder, const json& extensions) {
   return loadGltf(folder.write("scene.gltf", triangleWith(extensions).dump()));
 }
 
-std::string loadError(const test::TempFolder& folder, const json& extensions) {
+std::string extensionLoadError(const test::TempFolder& folder, const json& extensions) {
   try {
-    load(folder, extensions);
+    loadWithExtensions(folder, extensions);
   } catch (const SceneError& error) {
     return error.what();
   }
@@ -68,7 +68,7 @@ std::string loadError(const test::TempFolder& folder, const json& extensions) {
 TEST_CASE("material extensions: every one is read with its values, textures and transforms") {
   test::TempFolder folder;
   const json transform = {{"KHR_texture_transform", {{"scale", {2, 2}}}}};
-  const Scene scene = load(
+  const Scene scene = loadWithExtensions(
       folder,
       {
           {"KHR_materials_ior", {{"ior", 1.33}}},
@@ -131,9 +131,9 @@ TEST_CASE("material extensions: every one is read with its values, textures and 
 
 TEST_CASE("material extensions: an empty extension object takes the specification's defaults") {
   test::TempFolder folder;
-  const Scene scene = load(folder, {{"KHR_materials_specular", json::object()},
-                                    {"KHR_materials_volume", json::object()},
-                                    {"KHR_materials_ior", json::object()}});
+  const Scene scene = loadWithExtensions(folder, {{"KHR_materials_specular", json::object()},
+                                                  {"KHR_materials_volume", json::object()},
+                                                  {"KHR_materials_ior", json::object()}});
   const Material& m = scene.materials[0];
   CHECK(m.ior == 1.5f);
   REQUIRE(m.specular);
@@ -168,8 +168,8 @@ TEST_CASE("material extensions: ior alone makes the specular lobe; none, no lobe
 
 TEST_CASE("material extensions: glTF's ior 0 is kept; values between 0 and 1 are refused") {
   test::TempFolder folder;
-  CHECK(load(folder, {{"KHR_materials_ior", {{"ior", 0}}}}).materials[0].ior == 0.0f);
-  const std::string error = loadError(folder, {{"KHR_materials_ior", {{"ior", 0.5}}}});
+  CHECK(loadWithExtensions(folder, {{"KHR_materials_ior", {{"ior", 0}}}}).materials[0].ior == 0.0f);
+  const std::string error = extensionLoadError(folder, {{"KHR_materials_ior", {{"ior", 0.5}}}});
   CHECK(error.find("scene.gltf") != std::string::npos);
   CHECK(error.find("material 0 KHR_materials_ior ior is 0.5, expected a number >= 1 or 0") != std::string::npos);
 }
@@ -217,7 +217,7 @@ TEST_CASE("material extensions: out-of-range, non-finite and malformed values ar
        "KHR_materials_volume thicknessFactor is 1e+300, expected a number >= 0"},
   };
   for (const Case& c : cases) {
-    const std::string error = loadError(folder, c.extensions);
+    const std::string error = extensionLoadError(folder, c.extensions);
     INFO(c.extensions.dump(), " -> ", error);
     CHECK(error.find("scene.gltf") != std::string::npos);
     CHECK(error.find(c.message) != std::string::npos);

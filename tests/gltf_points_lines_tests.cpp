@@ -17,12 +17,6 @@ using namespace headlight::test;
 
 namespace {
 
-Frame renderScene(Scene scene, const RenderSettings& settings) {
-  Renderer renderer(sharedContext());
-  renderer.setScene(std::move(scene));
-  return renderer.render(settings);
-}
-
 // 60 pixels over 3 units (orthographic from +Z): pixel centres at
 // -1.475 + 0.05 i, so 0.025 is the centre of pixel 30.
 constexpr int kSize = 60;
@@ -50,7 +44,7 @@ Scene pointsAndLines(bool withLine) {
 }  // namespace
 
 TEST_CASE("points and lines: a point covers one pixel and a line one pixel per pixel of length, facing the camera") {
-  const Frame frame = renderScene(pointsAndLines(true), smallSettings(kSize, kSize));
+  const Frame frame = renderFresh(pointsAndLines(true), smallSettings(kSize, kSize));
   int pointPixels = 0, linePixels = 0, lineRows = 0;
   std::vector<int> rowsWithLine;
   for (int y = 0; y < kSize; ++y) {
@@ -93,7 +87,7 @@ TEST_CASE("points and lines cast no shadow") {
   }
   RenderSettings settings = smallSettings(kSize, kSize);
   settings.ssgi.enabled = false;
-  const Frame a = renderScene(with, settings), b = renderScene(without, settings);
+  const Frame a = renderFresh(with, settings), b = renderFresh(without, settings);
   int floorPixels = 0, differ = 0;
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) {
@@ -112,7 +106,7 @@ TEST_CASE("conformance: MeshPrimitiveModes draws something in every cell, points
       (test::sharedFolder() / "gltf-conformance" / "MeshPrimitiveModes" / "glTF" / "MeshPrimitiveModes.gltf").string());
   REQUIRE(scene.instances.size() == 7);
   constexpr int size = 128;
-  const Frame frame = renderScene(scene, smallSettings(size, size));
+  const Frame frame = renderFresh(scene, smallSettings(size, size));
   // The screenshot's layout: POINTS on top at (0, 3); LINES, LINE_LOOP,
   // LINE_STRIP at y = 0 and x = -2, 0, 2; TRIANGLES, STRIP, FAN at y = -3.
   // A covered pixel belongs to the cell whose node origin is nearest.

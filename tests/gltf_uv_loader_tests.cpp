@@ -19,25 +19,17 @@
 #include "reference/texture_sampler.hpp"
 #include "support/assets.hpp"
 #include "support/encoding.hpp"
+#include "support/scene_checks.hpp"
 #include "support/temp_folder.hpp"
 
 namespace fs = std::filesystem;
 using namespace headlight;
+using headlight::test::conformanceGltf;
+using headlight::test::findIgnored;
+using headlight::test::haveConformanceModel;
 using nlohmann::json;
 
 namespace {
-
-fs::path modelPath(const std::string& model) {
-  return test::sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf");
-}
-
-bool haveModel(const std::string& model) { return test::exists(modelPath(model)); }
-
-const IgnoredFeature* findIgnored(const Scene& scene, const std::string& feature) {
-  for (const IgnoredFeature& ignored : scene.ignored)
-    if (ignored.feature == feature) return &ignored;
-  return nullptr;
-}
 
 void append(std::vector<unsigned char>& bytes, const void* data, std::size_t size) {
   const auto* begin = static_cast<const unsigned char*>(data);
@@ -85,7 +77,7 @@ Scene loadDocument(const test::TempFolder& folder, const json& document) {
   return loadGltf(folder.write("scene.gltf", document.dump()));
 }
 
-std::string loadError(const test::TempFolder& folder, const json& document) {
+std::string documentLoadError(const test::TempFolder& folder, const json& document) {
   try {
     loadDocument(folder, document);
   } catch (const SceneError& error) {
@@ -154,19 +146,19 @@ TEST_CASE("glTF: one primitive drawn with and without a TEXCOORD_1 material is d
 }
 
 TEST_CASE("MultiUVTest: TEXCOORD_1 holds the file's accessor, and nothing is named" *
-          doctest::skip(!haveModel("MultiUVTest"))) {
-  const Scene scene = loadGltf(modelPath("MultiUVTest"));
+          doctest::skip(!haveConformanceModel("MultiUVTest"))) {
+  const Scene scene = loadGltf(conformanceGltf("MultiUVTest"));
   CHECK(scene.ignored.empty());
   REQUIRE(scene.primitives.size() == 1);
   CHECK(scene.materials[0].emissiveTexture.texCoord == 1);
   CHECK(scene.materials[0].baseColorTexture.texCoord == 0);
   // Accessor 5 (TEXCOORD_1), read here from the .bin without the loader.
-  std::ifstream file(modelPath("MultiUVTest"));
+  std::ifstream file(conformanceGltf("MultiUVTest"));
   const json document = json::parse(file);
   const json& accessor = document["accessors"][5];
   const json& view = document["bufferViews"][accessor["bufferView"].get<int>()];
   REQUIRE(accessor["componentType"] == 5126);
-  std::ifstream bin(modelPath("MultiUVTest").parent_path() / document["buffers"][0]["uri"].get<std::string>(),
+  std::ifstream bin(conformanceGltf("MultiUVTest").parent_path() / document["buffers"][0]["uri"].get<std::string>(),
                     std::ios::binary);
   bin.seekg(view.value("byteOffset", 0) + accessor.value("byteOffset", 0));
   std::vector<glm::vec2> expected(accessor["count"].get<std::size_t>());
@@ -240,25 +232,26 @@ TEST_CASE("glTF: a KHR_texture_transform value that is not a finite number is re
   const auto withTransform = [](const json& transform) {
     return uvTriangle({{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}});
   };
-  CHECK(loadError(folder, withTransform({{"offset", {1e39, 0}}})).find(
-            "material 0 baseColorTexture (texture 0) KHR_texture_transform offset[0] is 1e+39, expected a finite "
-            "number") != std::string::npos);
-  CHECK(loadError(folder, withTransform({{"rotation", -1e300}})).find(
-            "KHR_texture_transform rotation is -1e+300, expected a finite number") != std::string::npos);
-  CHECK(loadError(folder, withTransform({{"scale", {1}}})).find(
-            "KHR_texture_transform scale is not an array of 2 numbers") != std::string::npos);
-  CHECK(loadError(folder, withTransform({{"offset", {"a", 0}}})).find(
-            "KHR_texture_transform offset[0] is not a number") != std::string::npos);
-  CHECK(loadError(folder, withTransform({{"texCoord", -1}})).find(
-            "KHR_texture_transform texCoord is not an integer >= 0") != std::string::npos);
-  CHECK(loadError(folder, withTransform({{"offset", {1e39, 0}}})).find("scene.gltf") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"offset", {1e39, 0}}}))
+            .find("material 0 baseColorTexture (texture 0) KHR_texture_transform offset[0] is 1e+39, expected a finite "
+                  "number") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"rotation", -1e300}}))
+            .find("KHR_texture_transform rotation is -1e+300, expected a finite number") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"scale", {1}}}))
+            .find("KHR_texture_transform scale is not an array of 2 numbers") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"offset", {"a", 0}}}))
+            .find("KHR_texture_transform offset[0] is not a number") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"texCoord", -1}}))
+            .find("KHR_texture_transform texCoord is not an integer >= 0") != std::string::npos);
+  CHECK(documentLoadError(folder, withTransform({{"offset", {1e39, 0}}})).find("scene.gltf") != std::string::npos);
 }
 
 TEST_CASE("TextureTransformTest and TextureTransformMultiTest: transforms read, nothing named" *
-          doctest::skip(!haveModel("TextureTransformTest") || !haveModel("TextureTransformMultiTest"))) {
-  const Scene single = loadGltf(modelPath("TextureTransformTest"));
+          doctest::skip(!haveConformanceModel("TextureTransformTest") ||
+                        !haveConformanceModel("TextureTransformMultiTest"))) {
+  const Scene single = loadGltf(conformanceGltf("TextureTransformTest"));
   CHECK(single.ignored.empty());
-  std::ifstream file(modelPath("TextureTransformTest"));
+  std::ifstream file(conformanceGltf("TextureTransformTest"));
   const json document = json::parse(file);
   REQUIRE(single.materials.size() == document["materials"].size());
   for (std::size_t i = 0; i < single.materials.size(); ++i) {
@@ -271,7 +264,7 @@ TEST_CASE("TextureTransformTest and TextureTransformMultiTest: transforms read, 
     CHECK(t.scale == glm::vec2(scale[0].get<float>(), scale[1].get<float>()));
     CHECK(t.rotation == transform.value("rotation", 0.0f));
   }
-  const Scene multi = loadGltf(modelPath("TextureTransformMultiTest"));
+  const Scene multi = loadGltf(conformanceGltf("TextureTransformMultiTest"));
   CHECK(multi.ignored.empty());  // its clearcoat is rendered (specular_clearcoat_conformance_tests.cpp)
   int transformed = 0, secondSet = 0, unlit = 0;
   for (const Material& m : multi.materials) {
@@ -291,8 +284,9 @@ TEST_CASE("TextureTransformTest and TextureTransformMultiTest: transforms read, 
 
 // ---- KHR_materials_unlit ------------------------------------------------------
 
-TEST_CASE("glTF: KHR_materials_unlit is read, and accepted as required" * doctest::skip(!haveModel("UnlitTest"))) {
-  const Scene scene = loadGltf(modelPath("UnlitTest"));
+TEST_CASE("glTF: KHR_materials_unlit is read, and accepted as required" *
+          doctest::skip(!haveConformanceModel("UnlitTest"))) {
+  const Scene scene = loadGltf(conformanceGltf("UnlitTest"));
   CHECK(scene.ignored.empty());
   REQUIRE(scene.materials.size() == 2);
   CHECK(scene.materials[0].unlit);

@@ -22,14 +22,10 @@
 
 namespace fs = std::filesystem;
 using namespace headlight;
+using headlight::test::conformanceGltf;
+using headlight::test::haveConformanceModel;
 
 namespace {
-
-fs::path modelPath(const std::string& model) {
-  return test::sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf");
-}
-
-bool haveModel(const std::string& model) { return test::exists(modelPath(model)); }
 
 Frame renderTargets(const Scene& scene, std::vector<std::string> targets, RenderSettings settings) {
   Renderer renderer(test::sharedContext());
@@ -120,8 +116,8 @@ glm::dvec3 cellAlbedo(const Frame& frame, glm::vec2 centre, float half) {
 // ---- TEXCOORD_1 ---------------------------------------------------------------
 
 TEST_CASE("MultiUVTest: the emissive texture samples TEXCOORD_1, as TEXCOORD_0 holding the same values would" *
-          doctest::skip(!haveModel("MultiUVTest"))) {
-  const Scene scene = loadGltf(modelPath("MultiUVTest"));
+          doctest::skip(!haveConformanceModel("MultiUVTest"))) {
+  const Scene scene = loadGltf(conformanceGltf("MultiUVTest"));
   REQUIRE(scene.materials.size() == 1);
   REQUIRE(scene.materials[0].emissiveTexture.texCoord == 1);
   REQUIRE(scene.primitives.size() == 1);
@@ -159,8 +155,8 @@ TEST_CASE("MultiUVTest: the emissive texture samples TEXCOORD_1, as TEXCOORD_0 h
 // ---- KHR_texture_transform ----------------------------------------------------
 
 TEST_CASE("TextureTransformTest: each cell reads 'correct', and the shader's transform equals it baked into the UVs" *
-          doctest::skip(!haveModel("TextureTransformTest"))) {
-  const Scene scene = loadGltf(modelPath("TextureTransformTest"));
+          doctest::skip(!haveConformanceModel("TextureTransformTest"))) {
+  const Scene scene = loadGltf(conformanceGltf("TextureTransformTest"));
   CHECK(scene.ignored.empty());
   RenderSettings settings = test::smallSettings(128, 96);
   settings.ssgi.enabled = false;
@@ -330,8 +326,8 @@ double worstUnlitError(const Frame& frame, int& unlitPixels) {
 }  // namespace
 
 TEST_CASE("UnlitTest: lit equals albedo on its unlit pixels, whatever the lights, sky and SSGI" *
-          doctest::skip(!haveModel("UnlitTest"))) {
-  const Scene scene = loadGltf(modelPath("UnlitTest"));
+          doctest::skip(!haveConformanceModel("UnlitTest"))) {
+  const Scene scene = loadGltf(conformanceGltf("UnlitTest"));
   CHECK(scene.ignored.empty());
   REQUIRE(std::all_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.unlit; }));
   const RenderSettings settings = test::smallSettings(96, 64);
@@ -373,8 +369,8 @@ TEST_CASE("UnlitTest: lit equals albedo on its unlit pixels, whatever the lights
 }
 
 TEST_CASE("UnlitTest: the reference's lit is the albedo on unlit pixels" *
-          doctest::skip(!haveModel("UnlitTest") || !referenceAvailable())) {
-  const Scene scene = loadGltf(modelPath("UnlitTest"));
+          doctest::skip(!haveConformanceModel("UnlitTest") || !referenceAvailable())) {
+  const Scene scene = loadGltf(conformanceGltf("UnlitTest"));
   RenderSettings settings = test::smallSettings(48, 32);
   const Frame frame = renderTargets(scene, {}, settings);
   ReferenceSettings reference;
@@ -507,11 +503,11 @@ TEST_CASE("the reference: a ray that hits an unlit surface brings back its base 
 }
 
 TEST_CASE("TextureTransformMultiTest: each row's UV 0 and UV 1 tiles look like its untransformed sample tile" *
-          doctest::skip(!haveModel("TextureTransformMultiTest"))) {
+          doctest::skip(!haveConformanceModel("TextureTransformMultiTest"))) {
   // Seen straight on by an orthographic camera whose pixel is 0.0125 world
   // units, the model's tiles (0.25 apart) lie exactly 20 pixels apart, so a
   // tile and its row's "Sample" tile compare pixel for pixel.
-  Scene scene = loadGltf(modelPath("TextureTransformMultiTest"));
+  Scene scene = loadGltf(conformanceGltf("TextureTransformMultiTest"));
   scene.cameras = {makeOrthographicCamera({0.35f, -0.25f, 2.0f}, {0.35f, -0.25f, 0.0f}, 1.125f)};
   RenderSettings settings = test::smallSettings(180, 180);
   settings.ssgi.enabled = false;

@@ -51,10 +51,6 @@ json layeredTriangles(int nodes) {
   return document;
 }
 
-ProcessResult render(const fs::path& scene, const fs::path& out, const std::string& extra = "") {
-  return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
-}
-
 // The smallest and largest value of the one-channel EXR at `path`.
 std::pair<float, float> channelRange(const fs::path& path) {
   auto input = OIIO::ImageInput::open(path.string());
@@ -72,7 +68,7 @@ TEST_SUITE("hostile") {
   TEST_CASE("blend: a BLEND material with an overflowing alpha factor is refused, naming the material") {
     TempFolder folder("hostile-blend");
     const fs::path scene = folder.write("inf.gltf", blendedTriangle("1e39"));
-    const ProcessResult run = render(scene, folder.path() / "out");
+    const ProcessResult run = renderSmall(scene, folder.path() / "out");
     INFO(run.output);
     CHECK(run.exitCode == 1);
     CHECK(run.output.find("material 0") != std::string::npos);
@@ -86,7 +82,7 @@ TEST_SUITE("hostile") {
       CAPTURE(alpha);
       const fs::path scene = folder.write(std::string("alpha") + alpha + ".gltf", blendedTriangle(alpha));
       const fs::path out = folder.path() / (std::string("out") + alpha);
-      const ProcessResult run = render(scene, out, "--strict");
+      const ProcessResult run = renderSmall(scene, out, "--strict");
       INFO(run.output);
       REQUIRE(run.exitCode == 0);
       const auto [low, high] = channelRange(out / "coverage.exr");
@@ -106,7 +102,7 @@ TEST_SUITE("hostile") {
       document["scenes"][0]["nodes"].push_back(node);
     }
     const fs::path scene = folder.write("faint.gltf", document.dump());
-    const ProcessResult run = render(scene, folder.path() / "out", "--no-ssgi --strict");
+    const ProcessResult run = renderSmall(scene, folder.path() / "out", "--no-ssgi --strict");
     INFO(run.output);
     REQUIRE(run.exitCode == 0);
     // 1 - 0.97^300 = 0.99989; a half-float accumulator stopped near 0.976.
@@ -120,7 +116,7 @@ TEST_SUITE("hostile") {
     // 10,000 layers of one triangle over much of the image (12 s at 64x48
     // with 15,000 and the default antialiasing before the budget counted them).
     const fs::path scene = folder.write("layers.gltf", layeredTriangles(10).dump());
-    const ProcessResult refused = render(scene, folder.path() / "refused", "--max-blended-fragments 20000000");
+    const ProcessResult refused = renderSmall(scene, folder.path() / "refused", "--max-blended-fragments 20000000");
     INFO(refused.output);
     CHECK(refused.exitCode == 1);
     CHECK(refused.output.find("10000 alphaMode BLEND instances covering") != std::string::npos);
@@ -129,7 +125,7 @@ TEST_SUITE("hostile") {
     CHECK(folderEmptyOrAbsent(folder.path() / "refused"));
     // One view shades a ninth of it, within the same budget.
     const ProcessResult drawn =
-        render(scene, folder.path() / "drawn", "--max-blended-fragments 20000000 --antialias 1 --no-ssgi");
+        renderSmall(scene, folder.path() / "drawn", "--max-blended-fragments 20000000 --antialias 1 --no-ssgi");
     INFO(drawn.output);
     CHECK(drawn.exitCode == 0);
     CHECK(fs::exists(folder.path() / "drawn" / "coverage.exr"));
@@ -140,14 +136,14 @@ TEST_SUITE("hostile") {
     const fs::path scene = folder.write("flood.gltf", layeredTriangles(100).dump());
     // Counted as every instance is (instances x passes): a bound on the
     // blend pass's one draw per blended instance.
-    const ProcessResult refused = render(scene, folder.path() / "refused");
+    const ProcessResult refused = renderSmall(scene, folder.path() / "refused");
     INFO(refused.output);
     CHECK(refused.exitCode == 1);
     CHECK(refused.output.find("100000 instances x (1 shadow view + the view)") != std::string::npos);
     CHECK(refused.output.find("--max-draws") != std::string::npos);
     // Each antialias sample draws the view again (the blend pass too): the
     // raised budget covers one view, not nine (16 s at 32x24 when it was not counted).
-    const ProcessResult antialiased = render(scene, folder.path() / "antialiased", "--max-draws 200000 --no-ssgi");
+    const ProcessResult antialiased = renderSmall(scene, folder.path() / "antialiased", "--max-draws 200000 --no-ssgi");
     INFO(antialiased.output);
     CHECK(antialiased.exitCode == 1);
     CHECK(antialiased.output.find("x (1 shadow view + 9 views: the pixel centre and 8 antialias samples) = 1000000 "
@@ -155,7 +151,7 @@ TEST_SUITE("hostile") {
     CHECK(antialiased.output.find("raise --max-draws, or lower --antialias") != std::string::npos);
     CHECK(folderEmptyOrAbsent(folder.path() / "antialiased"));
     const ProcessResult drawn =
-        render(scene, folder.path() / "drawn", "--max-draws 200000 --antialias 1 --no-ssgi --strict --verbose");
+        renderSmall(scene, folder.path() / "drawn", "--max-draws 200000 --antialias 1 --no-ssgi --strict --verbose");
     INFO(drawn.output);
     CHECK(drawn.exitCode == 0);
     CHECK(drawn.output.find("pass blend") != std::string::npos);

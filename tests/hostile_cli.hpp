@@ -15,8 +15,6 @@
 
 namespace headlight::test {
 
-inline std::string quote(const std::filesystem::path& path) { return shellQuote(path.string()); }
-
 // The hostile suite's budget (issue 32): every command it runs finishes, or
 // is refused, within kHostileSeconds, and under the address space the
 // probes used (`ulimit -v`, kHostileAddressSpaceKb) its peak resident memory
@@ -45,13 +43,18 @@ inline bool folderEmptyOrAbsent(const std::filesystem::path& folder) {
   return !std::filesystem::exists(folder) || std::filesystem::is_empty(folder);
 }
 
+// `headlight render` of `scene` at 32 x 24 into `out`, within the budget.
+inline ProcessResult renderSmall(const std::filesystem::path& scene, const std::filesystem::path& out,
+                                 const std::string& extra = "") {
+  return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
+}
+
 // Runs `render` on the file and checks exit 1, the file named, each
 // fragment present and nothing written.
 inline void expectRefused(const std::filesystem::path& scene, const std::vector<std::string>& fragments,
                           const std::string& extra = "") {
   const std::filesystem::path out = scene.parent_path() / "out";
-  const ProcessResult run =
-      runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out) + " " + extra);
+  const ProcessResult run = renderSmall(scene, out, extra);
   INFO(run.output);
   CHECK(run.exitCode == 1);
   CHECK(run.output.find(scene.string()) != std::string::npos);

@@ -37,14 +37,10 @@ json transformed(const json& transform) {
   return texturedTriangle({{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}});
 }
 
-ProcessResult render(const fs::path& scene, const fs::path& out) {
-  return runHostile("render " + quote(scene) + " --width 32 --height 24 --out " + quote(out));
-}
-
 void expectRefused(const TempFolder& folder, const std::string& text, const std::vector<std::string>& fragments) {
   const fs::path scene = folder.write("scene.gltf", text);
   const fs::path out = folder.path() / "out";
-  const ProcessResult run = render(scene, out);
+  const ProcessResult run = renderSmall(scene, out);
   INFO(run.output);
   CHECK(run.exitCode == 1);
   CHECK(run.output.find(scene.string()) != std::string::npos);
@@ -63,7 +59,7 @@ TEST_SUITE("hostile") {
     };
     for (const json& document : valid) {
       const fs::path scene = folder.write("scene.gltf", document.dump());
-      const ProcessResult run = render(scene, folder.path() / "out");
+      const ProcessResult run = renderSmall(scene, folder.path() / "out");
       INFO(run.output);
       CHECK(run.exitCode == 0);
       fs::remove_all(folder.path() / "out");
@@ -93,7 +89,7 @@ TEST_SUITE("hostile") {
   TEST_CASE("a texCoord past the rendered sets draws TEXCOORD_0 and is named") {
     TempFolder folder("hostile-uv");
     const fs::path scene = folder.write("scene.gltf", texturedTriangle({{"index", 0}, {"texCoord", 7}}).dump());
-    const ProcessResult run = render(scene, folder.path() / "out");
+    const ProcessResult run = renderSmall(scene, folder.path() / "out");
     INFO(run.output);
     CHECK(run.exitCode == 0);
     CHECK(run.output.find("TEXCOORD_7 on 1 material (first: material 0 'Painted') is not rendered") !=

@@ -22,6 +22,7 @@
 #include "support/temp_folder.hpp"
 
 using namespace headlight;
+using headlight::test::conformanceGltf;
 namespace fs = std::filesystem;
 
 namespace {
@@ -62,10 +63,6 @@ std::size_t checkIdsBelongToScene(const Frame& frame, const Scene& scene) {
   CHECK(unknown == 0);
   CHECK(backgroundWithIds == 0);
   return geometry;
-}
-
-fs::path conformanceModel(const std::string& model) {
-  return test::sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf");
 }
 
 }  // namespace
@@ -116,9 +113,9 @@ TEST_CASE("ids: not asked for, no ids and no names") {
 }
 
 TEST_CASE("ids: a glTF file's nodes, meshes, materials and primitives, named as the file names them" *
-          doctest::skip(!test::exists(conformanceModel("MorphPrimitivesTest")))) {
+          doctest::skip(!test::exists(conformanceGltf("MorphPrimitivesTest")))) {
   // One mesh of two primitives with a material each, under a node named "mesh".
-  const Scene scene = loadScene(conformanceModel("MorphPrimitivesTest").string());
+  const Scene scene = loadScene(conformanceGltf("MorphPrimitivesTest").string());
   const Frame frame = test::renderFresh(scene, test::smallSettings(96, 96));
   REQUIRE(frame.idNames);
   CHECK(checkIdsBelongToScene(frame, scene) > 96 * 96 / 10);
@@ -142,8 +139,8 @@ TEST_CASE("ids: a glTF file's nodes, meshes, materials and primitives, named as 
 }
 
 TEST_CASE("ids: each EXT_mesh_gpu_instancing copy is a mesh instance of its own" *
-          doctest::skip(!test::exists(conformanceModel("SimpleInstancing")))) {
-  const Scene scene = loadScene(conformanceModel("SimpleInstancing").string());
+          doctest::skip(!test::exists(conformanceGltf("SimpleInstancing")))) {
+  const Scene scene = loadScene(conformanceGltf("SimpleInstancing").string());
   REQUIRE(scene.meshInstanceNames.size() == 125);
   for (std::size_t copy = 0; copy < 125; ++copy) {
     CHECK(scene.meshInstanceNames[copy].index == 0);  // node 0

@@ -14,9 +14,13 @@
 
 #include "headlight/scene_loader.hpp"
 #include "support/assets.hpp"
+#include "support/colour.hpp"
 #include "support/gl.hpp"
 
 using namespace headlight;
+using headlight::test::chroma;
+using headlight::test::dominantChannel;
+using headlight::test::rgbAt;
 
 namespace {
 
@@ -27,16 +31,6 @@ std::filesystem::path suzannePath() {
 // Which Suzanne a pixel shows, by its world x (the nodes stand at x = -3, 0, 3).
 enum class Head { Left, Centre, Right };
 Head headAt(float worldX) { return worldX < -1.5f ? Head::Left : worldX > 1.5f ? Head::Right : Head::Centre; }
-
-glm::vec3 rgb(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
-
-// (max - min) / mean: 0 for grey.
-float chroma(const glm::vec3& c) {
-  const float mean = (c.r + c.g + c.b) / 3.0f;
-  return mean > 0.0f ? (std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b})) / mean : 0.0f;
-}
-
-int dominantChannel(const glm::vec3& c) { return c.r >= c.g && c.r >= c.b ? 0 : c.g >= c.b ? 1 : 2; }
 
 struct Renders {
   Frame with, without;
@@ -109,7 +103,7 @@ TEST_CASE("IridescenceSuzanne: the film colours the reflections, with a hue that
       if (with.position.at(x, y, 3) == 0.0f || without.position.at(x, y, 3) == 0.0f) continue;
       const Head head = headAt(with.position.at(x, y, 0));
       if (head == Head::Right) continue;  // transmissive: what shows through is the transmission pass's
-      const glm::vec3 on = rgb(with.lit, x, y), off = rgb(without.lit, x, y);
+      const glm::vec3 on = rgbAt(with.lit, x, y), off = rgbAt(without.lit, x, y);
       if (std::min({off.r, off.g, off.b}) < 1e-3f) continue;  // too dark to divide by
       const glm::vec3 ratio = on / off;
       Stats& s = stats[int(head)];
@@ -156,9 +150,9 @@ TEST_CASE("IridescenceSuzanne: the centre (metal) Suzanne facing the camera is g
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f || headAt(frame.position.at(x, y, 0)) != Head::Centre) continue;
-      const glm::vec3 position = rgb(frame.position, x, y), normal = rgb(frame.normal, x, y);
+      const glm::vec3 position = rgbAt(frame.position, x, y), normal = rgbAt(frame.normal, x, y);
       const float nDotV = glm::dot(normal, glm::normalize(frame.view.position - position));
-      const glm::dvec3 lit(rgb(frame.lit, x, y));
+      const glm::dvec3 lit(rgbAt(frame.lit, x, y));
       if (nDotV > 0.9f) facing += lit, ++facingCount;
       if (nDotV > 0.1f && nDotV < 0.5f) rim += lit, ++rimCount;
     }

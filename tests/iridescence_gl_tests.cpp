@@ -11,9 +11,12 @@
 #include "headlight/reference.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/shapes.hpp"
+#include "support/colour.hpp"
 #include "support/gl.hpp"
 
 using namespace headlight;
+using headlight::test::chroma;
+using headlight::test::rgbAt;
 
 namespace {
 
@@ -40,13 +43,6 @@ Scene sphereScene(const Material& sphere) {
   sun.intensity = 3.0f;
   scene.lights.push_back(sun);
   return scene;
-}
-
-glm::vec3 rgb(const ImageF& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
-
-float chroma(const glm::vec3& c) {
-  const float mean = (c.r + c.g + c.b) / 3.0f;
-  return mean > 0.0f ? (std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b})) / mean : 0.0f;
 }
 
 const Material kGreyMetal = makeMaterial({0.5f, 0.5f, 0.5f}, 0.3f, 1.0f);
@@ -81,7 +77,7 @@ TEST_CASE("iridescence: the blend pass puts the film on an alphaMode BLEND surfa
   for (int y = 0; y < plain.lit.height; ++y)
     for (int x = 0; x < plain.lit.width; ++x) {
       if (plain.coverage.at(x, y, 0) < 0.5f) continue;
-      const glm::vec3 off = rgb(plain.lit, x, y), on = rgb(filmed.lit, x, y);
+      const glm::vec3 off = rgbAt(plain.lit, x, y), on = rgbAt(filmed.lit, x, y);
       if (std::min({off.r, off.g, off.b}) < 1e-3f) continue;
       ++blended;
       coloured += chroma(on / off) > 0.15f;  // as the conformance test's metal
@@ -112,7 +108,7 @@ TEST_CASE("iridescence: the Embree reference reads the film from iridescence.exr
   for (int y = 0; y < frame.lit.height; ++y)
     for (int x = 0; x < frame.lit.width; ++x) {
       if (frame.position.at(x, y, 3) == 0.0f) continue;
-      const glm::vec3 on = rgb(filmed.lit, x, y), off = rgb(plain.lit, x, y);
+      const glm::vec3 on = rgbAt(filmed.lit, x, y), off = rgbAt(plain.lit, x, y);
       if (frame.iridescence.at(x, y, 0) == 0.0f) {
         floorDiffers += on != off;
         continue;
@@ -120,7 +116,7 @@ TEST_CASE("iridescence: the Embree reference reads the film from iridescence.exr
       ++sphere;
       if (std::min({off.r, off.g, off.b}) > 1e-3f && chroma(on / off) > 0.15f) ++coloured;
       referenceSum += double(on.r + on.g + on.b);
-      const glm::vec3 rendered = rgb(frame.lit, x, y);
+      const glm::vec3 rendered = rgbAt(frame.lit, x, y);
       renderSum += double(rendered.r + rendered.g + rendered.b);
     }
   MESSAGE("reference on the filmed sphere: " << sphere << " pixels, " << coloured

@@ -10,24 +10,19 @@
 #include <iterator>
 #include <cmath>
 
-#include "support/plan_settings.hpp"
 #include "frame/frame_plan.hpp"
 #include "headlight/scene_builder.hpp"
 #include "headlight/targets.hpp"
 #include "reference/shading.hpp"
+#include "support/colour.hpp"
+#include "support/plan_settings.hpp"
 
 using namespace headlight;
+using headlight::test::chroma;
+using headlight::test::dominantChannel;
 using reference::thinFilmFresnel;
 
 namespace {
-
-// (max - min) / mean of a colour: 0 for grey.
-float chroma(const glm::vec3& c) {
-  const float mean = (c.r + c.g + c.b) / 3.0f;
-  return mean > 0.0f ? (std::max({c.r, c.g, c.b}) - std::min({c.r, c.g, c.b})) / mean : 0.0f;
-}
-
-int dominantChannel(const glm::vec3& c) { return c.r >= c.g && c.r >= c.b ? 0 : c.g >= c.b ? 1 : 2; }
 
 const glm::vec3 kGreyMetal(0.4f);  // IridescenceSuzanne's base colour
 

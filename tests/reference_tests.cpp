@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -22,13 +23,12 @@
 #include "reference/sampler_enums.hpp"
 #include "reference/shading.hpp"
 #include "reference/texture_sampler.hpp"
+#include "support/embree.hpp"
 #include "support/images.hpp"
 
 using namespace headlight;
 
 namespace {
-
-constexpr float kPi = 3.14159265358979f;
 
 // ---- Scenes ------------------------------------------------------------------
 
@@ -134,9 +134,7 @@ double meanStandardError(double pixelStandardError, int pixels) {
   return pixelStandardError / std::sqrt(double(pixels));
 }
 
-// Cases that trace need Embree; without it they are skipped (and counted as
-// such), and the refusal has a case of its own below.
-const auto kNeedsEmbree = doctest::skip(!HEADLIGHT_HAS_EMBREE);
+using headlight::test::kNeedsEmbree;
 
 }  // namespace
 
@@ -407,7 +405,7 @@ TEST_CASE("reference: direct light matches the BRDF in closed form" * doctest::t
   frame.view.view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0, 0, 0), glm::vec3(0, 0, -1));
   frame.view.position = {0.0f, 5.0f, 0.0f};
   const ReferenceSettings settings = referenceSettings(64, 1.0f);
-  const float expected = (0.96f * 0.5f + 0.25f * 0.04f) / kPi * 3.0f;
+  const float expected = (0.96f * 0.5f + 0.25f * 0.04f) / std::numbers::pi_v<float> * 3.0f;
   const ReferenceImages lit = traceReference(scene, frame, settings);
   for (int c = 0; c < 3; ++c) CHECK(lit.lit.at(1, 1, c) == doctest::Approx(expected).epsilon(1e-5));
 

@@ -27,8 +27,8 @@ enum class Caster { None, Pane, Slab };
 
 constexpr float kIor = 1.5f;
 const glm::vec3 kPaneColour{1.0f, 0.5f, 0.2f};
-constexpr float kSlabThickness = 0.1f, kAttenuationDistance = 0.2f;
-const glm::vec3 kAttenuationColour{0.2f, 0.6f, 0.9f};
+constexpr float kSlabThickness = 0.1f, kSlabAttenuationDistance = 0.2f;
+const glm::vec3 kSlabAttenuationColour{0.2f, 0.6f, 0.9f};
 // The caster's centre: the light at 45 degrees (directional) casts its
 // shadow 0.6 further along +x, clear of the caster's own footprint.
 const glm::vec3 kCasterCentre{-0.9f, 0.6f, 0.0f};
@@ -49,7 +49,7 @@ Scene shadowScene(Caster caster, Light::Type lightType) {
     // A volume: light crosses its top and bottom faces and the medium between.
     Material glass = makeMaterial({1.0f, 1.0f, 1.0f}, 0.1f);
     glass.transmission = MaterialTransmission{1.0f, {}};
-    glass.volume = MaterialVolume{kSlabThickness, {}, kAttenuationDistance, kAttenuationColour};
+    glass.volume = MaterialVolume{kSlabThickness, {}, kSlabAttenuationDistance, kSlabAttenuationColour};
     glass.ior = kIor;
     addInstance(scene, makeBox({0.6f, kSlabThickness, 0.6f}), addMaterial(scene, glass), moved(kCasterCentre));
   }
@@ -91,7 +91,7 @@ glm::vec3 expectedTransmittance(Caster caster, Light::Type type, const glm::vec3
   if (std::abs(at.point.x - kCasterCentre.x) > half - margin || std::abs(at.point.z) > half - margin)
     return glm::vec3(-1.0f);
   if (caster == Caster::Pane) return reference::shadowCrossing(kPaneColour, 0.0f, 1.0f, kIor, at.cosine, true);
-  const glm::vec3 extinction = reference::volumeExtinction(kAttenuationColour, kAttenuationDistance);
+  const glm::vec3 extinction = reference::volumeExtinction(kSlabAttenuationColour, kSlabAttenuationDistance);
   const float path = kSlabThickness / at.cosine;
   return reference::shadowCrossing(glm::vec3(1.0f), 0.0f, 1.0f, kIor, at.cosine, true) *
          reference::shadowCrossing(glm::vec3(1.0f), 0.0f, 1.0f, kIor, at.cosine, false) * glm::exp(-extinction * path);

@@ -15,32 +15,26 @@
 #include "headlight/scene_loader.hpp"
 #include "support/assets.hpp"
 #include "support/gl.hpp"
+#include "support/scene_checks.hpp"
 
 using namespace headlight;
+using headlight::test::conformanceGltf;
+using headlight::test::haveConformanceModel;
+using headlight::test::ignores;
 
 namespace {
-
-std::filesystem::path conformanceModel(const std::string& model) {
-  return test::sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf");
-}
-bool haveModel(const std::string& model) { return test::exists(conformanceModel(model)); }
 
 glm::vec3 texel3(const ImageF& image, int x, int y) {
   return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
 }
 float luminance(const glm::vec3& rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
 
-bool named(const Scene& scene, const std::string& feature) {
-  return std::any_of(scene.ignored.begin(), scene.ignored.end(),
-                     [&](const IgnoredFeature& f) { return f.feature == feature; });
-}
-
 }  // namespace
 
 TEST_CASE("conformance: SheenCloth's sheen adds its colour at grazing angles" *
-          doctest::skip(!haveModel("SheenCloth"))) {
-  const Scene scene = loadScene(conformanceModel("SheenCloth").string());
-  CHECK(!named(scene, "KHR_materials_sheen"));
+          doctest::skip(!haveConformanceModel("SheenCloth"))) {
+  const Scene scene = loadScene(conformanceGltf("SheenCloth").string());
+  CHECK(!ignores(scene, "KHR_materials_sheen"));
   REQUIRE(scene.materials.size() == 1);
   REQUIRE(scene.materials[0].sheen);
   // The same cloth with its sheen colour zeroed: the lobe is still built,
@@ -143,9 +137,9 @@ std::vector<SphereStats> columnStats(const Scene& anisotropic, const Scene& isot
 }  // namespace
 
 TEST_CASE("conformance: AnisotropyStrengthTest's rows stretch the highlight more with strength" *
-          doctest::skip(!haveModel("AnisotropyStrengthTest"))) {
-  const Scene scene = loadScene(conformanceModel("AnisotropyStrengthTest").string());
-  CHECK(!named(scene, "KHR_materials_anisotropy"));
+          doctest::skip(!haveConformanceModel("AnisotropyStrengthTest"))) {
+  const Scene scene = loadScene(conformanceGltf("AnisotropyStrengthTest").string());
+  CHECK(!ignores(scene, "KHR_materials_anisotropy"));
   Scene isotropic = scene;
   for (Material& material : isotropic.materials)
     if (material.anisotropy) material.anisotropy->anisotropyStrength = 0.0f;

@@ -15,15 +15,11 @@
 namespace headlight {
 namespace {
 
+using test::readOf;
+
 bool defines(const FramePlan& plan, const std::string& define) {
   const std::vector<std::string>& all = plan.gbuffer.defines;
   return std::find(all.begin(), all.end(), define) != all.end();
-}
-
-const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
-  for (const TargetRead& read : plan.reads)
-    if (read.target->name == name) return &read;
-  return nullptr;
 }
 
 }  // namespace

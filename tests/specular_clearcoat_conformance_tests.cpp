@@ -13,21 +13,12 @@
 #include "headlight/scene_loader.hpp"
 #include "support/assets.hpp"
 #include "support/gl.hpp"
+#include "support/scene_checks.hpp"
 
 using namespace headlight;
 using namespace headlight::test;
 
 namespace {
-
-std::string modelPath(const std::string& model) {
-  return (sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf")).string();
-}
-bool haveModel(const std::string& model) { return test::exists(sharedFolder() / "gltf-conformance" / model); }
-
-bool named(const Scene& scene, const std::string& feature) {
-  return std::any_of(scene.ignored.begin(), scene.ignored.end(),
-                     [&](const IgnoredFeature& f) { return f.feature == feature; });
-}
 
 float luminance(const Frame& frame, int x, int y) {
   return 0.2126f * frame.lit.at(x, y, 0) + 0.7152f * frame.lit.at(x, y, 1) + 0.0722f * frame.lit.at(x, y, 2);
@@ -69,9 +60,9 @@ double meanOf(const ImageF& image, const Region& r, int channel) {
 }  // namespace
 
 TEST_CASE("conformance: SpecularTest's highlight grows with the specular factor" *
-          doctest::skip(!haveModel("SpecularTest"))) {
-  const Scene scene = loadScene(modelPath("SpecularTest"));
-  CHECK(!named(scene, "KHR_materials_specular"));
+          doctest::skip(!haveConformanceModel("SpecularTest"))) {
+  const Scene scene = loadScene(conformanceGltf("SpecularTest"));
+  CHECK(!ignores(scene, "KHR_materials_specular"));
   constexpr int kSize = 160;
   const Frame frame = renderFresh(scene, smallSettings(kSize, kSize));
   REQUIRE(!frame.specular.empty());
@@ -119,9 +110,9 @@ TEST_CASE("conformance: SpecularTest's highlight grows with the specular factor"
 }
 
 TEST_CASE("conformance: ClearCoatTest's coated column outshines its base column in the highlight" *
-          doctest::skip(!haveModel("ClearCoatTest"))) {
-  const Scene scene = loadScene(modelPath("ClearCoatTest"));
-  CHECK(!named(scene, "KHR_materials_clearcoat"));
+          doctest::skip(!haveConformanceModel("ClearCoatTest"))) {
+  const Scene scene = loadScene(conformanceGltf("ClearCoatTest"));
+  CHECK(!ignores(scene, "KHR_materials_clearcoat"));
   constexpr int kSize = 128;
   const Frame frame = renderFresh(scene, smallSettings(kSize, kSize));
   REQUIRE(!frame.clearcoat.empty());
@@ -155,9 +146,9 @@ TEST_CASE("conformance: ClearCoatTest's coated column outshines its base column 
 }
 
 TEST_CASE("conformance: TextureTransformMultiTest's clearcoat row is drawn, its transformed tiles as the sample" *
-          doctest::skip(!haveModel("TextureTransformMultiTest"))) {
-  const Scene scene = loadScene(modelPath("TextureTransformMultiTest"));
-  CHECK(!named(scene, "KHR_materials_clearcoat"));
+          doctest::skip(!haveConformanceModel("TextureTransformMultiTest"))) {
+  const Scene scene = loadScene(conformanceGltf("TextureTransformMultiTest"));
+  CHECK(!ignores(scene, "KHR_materials_clearcoat"));
   constexpr int kSize = 384;  // a tile is ~21 pixels wide
   const Frame frame = renderFresh(scene, smallSettings(kSize, kSize));
   REQUIRE(!frame.clearcoat.empty());

@@ -14,11 +14,7 @@
 namespace headlight {
 namespace {
 
-const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
-  for (const TargetRead& read : plan.reads)
-    if (read.target->name == name) return &read;
-  return nullptr;
-}
+using test::readOf;
 
 bool has(const std::vector<std::string>& defines, std::string_view define) {
   return std::find(defines.begin(), defines.end(), define) != defines.end();

@@ -22,16 +22,13 @@
 namespace headlight {
 namespace {
 
+using test::skips;
+
 SceneSummary transmittingScene() {
   SceneSummary scene;
   scene.planarShadowCasters = 1;
   scene.transmission = true;
   return scene;
-}
-
-bool skips(const FramePlan& plan, std::string_view work) {
-  return std::any_of(plan.skipped.begin(), plan.skipped.end(),
-                     [&](const SkippedWork& skipped) { return skipped.work == work; });
 }
 
 bool reads(const FramePlan& plan, std::string_view name) {

@@ -20,7 +20,7 @@ using Run = headlight::test::ProcessResult;
 
 namespace {
 
-constexpr auto& quote = headlight::test::shellQuote;
+using headlight::test::quote;
 
 std::string readText(const fs::path& path) {
   std::ifstream file(path);

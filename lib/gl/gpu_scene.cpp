@@ -63,12 +63,6 @@ bool isMipmapFilter(int filter) {
          filter == GL_NEAREST_MIPMAP_LINEAR || filter == GL_LINEAR_MIPMAP_LINEAR;
 }
 
-int mipLevels(int width, int height) {
-  int levels = 1;
-  for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
-  return levels;
-}
-
 // Textures are made per (image, colour space, sampler) on first use: a
 // glTF image may be both an sRGB base colour and a linear occlusion map.
 class TextureCache {
@@ -86,7 +80,7 @@ class TextureCache {
  private:
   GpuTexture upload(const TextureRef& ref, bool srgb) {
     const ImageData& image = scene_.images[std::size_t(ref.image)];
-    const int levels = isMipmapFilter(ref.minFilter) ? mipLevels(image.width, image.height) : 1;
+    const int levels = isMipmapFilter(ref.minFilter) ? gl::fullMipChainLevels(image.width, image.height) : 1;
     GpuTexture gpu{gl::Texture::create2D(srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, image.width, image.height, levels),
                    gl::Sampler::create()};
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);

@@ -1,5 +1,6 @@
 #include "gl/objects.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include "context/hex_code.hpp"
@@ -58,6 +59,12 @@ Texture::Texture(GLenum target, GLenum internalFormat, int width, int height, in
     glTextureStorage2D(id, levels, internalFormat, width, height);
   else
     glTextureStorage3D(id, levels, internalFormat, width, height, layers);
+}
+
+int fullMipChainLevels(int width, int height) {
+  int levels = 1;
+  for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
+  return levels;
 }
 
 Texture Texture::create2D(GLenum internalFormat, int width, int height, int levels) {

@@ -63,6 +63,9 @@ void deleteShader(GLuint id);
 void deleteSampler(GLuint id);
 void deleteQuery(GLuint id);
 
+// The levels of a full mip chain for a width x height texture, down to 1 x 1.
+int fullMipChainLevels(int width, int height);
+
 // An immutable-storage texture (glTextureStorage*). One class for every
 // target the renderer uses: the factories name the target, target() and
 // layers() say which it is. Separate C++ types per target would buy little

@@ -6,15 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/message_text.hpp"
+
 namespace headlight::detail {
 namespace {
-
-std::string oneLine(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  for (std::string::size_type newline; (newline = text.find('\n')) != std::string::npos;)
-    text.replace(newline, 1, "; ");
-  return text;
-}
 
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 

@@ -9,16 +9,10 @@
 #include <cstring>
 #include <string_view>
 
+#include "io/message_text.hpp"
+
 namespace headlight::detail {
 namespace {
-
-// OpenImageIO's messages are newline-separated lines; ours are one line.
-std::string oneLine(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-  for (std::string::size_type newline; (newline = text.find('\n')) != std::string::npos;)
-    text.replace(newline, 1, "; ");
-  return text;
-}
 
 // OpenImageIO picks its reader by file extension; embedded images have none,
 // so the signature bytes name the format: "png", "jpg", "gif", "bmp",

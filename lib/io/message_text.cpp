@@ -23,4 +23,11 @@ std::string quotedList(const std::vector<std::string>& items) {
   return joinedList(shown, items.size());
 }
 
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (std::string::size_type newline; (newline = text.find('\n')) != std::string::npos;)
+    text.replace(newline, 1, "; ");
+  return text;
+}
+
 }  // namespace headlight

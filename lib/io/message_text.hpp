@@ -19,5 +19,8 @@ inline constexpr std::size_t kListShown = 20;
 std::string joinedList(const std::vector<std::string>& shown, std::size_t total);
 // "'a', 'b', ... and 199980 more": the first kListShown items, each quotedName.
 std::string quotedList(const std::vector<std::string>& items);
+// A message of several lines (OpenImageIO's are newline-separated) as one:
+// trailing newlines and spaces dropped, the others "; ".
+std::string oneLine(std::string text);
 
 }  // namespace headlight

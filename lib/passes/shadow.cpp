@@ -8,6 +8,7 @@
 
 #include "gl/shader_library.hpp"
 #include "headlight/error.hpp"
+#include "scene/look_up.hpp"
 
 namespace headlight {
 namespace {
@@ -22,11 +23,6 @@ int shaderType(Light::Type type) {
       return gpu::kLightSpot;
   }
   return gpu::kLightPoint;
-}
-
-// An up vector not parallel to `direction`.
-glm::vec3 upFor(const glm::vec3& direction) {
-  return std::abs(direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
 }
 
 // The square, in the light's view (looking along `direction` at the scene's

@@ -16,12 +16,6 @@ std::vector<std::string> transmissionDefines(FeatureBits features, const Transmi
   return defines;
 }
 
-int mipLevels(int width, int height) {
-  int levels = 1;
-  for (int size = std::max(width, height); size > 1; size /= 2) ++levels;
-  return levels;
-}
-
 void bindLightingInputs(const TransmissionInputs& inputs, const TransmissionVariant& variant) {
   bindForwardLighting(inputs.shadows, inputs.environment, variant);
   // The throughput's specular albedo reads the BRDF table with or without the sky term.
@@ -57,8 +51,8 @@ void TransmissionPass::copyBackground(const gl::Texture& lit, const gl::Texture&
                      position.width(), position.height(), 1);
   if (background_.width() != lit.width() || background_.height() != lit.height() ||
       background_.internalFormat() != lit.internalFormat())
-    background_ =
-        gl::Texture::create2D(lit.internalFormat(), lit.width(), lit.height(), mipLevels(lit.width(), lit.height()));
+    background_ = gl::Texture::create2D(lit.internalFormat(), lit.width(), lit.height(),
+                                        gl::fullMipChainLevels(lit.width(), lit.height()));
   glCopyImageSubData(lit.id(), GL_TEXTURE_2D, 0, 0, 0, 0, background_.id(), GL_TEXTURE_2D, 0, 0, 0, 0, lit.width(),
                      lit.height(), 1);
   glGenerateTextureMipmap(background_.id());

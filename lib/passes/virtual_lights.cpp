@@ -8,15 +8,11 @@
 #include "gl/readback.hpp"
 #include "gl/target_formats.hpp"
 #include "reference/shading.hpp"
+#include "scene/look_up.hpp"
 #include "shared_layout.h"
 
 namespace headlight {
 namespace {
-
-// An up vector not parallel to `direction`.
-glm::vec3 upFor(const glm::vec3& direction) {
-  return std::abs(direction.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-}
 
 // A light's perspective view from `position` along `direction`.
 LightView perspectiveView(std::size_t light, const glm::vec3& position, const glm::vec3& direction, float fov,

@@ -11,6 +11,10 @@ fs::path sharedFolder() {
   return fs::path(HEADLIGHT_SOURCE_DIR) / ".." / "shared";
 }
 
+fs::path conformanceGltf(const std::string& model) {
+  return sharedFolder() / "gltf-conformance" / model / "glTF" / (model + ".gltf");
+}
+
 fs::path metalRoughSpheresGltf() {
   return sharedFolder() / "anchors-assets" / "MetalRoughSpheresNoTextures" / "glTF" /
          "MetalRoughSpheresNoTextures.gltf";

@@ -5,6 +5,7 @@
 // skipped when the file is absent:
 //   TEST_CASE("..." * doctest::skip(!test::exists(test::metalRoughSpheresGltf())))
 #include <filesystem>
+#include <string>
 
 namespace headlight::test {
 
@@ -15,5 +16,9 @@ std::filesystem::path sharedFolder();
 std::filesystem::path metalRoughSpheresGltf();
 
 bool exists(const std::filesystem::path& path);
+
+// A conformance model's glTF: gltf-conformance/MODEL/glTF/MODEL.gltf.
+std::filesystem::path conformanceGltf(const std::string& model);
+inline bool haveConformanceModel(const std::string& model) { return test::exists(conformanceGltf(model)); }
 
 }  // namespace headlight::test

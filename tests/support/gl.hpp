@@ -2,9 +2,11 @@
 // What GL tests share: one context per process for the backend under test,
 // small render settings, and pixel lookups by world position. Scenes are
 // built with headlight/scene_builder.hpp.
+#include <algorithm>
 #include <cstdlib>
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "headlight/context.hpp"
 #include "headlight/frame.hpp"
@@ -46,6 +48,11 @@ double meanWhere(const Frame& frame, const ImageF& image, int channel,
 Scene orthoQuadScene();
 // A 100x100 open plane (albedo 0.8) seen from above at a slant.
 Scene openPlaneScene();
+// True when the frame timed `pass` (it ran).
+inline bool timed(const Frame& frame, std::string_view pass) {
+  return std::any_of(frame.timings.begin(), frame.timings.end(), [&](const PassTime& t) { return t.pass == pass; });
+}
+
 // `scene` rendered by a fresh renderer on sharedContext().
 Frame renderFresh(Scene scene, const RenderSettings& settings);
 

@@ -1,7 +1,12 @@
 #pragma once
 // The settings the frame-plan tests plan with: resolved, every auto value
 // set (as Renderer::resolve would), so planFrame can be called without a
-// scene or a context.
+// scene or a context; and what those tests ask of a plan.
+#include <algorithm>
+#include <string>
+#include <string_view>
+
+#include "frame/frame_plan.hpp"
 #include "headlight/settings.hpp"
 
 namespace headlight::test {
@@ -15,6 +20,20 @@ inline RenderSettings resolvedPlanSettings() {
   settings.lighting.shadowMapSize = 1024;
   settings.lighting.skyIntensity = 1.0f;
   return settings;
+}
+
+// True when the plan skips `work` for a reason that contains `reason`.
+inline bool skips(const FramePlan& plan, std::string_view work, std::string_view reason = {}) {
+  return std::any_of(plan.skipped.begin(), plan.skipped.end(), [&](const SkippedWork& skipped) {
+    return skipped.work == work && skipped.reason.find(reason) != std::string::npos;
+  });
+}
+
+// The plan's read of the target `name`, or null.
+inline const TargetRead* readOf(const FramePlan& plan, std::string_view name) {
+  for (const TargetRead& read : plan.reads)
+    if (read.target->name == name) return &read;
+  return nullptr;
 }
 
 }  // namespace headlight::test

@@ -1,5 +1,6 @@
 #pragma once
 // Running a program the way a user's shell does, output captured.
+#include <filesystem>
 #include <string>
 
 namespace headlight::test {
@@ -13,6 +14,9 @@ struct ProcessResult {
 
 // `text` in single quotes for /bin/sh (a quote inside is escaped).
 std::string shellQuote(const std::string& text);
+// shellQuote of a path (or of any text: a std::string converts unchanged):
+// the CLI tests build their command lines with it.
+inline std::string quote(const std::filesystem::path& path) { return shellQuote(path.string()); }
 
 // Runs `command` with /bin/sh, stderr joined to stdout. Throws
 // std::runtime_error when the shell cannot be started.
