@@ -113,7 +113,7 @@ TEST_CASE("ids: not asked for, no ids and no names") {
 }
 
 TEST_CASE("ids: a glTF file's nodes, meshes, materials and primitives, named as the file names them" *
-          doctest::skip(!test::exists(conformanceGltf("MorphPrimitivesTest")))) {
+          doctest::skip(!test::haveConformanceModel("MorphPrimitivesTest"))) {
   // One mesh of two primitives with a material each, under a node named "mesh".
   const Scene scene = loadScene(conformanceGltf("MorphPrimitivesTest").string());
   const Frame frame = test::renderFresh(scene, test::smallSettings(96, 96));
@@ -139,7 +139,7 @@ TEST_CASE("ids: a glTF file's nodes, meshes, materials and primitives, named as 
 }
 
 TEST_CASE("ids: each EXT_mesh_gpu_instancing copy is a mesh instance of its own" *
-          doctest::skip(!test::exists(conformanceGltf("SimpleInstancing")))) {
+          doctest::skip(!test::haveConformanceModel("SimpleInstancing"))) {
   const Scene scene = loadScene(conformanceGltf("SimpleInstancing").string());
   REQUIRE(scene.meshInstanceNames.size() == 125);
   for (std::size_t copy = 0; copy < 125; ++copy) {

@@ -14,6 +14,7 @@
 #include "headlight/scene_builder.hpp"
 #include "headlight/scene_loader.hpp"
 #include "support/assets.hpp"
+#include "support/colour.hpp"
 #include "support/gl.hpp"
 #include "support/scene_checks.hpp"
 
@@ -21,12 +22,10 @@ using namespace headlight;
 using headlight::test::conformanceGltf;
 using headlight::test::haveConformanceModel;
 using headlight::test::ignores;
+using headlight::test::rgbAt;
 
 namespace {
 
-glm::vec3 texel3(const ImageF& image, int x, int y) {
-  return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)};
-}
 float luminance(const glm::vec3& rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
 
 }  // namespace
@@ -56,17 +55,17 @@ TEST_CASE("conformance: SheenCloth's sheen adds its colour at grazing angles" *
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       if (withSheen.position.at(x, y, 3) == 0.0f) continue;
-      zeroedWithSheen += texel3(without.sheen, x, y) != glm::vec3(0.0f);
-      sheenPixels += texel3(withSheen.sheen, x, y) != glm::vec3(0.0f);
-      const glm::vec3 toEye = glm::normalize(withSheen.view.position - texel3(withSheen.position, x, y));
-      const float nDotV = glm::dot(texel3(withSheen.normal, x, y), toEye);
+      zeroedWithSheen += rgbAt(without.sheen, x, y) != glm::vec3(0.0f);
+      sheenPixels += rgbAt(withSheen.sheen, x, y) != glm::vec3(0.0f);
+      const glm::vec3 toEye = glm::normalize(withSheen.view.position - rgbAt(withSheen.position, x, y));
+      const float nDotV = glm::dot(rgbAt(withSheen.normal, x, y), toEye);
       Band* band = nDotV < 0.3f ? &grazing : nDotV > 0.8f ? &facing : nullptr;
       if (!band) continue;
-      const glm::vec3 added = texel3(withSheen.lit, x, y) - texel3(without.lit, x, y);
+      const glm::vec3 added = rgbAt(withSheen.lit, x, y) - rgbAt(without.lit, x, y);
       band->added += luminance(added);
       band->addedBlue += added.b;
       band->addedGreen += added.g;
-      band->base += luminance(texel3(without.lit, x, y));
+      band->base += luminance(rgbAt(without.lit, x, y));
       ++band->pixels;
     }
   REQUIRE(grazing.pixels > 100);
@@ -112,7 +111,7 @@ std::vector<SphereStats> columnStats(const Scene& anisotropic, const Scene& isot
   std::vector<float> brightest(7, 0.0f);
   auto rowAt = [&](int px, int py) {
     if (withStrength.position.at(px, py, 3) == 0.0f) return -1;
-    const glm::vec3 p = texel3(withStrength.position, px, py);
+    const glm::vec3 p = rgbAt(withStrength.position, px, py);
     const int row = int(std::lround(p.y));
     return row >= 0 && row < 7 && glm::length(p - glm::vec3(x, float(row), 0.0f)) < 0.41f ? row : -1;
   };
@@ -121,13 +120,13 @@ std::vector<SphereStats> columnStats(const Scene& anisotropic, const Scene& isot
       for (int px = 0; px < settings.width; ++px) {
         const int row = rowAt(px, py);
         if (row < 0) continue;
-        const float lit = luminance(texel3(withStrength.lit, px, py));
+        const float lit = luminance(rgbAt(withStrength.lit, px, py));
         if (pass == 0) {
           brightest[std::size_t(row)] = std::max(brightest[std::size_t(row)], lit);
           continue;
         }
         SphereStats& stats = rows[std::size_t(row)];
-        stats.change += std::abs(lit - luminance(texel3(without.lit, px, py)));
+        stats.change += std::abs(lit - luminance(rgbAt(without.lit, px, py)));
         stats.highlight += lit > 0.5f * brightest[std::size_t(row)];
         ++stats.pixels;
       }
