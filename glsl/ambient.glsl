@@ -56,20 +56,16 @@ vec3 bentReflection(vec3 reflected, vec3 normal, float angle) {
 vec3 specularAlbedoOf(Surface surface) {
   const float size = float(kBrdfLutSize);
   float tableRoughness = surface.roughness;
-#ifdef HAS_ANISOTROPY_LOBE
-  if (surface.anisotropyStrength > 0.0)
-    tableRoughness = anisotropicAlbedoRoughness(surface.roughness, surface.anisotropyStrength);
-#endif
+  LOBES_ALBEDO_ROUGHNESS(surface, tableRoughness);
   const vec2 scaleBias = texture(brdfLut, vec2(tableCoordinate(surface.nDotV, 0.0, 1.0, size),
                                                tableCoordinate(tableRoughness, 0.0, 1.0, size))).rg;
   vec3 specularAlbedo = surface.f0 * scaleBias.x + surface.f90 * scaleBias.y;
-#ifdef HAS_IRIDESCENCE_LOBE
-  // The film's Fresnel is one value per pixel (at N.V), so it leaves the
-  // split-sum integral whole: F (scale + bias).
-  specularAlbedo = mix(specularAlbedo, surface.iridescenceFresnel * (scaleBias.x + scaleBias.y), surface.iridescence);
-#endif
+  LOBES_SPECULAR_ALBEDO(surface, specularAlbedo, scaleBias);
   return specularAlbedo;
 }
+
+// The lobes' layers over the ambient (sheen's), which read prefilteredSky.
+#include_lobes "_ambient"
 
 vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility, float specularVisibility,
                   float specularBend, vec3 indirect) {
@@ -78,22 +74,11 @@ vec3 ambientLight(Surface surface, float materialOcclusion, float skyVisibility,
   const vec3 diffuseWeight = (1.0 - specularAlbedo) * (1.0 - surface.metallic) * (1.0 - surface.transmission);
   const vec3 diffuseIbl = diffuseWeight * surface.albedo * skyIrradianceOverPi(surface.normal);
   vec3 reflected = reflect(-surface.view, surface.normal);
-#ifdef HAS_ANISOTROPY_LOBE
-  if (surface.anisotropyStrength > 0.0)
-    reflected = anisotropicReflection(surface.normal, surface.view, surface.anisotropyTangent,
-                                      surface.anisotropyStrength, surface.roughness);
-#endif
+  LOBES_REFLECTION(surface, reflected);
   reflected = bentReflection(reflected, surface.normal, specularBend);
   const vec3 specularIbl = specularAlbedo * prefilteredSky(reflected, surface.roughness);
   vec3 ambient = diffuseIbl * skyVisibility + specularIbl * specularVisibility;
-#ifdef HAS_SHEEN_LOBE
-  if (surface.sheenColor != vec3(0.0)) {
-    const vec3 mirrored = reflect(-surface.view, surface.normal);
-    ambient = ambient * sheenAmbientBaseScale(surface.sheenColor, surface.sheenRoughness, surface.nDotV) +
-              skyVisibility * sheenAmbient(surface.sheenColor, surface.sheenRoughness, surface.nDotV,
-                                           prefilteredSky(mirrored, surface.sheenRoughness));
-  }
-#endif
+  LOBES_AMBIENT_LAYER(surface, ambient, skyVisibility);
   return ambient * lighting.skyIntensity * materialOcclusion + indirect;
 }
 

@@ -25,7 +25,7 @@ void shadeBlended(vec3 position, vec3 normal, vec4 baseColor, float metallic, fl
                   vec3 emission) {
   Surface surface = makeSurface(baseColor.rgb, clamp(metallic, 0.0, 1.0), clamp(roughness, 0.0, 1.0), normal,
                                 viewDirection(position));
-  applyLobes(surface, forwardLobes(normal));
+  applyMaterialLobes(surface, normal);
 #ifdef HAS_CLEARCOAT_LOBE
   const Clearcoat coat = makeClearcoat(forwardClearcoatLobe, surface.view);
   vec3 radiance = clearcoatLayer(coat, emission, vec3(0.0));

@@ -1,14 +1,12 @@
 // Cook-Torrance with GGX, Smith-GGX visibility and Schlick's Fresnel, and
 // glTF's punctual light falloff (KHR_lights_punctual, "Range Property").
 // Needs sampling.glsl and the light buffer. The KHR_materials_* lobes a
-// variant is built with (HAS_<NAME>_LOBE) add their Surface members and
-// terms, each from its own file.
-#ifdef HAS_SHEEN_LOBE
-#include "lobe_sheen.glsl"
-#endif
-#ifdef HAS_ANISOTROPY_LOBE
-#include "lobe_anisotropy.glsl"
-#endif
+// variant is built with add their terms through hooks: each lobe's file
+// (glsl/lobe_<name>.glsl, expanded below by #include_lobes) defines
+// `<name>Lobe<Hook>` functions and the LOBES_<HOOK> macros call them for the
+// variant's lobes (lobeDefines, lib/frame/frame_plan.cpp; docs/PIPELINE.md,
+// "What a lobe is made of").
+#include "lobes.glsl"
 
 struct Surface {
   vec3 albedo;
@@ -22,20 +20,9 @@ struct Surface {
   // KHR_materials_transmission's share (lobe_transmission.glsl): the part of
   // the diffuse lobe its BTDF replaces; 0 on an opaque surface.
   float transmission;
-#ifdef HAS_IRIDESCENCE_LOBE
-  // KHR_materials_iridescence (lobe_iridescence.glsl applyIridescence): the
-  // film's Fresnel at N.V, and its strength (0: no film, Schlick's alone).
-  vec3 iridescenceFresnel;
-  float iridescence;
-#endif
-#ifdef HAS_SHEEN_LOBE
-  vec3 sheenColor;       // KHR_materials_sheen, linear; black: no sheen layer
-  float sheenRoughness;  // perceptual, 0..1
-#endif
-#ifdef HAS_ANISOTROPY_LOBE
-  vec3 anisotropyTangent;    // KHR_materials_anisotropy's direction T: world, unit, perpendicular to normal
-  float anisotropyStrength;  // 0..1; 0: the isotropic lobe
-#endif
+  // Each lobe's value (<NAME>_LOBE_SLOT), as its Apply hook leaves it; a
+  // lobe of the variant the material lacks holds its "no effect" value.
+  vec4 lobes[LOBE_SLOTS];
 };
 
 Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, vec3 view) {
@@ -50,34 +37,19 @@ Surface makeSurface(vec3 albedo, float metallic, float roughness, vec3 normal, v
   s.f0 = mix(vec3(0.04), albedo, metallic);  // 0.04: glTF's dielectric reflectance (IOR 1.5)
   s.f90 = 1.0;
   s.transmission = 0.0;
-#ifdef HAS_IRIDESCENCE_LOBE
-  s.iridescenceFresnel = vec3(0.0);
-  s.iridescence = 0.0;
-#endif
-#ifdef HAS_SHEEN_LOBE
-  s.sheenColor = vec3(0.0);
-  s.sheenRoughness = 0.0;
-#endif
-#ifdef HAS_ANISOTROPY_LOBE
-  s.anisotropyTangent = vec3(0.0);
-  s.anisotropyStrength = 0.0;
-#endif
+  for (int i = 0; i < LOBE_SLOTS; ++i) s.lobes[i] = vec4(0.0);
   return s;
 }
 
-#ifdef HAS_IRIDESCENCE_LOBE
-#include "lobe_iridescence.glsl"
-#endif
+#include_lobes ""
 
 // The surface's Fresnel at the angle between the view and a half vector
-// (V.H): Schlick's over f0 and f90, or the iridescent film's where it has one
-// (the specification's F). What reflects is F; what enters the surface,
+// (V.H): Schlick's over f0 and f90, then the lobes' (an iridescent film's;
+// the specification's F). What reflects is F; what enters the surface,
 // toward its diffuse lobe or its BTDF, 1 - F.
 vec3 surfaceFresnel(Surface s, float vDotH) {
   vec3 fresnel = s.f0 + (s.f90 - s.f0) * pow(1.0 - vDotH, 5.0);
-#ifdef HAS_IRIDESCENCE_LOBE
-  fresnel = mix(fresnel, s.iridescenceFresnel, s.iridescence);
-#endif
+  LOBES_FRESNEL(s, fresnel);
   return fresnel;
 }
 
@@ -86,10 +58,9 @@ vec3 surfaceFresnel(Surface s, float vDotH) {
 // without a layer. Clearcoat, with its own normal, layers in the passes
 // (lobe_clearcoat.glsl clearcoatLayer).
 float baseLayerScale(Surface s, float nDotL) {
-#ifdef HAS_SHEEN_LOBE
-  if (s.sheenColor != vec3(0.0)) return sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL);
-#endif
-  return 1.0;
+  float scale = 1.0;
+  LOBES_LAYER_SCALE(s, scale, nDotL);
+  return scale;
 }
 
 vec3 cookTorrance(Surface s, vec3 toLight) {
@@ -104,18 +75,12 @@ vec3 cookTorrance(Surface s, vec3 toLight) {
   const float distribution = a2 / (kPi * d * d);
   const vec3 fresnel = surfaceFresnel(s, vDotH);
   float specularTerm = distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
-#ifdef HAS_ANISOTROPY_LOBE
-  if (s.anisotropyStrength > 0.0)
-    specularTerm = anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal, s.view, toLight,
-                                       halfVector, s.nDotV, nDotL);
-#endif
+  LOBES_SPECULAR_TERM(s, specularTerm, alpha, toLight, halfVector, nDotL);
   const vec3 specular = specularTerm * fresnel;
   // A transmissive surface's diffuse lobe keeps the share not transmitted.
   const vec3 diffuse = (1.0 - fresnel) * (1.0 - s.metallic) * (1.0 - s.transmission) * s.albedo / kPi;
   vec3 reflected = (diffuse + specular) * (nDotL * baseLayerScale(s, nDotL));
-#ifdef HAS_SHEEN_LOBE
-  if (s.sheenColor != vec3(0.0)) reflected += sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
-#endif
+  LOBES_LAYER_LIGHT(s, reflected, nDotL, nDotH);
   return reflected;
 }
 

@@ -4,6 +4,7 @@
 // samples (<NAME>_TEXCOORD_1) and whether the material transforms its UVs
 // (HAS_TEXTURE_TRANSFORM, KHR_texture_transform) or is unlit (UNLIT).
 #include "shared_layout.h"
+#include "lobes.glsl"
 #if defined(BLEND_FORWARD) || defined(TRANSMISSION_FORWARD)
 // A forward pass shades the material here (blend.glsl, transmission.glsl):
 // its lobes come from the material (surface.glsl forwardLobes), not from
@@ -83,58 +84,7 @@ layout(binding = kUnitEmissiveTexture) uniform sampler2D emissiveTexture;
 // and the blend pass's (blend.glsl) both use it, and a file is expanded once,
 // where it is first included.
 #include "lobe_clearcoat.glsl"
-#ifdef FORWARD_SHADING
-// The forward passes' lighting, for blend.glsl and transmission.glsl alike:
-// the loader expands each file once, wherever it is first named, so both
-// must meet these outside their own #ifdef.
-#include "sampling.glsl"
-#include "brdf.glsl"
-#include "shadows.glsl"
-#include "surface.glsl"
-#include "ambient.glsl"
-#endif
-#ifdef HAS_IRIDESCENCE_LOBE
-#include "lobe_iridescence_material.glsl"
-#endif
 
-#ifdef HAS_SHEEN_LOBE
-#include "lobe_sheen_material.glsl"
-#endif
-
-#if defined(BLEND_FORWARD)
-#include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
-#elif defined(TRANSMISSION_FORWARD)
-#include "transmission.glsl"  // KHR_materials_transmission: the transmission pass shades it (lib/passes/transmission.hpp)
-#else
-layout(location = 0) out vec4 outPosition;
-layout(location = 1) out vec4 outNormal;
-layout(location = 2) out vec4 outAlbedo;
-layout(location = 3) out vec4 outMaterial;
-#ifdef HAS_EMISSIVE_TARGET
-layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
-#endif
-#ifdef HAS_IRIDESCENCE_TARGET
-layout(location = IRIDESCENCE_TARGET_LOCATION) out vec4 outIridescence;
-#endif
-#ifdef HAS_SPECULAR_TARGET
-layout(location = SPECULAR_TARGET_LOCATION) out vec4 outSpecularLobe;
-#endif
-#ifdef HAS_CLEARCOAT_TARGET
-layout(location = CLEARCOAT_TARGET_LOCATION) out vec4 outClearcoatLobe;
-#endif
-#ifdef HAS_SHEEN_TARGET
-layout(location = SHEEN_TARGET_LOCATION) out vec4 outSheen;
-#endif
-#ifdef HAS_ANISOTROPY_TARGET
-layout(location = ANISOTROPY_TARGET_LOCATION) out vec4 outAnisotropy;
-#endif
-#ifdef HAS_IDS_TARGET
-layout(location = 7) flat in uint vObjectIndex;
-layout(location = IDS_TARGET_LOCATION) out uvec4 outIds;
-#endif
-#endif
-
-#if defined(HAS_NORMAL_TEXTURE) || defined(HAS_CLEARCOAT_NORMAL_TEXTURE) || defined(HAS_ANISOTROPY_LOBE)
 // Tangent frame for normal mapping: from the TANGENT attribute when the file
 // has one, else from screen-space derivatives of position and UV
 // (Schueler's cotangent frame), which needs no precomputed tangents.
@@ -162,16 +112,46 @@ vec3 mappedNormal(mat3 frame, vec3 tangentNormal, vec3 unmapped) {
   const vec3 mapped = frame * tangentNormal;
   return dot(mapped, mapped) > 1e-24 ? normalize(mapped) : unmapped;
 }
-#endif
-#ifdef HAS_SPECULAR_LOBE
-#include "lobe_specular_material.glsl"
-#endif
+
+// Each lobe's value from the material, `<name>LobeOfMaterial` (the lobes of
+// LOBE_NAMES; clearcoat's is clearcoatLobeOfMaterial, from the normal
+// before the base's normal map).
+#include_lobes "_material"
 #ifdef HAS_CLEARCOAT_LOBE
 #include "lobe_clearcoat_material.glsl"
 #endif
 
-#ifdef HAS_ANISOTROPY_LOBE
-#include "lobe_anisotropy_material.glsl"
+#ifdef FORWARD_SHADING
+// The forward passes' lighting, for blend.glsl and transmission.glsl alike:
+// the loader expands each file once, wherever it is first named, so both
+// must meet these outside their own #ifdef.
+#include "sampling.glsl"
+#include "brdf.glsl"
+#include "shadows.glsl"
+#include "surface.glsl"
+#include "ambient.glsl"
+#endif
+
+#if defined(BLEND_FORWARD)
+#include "blend.glsl"  // alphaMode BLEND: the blend pass lights the material instead (lib/passes/blend.hpp)
+#elif defined(TRANSMISSION_FORWARD)
+#include "transmission.glsl"  // KHR_materials_transmission: the transmission pass shades it (lib/passes/transmission.hpp)
+#else
+layout(location = 0) out vec4 outPosition;
+layout(location = 1) out vec4 outNormal;
+layout(location = 2) out vec4 outAlbedo;
+layout(location = 3) out vec4 outMaterial;
+#ifdef HAS_EMISSIVE_TARGET
+layout(location = EMISSIVE_TARGET_LOCATION) out vec4 outEmissive;
+#endif
+#ifdef HAS_CLEARCOAT_TARGET
+layout(location = CLEARCOAT_TARGET_LOCATION) out vec4 outClearcoatLobe;
+#endif
+LOBE_TARGET_OUTPUTS  // `<name>LobeOut` for each lobe of LOBE_NAMES
+#ifdef HAS_IDS_TARGET
+layout(location = 7) flat in uint vObjectIndex;
+layout(location = IDS_TARGET_LOCATION) out uvec4 outIds;
+#endif
 #endif
 
 void main() {
@@ -233,12 +213,6 @@ void main() {
                                                 material.emissiveTransformV)).rgb;
 #endif
 #endif
-#ifdef HAS_SPECULAR_LOBE
-  const vec4 specularLobe = specularLobeOfMaterial();
-#endif
-#if defined(FORWARD_SHADING) && defined(HAS_SPECULAR_LOBE)
-  forwardSpecularLobe = specularLobe;
-#endif
 #if defined(FORWARD_SHADING) && defined(HAS_CLEARCOAT_LOBE)
   forwardClearcoatLobe = clearcoatLobe;
 #endif
@@ -262,21 +236,10 @@ void main() {
 #ifdef HAS_EMISSIVE_TARGET
   outEmissive = vec4(emissive, 1.0);
 #endif
-#ifdef HAS_IRIDESCENCE_TARGET
-  outIridescence = materialIridescence();
-#endif
-#ifdef HAS_SPECULAR_TARGET
-  outSpecularLobe = specularLobe;
-#endif
 #ifdef HAS_CLEARCOAT_TARGET
   outClearcoatLobe = clearcoatLobe;
 #endif
-#ifdef HAS_SHEEN_TARGET
-  outSheen = sheenMaterial();
-#endif
-#ifdef HAS_ANISOTROPY_TARGET
-  outAnisotropy = anisotropyMaterial(normal);
-#endif
+  LOBES_WRITE_TARGETS(normal);
 #ifdef HAS_IDS_TARGET
   outIds = objects.objectList[vObjectIndex].ids;
 #endif

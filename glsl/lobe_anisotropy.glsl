@@ -4,7 +4,8 @@
 // T and alpha_b = alpha along B; strength 0 is brdf.glsl's isotropic lobe.
 // Pure functions of their inputs; lib/reference/lobe_anisotropy.hpp is the
 // CPU port (same names, clamps and constants), held to this file by
-// tests/sheen_anisotropy_parity_tests.cpp. Needs sampling.glsl (kPi).
+// tests/sheen_anisotropy_parity_tests.cpp. Needs sampling.glsl (kPi); the hooks at the end
+// need brdf.glsl's Surface (its #include_lobes expands this file).
 
 float anisotropyAlphaT(float alpha, float strength) { return mix(alpha, 1.0, strength * strength); }
 
@@ -61,4 +62,27 @@ vec3 anisotropicReflection(vec3 normal, vec3 view, vec3 tangent, float strength,
   const vec3 bent = mix(grainNormal, normal, bend * bend * bend * bend);
   // A view along B with bend 0 leaves no normal: keep N.
   return reflect(-view, dot(bent, bent) > 1e-12 ? normalize(bent) : normal);
+}
+
+// ---- The lobe's hooks (brdf.glsl, ambient.glsl): its value is the world
+// direction T (xyz) and the strength (w; 0: the isotropic lobe),
+// lobe_anisotropy_material.glsl's.
+#ifndef FORWARD_SHADING
+layout(binding = kUnitAnisotropyLobe) uniform sampler2D anisotropyLobeTarget;
+#endif
+
+float anisotropyLobeSpecularTerm(Surface s, vec4 anisotropy, float term, float alpha, vec3 toLight, vec3 halfVector,
+                                 float nDotL) {
+  if (anisotropy.w <= 0.0) return term;
+  return anisotropicSpecular(anisotropy.xyz, anisotropy.w, alpha, s.normal, s.view, toLight, halfVector, s.nDotV,
+                             nDotL);
+}
+
+float anisotropyLobeAlbedoRoughness(Surface s, vec4 anisotropy, float roughness) {
+  return anisotropy.w > 0.0 ? anisotropicAlbedoRoughness(s.roughness, anisotropy.w) : roughness;
+}
+
+vec3 anisotropyLobeReflection(Surface s, vec4 anisotropy, vec3 reflected) {
+  if (anisotropy.w <= 0.0) return reflected;
+  return anisotropicReflection(s.normal, s.view, anisotropy.xyz, anisotropy.w, s.roughness);
 }

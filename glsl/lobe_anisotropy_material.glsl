@@ -16,7 +16,7 @@ layout(binding = kUnitAnisotropyTexture) uniform sampler2D anisotropyTexture;
 
 // The direction T (world, unit, perpendicular to `shadingNormal`) and the
 // strength; 0 where the strength is 0 (the isotropic lobe).
-vec4 anisotropyMaterial(vec3 shadingNormal) {
+vec4 anisotropyLobeOfMaterial(vec3 shadingNormal) {
   vec2 uv = vec2(0.0);
 #ifdef HAS_TEXCOORDS
   uv = textureUv(ANISOTROPY_SET, material.anisotropyTransformU, material.anisotropyTransformV);

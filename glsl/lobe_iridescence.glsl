@@ -13,7 +13,7 @@
 // Schlick's Fresnel still varies with V.H per light: the specular term's F
 // is mix(Schlick(V.H), thinFilmFresnel, iridescence) (brdf.glsl).
 // Needs kPi (sampling.glsl), shared_layout.h and brdf.glsl's Surface
-// (brdf.glsl includes it under HAS_IRIDESCENCE_LOBE).
+// (brdf.glsl's #include_lobes expands it where Surface is defined).
 
 float thinFilmIorToFresnel0(float transmittedIor, float incidentIor) {
   const float r = (transmittedIor - incidentIor) / (transmittedIor + incidentIor);
@@ -102,9 +102,22 @@ vec3 iridescenceFresnel(vec4 film, vec3 albedo, float metallic, float nDotV) {
   return mix(dielectric, thinFilmFresnel(1.0, filmIor, nDotV, thickness, albedo), metallic);
 }
 
-// Puts the film on `s` (made by makeSurface): its Fresnel at N.V and the
-// strength that mixes it with Schlick's in cookTorrance and ambientLight.
-void applyIridescence(inout Surface s, vec4 film) {
-  s.iridescence = clamp(film.x, 0.0, 1.0);
-  s.iridescenceFresnel = s.iridescence > 0.0 ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : vec3(0.0);
+// ---- The lobe's hooks (brdf.glsl, ambient.glsl). The G-buffer holds the
+// film (strength, thickness, film IOR, base IOR); Apply turns it into what
+// the Surface keeps: the film's Fresnel at N.V (rgb) and the strength (a)
+// that mixes it with Schlick's. The Fresnel is one value per pixel, so it
+// leaves the split-sum integral whole: F (scale + bias).
+#ifndef FORWARD_SHADING
+layout(binding = kUnitIridescenceLobe) uniform sampler2D iridescenceLobeTarget;
+#endif
+
+vec4 iridescenceLobeApply(inout Surface s, vec4 film) {
+  const float strength = clamp(film.x, 0.0, 1.0);
+  return vec4(strength > 0.0 ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : vec3(0.0), strength);
+}
+
+vec3 iridescenceLobeFresnel(Surface s, vec4 film, vec3 fresnel) { return mix(fresnel, film.rgb, film.a); }
+
+vec3 iridescenceLobeSpecularAlbedo(Surface s, vec4 film, vec3 albedo, vec2 scaleBias) {
+  return mix(albedo, film.rgb * (scaleBias.x + scaleBias.y), film.a);
 }

@@ -21,7 +21,7 @@ layout(binding = kUnitIridescenceThicknessTexture) uniform sampler2D iridescence
 // The film as the lobe's attachment holds it (lobe_iridescence.glsl):
 // strength, thickness (nm), the film's IOR, the base's IOR. A material
 // without the extension has factor 0 (fillExtensionFactors): no film.
-vec4 materialIridescence() {
+vec4 iridescenceLobeOfMaterial(vec3 normal) {
   float strength = material.iridescenceFactors.x;
   // Without a thickness texture the film is the maximum thick (the specification).
   float thickness = material.iridescenceFactors.w;

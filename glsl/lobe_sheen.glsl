@@ -5,7 +5,8 @@
 // with f_sheen = sheenColor D V (no Fresnel). Pure functions of their
 // inputs; lib/reference/lobe_sheen.hpp is the CPU port (same names, clamps
 // and constants), held to this file by tests/sheen_anisotropy_parity_tests.cpp.
-// Needs sampling.glsl (kPi).
+// Needs sampling.glsl (kPi); the hooks at the end
+// need brdf.glsl's Surface (its #include_lobes expands this file).
 
 // Below 0.07 the distribution's exponent 1 / alpha passes 200: its grazing
 // peak then outgrows half floats, and no fabric is that smooth.
@@ -76,4 +77,18 @@ float sheenAmbientBaseScale(vec3 sheenColor, float roughness, float nDotV) {
 }
 vec3 sheenAmbient(vec3 sheenColor, float roughness, float nDotV, vec3 prefiltered) {
   return sheenColor * sheenAlbedo(sheenAlpha(roughness), nDotV) * prefiltered;
+}
+
+// ---- The lobe's hooks (brdf.glsl): its value is the sheen colour (rgb,
+// linear; black: no layer) and roughness (a), lobe_sheen_material.glsl's.
+#ifndef FORWARD_SHADING
+layout(binding = kUnitSheenLobe) uniform sampler2D sheenLobeTarget;  // colour (sRGB8), roughness
+#endif
+
+float sheenLobeLayerScale(Surface s, vec4 sheen, float nDotL) {
+  return sheen.rgb != vec3(0.0) ? sheenBaseScale(sheen.rgb, sheen.a, s.nDotV, nDotL) : 1.0;
+}
+
+vec3 sheenLobeLayerLight(Surface s, vec4 sheen, float nDotL, float nDotH) {
+  return sheen.rgb != vec3(0.0) ? sheenReflected(sheen.rgb, sheen.a, s.nDotV, nDotL, nDotH) : vec3(0.0);
 }

@@ -22,7 +22,7 @@ layout(binding = kUnitSheenRoughnessTexture) uniform sampler2D sheenRoughnessTex
 #endif
 
 // Sheen colour (rgb) and roughness (a), 0..1.
-vec4 sheenMaterial() {
+vec4 sheenLobeOfMaterial(vec3 normal) {
   vec4 sheen = material.sheenFactors;
 #ifdef HAS_SHEEN_COLOR_TEXTURE
   sheen.rgb *= texture(sheenColorTexture,

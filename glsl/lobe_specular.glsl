@@ -13,14 +13,14 @@
 // dielectric is the specification's 1 - weight * F (per channel where the
 // specification takes the largest channel: a coloured F0 tints the diffuse
 // lobe toward its complement instead of darkening it evenly). Needs brdf.glsl.
-#ifdef HAS_SPECULAR_LOBE
 #ifndef FORWARD_SHADING
 layout(binding = kUnitSpecularLobe) uniform sampler2D specularLobeTarget;
 #endif
 
-void applySpecularLobe(inout Surface s, vec4 lobe) {
+// The lobe's one hook (brdf.glsl): f0 and f90 from its value.
+vec4 specularLobeApply(inout Surface s, vec4 lobe) {
   const float weight = lobe.a;
   s.f0 = mix(lobe.rgb * weight, s.albedo, s.metallic);
   s.f90 = mix(weight, 1.0, s.metallic);
+  return lobe;
 }
-#endif

@@ -27,7 +27,7 @@ layout(binding = kUnitSpecularTexture) uniform sampler2D specularTexture;
 layout(binding = kUnitSpecularColorTexture) uniform sampler2D specularColorTexture;  // sRGB: decoded by the sampler
 #endif
 
-vec4 specularLobeOfMaterial() {
+vec4 specularLobeOfMaterial(vec3 normal) {
   const float ior = material.transmissionFactors.z;  // KHR_materials_ior (MaterialBlock keeps it there)
   const float reflectance = (ior - 1.0) / (ior + 1.0);
   vec3 f0 = reflectance * reflectance * material.specularFactors.rgb;

@@ -105,7 +105,7 @@ void shadeTransmissive(vec3 position, vec3 normal, vec3 baseColor, float metalli
   surface.f0 = mix(vec3(iorF0 * iorF0), surface.albedo, surface.metallic);
   surface.transmission = clamp(transmission, 0.0, 1.0);
   // Every lobe the material has, as on an opaque surface; the coat over all the surface sends.
-  applyLobes(surface, forwardLobes(normal));
+  applyMaterialLobes(surface, normal);
 #ifdef HAS_CLEARCOAT_LOBE
   const Clearcoat coat = makeClearcoat(forwardClearcoatLobe, surface.view);
   vec3 radiance = clearcoatLayer(coat, emission, vec3(0.0));

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "frame/frame_plan.hpp"
 #include "gl/shader_library.hpp"
 #include "passes/fullscreen.hpp"
 #include "shared_layout.h"
@@ -23,6 +24,15 @@ namespace headlight {
 namespace {
 
 using namespace headlight::test;
+
+// `defines` and lobeDefines(lobes): a lobe's code (its file, its hooks, its
+// G-buffer reads and writes) is in a program only with all of them.
+std::vector<std::string> withLobes(std::vector<std::string> defines, std::uint32_t lobes) {
+  for (std::string& define : lobeDefines(lobes)) defines.push_back(std::move(define));
+  return defines;
+}
+constexpr std::uint32_t kSpecularClearcoat = lobeBit(Lobe::Specular) | lobeBit(Lobe::Clearcoat);
+constexpr std::uint32_t kSheenAnisotropy = lobeBit(Lobe::Sheen) | lobeBit(Lobe::Anisotropy);
 
 // Every program the renderer builds, each with the #defines that make all
 // of its blocks and samplers active.
@@ -54,23 +64,26 @@ const std::vector<ProgramSource>& programSources() {
       // The specular and clearcoat lobes (glsl/lobe_*.glsl): their textures and attachments (the lighting
       // passes' reads of them: passSources()).
       {{"gbuffer.vert", "gbuffer.frag"},
-       {"HAS_TEXCOORDS", "HAS_SPECULAR_TEXTURE", "HAS_SPECULAR_COLOR_TEXTURE", "HAS_CLEARCOAT_TEXTURE",
-        "HAS_CLEARCOAT_ROUGHNESS_TEXTURE", "HAS_CLEARCOAT_NORMAL_TEXTURE", "HAS_SPECULAR_TARGET",
-        "SPECULAR_TARGET_LOCATION 4", "HAS_CLEARCOAT_TARGET", "CLEARCOAT_TARGET_LOCATION 5", "HAS_SPECULAR_LOBE",
-        "HAS_CLEARCOAT_LOBE"}},
+       withLobes({"HAS_TEXCOORDS", "HAS_SPECULAR_TEXTURE", "HAS_SPECULAR_COLOR_TEXTURE", "HAS_CLEARCOAT_TEXTURE",
+                  "HAS_CLEARCOAT_ROUGHNESS_TEXTURE", "HAS_CLEARCOAT_NORMAL_TEXTURE", "HAS_SPECULAR_TARGET",
+                  "SPECULAR_TARGET_LOCATION 4", "HAS_CLEARCOAT_TARGET", "CLEARCOAT_TARGET_LOCATION 5"},
+                 kSpecularClearcoat)},
       // KHR_materials_iridescence: the lobe's attachment and its textures.
       {{"gbuffer.vert", "gbuffer.frag"},
-       {"HAS_TEXCOORDS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TARGET",
-        "IRIDESCENCE_TARGET_LOCATION 4", "HAS_IRIDESCENCE_TEXTURE", "HAS_IRIDESCENCE_THICKNESS_TEXTURE",
-        "IRIDESCENCE_TEXCOORD_1"}},
+       withLobes({"HAS_TEXCOORDS", "HAS_TEXCOORDS_1", "HAS_TEXTURE_TRANSFORM", "HAS_IRIDESCENCE_TARGET",
+                  "IRIDESCENCE_TARGET_LOCATION 4", "HAS_IRIDESCENCE_TEXTURE", "HAS_IRIDESCENCE_THICKNESS_TEXTURE",
+                  "IRIDESCENCE_TEXCOORD_1"},
+                 lobeBit(Lobe::Iridescence))},
       {{"gbuffer.vert", "gbuffer.frag"},
-       {"BLEND_FORWARD", "HAS_SKY", "HAS_TEXCOORDS", "HAS_IRIDESCENCE_LOBE", "HAS_IRIDESCENCE_TEXTURE",
-        "HAS_IRIDESCENCE_THICKNESS_TEXTURE"}},
+       withLobes({"BLEND_FORWARD", "HAS_SKY", "HAS_TEXCOORDS", "HAS_IRIDESCENCE_TEXTURE",
+                  "HAS_IRIDESCENCE_THICKNESS_TEXTURE"},
+                 lobeBit(Lobe::Iridescence))},
       // The sheen and anisotropy lobes: their G-buffer targets and textures.
       {{"gbuffer.vert", "gbuffer.frag"},
-       {"HAS_TEXCOORDS", "HAS_SHEEN_LOBE", "HAS_SHEEN_TARGET", "SHEEN_TARGET_LOCATION 4", "HAS_SHEEN_COLOR_TEXTURE",
-        "HAS_SHEEN_ROUGHNESS_TEXTURE", "HAS_ANISOTROPY_LOBE", "HAS_ANISOTROPY_TARGET", "ANISOTROPY_TARGET_LOCATION 5",
-        "HAS_ANISOTROPY_TEXTURE"}},
+       withLobes({"HAS_TEXCOORDS", "HAS_SHEEN_TARGET", "SHEEN_TARGET_LOCATION 4", "HAS_SHEEN_COLOR_TEXTURE",
+                  "HAS_SHEEN_ROUGHNESS_TEXTURE", "HAS_ANISOTROPY_TARGET", "ANISOTROPY_TARGET_LOCATION 5",
+                  "HAS_ANISOTROPY_TEXTURE"},
+                 kSheenAnisotropy)},
   };
   return sources;
 }
@@ -89,17 +102,17 @@ const std::vector<PassSource>& passSources() {
       {"direct_light.glsl",
        {"towardEye", "diffuse"},
        {"HAS_EMISSIVE", "HAS_PLANAR_SHADOWS", "HAS_CUBE_SHADOWS", "HAS_SHADOW_TRANSMITTANCE"}},
-      {"direct_light.glsl", {"towardEye"}, {"HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
-      {"direct_light.glsl", {"towardEye"}, {"HAS_IRIDESCENCE_LOBE"}},
-      {"direct_light.glsl", {"towardEye"}, {"HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
+      {"direct_light.glsl", {"towardEye"}, withLobes({}, kSpecularClearcoat)},
+      {"direct_light.glsl", {"towardEye"}, withLobes({}, lobeBit(Lobe::Iridescence))},
+      {"direct_light.glsl", {"towardEye"}, withLobes({}, kSheenAnisotropy)},
       {"ssgi.glsl", {"nearField", "sky", "specular"}, {"METHOD_RADIANCE"}},
       {"ssgi_bitmask.glsl", {"nearField", "farField", "farFieldOverNear", "specular"}, {}},
       {"ssgi_blur.glsl", {"nearField", "sky", "specular", "skyLine"}, {}},
       {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY"}},
       {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY", "HAS_ENVIRONMENT"}},
-      {"composite.glsl", {"radiance"}, {"HAS_SKY", "HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}},
-      {"composite.glsl", {"radiance"}, {"HAS_SSGI", "HAS_SKY", "HAS_IRIDESCENCE_LOBE"}},
-      {"composite.glsl", {"radiance"}, {"HAS_SKY", "HAS_SHEEN_LOBE", "HAS_ANISOTROPY_LOBE"}},
+      {"composite.glsl", {"radiance"}, withLobes({"HAS_SKY"}, kSpecularClearcoat)},
+      {"composite.glsl", {"radiance"}, withLobes({"HAS_SSGI", "HAS_SKY"}, lobeBit(Lobe::Iridescence))},
+      {"composite.glsl", {"radiance"}, withLobes({"HAS_SKY"}, kSheenAnisotropy)},
       {"brdf_lut.glsl", {"scaleBias"}, {}},
       {"sky_prefilter.glsl", {"radiance"}, {}},
       {"sky_irradiance.glsl", {"irradianceOverPi"}, {}},

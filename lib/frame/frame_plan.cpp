@@ -1,6 +1,7 @@
 #include "frame/frame_plan.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 #include "scene/ids.hpp"
@@ -514,25 +515,110 @@ SceneSummary summarizeScene(const Scene& scene) {
   return summary;
 }
 
-// ---- Lobes: which extension makes a material use each, and its define ---------
+// ---- Lobes: which extension makes a material use each, its GLSL hooks -------
 
 namespace {
+// What the lighting passes' shared GLSL (brdf.glsl, ambient.glsl,
+// surface.glsl, gbuffer.frag) asks of a lobe: each hook is a function
+// `<name>Lobe<Hook>` of glsl/lobe_<name>.glsl (AmbientLayer: of
+// lobe_<name>_ambient.glsl, which ambient.glsl's prefilteredSky precedes),
+// taking the Surface and the lobe's vec4 as the Surface holds it
+// (s.lobes[<NAME>_LOBE_SLOT]). The composition calls LOBES_<HOOK>, which
+// lobeDefines writes as those calls for the variant's lobes that have the
+// hook; docs/PIPELINE.md, "What a lobe is made of".
+enum LobeHook : std::uint32_t {
+  Apply = 1u << 0,            // vec4 (inout Surface, vec4 lobe): puts it on the Surface, returns the value it keeps
+  Fresnel = 1u << 1,          // vec3 (Surface, vec4, vec3 fresnel): the Fresnel at V.H
+  SpecularTerm = 1u << 2,     // float (Surface, vec4, float term, alpha, vec3 toLight, halfVector, float nDotL): D Vis
+  LayerScale = 1u << 3,       // float (Surface, vec4, float nDotL): what a layer over the base leaves of its light
+  LayerLight = 1u << 4,       // vec3 (Surface, vec4, float nDotL, nDotH): the layer's own light, N.L included
+  AlbedoRoughness = 1u << 5,  // float (Surface, vec4, float roughness): the split-sum table's roughness
+  SpecularAlbedo = 1u << 6,   // vec3 (Surface, vec4, vec3 albedo, vec2 scaleBias): the split-sum result
+  Reflection = 1u << 7,       // vec3 (Surface, vec4, vec3 reflected): the prefiltered lookup's direction
+  AmbientLayer = 1u << 8,     // vec3 (Surface, vec4, vec3 ambient, float skyVisibility): a layer over the ambient
+};
+
+// Each hook's macro and the call it makes per lobe: `#` stands for
+// `<name>Lobe`, `$` for the lobe's slot.
+struct HookRow {
+  std::uint32_t hook;  // 0: every lobe with hooks (its values' read, material and target)
+  std::string_view macro;
+  std::string_view call;
+};
+constexpr HookRow kHookRows[] = {
+    {Apply, "LOBES_APPLY(s)", "s.lobes[$] = #Apply(s, s.lobes[$]);"},
+    {Fresnel, "LOBES_FRESNEL(s, fresnel)", "fresnel = #Fresnel(s, s.lobes[$], fresnel);"},
+    {SpecularTerm, "LOBES_SPECULAR_TERM(s, term, alpha, toLight, halfVector, nDotL)",
+     "term = #SpecularTerm(s, s.lobes[$], term, alpha, toLight, halfVector, nDotL);"},
+    {LayerScale, "LOBES_LAYER_SCALE(s, scale, nDotL)", "scale *= #LayerScale(s, s.lobes[$], nDotL);"},
+    {LayerLight, "LOBES_LAYER_LIGHT(s, light, nDotL, nDotH)", "light += #LayerLight(s, s.lobes[$], nDotL, nDotH);"},
+    {AlbedoRoughness, "LOBES_ALBEDO_ROUGHNESS(s, roughness)",
+     "roughness = #AlbedoRoughness(s, s.lobes[$], roughness);"},
+    {SpecularAlbedo, "LOBES_SPECULAR_ALBEDO(s, albedo, scaleBias)",
+     "albedo = #SpecularAlbedo(s, s.lobes[$], albedo, scaleBias);"},
+    {Reflection, "LOBES_REFLECTION(s, reflected)", "reflected = #Reflection(s, s.lobes[$], reflected);"},
+    {AmbientLayer, "LOBES_AMBIENT_LAYER(s, ambient, skyVisibility)",
+     "ambient = #AmbientLayer(s, s.lobes[$], ambient, skyVisibility);"},
+    // The values: from the material (lobe_<name>_material.glsl, the G-buffer
+    // and forward passes), from the lobe's G-buffer target (sampler
+    // `<name>LobeTarget`, the deferred passes), and the G-buffer's output.
+    {0, "LOBES_OF_MATERIAL(lobes, normal)", "lobes[$] = #OfMaterial(normal);"},
+    {0, "LOBES_AT(lobes, pixel)", "lobes[$] = texelFetch(#Target, pixel, 0);"},
+    {0, "LOBE_TARGET_OUTPUTS", "layout(location = %_LOCATION) out vec4 #Out;"},
+    {0, "LOBES_WRITE_TARGETS(normal)", "#Out = #OfMaterial(normal);"},
+};
+
+// A lobe: its name in --verbose, its GLSL name (glsl/lobe_<glsl>*.glsl),
+// which materials use it and the hooks its GLSL defines. Clearcoat, a layer
+// with its own normal, is composed by each lighting pass and has none.
 struct LobeRow {
   Lobe lobe;
   std::string_view name;  // in --verbose
-  std::string_view define;
+  std::string_view glsl;
   bool (*usedBy)(const Material&);
+  std::uint32_t hooks;
 };
 constexpr LobeRow kLobeRows[] = {
-    {Lobe::Specular, "specular (KHR_materials_specular, _ior)", "HAS_SPECULAR_LOBE",
-     [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }},
-    {Lobe::Clearcoat, "clearcoat", "HAS_CLEARCOAT_LOBE", [](const Material& m) { return m.clearcoat.has_value(); }},
-    {Lobe::Sheen, "sheen", "HAS_SHEEN_LOBE", [](const Material& m) { return m.sheen.has_value(); }},
-    {Lobe::Anisotropy, "anisotropy", "HAS_ANISOTROPY_LOBE", [](const Material& m) { return m.anisotropy.has_value(); }},
-    {Lobe::Iridescence, "iridescence", "HAS_IRIDESCENCE_LOBE",
-     [](const Material& m) { return m.iridescence.has_value(); }},
+    {Lobe::Specular, "specular (KHR_materials_specular, _ior)", "specular",
+     [](const Material& m) { return m.specular.has_value() || m.ior != 1.5f; }, Apply},
+    {Lobe::Clearcoat, "clearcoat", "clearcoat", [](const Material& m) { return m.clearcoat.has_value(); }, 0},
+    {Lobe::Sheen, "sheen", "sheen", [](const Material& m) { return m.sheen.has_value(); },
+     LayerScale | LayerLight | AmbientLayer},
+    {Lobe::Anisotropy, "anisotropy", "anisotropy", [](const Material& m) { return m.anisotropy.has_value(); },
+     SpecularTerm | AlbedoRoughness | Reflection},
+    {Lobe::Iridescence, "iridescence", "iridescence", [](const Material& m) { return m.iridescence.has_value(); },
+     Apply | Fresnel | SpecularAlbedo},
 };
 static_assert(std::size(kLobeRows) == kLobeCount);
+
+std::string upperCase(std::string_view text) {
+  std::string upper(text);
+  for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return upper;
+}
+
+// The lobe's G-buffer attachment's define (AttachmentRow::gbufferDefine).
+std::string_view lobeTargetDefine(Lobe lobe) {
+  for (const AttachmentRow& row : kAttachmentRows)
+    if (row.lobe == lobe) return row.gbufferDefine;
+  return {};
+}
+
+// `call` for one lobe: `#` its `<glsl>Lobe`, `$` its slot, `%` its target's define.
+std::string hookCall(std::string_view call, const LobeRow& row, int slot) {
+  std::string out;
+  for (char c : call) {
+    if (c == '#')
+      out += std::string(row.glsl) + "Lobe";
+    else if (c == '$')
+      out += std::to_string(slot);
+    else if (c == '%')
+      out += lobeTargetDefine(row.lobe);
+    else
+      out += c;
+  }
+  return out;
+}
 }  // namespace
 
 std::uint32_t materialLobes(const Material& material) {
@@ -553,8 +639,28 @@ std::string lobeNames(std::uint32_t lobes) {
 
 std::vector<std::string> lobeDefines(std::uint32_t lobes) {
   std::vector<std::string> defines;
-  for (const LobeRow& row : kLobeRows)
-    if (lobes & lobeBit(row.lobe)) defines.emplace_back(row.define);
+  if (lobes == 0) return defines;      // glsl/lobes.glsl: no slot, no hook calls
+  std::vector<const LobeRow*> hooked;  // in row order: slot i is hooked[i]
+  std::string names = "LOBE_NAMES";
+  for (const LobeRow& row : kLobeRows) {
+    if (!(lobes & lobeBit(row.lobe))) continue;
+    const std::string upper = upperCase(row.glsl);
+    defines.push_back(std::string("HAS_").append(upper).append("_LOBE"));
+    if (row.hooks == 0) continue;
+    defines.push_back(upper + "_LOBE_SLOT " + std::to_string(hooked.size()));
+    names.append(" ").append(row.glsl);
+    hooked.push_back(&row);
+  }
+  // GLSL has no empty arrays: one unused slot without a lobe.
+  defines.push_back("LOBE_SLOTS " + std::to_string(std::max<std::size_t>(hooked.size(), 1)));
+  defines.push_back(names);
+  for (const HookRow& hook : kHookRows) {
+    std::string define(hook.macro);
+    for (std::size_t slot = 0; slot < hooked.size(); ++slot)
+      if (hook.hook == 0 || (hooked[slot]->hooks & hook.hook))
+        define.append(" ").append(hookCall(hook.call, *hooked[slot], int(slot)));
+    defines.push_back(std::move(define));
+  }
   return defines;
 }
 

@@ -39,8 +39,11 @@ inline constexpr std::size_t kLobeCount = std::size_t(Lobe::Count);
 constexpr std::uint32_t lobeBit(Lobe lobe) { return std::uint32_t{1} << unsigned(lobe); }
 // The lobes a material uses (a bit per Lobe).
 std::uint32_t materialLobes(const Material& material);
-// HAS_SPECULAR_LOBE, ...: one per bit of `lobes`, for the G-buffer, direct,
-// composite, blend and transmission programs.
+// HAS_SPECULAR_LOBE, ... (one per bit of `lobes`), and what the shared GLSL
+// composes them with: each hooked lobe's <NAME>_LOBE_SLOT, LOBE_SLOTS,
+// LOBE_NAMES (for #include_lobes, gl/shader_library.cpp) and the LOBES_*
+// hook macros; for the G-buffer, direct, composite, blend and transmission
+// programs.
 std::vector<std::string> lobeDefines(std::uint32_t lobes);
 // "specular (KHR_materials_specular, _ior), clearcoat, ...": the lobes of `lobes`, for --verbose.
 std::string lobeNames(std::uint32_t lobes);

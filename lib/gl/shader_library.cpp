@@ -15,9 +15,33 @@ std::string_view shaderText(std::string_view name) {
 
 namespace {
 
-// Expands #include "file" lines, each file at most once.
-void appendExpanded(std::string_view fileName, std::set<std::string>& included, std::vector<std::string>& fileNames,
-                    std::string& out) {
+// The variant's lobes with GLSL hooks, from the LOBE_NAMES define that
+// lobeDefines writes ("LOBE_NAMES specular sheen"); none without it.
+std::vector<std::string> lobeNamesOf(std::span<const std::string> defines) {
+  constexpr std::string_view kKey = "LOBE_NAMES";
+  std::vector<std::string> names;
+  for (const std::string& define : defines) {
+    if (!define.starts_with(kKey) || (define.size() > kKey.size() && define[kKey.size()] != ' ')) continue;
+    std::istringstream words{define.substr(kKey.size())};
+    for (std::string name; words >> name;) names.push_back(name);
+  }
+  return names;
+}
+
+bool haveShader(std::string_view name) {
+  for (const EmbeddedShader& shader : embeddedShaders())
+    if (name == shader.name) return true;
+  return false;
+}
+
+// Expands #include "file" lines, each file at most once, and
+// #include_lobes "suffix" lines: glsl/lobe_<name><suffix>.glsl for each lobe
+// of LOBE_NAMES in its order, so that the shared files compose a variant's
+// lobes without naming them (docs/PIPELINE.md, "What a lobe is made of").
+// With an empty suffix the file must exist (a lobe is its GLSL file); with
+// another ("_material", "_ambient") a lobe may have none.
+void appendExpanded(std::string_view fileName, std::span<const std::string> lobes, std::set<std::string>& included,
+                    std::vector<std::string>& fileNames, std::string& out) {
   if (!included.insert(std::string(fileName)).second) return;
   fileNames.emplace_back(fileName);
   const int fileNumber = int(fileNames.size()) - 1;
@@ -32,9 +56,17 @@ void appendExpanded(std::string_view fileName, std::set<std::string>& included, 
     // header's C++-only section, which the GLSL preprocessor skips.
     if (first != std::string::npos && line.compare(first, 8, "#include") == 0 && line.find('<') == std::string::npos) {
       const auto open = line.find('"'), close = line.rfind('"');
-      if (open == std::string::npos || close <= open)
+      if (open == std::string::npos || close < open + (line.compare(first, 14, "#include_lobes") == 0 ? 1 : 2))
         throw GlError(std::string(fileName) + ":" + std::to_string(lineNumber) + ": malformed #include");
-      appendExpanded(line.substr(open + 1, close - open - 1), included, fileNames, out);
+      const std::string named = line.substr(open + 1, close - open - 1);
+      if (line.compare(first, 14, "#include_lobes") == 0) {
+        for (const std::string& lobe : lobes) {
+          const std::string file = "lobe_" + lobe + named + ".glsl";
+          if (named.empty() || haveShader(file)) appendExpanded(file, lobes, included, fileNames, out);
+        }
+      } else {
+        appendExpanded(named, lobes, included, fileNames, out);
+      }
       out += "#line " + std::to_string(lineNumber + 1) + " " + std::to_string(fileNumber) + "\n";
       continue;
     }
@@ -63,7 +95,8 @@ std::string buildShaderSource(std::span<const std::string_view> files, std::span
   std::set<std::string> included;
   std::vector<std::string> fileNames;
   std::string body;
-  for (std::string_view file : files) appendExpanded(file, included, fileNames, body);
+  const std::vector<std::string> lobes = lobeNamesOf(defines);
+  for (std::string_view file : files) appendExpanded(file, lobes, included, fileNames, body);
   // Which number is which file, for reading compiler logs.
   for (std::size_t i = 0; i < fileNames.size(); ++i)
     source += "// file " + std::to_string(i) + ": " + fileNames[i] + "\n";
