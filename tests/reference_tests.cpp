@@ -565,6 +565,15 @@ TEST_CASE("reference: bad settings and frames are refused" * doctest::test_suite
   Frame noAlbedo = frame;
   noAlbedo.albedo = ImageF{};
   CHECK_THROWS_AS(traceReference(scene, noAlbedo, referenceSettings(16, 1.0f)), SettingsError);
+  // A lobe's target the pixels read is checked as the core ones are (every
+  // target of frameTargets() the frame holds): a clearcoat of another size
+  // is named, not read past its end.
+  Frame smallCoat = frame;
+  smallCoat.clearcoat =
+      test::makeImage(1, 1, {"clearcoat", "clearcoatRoughness", "clearcoatNormal.U", "clearcoatNormal.V"});
+  CHECK_THROWS_WITH_AS(traceReference(scene, smallCoat, referenceSettings(16, 1.0f)),
+                       "traceReference: frame.clearcoat is 1x1x4 with 4 floats; expected 2x2 with at least 4 channels",
+                       SettingsError);
 
   // One sample is allowed; its spread is unknown.
   const ReferenceImages single = traceReference(scene, frame, referenceSettings(1, 1.0f));

@@ -8,6 +8,7 @@
 
 #include "gltf/animation_pose.hpp"
 #include "gltf/draco.hpp"
+#include "gltf/material_extensions.hpp"
 #include "gltf/meshopt.hpp"
 #include "gltf/texture_sources.hpp"
 
@@ -24,19 +25,10 @@ constexpr std::string_view kRenderedExtensions[]{
     "KHR_mesh_quantization",
     "KHR_texture_transform",
     "KHR_materials_unlit",
-    "KHR_materials_variants",      // the default materials, or --material-variant's (gltf/variants.cpp)
-    kTextureWebp,                  // decoded by OpenImageIO (gltf/texture_sources.cpp)
-    "EXT_lights_image_based",      // the scene's light, as an environment map (gltf/image_based_light.cpp)
-    "KHR_materials_transmission",  // the transmission pass (lib/passes/transmission.hpp); findUndrawnTransmission
-    "KHR_materials_volume",        // its thickness and attenuation, in the same pass
-    "KHR_materials_iridescence",   // a G-buffer lobe: the thin-film Fresnel (glsl/lobe_iridescence.glsl)
-    "KHR_materials_ior",           // with KHR_materials_specular, the specular lobe (glsl/lobe_specular.glsl)
-    "KHR_materials_specular",
-    "KHR_materials_clearcoat",   // the clearcoat lobe (glsl/lobe_clearcoat.glsl)
-    "KHR_materials_sheen",       // a G-buffer lobe (glsl/lobe_sheen.glsl)
-    "KHR_materials_anisotropy",  // a G-buffer lobe (glsl/lobe_anisotropy.glsl)
-    // Through the metallic-roughness model's parts and the specular lobe (gltf/material_extensions.cpp).
-    "KHR_materials_pbrSpecularGlossiness",
+    "KHR_materials_variants",  // the default materials, or --material-variant's (gltf/variants.cpp)
+    kTextureWebp,              // decoded by OpenImageIO (gltf/texture_sources.cpp)
+    "EXT_lights_image_based",  // the scene's light, as an environment map (gltf/image_based_light.cpp)
+                               // The KHR_materials_* extensions: gltf/material_extensions.cpp's rows.
 };
 
 // Rendered when the build has their decoder (meson options draco, meshopt).
@@ -259,7 +251,9 @@ std::string usersOf(const tinygltf::Model& model, const std::string& extension) 
 
 }  // namespace
 
-bool extensionRendered(const std::string& name) { return listed(kRenderedExtensions, name) || decoderBuilt(name); }
+bool extensionRendered(const std::string& name) {
+  return listed(kRenderedExtensions, name) || listed(materialExtensionNames(), name) || decoderBuilt(name);
+}
 
 std::vector<IgnoredFeature> findIgnoredFeatures(const tinygltf::Model& model, int playedAnimation) {
   Tally tally;
@@ -289,6 +283,7 @@ void checkRequiredExtensions(const Source& source) {
   }
   std::string accepted;
   for (std::string_view name : kRenderedExtensions) accepted += (accepted.empty() ? "" : ", ") + std::string(name);
+  for (std::string_view name : materialExtensionNames()) accepted += ", " + std::string(name);
   for (std::string_view name : {"KHR_draco_mesh_compression", "EXT_meshopt_compression"}) {
     if (decoderBuilt(std::string(name))) accepted += ", " + std::string(name);
   }

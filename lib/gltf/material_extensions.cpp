@@ -1,5 +1,6 @@
 #include "gltf/material_extensions.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -200,8 +201,10 @@ void readSpecularGlossiness(const ExtensionReader& in, Material& out) {
 
 // The one table of material extensions read here (in order: an explicit
 // KHR_materials_ior or _specular after specular-glossiness overrides it).
+// Each is rendered (gltf/features.cpp takes the names from here): a new
+// lobe's extension is a row and its reader.
 struct ExtensionRow {
-  const char* name;
+  std::string_view name;
   void (*read)(const ExtensionReader&, Material&);
 };
 constexpr ExtensionRow kExtensionRows[] = {
@@ -216,14 +219,22 @@ constexpr ExtensionRow kExtensionRows[] = {
     {"KHR_materials_volume", readVolume},
 };
 
+constexpr auto kExtensionNames = [] {
+  std::array<std::string_view, std::size(kExtensionRows)> names{};
+  for (std::size_t i = 0; i < names.size(); ++i) names[i] = kExtensionRows[i].name;
+  return names;
+}();
+
 }  // namespace
+
+std::span<const std::string_view> materialExtensionNames() { return kExtensionNames; }
 
 void readMaterialExtensions(const Source& source, const tinygltf::Material& material, const std::string& name,
                             Material& out) {
   for (const ExtensionRow& row : kExtensionRows) {
-    const auto found = material.extensions.find(row.name);
+    const auto found = material.extensions.find(std::string(row.name));
     if (found == material.extensions.end()) continue;
-    row.read(ExtensionReader(source, found->second, name + " " + row.name), out);
+    row.read(ExtensionReader(source, found->second, name + " " + std::string(row.name)), out);
   }
 }
 

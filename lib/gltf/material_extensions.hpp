@@ -1,10 +1,11 @@
 #pragma once
-// The ratified KHR_materials_* extensions a material may carry (ior,
-// specular, clearcoat, sheen, iridescence, anisotropy, transmission,
-// volume): read into Material with the specification's defaults, every
-// factor range-checked and every texture reference checked like the core
-// ones. Which of them are rendered is gltf/features.cpp's list.
+// The KHR_materials_* extensions a material may carry (the rows of
+// material_extensions.cpp): read into Material with the specification's
+// defaults, every factor range-checked and every texture reference checked
+// like the core ones. Each is rendered (gltf/features.cpp).
+#include <span>
 #include <string>
+#include <string_view>
 
 #include "gltf/common.hpp"
 #include "headlight/scene.hpp"
@@ -16,5 +17,8 @@ namespace headlight::gltf {
 // property and the value that is out of range.
 void readMaterialExtensions(const Source& source, const tinygltf::Material& material, const std::string& name,
                             Material& out);
+
+// The names of the extensions readMaterialExtensions reads, in its order.
+std::span<const std::string_view> materialExtensionNames();
 
 }  // namespace headlight::gltf

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "headlight/error.hpp"
+#include "headlight/targets.hpp"
 #include "settings/option_binding.hpp"
 
 #ifndef HEADLIGHT_HAS_EMBREE
@@ -96,9 +97,14 @@ void validate(const Frame& frame, const ReferenceSettings& settings) {
   checkImage(frame.normal, "normal", width, height, 3);
   checkImage(frame.albedo, "albedo", width, height, 3);
   checkImage(frame.material, "material", width, height, 2);
-  if (!frame.emissive.empty()) checkImage(frame.emissive, "emissive", width, height, 3);
-  if (!frame.sheen.empty()) checkImage(frame.sheen, "sheen", width, height, 4);
-  if (!frame.anisotropy.empty()) checkImage(frame.anisotropy, "anisotropy", width, height, 4);
+  // Every other target the frame holds (emission, the lobes' targets the
+  // pixels read), whole, as its row of frameTargets() has it.
+  for (const FrameTarget& target : frameTargets()) {
+    if (!target.image || target.image == &Frame::position || target.image == &Frame::normal ||
+        target.image == &Frame::albedo || target.image == &Frame::material || (frame.*target.image).empty())
+      continue;
+    checkImage(frame.*target.image, std::string(target.name).c_str(), width, height, int(target.channels.size()));
+  }
 }
 
 ImageF makeImage(int width, int height, std::vector<std::string> channels) {
