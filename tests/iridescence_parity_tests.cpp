@@ -76,7 +76,7 @@ reference::Surface cpuSurface(const Frame& frame, int x, int y) {
   reference::Surface surface =
       reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0), frame.material.at(x, y, 1),
                              test::pixel3(frame.normal, x, y), glm::normalize(frame.view.position - position));
-  reference::applyIridescence(surface, reference::iridescenceInputsAt(frame, x, y));
+  reference::applyLobe(surface, Lobe::Iridescence, reference::filmValue(reference::iridescenceInputsAt(frame, x, y)));
   return surface;
 }
 
@@ -156,7 +156,7 @@ TEST_CASE("iridescent ambient light on the GPU is the CPU port's film Fresnel ti
       ++compared;
       const reference::Surface surface = cpuSurface(frame, x, y);
       tally.compare(x, y, test::pixel3(frame.lit, x, y),
-                    surface.iridescenceFresnel * test::pixel3(whiteFrame.lit, x, y));
+                    glm::vec3(surface.value(Lobe::Iridescence)) * test::pixel3(whiteFrame.lit, x, y));
     }
   MESSAGE("iridescent ambient light: " << compared << " pixels, worst relative error " << tally.worstRelative);
   CHECK(tally.outside == 0);

@@ -115,9 +115,9 @@ TEST_CASE("strength 0 is no film: Schlick's Fresnel alone, to the bit") {
   const reference::Surface plain =
       reference::makeSurface({0.8f, 0.5f, 0.2f}, 0.3f, 0.4f, {0.0f, 1.0f, 0.0f}, glm::normalize(glm::vec3(0.3f, 1, 0.2f)));
   reference::Surface unfilmed = plain;
-  reference::applyIridescence(unfilmed, {0.0f, 400.0f, 1.33f, 1.5f});
+  reference::applyLobe(unfilmed, Lobe::Iridescence, {0.0f, 400.0f, 1.33f, 1.5f});
   reference::Surface filmed = plain;
-  reference::applyIridescence(filmed, {1.0f, 400.0f, 1.33f, 1.5f});
+  reference::applyLobe(filmed, Lobe::Iridescence, {1.0f, 400.0f, 1.33f, 1.5f});
   const glm::vec3 toLight = glm::normalize(glm::vec3(-0.2f, 1.0f, 0.1f));
   CHECK(reference::cookTorrance(unfilmed, toLight) == reference::cookTorrance(plain, toLight));
   CHECK(reference::cookTorrance(filmed, toLight) != reference::cookTorrance(plain, toLight));

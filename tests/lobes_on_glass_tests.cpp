@@ -91,12 +91,8 @@ bool throughGlass(const Frame& frame, int x, int y) {
 // from the exact split sum (the table's bilinear interpolation is the
 // throughput's tolerance).
 glm::vec3 specularAlbedoOf(const reference::Surface& s) {
-  const float tableRoughness = s.anisotropyStrength > 0.0f
-                                   ? reference::anisotropicAlbedoRoughness(s.roughness, s.anisotropyStrength)
-                                   : s.roughness;
-  const glm::vec2 scaleBias = test::splitSum(s.nDotV, tableRoughness);
-  return glm::mix(s.f0 * scaleBias.x + s.f90 * scaleBias.y, s.iridescenceFresnel * (scaleBias.x + scaleBias.y),
-                  s.iridescence);
+  const glm::vec2 scaleBias = test::splitSum(s.nDotV, reference::lobesAlbedoRoughness(s, s.roughness));
+  return reference::lobesSpecularAlbedo(s, s.f0 * scaleBias.x + s.f90 * scaleBias.y, scaleBias);
 }
 
 // `withLobe` has the lobe; the same pane without it must light differently,

@@ -109,9 +109,8 @@ TEST_CASE("sheen: direct light on the GPU matches the CPU ports per pixel") {
   REQUIRE(!frame.sheen.empty());
   int sheened = 0;
   const ParityCount count = compareDirectLight(scene, frame, [&](reference::Surface& surface, int x, int y) {
-    surface.sheenColor = test::pixel3(frame.sheen, x, y);
-    surface.sheenRoughness = frame.sheen.at(x, y, 3);
-    sheened += surface.sheenColor != glm::vec3(0.0f);
+    reference::applyLobe(surface, Lobe::Sheen, test::pixel4(frame.sheen, x, y));
+    sheened += glm::vec3(surface.value(Lobe::Sheen)) != glm::vec3(0.0f);
   });
   MESSAGE("sheen: " << count.covered << " covered pixels, " << sheened << " with sheen, " << count.lit
                     << " lit, worst relative error " << count.tally.worstRelative);
@@ -143,9 +142,8 @@ TEST_CASE("anisotropy: direct light on the GPU matches the CPU ports per pixel")
   REQUIRE(!frame.anisotropy.empty());
   int stretched = 0;
   const ParityCount count = compareDirectLight(scene, frame, [&](reference::Surface& surface, int x, int y) {
-    surface.anisotropyTangent = test::pixel3(frame.anisotropy, x, y);
-    surface.anisotropyStrength = frame.anisotropy.at(x, y, 3);
-    stretched += surface.anisotropyStrength > 0.0f;
+    reference::applyLobe(surface, Lobe::Anisotropy, test::pixel4(frame.anisotropy, x, y));
+    stretched += surface.value(Lobe::Anisotropy).w > 0.0f;
   });
   MESSAGE("anisotropy: " << count.covered << " covered pixels, " << stretched << " anisotropic, " << count.lit
                          << " lit, worst relative error " << count.tally.worstRelative);

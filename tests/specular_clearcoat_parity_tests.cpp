@@ -123,7 +123,7 @@ TEST_CASE("specular and clearcoat lobes on the GPU match the CPU ports per pixel
                                                           frame.material.at(x, y, 1), normal, view);
       const glm::vec4 specularLobe = test::pixel4(frame.specular, x, y);
       const glm::vec4 clearcoatLobe = test::pixel4(frame.clearcoat, x, y);
-      reference::applySpecularLobe(surface, specularLobe);
+      reference::applyLobe(surface, Lobe::Specular, specularLobe);
       const reference::Clearcoat coat = reference::makeClearcoat(clearcoatLobe, view);
       coated += coat.factor > 0.0f;
       tinted += specularLobe.r != specularLobe.b;
@@ -197,7 +197,7 @@ TEST_CASE("the Embree reference shades both lobes with the CPU ports" * doctest:
       reference::Surface surface =
           reference::makeSurface(test::pixel3(frame.albedo, x, y), frame.material.at(x, y, 0),
                                  frame.material.at(x, y, 1), glm::normalize(test::pixel3(frame.normal, x, y)), view);
-      reference::applySpecularLobe(surface, test::pixel4(frame.specular, x, y));
+      reference::applyLobe(surface, Lobe::Specular, test::pixel4(frame.specular, x, y));
       const reference::Clearcoat coat = reference::makeClearcoat(test::pixel4(frame.clearcoat, x, y), view);
       coated += coat.weight > 0.0f;
       const glm::vec3 expected = coatedDirectLight(scene, position, surface, coat, view);

@@ -630,6 +630,12 @@ std::uint32_t materialLobes(const Material& material) {
   return lobes;
 }
 
+ImageF Frame::*lobeTarget(Lobe lobe) {
+  for (const AttachmentRow& row : kAttachmentRows)
+    if (row.lobe == lobe) return row.target;
+  throw std::logic_error("lobeTarget: a lobe without an attachment row");
+}
+
 std::string lobeNames(std::uint32_t lobes) {
   std::string names;
   for (const LobeRow& row : kLobeRows)

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "frame/lobe.hpp"
 #include "gl/gpu_format.hpp"
 #include "headlight/frame.hpp"
 #include "headlight/scene.hpp"
@@ -34,9 +35,6 @@ namespace headlight {
 // and a HAS_<NAME>_LOBE define in the programs that read it. Specular is
 // KHR_materials_specular or an ior other than 1.5: both change the
 // dielectric F0.
-enum class Lobe { Specular, Clearcoat, Sheen, Anisotropy, Iridescence, Count };
-inline constexpr std::size_t kLobeCount = std::size_t(Lobe::Count);
-constexpr std::uint32_t lobeBit(Lobe lobe) { return std::uint32_t{1} << unsigned(lobe); }
 // The lobes a material uses (a bit per Lobe).
 std::uint32_t materialLobes(const Material& material);
 // HAS_SPECULAR_LOBE, ... (one per bit of `lobes`), and what the shared GLSL
@@ -45,6 +43,8 @@ std::uint32_t materialLobes(const Material& material);
 // hook macros; for the G-buffer, direct, composite, blend and transmission
 // programs.
 std::vector<std::string> lobeDefines(std::uint32_t lobes);
+// Where a Frame keeps the lobe's G-buffer target (its attachment row's).
+ImageF Frame::*lobeTarget(Lobe lobe);
 // "specular (KHR_materials_specular, _ior), clearcoat, ...": the lobes of `lobes`, for --verbose.
 std::string lobeNames(std::uint32_t lobes);
 

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numbers>
+#include <optional>
+
+#include "reference/surface.hpp"
 
 namespace headlight::reference {
 
@@ -61,5 +64,25 @@ inline glm::vec3 importanceSampleAnisotropicGgx(float xi0, float xi1, float alph
   const float tanTheta = std::sqrt(xi1 / std::max(1.0f - xi1, 1e-7f));
   return glm::normalize(glm::vec3(alphaT * tanTheta * std::cos(phi), alphaB * tanTheta * std::sin(phi), 1.0f));
 }
+
+// lobe_anisotropy.glsl's hooks: the lobe's value is the world direction T
+// (xyz) and the strength (w; 0: the isotropic lobe). stretchedGgx is the
+// reference's own: its estimator draws half vectors from the stretched lobe.
+struct AnisotropyLobe {
+  static constexpr Lobe kLobe = Lobe::Anisotropy;
+  static float specularTerm(const Surface& s, const glm::vec4& anisotropy, float term, float alpha,
+                            const glm::vec3& toLight, const glm::vec3& halfVector, float nDotL) {
+    if (anisotropy.w <= 0.0f) return term;
+    return anisotropicSpecular(glm::vec3(anisotropy), anisotropy.w, alpha, s.normal, s.view, toLight, halfVector,
+                               s.nDotV, nDotL);
+  }
+  static float albedoRoughness(const Surface& s, const glm::vec4& anisotropy, float roughness) {
+    return anisotropy.w > 0.0f ? anisotropicAlbedoRoughness(s.roughness, anisotropy.w) : roughness;
+  }
+  static std::optional<StretchedGgx> stretchedGgx(const Surface&, const glm::vec4& anisotropy, float alpha) {
+    if (anisotropy.w <= 0.0f) return std::nullopt;
+    return StretchedGgx{glm::vec3(anisotropy), anisotropyAlphaT(alpha, anisotropy.w), alpha};
+  }
+};
 
 }  // namespace headlight::reference

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "headlight/frame.hpp"
+#include "reference/surface.hpp"
 #include "shared_layout.h"
 
 namespace headlight::reference {
@@ -116,6 +117,30 @@ inline glm::vec3 iridescenceFresnel(const IridescenceInputs& inputs, const glm::
   const glm::vec3 dielectric = thinFilmFresnel(1.0f, filmIor, nDotV, thickness, glm::vec3(baseF0));
   if (metallic <= 0.0f) return dielectric;
   return glm::mix(dielectric, thinFilmFresnel(1.0f, filmIor, nDotV, thickness, albedo), metallic);
+}
+
+// lobe_iridescence.glsl's hooks. The G-buffer holds the film (strength,
+// thickness, film IOR, base IOR); apply turns it into what the Surface
+// keeps: the film's Fresnel at N.V (rgb) and its strength (a).
+struct IridescenceLobe {
+  static constexpr Lobe kLobe = Lobe::Iridescence;
+  static glm::vec4 apply(Surface& s, const glm::vec4& film) {
+    const float strength = std::clamp(film.x, 0.0f, 1.0f);
+    const IridescenceInputs inputs{film.x, film.y, film.z, film.w};
+    return {strength > 0.0f ? iridescenceFresnel(inputs, s.albedo, s.metallic, s.nDotV) : glm::vec3(0.0f), strength};
+  }
+  static glm::vec3 fresnel(const Surface&, const glm::vec4& film, const glm::vec3& fresnel) {
+    return glm::mix(fresnel, glm::vec3(film), film.a);
+  }
+  static glm::vec3 specularAlbedo(const Surface&, const glm::vec4& film, const glm::vec3& albedo,
+                                  const glm::vec2& scaleBias) {
+    return glm::mix(albedo, glm::vec3(film) * (scaleBias.x + scaleBias.y), film.a);
+  }
+};
+
+// A film as the G-buffer's texel holds it (for applyLobe).
+inline glm::vec4 filmValue(const IridescenceInputs& film) {
+  return {film.strength, film.thicknessNm, film.filmIor, film.baseIor};
 }
 
 }  // namespace headlight::reference

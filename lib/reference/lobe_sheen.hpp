@@ -1,11 +1,14 @@
 #pragma once
 // CPU port of glsl/lobe_sheen.glsl (KHR_materials_sheen's Charlie lobe and
 // its albedo scaling): same names, clamps and constants, held to the GLSL by
-// tests/sheen_anisotropy_parity_tests.cpp. Pure functions of their inputs.
+// tests/sheen_anisotropy_parity_tests.cpp. Pure functions of their inputs,
+// and SheenLobe's hooks (reference/lobes.hpp).
 #include <algorithm>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numbers>
+
+#include "reference/surface.hpp"
 
 namespace headlight::reference {
 
@@ -55,5 +58,19 @@ inline float sheenBaseScale(const glm::vec3& sheenColor, float roughness, float 
   const float alpha = sheenAlpha(roughness), strength = sheenStrength(sheenColor);
   return std::min(1.0f - strength * sheenAlbedo(alpha, nDotV), 1.0f - strength * sheenAlbedo(alpha, nDotL));
 }
+
+// lobe_sheen.glsl's hooks: the lobe's value is the sheen colour (rgb;
+// black: no layer) and roughness (a).
+struct SheenLobe {
+  static constexpr Lobe kLobe = Lobe::Sheen;
+  static float layerScale(const Surface& s, const glm::vec4& sheen, float nDotL) {
+    const glm::vec3 color(sheen);
+    return color != glm::vec3(0.0f) ? sheenBaseScale(color, sheen.a, s.nDotV, nDotL) : 1.0f;
+  }
+  static glm::vec3 layerLight(const Surface& s, const glm::vec4& sheen, float nDotL, float nDotH) {
+    const glm::vec3 color(sheen);
+    return color != glm::vec3(0.0f) ? sheenReflected(color, sheen.a, s.nDotV, nDotL, nDotH) : glm::vec3(0.0f);
+  }
+};
 
 }  // namespace headlight::reference

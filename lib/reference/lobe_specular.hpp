@@ -1,6 +1,6 @@
 #pragma once
 // CPU port of the specular lobe (KHR_materials_specular, KHR_materials_ior):
-// glsl/lobe_specular.glsl's applySpecularLobe and
+// glsl/lobe_specular.glsl's hook and
 // glsl/lobe_specular_material.glsl's value of a material, with the GLSL's
 // names and clamps (shading.hpp says why).
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "headlight/scene.hpp"
-#include "reference/shading.hpp"
+#include "reference/surface.hpp"
 
 namespace headlight::reference {
 
@@ -19,13 +19,17 @@ inline float dielectricF0(float ior) {
   return r * r;
 }
 
-// lobe_specular.glsl applySpecularLobe: `lobe` is the attachment's value
-// (rgb the dielectric F0 colour, a the specular weight).
-inline void applySpecularLobe(Surface& s, const glm::vec4& lobe) {
-  const float weight = lobe.a;
-  s.f0 = glm::mix(glm::vec3(lobe) * weight, s.albedo, s.metallic);
-  s.f90 = weight + (1.0f - weight) * s.metallic;  // GLSL mix(weight, 1.0, metallic)
-}
+// lobe_specular.glsl's hook: `lobe` is the attachment's value (rgb the
+// dielectric F0 colour, a the specular weight).
+struct SpecularLobe {
+  static constexpr Lobe kLobe = Lobe::Specular;
+  static glm::vec4 apply(Surface& s, const glm::vec4& lobe) {
+    const float weight = lobe.a;
+    s.f0 = glm::mix(glm::vec3(lobe) * weight, s.albedo, s.metallic);
+    s.f90 = weight + (1.0f - weight) * s.metallic;  // GLSL mix(weight, 1.0, metallic)
+    return lobe;
+  }
+};
 
 // lobe_specular_material.glsl specularLobeOfMaterial, given the texels the
 // material's textures give at the point (white where it has none).

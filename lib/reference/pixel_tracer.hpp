@@ -60,13 +60,13 @@ class Tracer {
   glm::vec3 ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis, const glm::vec3& skyMean,
                          Pcg32& random, glm::vec3* specularAlbedoOut = nullptr, float* specularVisibilityOut = nullptr,
                          int specularRays = 0);
-  glm::vec3 sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random);
+  glm::vec3 layersAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random);
   glm::vec3 environmentIrradianceOverPi(const Surface& surface, const glm::vec3& origin, int count, Pcg32& random);
   glm::vec3 radianceLeaving(const RTCRayHit& rayHit, const glm::vec3& rayDirection);
 
-  // What the base layer keeps of light from `direction` under the sheen (1 without).
-  static float sheenBaseScale(const Surface& s, const glm::vec3& direction) {
-    return reference::sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, glm::dot(s.normal, direction));
+  // What the layers over the base (sheen) leave of its light from `direction` (1 without).
+  static float layerScaleToward(const Surface& s, const glm::vec3& direction) {
+    return baseLayerScale(s, glm::dot(s.normal, direction));
   }
 
   bool unlitPixel(int x, int y) const {

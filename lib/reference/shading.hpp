@@ -11,9 +11,8 @@
 #include <limits>
 
 #include "headlight/scene.hpp"
-#include "reference/lobe_iridescence.hpp"
-#include "reference/lobe_anisotropy.hpp"
-#include "reference/lobe_sheen.hpp"
+#include "reference/lobes.hpp"
+#include "reference/surface.hpp"
 
 namespace headlight::reference {
 
@@ -104,66 +103,8 @@ inline float smithGgxVisibility(float nDotV, float nDotL, float alpha) {
   return 0.5f / std::max(ggxV + ggxL, 1e-7f);
 }
 
-struct Surface {
-  glm::vec3 albedo{0.0f};
-  float metallic = 0;
-  float roughness = 0;
-  glm::vec3 normal{0.0f};  // world, unit
-  glm::vec3 view{0.0f};    // world, unit, toward the eye
-  float nDotV = 0;
-  glm::vec3 f0{0.0f};
-  float f90 = 1.0f;  // brdf.glsl: 1, or less with the specular lobe's weight (lobe_specular.hpp)
-  // KHR_materials_transmission's share: the part of the diffuse lobe its BTDF replaces (lobe_transmission.hpp).
-  float transmission = 0.0f;
-  // KHR_materials_iridescence (applyIridescence): the film's Fresnel at N.V
-  // and its strength; 0 leaves Schlick's alone, as without the lobe.
-  glm::vec3 iridescenceFresnel{0.0f};
-  float iridescence = 0.0f;
-  // KHR_materials_sheen (lobe_sheen.hpp): black is no sheen layer.
-  glm::vec3 sheenColor{0.0f};
-  float sheenRoughness = 0;
-  // KHR_materials_anisotropy (lobe_anisotropy.hpp): the world direction T
-  // (unit, perpendicular to normal) and strength; strength 0 is isotropic.
-  glm::vec3 anisotropyTangent{0.0f};
-  float anisotropyStrength = 0;
-};
-
-// brdf.glsl makeSurface.
-inline Surface makeSurface(const glm::vec3& albedo, float metallic, float roughness, const glm::vec3& normal,
-                           const glm::vec3& view) {
-  Surface s;
-  s.albedo = albedo;
-  s.metallic = metallic;
-  s.roughness = std::max(roughness, 0.03f);  // brdf.glsl: GGX's peak outgrows half floats below 0.03
-  s.normal = normal;
-  s.view = view;
-  s.nDotV = std::max(glm::dot(normal, view), 1e-4f);
-  s.f0 = glm::mix(glm::vec3(0.04f), albedo, metallic);  // glTF's dielectric reflectance (IOR 1.5)
-  s.f90 = 1.0f;
-  return s;
-}
-
-// lobe_iridescence.glsl applyIridescence.
-inline void applyIridescence(Surface& s, const IridescenceInputs& film) {
-  s.iridescence = std::clamp(film.strength, 0.0f, 1.0f);
-  s.iridescenceFresnel =
-      s.iridescence > 0.0f ? iridescenceFresnel(film, s.albedo, s.metallic, s.nDotV) : glm::vec3(0.0f);
-}
-
-// brdf.glsl surfaceFresnel: Schlick's over f0 and f90, or the film's.
-inline glm::vec3 surfaceFresnel(const Surface& s, float vDotH) {
-  const glm::vec3 fresnel = s.f0 + (s.f90 - s.f0) * std::pow(1.0f - vDotH, 5.0f);
-  return glm::mix(fresnel, s.iridescenceFresnel, s.iridescence);  // brdf.glsl under HAS_IRIDESCENCE_LOBE
-}
-
-// brdf.glsl baseLayerScale: what the sheen layer leaves of the base's light.
-inline float baseLayerScale(const Surface& s, float nDotL) {
-  if (s.sheenColor == glm::vec3(0.0f)) return 1.0f;
-  return sheenBaseScale(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL);
-}
-
 // brdf.glsl cookTorrance: (diffuse + specular) * N.L toward a unit `toLight`,
-// with the surface's anisotropy and sheen lobes.
+// with the hooks of the surface's lobes (reference/lobes.hpp).
 inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float nDotL = glm::dot(s.normal, toLight);
   if (nDotL <= 0.0f) return glm::vec3(0.0f);
@@ -175,15 +116,12 @@ inline glm::vec3 cookTorrance(const Surface& s, const glm::vec3& toLight) {
   const float d = (nDotH * nDotH) * (a2 - 1.0f) + 1.0f;
   const float distribution = a2 / (kPi * d * d);
   const glm::vec3 fresnel = surfaceFresnel(s, vDotH);
-  const float specularTerm = s.anisotropyStrength > 0.0f
-                                 ? anisotropicSpecular(s.anisotropyTangent, s.anisotropyStrength, alpha, s.normal,
-                                                       s.view, toLight, halfVector, s.nDotV, nDotL)
-                                 : distribution * smithGgxVisibility(s.nDotV, nDotL, alpha);
+  const float specularTerm =
+      lobesSpecularTerm(s, distribution * smithGgxVisibility(s.nDotV, nDotL, alpha), alpha, toLight, halfVector, nDotL);
   const glm::vec3 specular = specularTerm * fresnel;
   const glm::vec3 diffuse = (1.0f - fresnel) * (1.0f - s.metallic) * (1.0f - s.transmission) * s.albedo / kPi;
   const glm::vec3 base = (diffuse + specular) * (nDotL * baseLayerScale(s, nDotL));
-  if (s.sheenColor == glm::vec3(0.0f)) return base;
-  return base + sheenReflected(s.sheenColor, s.sheenRoughness, s.nDotV, nDotL, nDotH);
+  return base + layersLight(s, nDotL, nDotH);
 }
 
 // brdf.glsl lightAttenuation: inverse square, glTF's range window and the

@@ -83,7 +83,7 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
       ++open;
       ++escaped;
       if (!in_.environment)
-        skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction) * sheenBaseScale(surface, direction));
+        skySum += glm::dvec3(skyRadiance(in_.scene.sky, direction) * layerScaleToward(surface, direction));
       continue;
     }
     const float t = rayHit.ray.tfar;
@@ -99,7 +99,7 @@ void Tracer::tracePixel(int x, int y, const Outputs& out) {
     if (through.hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
       if (!in_.environment)
         skySum += glm::dvec3(through.transmittance * skyRadiance(in_.scene.sky, direction) *
-                             sheenBaseScale(surface, direction));
+                             layerScaleToward(surface, direction));
       continue;
     }
     const glm::dvec3 contribution =

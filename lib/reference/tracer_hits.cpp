@@ -160,15 +160,17 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   }
   Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
   if (material.iridescence)
-    applyIridescence(surface, materialIridescence(material, textured ? &primitive : nullptr, corner, u, v));
+    applyLobe(surface, Lobe::Iridescence,
+              filmValue(materialIridescence(material, textured ? &primitive : nullptr, corner, u, v)));
   // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
   auto texel = [&](const TextureRef& ref, bool srgb) {
     return textured && ref.present() ? sampleTexture(in_.scene, ref, uv, srgb) : glm::vec4(1.0f);
   };
   if (material.specular || material.ior != 1.5f) {
     const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
-    applySpecularLobe(surface, specularLobeOfMaterial(material, texel(specular.specularTexture, false),
-                                                      texel(specular.specularColorTexture, true)));
+    applyLobe(surface, Lobe::Specular,
+              specularLobeOfMaterial(material, texel(specular.specularTexture, false),
+                                     texel(specular.specularColorTexture, true)));
   }
   Clearcoat coat;
   if (const std::optional<MaterialClearcoat>& clearcoat = material.clearcoat)
@@ -248,9 +250,9 @@ glm::vec3 Tracer::directLight(const Surface& surface, const glm::vec3& position,
 // the split-sum scale and bias, hence the renderer's diffuse weight
 // kd = (1 - (f0 scale + bias)) (1 - metallic) without its 64x64 table.
 // Anisotropy: the half vectors come from the stretched lobe, in its frame
-// (T, B, N), with its visibility. Sheen: each direction's base term is
-// scaled by the layer (sheenBaseScale), and the lobe itself is estimated
-// by sheenAmbient. The share of the lobe's Fresnel-free weight that
+// (T, B, N), with its visibility (the lobes' stretchedGgx hook). Layers
+// (sheen): each direction's base term is scaled by them (baseLayerScale),
+// and their own light is estimated by layersAmbient. The share of the lobe's Fresnel-free weight that
 // escapes is the specular sky visibility (ao_ref's specular.Y, compared with
 // the SSGI's specular.Y).
 glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, const Basis& basis,
@@ -258,11 +260,12 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
                                float* specularVisibilityOut, int specularRays) {
   const int m = specularRays > 0 ? specularRays : in_.specularSamples;
   const float alpha = surface.roughness * surface.roughness;
-  const bool stretched = surface.anisotropyStrength > 0.0f;
-  const Basis frame = stretched ? Basis{surface.anisotropyTangent,
-                                        glm::cross(surface.normal, surface.anisotropyTangent), surface.normal}
-                                : basis;
-  const float alphaT = stretched ? anisotropyAlphaT(alpha, surface.anisotropyStrength) : alpha;
+  const std::optional<StretchedGgx> stretchedGgx = lobesStretchedGgx(surface, alpha);
+  const bool stretched = stretchedGgx.has_value();
+  const Basis frame =
+      stretched ? Basis{stretchedGgx->tangent, glm::cross(surface.normal, stretchedGgx->tangent), surface.normal}
+                : basis;
+  const float alphaT = stretched ? stretchedGgx->alphaT : alpha, alphaB = stretched ? stretchedGgx->alphaB : alpha;
   auto inFrame = [&](const glm::vec3& v, float nDot) {
     return glm::vec3(glm::dot(frame.tangent, v), glm::dot(frame.bitangent, v), nDot);
   };
@@ -272,7 +275,7 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
   glm::dvec3 specular(0.0);
   for (int j = 0; j < m; ++j) {
     const float xi0 = random.uniform(), xi1 = random.uniform();
-    const glm::vec3 halfVector = frame.toWorld(stretched ? importanceSampleAnisotropicGgx(xi0, xi1, alphaT, alpha)
+    const glm::vec3 halfVector = frame.toWorld(stretched ? importanceSampleAnisotropicGgx(xi0, xi1, alphaT, alphaB)
                                                          : importanceSampleGgx(xi0, xi1, alpha));
     const float vDotHRaw = glm::dot(surface.view, halfVector);
     const glm::vec3 toLight = 2.0f * vDotHRaw * halfVector - surface.view;  // reflect(-V, H)
@@ -280,20 +283,20 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
     if (nDotL <= 0.0f) continue;
     const float nDotH = std::max(glm::dot(surface.normal, halfVector), 0.0f);
     const float vDotH = std::max(vDotHRaw, 0.0f);
-    const float visibility = stretched ? anisotropicVisibility(alphaT, alpha, inFrame(surface.view, surface.nDotV),
-                                                               inFrame(toLight, nDotL))
-                                       : smithGgxVisibility(surface.nDotV, nDotL, alpha);
+    const float visibility =
+        stretched ? anisotropicVisibility(alphaT, alphaB, inFrame(surface.view, surface.nDotV), inFrame(toLight, nDotL))
+                  : smithGgxVisibility(surface.nDotV, nDotL, alpha);
     const float weight = 4.0f * visibility * vDotH * nDotL / std::max(nDotH, 1e-7f);
     const float fresnel = std::pow(1.0f - vDotH, 5.0f);
     scale += (1.0f - fresnel) * weight;
     bias += fresnel * weight;
     lobeWeight += weight;
     const glm::vec3 direction = glm::normalize(toLight);
-    // KHR_materials_iridescence: the film's Fresnel (one value per pixel) mixed in, as cookTorrance.
-    const glm::vec3 sampleFresnel = glm::mix(surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel,
-                                             surface.iridescenceFresnel, surface.iridescence);
+    // The lobes' Fresnel (an iridescent film's, one value per pixel) over Schlick's, as cookTorrance.
+    const glm::vec3 sampleFresnel = lobesFresnel(surface, surface.f0 * (1.0f - fresnel) + surface.f90 * fresnel);
     if (unoccluded(origin, direction, std::numeric_limits<float>::infinity())) {
-      specular += glm::dvec3(sampleFresnel * weight * ambientRadiance(direction) * sheenBaseScale(surface, direction));
+      specular +=
+          glm::dvec3(sampleFresnel * weight * ambientRadiance(direction) * layerScaleToward(surface, direction));
       escapedWeight += weight;
     }
   }
@@ -302,20 +305,20 @@ glm::vec3 Tracer::ambientLight(const Surface& surface, const glm::vec3& origin, 
   // table, it cannot), and 1 - it weighs the diffuse lobe and what glass lets through (an iridescent
   // glass rim's reference pixel came out at -0.035).
   const glm::vec3 specularAlbedo =
-      glm::min(glm::mix(surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
-                        surface.iridescenceFresnel * float((scale + bias) / m), surface.iridescence),
+      glm::min(lobesSpecularAlbedo(surface, surface.f0 * float(scale / m) + surface.f90 * float(bias / m),
+                                   glm::vec2(float(scale / m), float(bias / m))),
                glm::vec3(1.0f));
   if (specularAlbedoOut) *specularAlbedoOut = specularAlbedo;
   const glm::vec3 diffuseWeight = (1.0f - specularAlbedo) * (1.0f - surface.metallic) * (1.0f - surface.transmission);
   glm::vec3 ambient = diffuseWeight * surface.albedo * skyMean + glm::vec3(specular / double(m));
-  if (surface.sheenColor != glm::vec3(0.0f)) ambient += sheenAmbient(surface, origin, basis, random);
+  if (hasLayerLight(surface)) ambient += layersAmbient(surface, origin, basis, random);
   return ambient * in_.skyIntensity;
 }
 
-// The sheen lobe under the ambient with true visibility: `m` directions
-// uniform over the hemisphere (density 1 / 2 pi), each adding
-// f_sheen N.L L 2 pi where it escapes.
-glm::vec3 Tracer::sheenAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random) {
+// The layers' own light (sheen's) under the ambient with true visibility:
+// `m` directions uniform over the hemisphere (density 1 / 2 pi), each adding
+// the layers' light (f N.L, layersLight) L 2 pi where it escapes.
+glm::vec3 Tracer::layersAmbient(const Surface& surface, const glm::vec3& origin, const Basis& basis, Pcg32& random) {
   const int m = in_.specularSamples;
   glm::dvec3 sum(0.0);
   for (int j = 0; j < m; ++j) {
@@ -324,8 +327,7 @@ glm::vec3 Tracer::sheenAmbient(const Surface& surface, const glm::vec3& origin, 
     const glm::vec3 direction = basis.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
     if (cosTheta <= 0.0f || !unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
     const float nDotH = std::max(glm::dot(surface.normal, glm::normalize(direction + surface.view)), 0.0f);
-    sum += glm::dvec3(sheenReflected(surface.sheenColor, surface.sheenRoughness, surface.nDotV, cosTheta, nDotH) *
-                      ambientRadiance(direction));
+    sum += glm::dvec3(layersLight(surface, cosTheta, nDotH) * ambientRadiance(direction));
   }
   return glm::vec3(sum * double(2.0f * kPi) / double(m));
 }
@@ -349,7 +351,7 @@ glm::vec3 Tracer::environmentIrradianceOverPi(const Surface& surface, const glm:
     if (cosine <= 0.0f || pdf <= 0.0f) continue;
     if (!unoccluded(origin, direction, std::numeric_limits<float>::infinity())) continue;
     sum += glm::dvec3(light.map.lookup(mapDirection)) *
-           double(cosine * sheenBaseScale(surface, direction) / (kPi * pdf));
+           double(cosine * layerScaleToward(surface, direction) / (kPi * pdf));
   }
   return glm::vec3(sum / double(count));
 }
