@@ -103,3 +103,67 @@ TEST_CASE("lobes: the Embree reference shades sheen and anisotropy as the render
   CHECK(anisotropy.gpu == doctest::Approx(anisotropy.reference).epsilon(0.2));
   CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
 }
+
+namespace {
+
+// A sheen sphere of alphaMode BLEND (alpha 0.6) under the sky and the sun:
+// the blend pass lights it from its material, the reference at its hits
+// along the primary rays (Tracer::shadeBlendedHit).
+Scene blendedSheenScene(bool sheen) {
+  Scene scene;
+  scene.source = "test:blended-sheen-reference";
+  Material cloth = makeMaterial({0.2f, 0.2f, 0.25f}, 0.9f);
+  cloth.baseColorFactor.a = 0.6f;
+  cloth.alphaMode = AlphaMode::Blend;
+  cloth.sheen = MaterialSheen{};
+  cloth.sheen->sheenColorFactor = sheen ? glm::vec3(1.0f, 0.6f, 0.3f) : glm::vec3(0.0f);
+  cloth.sheen->sheenRoughnessFactor = 0.5f;
+  addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, cloth), moved({0.0f, 0.6f, 0.0f}));
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.45f));
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  scene.cameras.push_back(makeLookAtCamera({0.0f, 1.0f, 2.6f}, {0.0f, 0.6f, 0.0f}, 0.6f));
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("lobes: the Embree reference shades a blended layer's sheen from its material, as the blend pass does" *
+          doctest::skip(!referenceAvailable())) {
+  constexpr int size = 48;
+  RenderSettings render = test::smallSettings(size, size);
+  render.ssgi.enabled = false;
+  ReferenceSettings trace;
+  trace.samplesPerPixel = 256;
+  trace.radius = 1.0f;
+  const Scene withSheen = blendedSheenScene(true), without = blendedSheenScene(false);
+  const Frame frame = test::renderFresh(withSheen, render), plainFrame = test::renderFresh(without, render);
+  REQUIRE(!frame.coverage.empty());
+  const ReferenceImages reference = traceReference(withSheen, frame, trace);
+  const ReferenceImages plainReference = traceReference(without, plainFrame, trace);
+  Means sheen;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      // Inside the sphere's outline in both frames (its rim left out).
+      if (frame.coverage.at(x, y, 0) < 0.5f || plainFrame.coverage.at(x, y, 0) < 0.5f) continue;
+      auto luminance = [&](const ImageF& image) {
+        return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+      };
+      sheen.gpu += luminance(frame.lit) - luminance(plainFrame.lit);
+      sheen.reference += luminance(reference.lit) - luminance(plainReference.lit);
+      ++sheen.pixels;
+    }
+  REQUIRE(sheen.pixels > 200);
+  MESSAGE("blended sheen: mean luminance change per pixel, renderer / reference: " << sheen.gpu / sheen.pixels << " / "
+                                                                                   << sheen.reference / sheen.pixels);
+  // Before the reference read a blended material's sheen it added nothing
+  // here. Within 15 % as on an opaque sphere (measured 4 %: 0.0298 against
+  // 0.0309; 38 % while the reference's diffuse sky at blended hits missed
+  // the sheen's scaling of the base).
+  CHECK(sheen.gpu > 0.0);
+  CHECK(sheen.reference > 0.0);
+  CHECK(sheen.gpu == doctest::Approx(sheen.reference).epsilon(0.15));
+  CHECK(headlight::detail::ContextAccess::pendingErrorCount(test::sharedContext()) == 0);
+}

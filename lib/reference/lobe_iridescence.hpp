@@ -7,7 +7,10 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
+#include <optional>
+
 #include "headlight/frame.hpp"
+#include "headlight/scene.hpp"
 #include "reference/surface.hpp"
 #include "shared_layout.h"
 
@@ -124,6 +127,21 @@ inline glm::vec3 iridescenceFresnel(const IridescenceInputs& inputs, const glm::
 // keeps: the film's Fresnel at N.V (rgb) and its strength (a).
 struct IridescenceLobe {
   static constexpr Lobe kLobe = Lobe::Iridescence;
+  // lobe_iridescence_material.glsl iridescenceLobeOfMaterial (`texel(ref,
+  // srgb)`: white without a texture): strength, thickness, film IOR, base IOR.
+  template <class Texel>
+  static std::optional<glm::vec4> ofMaterial(const Material& material, const Texel& texel) {
+    if (!material.iridescence) return std::nullopt;
+    const MaterialIridescence& film = *material.iridescence;
+    const float strength = film.iridescenceFactor * texel(film.iridescenceTexture, false).r;
+    // Without a thickness texture the film is the maximum thick (the specification).
+    const float thickness = film.iridescenceThicknessTexture.present()
+                                ? glm::mix(film.iridescenceThicknessMinimum, film.iridescenceThicknessMaximum,
+                                           texel(film.iridescenceThicknessTexture, false).g)
+                                : film.iridescenceThicknessMaximum;
+    return glm::vec4(std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm),
+                     std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor));
+  }
   static glm::vec4 apply(Surface& s, const glm::vec4& film) {
     const float strength = std::clamp(film.x, 0.0f, 1.0f);
     const IridescenceInputs inputs{film.x, film.y, film.z, film.w};

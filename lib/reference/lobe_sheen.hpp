@@ -7,7 +7,9 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numbers>
+#include <optional>
 
+#include "headlight/scene.hpp"
 #include "reference/surface.hpp"
 
 namespace headlight::reference {
@@ -63,6 +65,15 @@ inline float sheenBaseScale(const glm::vec3& sheenColor, float roughness, float 
 // black: no layer) and roughness (a).
 struct SheenLobe {
   static constexpr Lobe kLobe = Lobe::Sheen;
+  // lobe_sheen_material.glsl sheenLobeOfMaterial (`texel(ref, srgb)`: white without a texture).
+  template <class Texel>
+  static std::optional<glm::vec4> ofMaterial(const Material& material, const Texel& texel) {
+    if (!material.sheen) return std::nullopt;
+    const MaterialSheen& sheen = *material.sheen;
+    return glm::clamp(glm::vec4(sheen.sheenColorFactor * glm::vec3(texel(sheen.sheenColorTexture, true)),
+                                sheen.sheenRoughnessFactor * texel(sheen.sheenRoughnessTexture, false).a),
+                      0.0f, 1.0f);
+  }
   static float layerScale(const Surface& s, const glm::vec4& sheen, float nDotL) {
     const glm::vec3 color(sheen);
     return color != glm::vec3(0.0f) ? sheenBaseScale(color, sheen.a, s.nDotV, nDotL) : 1.0f;

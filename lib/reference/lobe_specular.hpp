@@ -4,6 +4,7 @@
 // glsl/lobe_specular_material.glsl's value of a material, with the GLSL's
 // names and clamps (shading.hpp says why).
 #include <algorithm>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -19,18 +20,6 @@ inline float dielectricF0(float ior) {
   return r * r;
 }
 
-// lobe_specular.glsl's hook: `lobe` is the attachment's value (rgb the
-// dielectric F0 colour, a the specular weight).
-struct SpecularLobe {
-  static constexpr Lobe kLobe = Lobe::Specular;
-  static glm::vec4 apply(Surface& s, const glm::vec4& lobe) {
-    const float weight = lobe.a;
-    s.f0 = glm::mix(glm::vec3(lobe) * weight, s.albedo, s.metallic);
-    s.f90 = weight + (1.0f - weight) * s.metallic;  // GLSL mix(weight, 1.0, metallic)
-    return lobe;
-  }
-};
-
 // lobe_specular_material.glsl specularLobeOfMaterial, given the texels the
 // material's textures give at the point (white where it has none).
 inline glm::vec4 specularLobeOfMaterial(const Material& material, const glm::vec4& specularTexel,
@@ -39,5 +28,25 @@ inline glm::vec4 specularLobeOfMaterial(const Material& material, const glm::vec
   const glm::vec3 f0 = dielectricF0(material.ior) * specular.specularColorFactor * glm::vec3(specularColorTexel);
   return {glm::min(f0, glm::vec3(1.0f)), std::clamp(specular.specularFactor * specularTexel.a, 0.0f, 1.0f)};
 }
+
+// lobe_specular.glsl's hook: `lobe` is the attachment's value (rgb the
+// dielectric F0 colour, a the specular weight); ofMaterial is the
+// material's, where it has the lobe (`texel(ref, srgb)`: white without a texture).
+struct SpecularLobe {
+  static constexpr Lobe kLobe = Lobe::Specular;
+  template <class Texel>
+  static std::optional<glm::vec4> ofMaterial(const Material& material, const Texel& texel) {
+    if (!material.specular && material.ior == 1.5f) return std::nullopt;
+    const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
+    return specularLobeOfMaterial(material, texel(specular.specularTexture, false),
+                                  texel(specular.specularColorTexture, true));
+  }
+  static glm::vec4 apply(Surface& s, const glm::vec4& lobe) {
+    const float weight = lobe.a;
+    s.f0 = glm::mix(glm::vec3(lobe) * weight, s.albedo, s.metallic);
+    s.f90 = weight + (1.0f - weight) * s.metallic;  // GLSL mix(weight, 1.0, metallic)
+    return lobe;
+  }
+};
 
 }  // namespace headlight::reference

@@ -51,6 +51,27 @@ inline void applyLobe(Surface& s, Lobe lobe, const glm::vec4& value) {
       LobePorts{});
 }
 
+// surface.glsl applyMaterialLobes: each lobe's value from the material
+// (its port's ofMaterial, lobe_<name>_material.glsl's) on the surface, for
+// the lobes the material has. `texel(ref, srgb)`: the texture at the point,
+// white where there is none. Anisotropy has no port of its material (its
+// direction needs the tangent frame): a blended anisotropic hit is shaded
+// isotropic (docs/ACCURACY.md).
+template <class Texel>
+void applyMaterialLobes(Surface& s, const Material& material, const Texel& texel) {
+  std::apply(
+      [&](auto... ports) {
+        auto one = [&](auto port) {
+          using Port = decltype(port);
+          if constexpr (requires { Port::ofMaterial(material, texel); })
+            if (const std::optional<glm::vec4> value = Port::ofMaterial(material, texel))
+              applyLobe(s, Port::kLobe, *value);
+        };
+        (one(ports), ...);
+      },
+      LobePorts{});
+}
+
 // brdf.glsl's LOBES_FRESNEL: `fresnel` (Schlick's) as the lobes change it (an iridescent film's).
 inline glm::vec3 lobesFresnel(const Surface& s, glm::vec3 fresnel) {
   forEachLobe(s, [&]<class Port>(Port) {

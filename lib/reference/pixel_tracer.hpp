@@ -52,8 +52,6 @@ class Tracer {
   // `rays`: its cosine rays (0: samplesPerPixel) and, over 4, its GGX rays.
   bool shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirection, Pcg32& random, glm::vec3& radiance,
                        float& alpha, int rays = 0);
-  IridescenceInputs materialIridescence(const Material& material, const Primitive* textured,
-                                        const std::uint32_t* corner, float u, float v) const;
   glm::vec3 lightVisibility(const Light& light, const glm::vec3& origin, const glm::vec3& toLight, float distance);
   glm::vec3 directLight(const Surface& surface, const glm::vec3& position, const glm::vec3& origin,
                         const Clearcoat& coat, const TransmissiveSurface& transmissive = {});

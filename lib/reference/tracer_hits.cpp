@@ -146,31 +146,26 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   const glm::vec3 origin = position + normal * in_.epsilon;
   const Basis basis = basisAround(normal);
   const glm::vec3 diffuseWeight = (1.0f - metallic) * glm::vec3(baseColor);
+  Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
+  // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
+  auto texel = [&](const TextureRef& ref, bool srgb) {
+    return textured && ref.present() ? sampleTexture(in_.scene, ref, textureUv(primitive, ref, corner, u, v), srgb)
+                                     : glm::vec4(1.0f);
+  };
+  applyMaterialLobes(surface, material, texel);
   const int n = rays > 0 ? rays : in_.settings.samplesPerPixel;
   glm::dvec3 skySum(0.0), indirectSum(0.0);
   for (int i = 0; i < n; ++i) {
     const float xi0 = random.uniform(), xi1 = random.uniform();
     const glm::vec3 direction = basis.toWorld(cosineSampleHemisphere(xi0, xi1));
-    // Through glass as the pixel's own cosine rays (tracer.cpp).
+    // Through glass as the pixel's own cosine rays (tracer.cpp); the sky
+    // under the layers over the base (sheen) as there, the indirect light not.
     const PassedHit bounce = pastTransmissive(origin, direction, traceFromSurface(origin, direction, view));
+    const float layers = layerScaleToward(surface, direction);
     if (bounce.hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      skySum += glm::dvec3(bounce.transmittance * skyRadiance(in_.scene.sky, direction));
+      skySum += glm::dvec3(bounce.transmittance * skyRadiance(in_.scene.sky, direction) * layers);
     else
       indirectSum += glm::dvec3(bounce.transmittance * diffuseWeight * radianceLeaving(bounce.hit, direction));
-  }
-  Surface surface = makeSurface(glm::vec3(baseColor), metallic, roughness, normal, view);
-  if (material.iridescence)
-    applyLobe(surface, Lobe::Iridescence,
-              filmValue(materialIridescence(material, textured ? &primitive : nullptr, corner, u, v)));
-  // The lobes from the material, as blend.glsl has them (no normal map: the coat's normal is the surface's).
-  auto texel = [&](const TextureRef& ref, bool srgb) {
-    return textured && ref.present() ? sampleTexture(in_.scene, ref, uv, srgb) : glm::vec4(1.0f);
-  };
-  if (material.specular || material.ior != 1.5f) {
-    const MaterialSpecular specular = material.specular.value_or(MaterialSpecular{});
-    applyLobe(surface, Lobe::Specular,
-              specularLobeOfMaterial(material, texel(specular.specularTexture, false),
-                                     texel(specular.specularColorTexture, true)));
   }
   Clearcoat coat;
   if (const std::optional<MaterialClearcoat>& clearcoat = material.clearcoat)
@@ -184,24 +179,6 @@ bool Tracer::shadeBlendedHit(const RTCRayHit& rayHit, const glm::vec3& rayDirect
   radiance = directLight(surface, position, origin, coat) +
              clearcoatLayer(coat, under, coatAmbient(coat, view, origin, random));
   return true;
-}
-
-// lobe_iridescence_material.glsl: a blended material's film at
-// barycentrics (u, v) of the triangle at `corner` (the material has
-// KHR_materials_iridescence); `textured` null: the primitive has no UVs.
-IridescenceInputs Tracer::materialIridescence(const Material& material, const Primitive* textured,
-                                              const std::uint32_t* corner, float u, float v) const {
-  const MaterialIridescence& film = *material.iridescence;
-  auto sample = [&](const TextureRef& ref) {
-    return sampleTexture(in_.scene, ref, textureUv(*textured, ref, corner, u, v), false);
-  };
-  float strength = film.iridescenceFactor, thickness = film.iridescenceThicknessMaximum;
-  if (textured && film.iridescenceTexture.present()) strength *= sample(film.iridescenceTexture).r;
-  if (textured && film.iridescenceThicknessTexture.present())
-    thickness = glm::mix(film.iridescenceThicknessMinimum, film.iridescenceThicknessMaximum,
-                         sample(film.iridescenceThicknessTexture).g);
-  return {std::clamp(strength, 0.0f, 1.0f), std::clamp(thickness, 0.0f, kMaxFilmThicknessNm),
-          std::min(film.iridescenceIor, kMaxIridescenceIor), std::min(material.ior, kMaxIridescenceIor)};
 }
 
 // Fraction of a light's radiance that arrives, per channel: 1, 0 behind an
