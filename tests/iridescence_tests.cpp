@@ -135,7 +135,7 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
   Scene scene;
   addMaterial(scene, makeMaterial({0.5f, 0.5f, 0.5f}, 0.5f));
   const FramePlan without = planFrame(summarizeScene(scene), test::resolvedPlanSettings(), {});
-  CHECK(!without.allocates(Attachment::GbufferIridescence));
+  CHECK(!without.allocates(lobeAttachment(Lobe::Iridescence)));
   CHECK(!hasDefine(without.gbuffer.defines, "HAS_IRIDESCENCE_LOBE"));
   CHECK(std::none_of(without.reads.begin(), without.reads.end(),
                      [](const TargetRead& read) { return read.target->name == "iridescence"; }));
@@ -146,8 +146,8 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
   const SceneSummary summary = summarizeScene(scene);
   CHECK(summary.lobes == lobeBit(Lobe::Iridescence));
   const FramePlan with = planFrame(summary, test::resolvedPlanSettings(), {});
-  CHECK(with.allocates(Attachment::GbufferIridescence));
-  CHECK(with.formatOf(Attachment::GbufferIridescence) == GpuFormat::Rgba16F);
+  CHECK(with.allocates(lobeAttachment(Lobe::Iridescence)));
+  CHECK(with.formatOf(lobeAttachment(Lobe::Iridescence)) == GpuFormat::Rgba16F);
   CHECK(hasDefine(with.gbuffer.defines, "HAS_IRIDESCENCE_LOBE"));
   CHECK(hasDefine(with.gbuffer.defines, "HAS_IRIDESCENCE_TARGET"));
   // After position, normal, albedo and material: location 4 (no emission).
@@ -159,7 +159,7 @@ TEST_CASE("frame plan: the iridescence lobe's attachment and target exist only w
   const auto read = std::find_if(with.reads.begin(), with.reads.end(),
                                  [](const TargetRead& r) { return r.target->name == "iridescence"; });
   REQUIRE(read != with.reads.end());
-  CHECK(read->sources == std::vector<Attachment>{Attachment::GbufferIridescence});
+  CHECK(read->sources == std::vector<Attachment>{lobeAttachment(Lobe::Iridescence)});
   CHECK(read->channels ==
         std::vector<std::string>{"iridescence.factor", "iridescence.thickness", "iridescence.ior", "iridescence.baseIor"});
   // An unlit material's film would change nothing: no lobe.

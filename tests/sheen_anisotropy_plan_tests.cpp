@@ -26,8 +26,8 @@ bool defines(const FramePlan& plan, const std::string& define) {
 
 TEST_CASE("lobes: a scene without sheen or anisotropy pays nothing for them") {
   const FramePlan plan = planFrame(SceneSummary{}, test::resolvedPlanSettings(), {});
-  CHECK(!plan.allocates(Attachment::GbufferSheen));
-  CHECK(!plan.allocates(Attachment::GbufferAnisotropy));
+  CHECK(!plan.allocates(lobeAttachment(Lobe::Sheen)));
+  CHECK(!plan.allocates(lobeAttachment(Lobe::Anisotropy)));
   CHECK(plan.gbuffer.lobes == 0);
   CHECK(plan.gbuffer.colorAttachments.size() == 5);  // the four fixed ones and ids
   CHECK(!defines(plan, "HAS_SHEEN_LOBE"));
@@ -43,15 +43,15 @@ TEST_CASE("lobes: sheen and anisotropy get an attachment each, their defines and
   SceneSummary scene;
   scene.lobes = lobeBit(Lobe::Sheen) | lobeBit(Lobe::Anisotropy);
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
-  CHECK(plan.allocates(Attachment::GbufferSheen));
-  CHECK(plan.allocates(Attachment::GbufferAnisotropy));
-  CHECK(plan.formatOf(Attachment::GbufferSheen) == GpuFormat::Srgb8Alpha8);
-  CHECK(plan.formatOf(Attachment::GbufferAnisotropy) == GpuFormat::Rgba16F);
+  CHECK(plan.allocates(lobeAttachment(Lobe::Sheen)));
+  CHECK(plan.allocates(lobeAttachment(Lobe::Anisotropy)));
+  CHECK(plan.formatOf(lobeAttachment(Lobe::Sheen)) == GpuFormat::Srgb8Alpha8);
+  CHECK(plan.formatOf(lobeAttachment(Lobe::Anisotropy)) == GpuFormat::Rgba16F);
   // After the four fixed attachments (no emission here), in row order.
   CHECK(plan.gbuffer.colorAttachments ==
         std::vector<Attachment>{Attachment::GbufferPosition, Attachment::GbufferNormal, Attachment::GbufferAlbedo,
-                                Attachment::GbufferMaterial, Attachment::GbufferSheen, Attachment::GbufferAnisotropy,
-                                Attachment::GbufferIds});
+                                Attachment::GbufferMaterial, lobeAttachment(Lobe::Sheen),
+                                lobeAttachment(Lobe::Anisotropy), Attachment::GbufferIds});
   CHECK(defines(plan, "HAS_SHEEN_TARGET"));
   CHECK(defines(plan, "SHEEN_TARGET_LOCATION 4"));
   CHECK(defines(plan, "HAS_ANISOTROPY_TARGET"));

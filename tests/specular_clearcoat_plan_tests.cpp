@@ -24,8 +24,8 @@ bool has(const std::vector<std::string>& defines, std::string_view define) {
 
 TEST_CASE("lobes plan: without the lobes, no attachment, define or target") {
   const FramePlan plan = planFrame(SceneSummary{}, test::resolvedPlanSettings(), {});
-  CHECK(!plan.allocates(Attachment::GbufferSpecularLobe));
-  CHECK(!plan.allocates(Attachment::GbufferClearcoatLobe));
+  CHECK(!plan.allocates(lobeAttachment(Lobe::Specular)));
+  CHECK(!plan.allocates(lobeAttachment(Lobe::Clearcoat)));
   CHECK(plan.gbuffer.lobes == 0);
   CHECK(plan.direct->lobes == 0);
   CHECK(plan.composite->lobes == 0);
@@ -38,13 +38,13 @@ TEST_CASE("lobes plan: each lobe gets its attachment at the next location, its d
   scene.emissive = true;
   scene.lobes = lobeBit(Lobe::Specular) | lobeBit(Lobe::Clearcoat);
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), {});
-  CHECK(plan.allocates(Attachment::GbufferSpecularLobe));
-  CHECK(plan.allocates(Attachment::GbufferClearcoatLobe));
+  CHECK(plan.allocates(lobeAttachment(Lobe::Specular)));
+  CHECK(plan.allocates(lobeAttachment(Lobe::Clearcoat)));
   // Position, normal, albedo, material, emissive, then the lobes in row order.
   CHECK(plan.gbuffer.colorAttachments ==
         std::vector<Attachment>{Attachment::GbufferPosition, Attachment::GbufferNormal, Attachment::GbufferAlbedo,
                                 Attachment::GbufferMaterial, Attachment::GbufferEmissive,
-                                Attachment::GbufferSpecularLobe, Attachment::GbufferClearcoatLobe,
+                                lobeAttachment(Lobe::Specular), lobeAttachment(Lobe::Clearcoat),
                                 Attachment::GbufferIds});
   for (const char* define : {"HAS_SPECULAR_TARGET", "SPECULAR_TARGET_LOCATION 5", "HAS_CLEARCOAT_TARGET",
                              "CLEARCOAT_TARGET_LOCATION 6", "HAS_SPECULAR_LOBE", "HAS_CLEARCOAT_LOBE"}) {
@@ -54,10 +54,10 @@ TEST_CASE("lobes plan: each lobe gets its attachment at the next location, its d
   CHECK(plan.direct->lobes == scene.lobes);
   CHECK(plan.composite->lobes == scene.lobes);
   // Half floats: a dielectric F0 of 0.04 would lose 10 % to one 8-bit step.
-  CHECK(plan.formatOf(Attachment::GbufferSpecularLobe) == GpuFormat::Rgba16F);
-  CHECK(plan.formatOf(Attachment::GbufferClearcoatLobe) == GpuFormat::Rgba16F);
+  CHECK(plan.formatOf(lobeAttachment(Lobe::Specular)) == GpuFormat::Rgba16F);
+  CHECK(plan.formatOf(lobeAttachment(Lobe::Clearcoat)) == GpuFormat::Rgba16F);
   REQUIRE(readOf(plan, "specular"));
-  CHECK(readOf(plan, "specular")->sources == std::vector<Attachment>{Attachment::GbufferSpecularLobe});
+  CHECK(readOf(plan, "specular")->sources == std::vector<Attachment>{lobeAttachment(Lobe::Specular)});
   CHECK(readOf(plan, "specular")->channels ==
         std::vector<std::string>{"specularF0.R", "specularF0.G", "specularF0.B", "specular"});
   REQUIRE(readOf(plan, "clearcoat"));
@@ -77,8 +77,8 @@ TEST_CASE("lobes plan: only the clearcoat, and only G-buffer targets asked for")
   scene.lobes = lobeBit(Lobe::Clearcoat);
   const std::vector<std::string> targets{"clearcoat"};
   const FramePlan plan = planFrame(scene, test::resolvedPlanSettings(), targets);
-  CHECK(!plan.allocates(Attachment::GbufferSpecularLobe));
-  CHECK(plan.allocates(Attachment::GbufferClearcoatLobe));
+  CHECK(!plan.allocates(lobeAttachment(Lobe::Specular)));
+  CHECK(plan.allocates(lobeAttachment(Lobe::Clearcoat)));
   CHECK(has(plan.gbuffer.defines, "CLEARCOAT_TARGET_LOCATION 4"));
   CHECK(!has(plan.gbuffer.defines, "HAS_SPECULAR_LOBE"));
   CHECK(!plan.direct);

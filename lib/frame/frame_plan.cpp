@@ -90,10 +90,31 @@ constexpr AttachmentRow kAttachmentRows[] = {
      .gbufferDefine = "EMISSIVE_TARGET",
      .target = &Frame::emissive,
      .radiance = true},
+    // The lobes' attachments, in Lobe order (lobeAttachment): allocated, and
+    // given the next G-buffer location, only when a material of the scene
+    // uses the lobe. Specular and clearcoat (glsl/lobe_*_material.glsl): half
+    // floats, a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
+    // it; the coat's octahedral normal needs ~11 bits per coordinate.
+    {.id = lobeAttachment(Lobe::Specular),
+     .name = "gbuffer.specularLobe",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "SPECULAR_TARGET",
+     .target = &Frame::specular,
+     .lobe = Lobe::Specular,
+     .lobeUnit = gpu::kUnitSpecularLobe},
+    {.id = lobeAttachment(Lobe::Clearcoat),
+     .name = "gbuffer.clearcoatLobe",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "CLEARCOAT_TARGET",
+     .target = &Frame::clearcoat,
+     .lobe = Lobe::Clearcoat,
+     .lobeUnit = gpu::kUnitClearcoatLobe},
     // Sheen colour in sRGB8 like the albedo (it comes from sRGB textures and
     // factors; the targets' sRGB encoding is applied on write), sheen
     // roughness in the linear alpha: 8 bits like the material factors.
-    {.id = Attachment::GbufferSheen,
+    {.id = lobeAttachment(Lobe::Sheen),
      .name = "gbuffer.sheen",
      .format = F::Srgb8Alpha8,
      .gbufferLocation = kAssignedLocation,
@@ -103,7 +124,7 @@ constexpr AttachmentRow kAttachmentRows[] = {
      .lobeUnit = gpu::kUnitSheenLobe},
     // The anisotropy direction resolved to world space in the G-buffer pass
     // (the tangent frame lives there), half float like the normal: 0.03 deg.
-    {.id = Attachment::GbufferAnisotropy,
+    {.id = lobeAttachment(Lobe::Anisotropy),
      .name = "gbuffer.anisotropy",
      .format = F::Rgba16F,
      .gbufferLocation = kAssignedLocation,
@@ -111,6 +132,16 @@ constexpr AttachmentRow kAttachmentRows[] = {
      .target = &Frame::anisotropy,
      .lobe = Lobe::Anisotropy,
      .lobeUnit = gpu::kUnitAnisotropyLobe},
+    // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
+    // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
+    {.id = lobeAttachment(Lobe::Iridescence),
+     .name = "gbuffer.iridescence",
+     .format = F::Rgba16F,
+     .gbufferLocation = kAssignedLocation,
+     .gbufferDefine = "IRIDESCENCE_TARGET",
+     .target = &Frame::iridescence,
+     .lobe = Lobe::Iridescence,
+     .lobeUnit = gpu::kUnitIridescenceLobe},
     {.id = Attachment::GbufferDepth, .name = "gbuffer.depth", .format = F::Depth32F, .target = &Frame::depth},
     {.id = Attachment::DirectTowardEye, .name = "direct.towardEye", .format = F::Rgba16F, .radiance = true},
     {.id = Attachment::DirectDiffuse, .name = "direct.diffuse", .format = F::Rgba16F, .radiance = true},
@@ -134,35 +165,6 @@ constexpr AttachmentRow kAttachmentRows[] = {
     // Float: the path length through a KHR_materials_volume is the file's thickness times its scale,
     // unbounded; half turned any beyond 65504 into inf and the set could not be written (issue 32).
     {.id = Attachment::Transmission, .name = "transmission", .format = F::Rgba32F, .target = &Frame::transmission},
-    // Half float: the film's thickness in nm (up to kMaxFilmThicknessNm, 1e4) keeps 11 bits, 0.25 nm at 400
-    // nm, far below the 8-bit thickness texture's step; its IORs to 5e-4.
-    {.id = Attachment::GbufferIridescence,
-     .name = "gbuffer.iridescence",
-     .format = F::Rgba16F,
-     .gbufferLocation = kAssignedLocation,
-     .gbufferDefine = "IRIDESCENCE_TARGET",
-     .target = &Frame::iridescence,
-     .lobe = Lobe::Iridescence,
-     .lobeUnit = gpu::kUnitIridescenceLobe},
-    // The specular and clearcoat lobes (glsl/lobe_*_material.glsl). Half
-    // floats: a dielectric F0 is ~0.04, where an 8-bit step would be 10 % of
-    // it; the coat's octahedral normal needs ~11 bits per coordinate.
-    {.id = Attachment::GbufferSpecularLobe,
-     .name = "gbuffer.specularLobe",
-     .format = F::Rgba16F,
-     .gbufferLocation = kAssignedLocation,
-     .gbufferDefine = "SPECULAR_TARGET",
-     .target = &Frame::specular,
-     .lobe = Lobe::Specular,
-     .lobeUnit = gpu::kUnitSpecularLobe},
-    {.id = Attachment::GbufferClearcoatLobe,
-     .name = "gbuffer.clearcoatLobe",
-     .format = F::Rgba16F,
-     .gbufferLocation = kAssignedLocation,
-     .gbufferDefine = "CLEARCOAT_TARGET",
-     .target = &Frame::clearcoat,
-     .lobe = Lobe::Clearcoat,
-     .lobeUnit = gpu::kUnitClearcoatLobe},
     // float32: the depth buffer's value exactly, and the view normal as the marches computed it.
     {.id = Attachment::SsgiSurface, .name = "ssgi.surface", .format = F::Rgba32F},
     // float32 whatever lit's precision: 64 samples' running mean in half would round at every step.

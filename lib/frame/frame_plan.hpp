@@ -103,9 +103,11 @@ enum class Attachment {
   GbufferAlbedo,
   GbufferMaterial,
   GbufferEmissive,
-  GbufferSheen,       // KHR_materials_sheen: colour, roughness (Lobe::Sheen)
-  GbufferAnisotropy,  // KHR_materials_anisotropy: world direction, strength (Lobe::Anisotropy)
-  GbufferDepth,
+  // One per Lobe, in Lobe order (lobeAttachment): the lobe's values, as
+  // frame_plan.cpp's row of it says.
+  GbufferLobes,
+  GbufferLobesEnd = GbufferLobes + int(kLobeCount),
+  GbufferDepth = GbufferLobesEnd,
   DirectTowardEye,
   DirectDiffuse,
   SsgiRaw,          // the SSGI pass's output before the blur (its own resolution)
@@ -117,19 +119,17 @@ enum class Attachment {
   SsgiSky,
   SsgiSpecular,  // the specular lobe's sky visibility (R) and its weight (G, internal)
   Lit,
-  BlendCoverage,  // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
-  Transmission,   // the transmission pass's throughput and path length; only for scenes that transmit
-  // KHR_materials_iridescence's film (Lobe::Iridescence): strength, thickness, film IOR, base IOR
-  GbufferIridescence,
-  GbufferSpecularLobe,   // Lobe::Specular: dielectric F0 colour, specular weight
-  GbufferClearcoatLobe,  // Lobe::Clearcoat: factor, roughness, octahedral coat normal
-  SsgiSurface,           // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
-  LitAccumulation,       // the running mean of lit's antialias samples; lit.exr's source when antialiased
-  LitForeground,         // the running mean of their RGB x A and A (Frame::litForeground)
-  GbufferIds,            // mesh instance, mesh, material and mesh primitive ids; only when the ids target is wanted
+  BlendCoverage,    // the blend pass's accumulated alpha, 1 - prod(1 - a); only for scenes that blend
+  Transmission,     // the transmission pass's throughput and path length; only for scenes that transmit
+  SsgiSurface,      // the bitmask SSGI's marches' depth and view normal, one fetch a step (glsl/ssgi_surface.glsl)
+  LitAccumulation,  // the running mean of lit's antialias samples; lit.exr's source when antialiased
+  LitForeground,    // the running mean of their RGB x A and A (Frame::litForeground)
+  GbufferIds,       // mesh instance, mesh, material and mesh primitive ids; only when the ids target is wanted
   Count
 };
 inline constexpr std::size_t kAttachmentCount = std::size_t(Attachment::Count);
+// The G-buffer attachment that holds `lobe`'s values.
+constexpr Attachment lobeAttachment(Lobe lobe) { return Attachment(int(Attachment::GbufferLobes) + int(lobe)); }
 
 // AttachmentRow::gbufferLocation of an optional G-buffer attachment: the
 // plan gives it the next location after those of the attachments before it.
