@@ -9,6 +9,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -101,6 +104,47 @@ TEST_CASE("lobe interface: #include_lobes expands the variant's lobe files and n
   for (const std::string& file : expandedFiles(detail::buildShaderSource("gbuffer.frag", {})))
     for (const char* lobe : {"lobe_specular", "lobe_sheen", "lobe_anisotropy", "lobe_iridescence"})
       CHECK_MESSAGE(!file.starts_with(lobe), file);
+}
+
+TEST_CASE("lobe interface: a lobe row's hooks are the hooks its GLSL files define, no more, no fewer") {
+  // kLobeRows says which hooks each lobe has; its files define them. A hook
+  // defined but not in the row would never be called, one in the row but
+  // not defined would not compile: both are caught here, per lobe.
+  const std::vector<std::string> all = lobeDefines(lobeBit(Lobe::Count) - 1);
+  std::vector<std::string> names;
+  {
+    const std::string list = macro(all, "LOBE_NAMES");
+    std::istringstream words{list.substr(std::string("LOBE_NAMES").size())};
+    for (std::string name; words >> name;) names.push_back(name);
+  }
+  REQUIRE(names.size() == 4);  // specular, sheen, anisotropy, iridescence (clearcoat has no hooks)
+  for (const std::string& name : names) {
+    // Called: `<name>Lobe<Hook>(` in the LOBES_<HOOK> macros (not the values' macros).
+    std::set<std::string> called, defined;
+    const std::regex call("\\b" + name + "Lobe([A-Z][A-Za-z]*)\\(");
+    for (const std::string& define : all) {
+      if (!define.starts_with("LOBES_") || define.starts_with("LOBES_AT") || define.starts_with("LOBES_OF_MATERIAL") ||
+          define.starts_with("LOBES_WRITE_TARGETS"))
+        continue;
+      for (auto it = std::sregex_iterator(define.begin(), define.end(), call); it != std::sregex_iterator(); ++it)
+        called.insert((*it)[1]);
+    }
+    // Defined: a function `<type> <name>Lobe<Hook>(` in lobe_<name>.glsl or its _ambient file.
+    const std::regex definition("(?:vec4|vec3|float)\\s+" + name + "Lobe([A-Z][A-Za-z]*)\\(");
+    for (const std::string& file : {"lobe_" + name + ".glsl", "lobe_" + name + "_ambient.glsl"}) {
+      std::string text;
+      try {
+        text = std::string(detail::shaderText(file));
+      } catch (const GlError&) {
+        continue;  // no ambient file
+      }
+      for (auto it = std::sregex_iterator(text.begin(), text.end(), definition); it != std::sregex_iterator(); ++it)
+        defined.insert((*it)[1]);
+    }
+    INFO("lobe " << name);
+    CHECK(!defined.empty());
+    CHECK(called == defined);
+  }
 }
 
 TEST_CASE("lobe interface: a lobe named without its GLSL file is an error naming the file") {
