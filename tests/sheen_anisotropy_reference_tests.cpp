@@ -24,23 +24,32 @@ namespace {
 // renderer's ambient sees the sky's ground colour where the reference would
 // see the floor (without SSGI, nothing occludes the renderer's sky), and the
 // lobes' effect is what is compared here.
-Scene lobeScene(bool lobes) {
-  Scene scene;
-  scene.source = "test:lobe-reference";
+// A grey cloth with a warm sheen, or with the sheen's "no effect" colour.
+Material sheenCloth(bool sheen) {
   Material cloth = makeMaterial({0.2f, 0.2f, 0.25f}, 0.9f);
   cloth.sheen = MaterialSheen{};
-  cloth.sheen->sheenColorFactor = lobes ? glm::vec3(1.0f, 0.6f, 0.3f) : glm::vec3(0.0f);
+  cloth.sheen->sheenColorFactor = sheen ? glm::vec3(1.0f, 0.6f, 0.3f) : glm::vec3(0.0f);
   cloth.sheen->sheenRoughnessFactor = 0.5f;
-  addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, cloth), moved({-0.7f, 0.6f, 0.0f}));
-  Material brushed = makeMaterial({0.9f, 0.9f, 0.9f}, 0.4f, 1.0f);
-  brushed.anisotropy = MaterialAnisotropy{};
-  brushed.anisotropy->anisotropyStrength = lobes ? 0.9f : 0.0f;
-  addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, brushed), moved({0.7f, 0.6f, 0.0f}));
+  return cloth;
+}
+
+void addSun(Scene& scene) {
   Light sun;
   sun.type = Light::Type::Directional;
   sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.45f));
   sun.intensity = 3.0f;
   scene.lights.push_back(sun);
+}
+
+Scene lobeScene(bool lobes) {
+  Scene scene;
+  scene.source = "test:lobe-reference";
+  addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, sheenCloth(lobes)), moved({-0.7f, 0.6f, 0.0f}));
+  Material brushed = makeMaterial({0.9f, 0.9f, 0.9f}, 0.4f, 1.0f);
+  brushed.anisotropy = MaterialAnisotropy{};
+  brushed.anisotropy->anisotropyStrength = lobes ? 0.9f : 0.0f;
+  addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, brushed), moved({0.7f, 0.6f, 0.0f}));
+  addSun(scene);
   scene.cameras.push_back(makeLookAtCamera({0.0f, 1.2f, 3.5f}, {0.0f, 0.5f, 0.0f}, 0.6f));
   return scene;
 }
@@ -112,18 +121,11 @@ namespace {
 Scene blendedSheenScene(bool sheen) {
   Scene scene;
   scene.source = "test:blended-sheen-reference";
-  Material cloth = makeMaterial({0.2f, 0.2f, 0.25f}, 0.9f);
+  Material cloth = sheenCloth(sheen);
   cloth.baseColorFactor.a = 0.6f;
   cloth.alphaMode = AlphaMode::Blend;
-  cloth.sheen = MaterialSheen{};
-  cloth.sheen->sheenColorFactor = sheen ? glm::vec3(1.0f, 0.6f, 0.3f) : glm::vec3(0.0f);
-  cloth.sheen->sheenRoughnessFactor = 0.5f;
   addInstance(scene, makeUvSphere(0.6f, 48, 24), addMaterial(scene, cloth), moved({0.0f, 0.6f, 0.0f}));
-  Light sun;
-  sun.type = Light::Type::Directional;
-  sun.direction = glm::normalize(glm::vec3(0.4f, -0.8f, -0.45f));
-  sun.intensity = 3.0f;
-  scene.lights.push_back(sun);
+  addSun(scene);
   scene.cameras.push_back(makeLookAtCamera({0.0f, 1.0f, 2.6f}, {0.0f, 0.6f, 0.0f}, 0.6f));
   return scene;
 }

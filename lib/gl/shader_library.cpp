@@ -7,9 +7,18 @@
 
 namespace headlight::detail {
 
-std::string_view shaderText(std::string_view name) {
+namespace {
+
+const EmbeddedShader* findShader(std::string_view name) {
   for (const EmbeddedShader& shader : embeddedShaders())
-    if (name == shader.name) return shader.text;
+    if (name == shader.name) return &shader;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string_view shaderText(std::string_view name) {
+  if (const EmbeddedShader* shader = findShader(name)) return shader->text;
   throw GlError("shader library: no shader named '" + std::string(name) + "' in glsl/");
 }
 
@@ -26,12 +35,6 @@ std::vector<std::string> lobeNamesOf(std::span<const std::string> defines) {
     for (std::string name; words >> name;) names.push_back(name);
   }
   return names;
-}
-
-bool haveShader(std::string_view name) {
-  for (const EmbeddedShader& shader : embeddedShaders())
-    if (name == shader.name) return true;
-  return false;
 }
 
 // Expands #include "file" lines, each file at most once, and
@@ -62,7 +65,7 @@ void appendExpanded(std::string_view fileName, std::span<const std::string> lobe
       if (line.compare(first, 14, "#include_lobes") == 0) {
         for (const std::string& lobe : lobes) {
           const std::string file = "lobe_" + lobe + named + ".glsl";
-          if (named.empty() || haveShader(file)) appendExpanded(file, lobes, included, fileNames, out);
+          if (named.empty() || findShader(file)) appendExpanded(file, lobes, included, fileNames, out);
         }
       } else {
         appendExpanded(named, lobes, included, fileNames, out);
